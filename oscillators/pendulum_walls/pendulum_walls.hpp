@@ -1,0 +1,238 @@
+// The parametrically excited pendulum between two walls (Jin, Hu & Bishop
+// 2003), Model N of MODEL.md: Newton impacts with Coulomb friction, chattering
+// resolved at its accumulation point, a sustained sliding-contact phase with
+// its normal force λ_N and friction work, release where λ_N vanishes, and a
+// typed Painlevé diagnostic where the contact problem is inconsistent.
+//
+// Coordinates: θ from the downward vertical (rad), positive towards the right
+// wall x = +b. The pivot moves vertically with velocity V0 sin ωt (y down).
+//     free flight   m l² θ̈ + d θ̇ + m l g_e(t) sin θ = 0,  g_e = g − V0 ω cos ωt
+//     walls         θ = ±θ0, θ0 = asin(b / l)
+// State: {θ (rad), θ̇ (rad/s), W_f (J)}, W_f being the work done by friction
+// in contact phases since t0 (it grows only in contact modes).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+
+#include "contact/accumulation.hpp"
+#include "contact/newton_impact.hpp"
+#include "contact/painleve.hpp"
+#include "core/event_log.hpp"
+#include "core/hybrid_system.hpp"
+
+namespace impactlab {
+
+struct PendulumWallsParameters {
+  double m = 0.5;       // bob mass (kg)
+  double l = 0.7;       // rod length (m)
+  double b = 0.05;      // half the distance between the walls (m)
+  double d = 0.01;      // damping at the pivot (N m s / rad)
+  double g = 9.81;      // gravity (m/s²)
+  double V0 = 1.5;      // pivot velocity amplitude (m/s)
+  double omega = 7.0;   // forcing frequency (rad/s)
+  double e_n = 0.3;     // normal restitution, [0, 1]
+  double e_t = -0.1;    // tangential restitution of the paper's Model P, [-1, 0]
+  double mu = 0.6;      // Coulomb friction coefficient, >= 0
+  double accumulation_tol = 1e-3;  // accepted relative error of an accumulation estimate
+};
+
+class PendulumWalls {
+ public:
+  using State = std::array<double, 3>;
+  enum class Mode { free, contact_right, contact_left };
+  static constexpr std::size_t max_witnesses = 2;
+
+  explicit PendulumWalls(const PendulumWallsParameters& p)
+      : p_(p),
+        theta0_(std::asin(p.b / p.l)),
+        sin0_(p.b / p.l),
+        cos0_(std::cos(std::asin(p.b / p.l))) {}
+
+  [[nodiscard]] const PendulumWallsParameters& parameters() const { return p_; }
+  [[nodiscard]] double wall_angle() const { return theta0_; }
+
+  // effective gravity in the pivot's frame (m/s²) and its rate (m/s³)
+  [[nodiscard]] double effective_gravity(double t) const {
+    return p_.g - p_.V0 * p_.omega * std::cos(p_.omega * t);
+  }
+  [[nodiscard]] double effective_gravity_rate(double t) const {
+    return p_.V0 * p_.omega * p_.omega * std::sin(p_.omega * t);
+  }
+  // velocity of the pivot, and of a bob resting on a wall, along the wall (m/s)
+  [[nodiscard]] double pivot_velocity(double t) const { return p_.V0 * std::sin(p_.omega * t); }
+
+  // bob's velocity along the wall, y down (m/s)
+  [[nodiscard]] double tangential_velocity(const State& x, double t) const {
+    return pivot_velocity(t) - p_.l * std::sin(x[0]) * x[1];
+  }
+
+  // Painlevé denominator cos θ0 − s μ sin θ0 (dimensionless) for slip sign s.
+  [[nodiscard]] double friction_denominator(double slip_sign) const {
+    return cos0_ - slip_sign * p_.mu * sin0_;
+  }
+
+  // λ_N (N) in a contact phase, same formula on both walls.
+  [[nodiscard]] double normal_force(double t, double slip_sign) const {
+    return -p_.m * effective_gravity(t) * sin0_ / friction_denominator(slip_sign);
+  }
+
+  // E = ½ m l² θ̇² + m g l (1 − cos θ) (J), the free pendulum's energy at V0 = 0
+  [[nodiscard]] double energy(const State& x) const {
+    return 0.5 * p_.m * p_.l * p_.l * x[1] * x[1] + p_.m * p_.g * p_.l * (1.0 - std::cos(x[0]));
+  }
+
+  [[nodiscard]] double max_step() const {
+    const double forcing_period = 2.0 * std::numbers::pi / p_.omega;
+    const double natural_period = 2.0 * std::numbers::pi * std::sqrt(p_.l / p_.g);
+    return std::min(forcing_period, natural_period) / 16.0;
+  }
+
+  void rhs(Mode mode, const State& x, State& dxdt, double t) const {
+    if (mode == Mode::free) {
+      dxdt[0] = x[1];
+      dxdt[1] = -(p_.d * x[1] + p_.m * p_.l * effective_gravity(t) * std::sin(x[0])) /
+                (p_.m * p_.l * p_.l);
+      dxdt[2] = 0.0;
+      return;
+    }
+    const double slip = pivot_velocity(t);
+    dxdt[0] = 0.0;
+    dxdt[1] = 0.0;
+    dxdt[2] = p_.mu * normal_force(t, sign(slip)) * std::fabs(slip);
+  }
+
+  [[nodiscard]] std::size_t witness_count(Mode) const { return 2; }
+
+  [[nodiscard]] TriggerDirection trigger_direction(Mode mode, std::size_t k) const {
+    if (mode == Mode::free || k == 0) return TriggerDirection::falling;
+    return TriggerDirection::either;
+  }
+
+  // free:    k = 0 gap to the right wall, k = 1 gap to the left wall (m)
+  // contact: k = 0 normal force λ_N (N), k = 1 tangential velocity (m/s)
+  [[nodiscard]] WitnessSample witness(Mode mode, std::size_t k, const State& x, double t) const {
+    if (mode == Mode::free) {
+      const double side = k == 0 ? 1.0 : -1.0;
+      return {p_.b - side * p_.l * std::sin(x[0]), -side * p_.l * std::cos(x[0]) * x[1]};
+    }
+    if (k == 0) {
+      const double s = sign(pivot_velocity(t));
+      const double denominator = friction_denominator(s);
+      return {normal_force(t, s), -p_.m * effective_gravity_rate(t) * sin0_ / denominator};
+    }
+    return {pivot_velocity(t), p_.V0 * p_.omega * std::cos(p_.omega * t)};
+  }
+
+  Transition<State, Mode> on_event(Mode mode, std::size_t k, CrossingKind crossing,
+                                   const State& x, double t, EventLog& log) const {
+    if (mode == Mode::free) return on_wall_reached(k == 0 ? 1 : -1, crossing, x, t, log);
+    const int wall = mode == Mode::contact_right ? 1 : -1;
+    if (k == 0) return release(mode, wall, x, t, log);
+    return slip_reversal(mode, wall, x, t, log);
+  }
+
+ private:
+  static double sign(double v) { return v > 0.0 ? 1.0 : v < 0.0 ? -1.0 : 0.0; }
+
+  static Mode contact_mode(int wall) { return wall > 0 ? Mode::contact_right : Mode::contact_left; }
+
+  // the state resting on a wall
+  [[nodiscard]] State on_wall(int wall, double friction_work) const {
+    return {wall * theta0_, 0.0, friction_work};
+  }
+
+  Transition<State, Mode> stop_painleve(Mode mode, int wall, const State& x, double t,
+                                        double qdot_after, EventLog& log) const {
+    EventRecord painleve{t, EventKind::painleve, wall, x[0], x[1], qdot_after};
+    painleve.tangential_velocity = tangential_velocity(x, t);
+    log.record(painleve);
+    return {x, mode, t, true};
+  }
+
+  // An impact (or a grazing touch) on `wall`; then either free flight again,
+  // or, when the impacts are accumulating, a jump to their limit and contact.
+  Transition<State, Mode> on_wall_reached(int wall, CrossingKind crossing, const State& x,
+                                          double t, EventLog& log) const {
+    const double gamma_t = tangential_velocity(x, t);
+    if (crossing == CrossingKind::grazing) {
+      EventRecord graze{t, EventKind::grazing, wall, x[0], x[1], x[1]};
+      graze.tangential_velocity = gamma_t;
+      log.record(graze);
+      return {x, Mode::free, t, false};
+    }
+    // wall normal Jacobian W_N = -wall l cos θ0, tangential W_T = -l sin θ = -wall l sin θ0
+    const double w_n = -wall * p_.l * cos0_;
+    const double w_t = -wall * p_.l * sin0_;
+    const NewtonImpactResult impact =
+        newton_impact(x[1], p_.m * p_.l * p_.l, w_n, w_t, gamma_t, p_.e_n, p_.mu);
+    if (is_painleve(impact.denominator))
+      return stop_painleve(Mode::free, wall, x, t, impact.qdot_after, log);
+    EventRecord record{t, EventKind::impact, wall, x[0], x[1], impact.qdot_after};
+    record.normal_impulse = impact.normal_impulse;
+    record.tangential_velocity = gamma_t;
+    log.record(record);
+
+    State after{wall * theta0_, impact.qdot_after, x[2]};
+    // chattering: is the wall attracting, and is the accumulation estimate good?
+    const double approach = -effective_gravity(t) * sin0_ * cos0_;
+    const double approach_rate = -effective_gravity_rate(t) * sin0_ * cos0_;
+    const auto remaining = time_to_accumulation(
+        {p_.l * cos0_ * std::fabs(impact.qdot_after), approach, approach_rate, p_.e_n},
+        p_.accumulation_tol, 1.0 / p_.omega);
+    if (!remaining) return {after, Mode::free, t, false};
+    return enter_contact(wall, x[2], t + *remaining, log);
+  }
+
+  Transition<State, Mode> enter_contact(int wall, double friction_work, double t,
+                                        EventLog& log) const {
+    const State resting = on_wall(wall, friction_work);
+    log.record({t, EventKind::accumulation, wall, resting[0], 0.0, 0.0});
+    const double slip = pivot_velocity(t);
+    // at zero slip the slip about to start decides the friction direction
+    const double s = slip != 0.0 ? sign(slip) : sign(std::cos(p_.omega * t));
+    if (is_painleve(friction_denominator(s)))
+      return stop_painleve(contact_mode(wall), wall, resting, t, 0.0, log);
+    const double lambda = normal_force(t, s);
+    if (!(lambda > 0.0)) return {resting, Mode::free, t, false};
+    EventRecord start{t, EventKind::contact_start, wall, resting[0], 0.0, 0.0};
+    start.normal_force = lambda;
+    start.tangential_velocity = slip;
+    start.friction_work = friction_work;
+    log.record(start);
+    return {resting, contact_mode(wall), t, false};
+  }
+
+  Transition<State, Mode> release(Mode, int wall, const State& x, double t, EventLog& log) const {
+    EventRecord end{t, EventKind::contact_end, wall, x[0], 0.0, 0.0};
+    end.normal_force = 0.0;
+    end.tangential_velocity = pivot_velocity(t);
+    end.friction_work = x[2];
+    log.record(end);
+    return {on_wall(wall, x[2]), Mode::free, t, false};
+  }
+
+  Transition<State, Mode> slip_reversal(Mode mode, int wall, const State& x, double t,
+                                        EventLog& log) const {
+    const double s_new = sign(std::cos(p_.omega * t)) * (p_.V0 > 0.0 ? 1.0 : 0.0);
+    if (is_painleve(friction_denominator(s_new)))
+      return stop_painleve(mode, wall, x, t, 0.0, log);
+    EventRecord reversal{t, EventKind::slip_reversal, wall, x[0], 0.0, 0.0};
+    reversal.normal_force = normal_force(t, s_new);
+    reversal.tangential_velocity = 0.0;
+    reversal.friction_work = x[2];
+    log.record(reversal);
+    return {x, mode, t, false};
+  }
+
+  PendulumWallsParameters p_;
+  double theta0_;  // wall angle (rad)
+  double sin0_;    // sin θ0 = b / l
+  double cos0_;    // cos θ0
+};
+
+static_assert(HybridSystem<PendulumWalls>);
+
+}  // namespace impactlab

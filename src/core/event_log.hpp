@@ -1,0 +1,80 @@
+// The event log: one record per discrete event of a run, in time order.
+//
+// The leading fields are the command-line contract's `events.csv` columns
+// (t, kind, wall, q, qdot_before, qdot_after); the others carry the contact
+// mechanics where a model computes them and are NaN where it does not.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string_view>
+#include <vector>
+
+namespace impactlab {
+
+enum class EventKind : std::uint8_t {
+  impact,         // instantaneous impact, velocity reset by the impact law
+  grazing,        // zero-velocity touch of a wall (double root of the gap)
+  accumulation,   // limit point of a chattering (Zeno) sequence of impacts
+  contact_start,  // sustained contact begins (after an accumulation)
+  contact_end,    // release: the normal force reached zero
+  slip_reversal,  // tangential velocity changed sign during contact
+  painleve,       // contact problem inconsistent: run stopped (typed diagnostic)
+};
+
+constexpr std::string_view to_string(EventKind kind) {
+  switch (kind) {
+    case EventKind::impact: return "impact";
+    case EventKind::grazing: return "grazing";
+    case EventKind::accumulation: return "accumulation";
+    case EventKind::contact_start: return "contact_start";
+    case EventKind::contact_end: return "contact_end";
+    case EventKind::slip_reversal: return "slip_reversal";
+    case EventKind::painleve: return "painleve";
+  }
+  return "unknown";
+}
+
+struct EventRecord {
+  static constexpr double not_computed = std::numeric_limits<double>::quiet_NaN();
+
+  double t = 0.0;                      // event time (s)
+  EventKind kind = EventKind::impact;  //
+  int wall = 0;                        // +1 / -1 for the wall or table, 0 for none
+  double q = 0.0;                      // main coordinate at the event (rad or m)
+  double qdot_before = 0.0;            // its rate just before (rad/s or m/s)
+  double qdot_after = 0.0;             // and just after
+  double normal_impulse = not_computed;       // P_N (N s)
+  double tangential_velocity = not_computed;  // γ_T at the event (m/s)
+  double normal_force = not_computed;         // λ_N at the event (N)
+  double friction_work = not_computed;        // work done by friction over the
+                                              // contact phase that ends here (J)
+};
+
+// Counts every event and keeps the records unless told not to (a benchmark or
+// a long sweep may only need the counts). Reserve capacity up front to keep
+// the event loop free of allocations.
+class EventLog {
+ public:
+  explicit EventLog(bool keep_records = true) : keep_records_(keep_records) {}
+
+  void reserve(std::size_t n) { records_.reserve(n); }
+
+  void record(const EventRecord& event) {
+    ++counts_[static_cast<std::size_t>(event.kind)];
+    if (keep_records_) records_.push_back(event);
+  }
+
+  [[nodiscard]] const std::vector<EventRecord>& records() const { return records_; }
+  [[nodiscard]] std::uint64_t count(EventKind kind) const {
+    return counts_[static_cast<std::size_t>(kind)];
+  }
+
+ private:
+  static constexpr std::size_t kind_count = 7;
+  bool keep_records_;
+  std::vector<EventRecord> records_;
+  std::uint64_t counts_[kind_count] = {};
+};
+
+}  // namespace impactlab

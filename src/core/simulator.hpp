@@ -1,0 +1,219 @@
+// The one event loop: step with dense output, locate the earliest witness
+// root in the step, move to it, apply the system's transition, restart the
+// stepper cleanly, repeat until the end time.
+//
+// Guarantees:
+// * an event exactly at t0 is applied before the first step (a state on a
+//   wall and moving into it), and a root at exactly the end time is kept;
+// * after an event the stepper restarts at the event, and a witness that sits
+//   at zero there is not armed again until it has left zero, so the same
+//   event is never found twice;
+// * the loop itself allocates nothing and calls the right-hand side through a
+//   template parameter (no virtual call per evaluation);
+// * a run that makes no progress in time (an accumulation of events that the
+//   model did not resolve) is stopped by the named Zeno guard, not left to hang.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string_view>
+
+#include "core/event_log.hpp"
+#include "core/hybrid_system.hpp"
+#include "integrate/event_location.hpp"
+#include "integrate/stepper_settings.hpp"
+
+namespace impactlab {
+
+enum class Termination {
+  completed,        // reached the end time
+  stopped_by_model, // the system asked to stop (for example a Painlevé diagnostic)
+  no_progress,      // the Zeno guard fired
+};
+
+constexpr std::string_view to_string(Termination termination) {
+  switch (termination) {
+    case Termination::completed: return "completed";
+    case Termination::stopped_by_model: return "stopped_by_model";
+    case Termination::no_progress: return "no_progress";
+  }
+  return "unknown";
+}
+
+// Guard against an unresolved accumulation of events (Zeno behaviour): if more
+// than `max_events` events happen while time advances by less than `window`
+// seconds, the run stops with Termination::no_progress.
+struct ZenoGuard {
+  std::uint64_t max_events = 10000;
+  double window = 1e-6;  // s
+};
+
+struct LoopOptions {
+  EventLocationOptions location;
+  ZenoGuard zeno;
+};
+
+struct RunCounters {
+  std::uint64_t steps = 0;
+  std::uint64_t rhs_evaluations = 0;
+  std::uint64_t events = 0;
+};
+
+template <class State, class Mode>
+struct RunResult {
+  State state{};
+  Mode mode{};
+  double t = 0.0;
+  Termination termination = Termination::completed;
+  RunCounters counters;
+};
+
+// Receives the state at requested times; the default requests none.
+struct NoObserver {
+  [[nodiscard]] double next_time() const { return INFINITY; }
+  template <class State, class Mode>
+  void observe(double, const State&, Mode) {}
+};
+
+template <HybridSystem System, class Stepper, class Observer = NoObserver>
+RunResult<typename System::State, typename System::Mode> simulate(
+    const System& system, Stepper& stepper, typename System::State x, typename System::Mode mode,
+    double t0, double t_end, const LoopOptions& options, EventLog& log,
+    Observer&& observer = Observer{}) {
+  using State = typename System::State;
+  RunResult<State, typename System::Mode> result;
+  ModeRhs<System> rhs{&system, mode, &result.counters.rhs_evaluations};
+  double t = t0;
+  double zeno_checkpoint_time = t0;
+  std::uint64_t zeno_checkpoint_events = 0;
+
+  auto emit_observations = [&](double up_to, auto&& state_at) {
+    while (observer.next_time() <= up_to) {
+      const double ts = observer.next_time();
+      State xs;
+      state_at(ts, xs);
+      observer.observe(ts, xs, rhs.mode);
+    }
+  };
+  auto finish = [&](Termination termination) {
+    result.state = x;
+    result.mode = rhs.mode;
+    result.t = t;
+    result.termination = termination;
+    return result;
+  };
+
+  // Applies the transition of an event at (te, xe); false when the run stops.
+  auto apply_event = [&](std::size_t witness, CrossingKind kind, double te, const State& xe) {
+    ++result.counters.events;
+    const auto transition = system.on_event(rhs.mode, witness, kind, xe, te, log);
+    if (transition.stop) {
+      t = te;
+      x = xe;
+      return false;
+    }
+    // the state between the event and a later restart time (an accumulation
+    // jumped over) is the state the system continues from
+    const double restart = std::min(std::max(transition.time, te), t_end);
+    emit_observations(restart, [&](double, State& out) { out = transition.state; });
+    t = restart;
+    x = transition.state;
+    rhs.mode = transition.mode;
+    return true;
+  };
+
+  auto zeno_guard_fired = [&]() {
+    if (t - zeno_checkpoint_time > options.zeno.window) {
+      zeno_checkpoint_time = t;
+      zeno_checkpoint_events = result.counters.events;
+      return false;
+    }
+    return result.counters.events - zeno_checkpoint_events > options.zeno.max_events;
+  };
+
+  // A witness exactly at zero at the end time, having been armed at the start
+  // of the last step and moving towards its trigger side, is an event at the
+  // end time (its computed value may land on either side of zero by round-off).
+  auto apply_event_at_end = [&](double t_step_start) {
+    for (std::size_t k = 0; k < system.witness_count(rhs.mode); ++k) {
+      const TriggerDirection direction = system.trigger_direction(rhs.mode, k);
+      if (direction == TriggerDirection::either) continue;
+      const double sign = direction == TriggerDirection::rising ? -1.0 : 1.0;
+      const WitnessSample w = system.witness(rhs.mode, k, x, t);
+      const double start_value =
+          sign * system.witness(rhs.mode, k, stepper.previous_state(), t_step_start).value;
+      const double value = sign * w.value;
+      if (start_value > options.location.grazing_tolerance && value > 0.0 &&
+          value <= options.location.grazing_tolerance && sign * w.rate < 0.0)
+        return apply_event(k, CrossingKind::crossing, t, State(x));
+    }
+    return true;
+  };
+
+  // events at t0: a witness at zero, moving towards its trigger side
+  for (std::size_t k = 0; k < system.witness_count(rhs.mode); ++k) {
+    const WitnessSample w = system.witness(rhs.mode, k, x, t);
+    const TriggerDirection direction = system.trigger_direction(rhs.mode, k);
+    const bool at_zero = std::fabs(w.value) <= options.location.grazing_tolerance;
+    const bool inward = direction == TriggerDirection::falling  ? w.rate < 0.0
+                        : direction == TriggerDirection::rising ? w.rate > 0.0
+                                                                : false;
+    if (at_zero && inward) {
+      if (!apply_event(k, CrossingKind::crossing, t, x)) return finish(Termination::stopped_by_model);
+      break;
+    }
+  }
+  emit_observations(t, [&](double, State& out) { out = x; });
+
+  stepper.initialize(rhs, x, t, std::min(0.01 * system.max_step(), t_end - t0));
+  while (t < t_end) {
+    stepper.do_step(rhs, t_end);
+    ++result.counters.steps;
+    const double ta = stepper.previous_time();
+    const double tb = std::min(stepper.current_time(), t_end);
+    auto state_at = [&](double ts, State& out) { stepper.state_at(rhs, ts, out); };
+    State x_end;
+    if (tb == stepper.current_time())
+      x_end = stepper.current_state();
+    else
+      state_at(tb, x_end);
+
+    const LocatedEvent event = locate_first_event(system, rhs.mode, ta, tb,
+                                                  stepper.previous_state(), x_end, state_at,
+                                                  options.location);
+    if (!event.found) {
+      emit_observations(tb, state_at);
+      t = tb;
+      x = x_end;
+      if (t >= t_end && !apply_event_at_end(ta)) return finish(Termination::stopped_by_model);
+      continue;
+    }
+
+    // the state at the event: the dense output, then (where the stepper can)
+    // its own step re-taken to the event time with one Newton correction
+    State xe;
+    double te = event.t;
+    if constexpr (Stepper::has_polish) {
+      stepper.polish_state(rhs, te, xe);
+      const WitnessSample w = system.witness(rhs.mode, event.witness, xe, te);
+      if (event.kind == CrossingKind::crossing && w.rate != 0.0) {
+        const double corrected = te - w.value / w.rate;
+        if (std::fabs(corrected - te) < 1e-3 * (tb - ta) && corrected > ta && corrected <= tb) {
+          te = corrected;
+          stepper.polish_state(rhs, te, xe);
+        }
+      }
+    } else {
+      state_at(te, xe);
+    }
+    emit_observations(te, state_at);
+    if (!apply_event(event.witness, event.kind, te, xe))
+      return finish(Termination::stopped_by_model);
+    if (zeno_guard_fired()) return finish(Termination::no_progress);
+    stepper.initialize(rhs, x, t, stepper.suggested_step());
+  }
+  return finish(Termination::completed);
+}
+
+}  // namespace impactlab

@@ -1,0 +1,171 @@
+// Event location on the dense output of one step.
+//
+// Each witness of the current mode is sampled at `samples + 1` equally spaced
+// times across the step together with its time derivative. A sign change in
+// the trigger direction between two samples brackets a crossing. Where the
+// witness stays on the armed side at both samples but its rate changes sign
+// towards the trigger side and back, an extremum lies between them: it is
+// located as a root of the rate, and if the witness there has passed zero the
+// crossing is bracketed between the left sample and the extremum; if it only
+// touches zero (within the grazing tolerance) the event is a grazing. This is
+// what keeps a double root (a grazing contact) inside one step from being
+// missed. Brackets are refined with Boost.Math's TOMS 748 to full double
+// precision in time, which is below the integrator's own accuracy.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <utility>
+
+#include <boost/math/tools/roots.hpp>
+
+#include "core/hybrid_system.hpp"
+
+namespace impactlab {
+
+struct EventLocationOptions {
+  int samples = 4;                // sub-intervals per step for the witness scan
+  double grazing_tolerance = 1e-12;  // |witness| at an extremum counted as touching
+};
+
+struct LocatedEvent {
+  bool found = false;
+  double t = 0.0;
+  std::size_t witness = 0;
+  CrossingKind kind = CrossingKind::crossing;
+};
+
+namespace detail {
+
+// The witness as seen by a falling trigger: a rising trigger is the falling
+// trigger of the negated witness.
+inline WitnessSample oriented(WitnessSample w, TriggerDirection direction, double sign_of_either) {
+  const double s = direction == TriggerDirection::rising ? -1.0
+                   : direction == TriggerDirection::either ? sign_of_either
+                                                           : 1.0;
+  return {s * w.value, s * w.rate};
+}
+
+// Full-precision bracketing: stop when the bracket is a few ulps wide.
+struct TimeTolerance {
+  bool operator()(double a, double b) const {
+    return std::fabs(b - a) <= 4.0 * std::numeric_limits<double>::epsilon() *
+                                   std::max(std::fabs(a), std::fabs(b));
+  }
+};
+
+// Root of f on [a, b] with f(a) > 0 >= f(b) (or the reverse), by TOMS 748.
+template <class F>
+double bracketed_root(F&& f, double a, double b, double fa, double fb) {
+  if (fb == 0.0) return b;
+  if (fa == 0.0) return a;
+  std::uintmax_t max_iterations = 100;
+  const auto bracket = boost::math::tools::toms748_solve(f, a, b, fa, fb, TimeTolerance{},
+                                                         max_iterations);
+  // the endpoint on the triggered side: the event has happened there
+  const double f_second = f(bracket.second);
+  return (f_second <= 0.0) == (fb <= 0.0) ? bracket.second : bracket.first;
+}
+
+}  // namespace detail
+
+// Finds the earliest event of `mode` in [ta, tb]. `state_at(t, x)` is the
+// stepper's dense output. Witnesses whose value at ta is not on the armed side
+// (just after an event, or resting on a wall) are only armed once they leave.
+template <HybridSystem System, class StateAt>
+LocatedEvent locate_first_event(const System& system, typename System::Mode mode, double ta,
+                                double tb, const typename System::State& x_start,
+                                const typename System::State& x_end, StateAt&& state_at,
+                                const EventLocationOptions& options) {
+  using State = typename System::State;
+  constexpr int max_samples = 16;
+  const int n = std::min(std::max(options.samples, 1), max_samples);
+  const std::size_t witness_count = system.witness_count(mode);
+
+  // states at the sample times, shared by every witness
+  std::array<double, max_samples + 1> times{};
+  std::array<State, max_samples + 1> states{};
+  for (int i = 0; i <= n; ++i) {
+    times[i] = i == n ? tb : ta + (tb - ta) * static_cast<double>(i) / n;
+    if (i == 0)
+      states[i] = x_start;
+    else if (i == n)
+      states[i] = x_end;
+    else
+      state_at(times[i], states[i]);
+  }
+
+  LocatedEvent best;
+  for (std::size_t k = 0; k < witness_count; ++k) {
+    const TriggerDirection direction = system.trigger_direction(mode, k);
+    const WitnessSample first = system.witness(mode, k, states[0], times[0]);
+    // an `either` witness is oriented so that its starting side is the armed
+    // one; starting at zero (just after its own event) the side it moves to is
+    const double start_side = std::fabs(first.value) <= options.grazing_tolerance
+                                  ? first.rate
+                                  : first.value;
+    const double either_sign = start_side >= 0.0 ? 1.0 : -1.0;
+    auto sample = [&](int i) {
+      return detail::oriented(system.witness(mode, k, states[i], times[i]), direction,
+                              either_sign);
+    };
+    auto value_at = [&](double t) {
+      State x;
+      state_at(t, x);
+      return detail::oriented(system.witness(mode, k, x, t), direction, either_sign).value;
+    };
+    auto rate_at = [&](double t) {
+      State x;
+      state_at(t, x);
+      return detail::oriented(system.witness(mode, k, x, t), direction, either_sign).rate;
+    };
+
+    WitnessSample left = sample(0);
+    for (int i = 0; i < n; ++i) {
+      const WitnessSample right = sample(i + 1);
+      const double tl = times[i], tr = times[i + 1];
+      if (best.found && tl >= best.t) break;
+      LocatedEvent candidate;
+      // a witness that starts at zero moving to its armed side (just after
+      // its own event) and is back on the trigger side at the next sample has
+      // made a hop: its maximum lies between, the crossing after that maximum
+      const bool leaving_zero =
+          i == 0 && std::fabs(left.value) <= options.grazing_tolerance && left.rate > 0.0;
+      if (leaving_zero && right.value <= 0.0) {
+        if (right.rate < 0.0 && direction != TriggerDirection::either) {
+          const double t_max = detail::bracketed_root(rate_at, tl, tr, left.rate, right.rate);
+          const double v_max = value_at(t_max);
+          if (v_max > 0.0)
+            candidate = {true, detail::bracketed_root(value_at, t_max, tr, v_max, right.value),
+                         k, CrossingKind::crossing};
+        }
+      } else if (left.value > 0.0 && right.value <= 0.0) {
+        candidate = {true, detail::bracketed_root(value_at, tl, tr, left.value, right.value), k,
+                     CrossingKind::crossing};
+      } else if (left.value > 0.0 && right.value > 0.0 && left.rate < 0.0 && right.rate > 0.0 &&
+                 direction != TriggerDirection::either) {
+        // a minimum of the oriented witness lies inside (tl, tr)
+        const double t_min = detail::bracketed_root(
+            [&](double t) { return -rate_at(t); }, tl, tr, -left.rate, -right.rate);
+        const double v_min = value_at(t_min);
+        if (v_min <= -options.grazing_tolerance) {
+          candidate = {true, detail::bracketed_root(value_at, tl, t_min, left.value, v_min), k,
+                       CrossingKind::crossing};
+        } else if (v_min <= options.grazing_tolerance) {
+          candidate = {true, t_min, k, CrossingKind::grazing};
+        }
+      }
+      if (candidate.found) {
+        if (!best.found || candidate.t < best.t) best = candidate;
+        break;
+      }
+      left = right;
+    }
+  }
+  return best;
+}
+
+}  // namespace impactlab

@@ -1,0 +1,90 @@
+// Dormand–Prince 5(4) with its 4th-order continuous extension (Boost.Odeint's
+// runge_kutta_dopri5 under controlled_runge_kutta), driven step by step so the
+// event loop can clip a step at the end time, read the dense output, and
+// re-evaluate the 5th-order step to an event time ("polish").
+#pragma once
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <boost/numeric/odeint.hpp>
+
+#include "integrate/stepper_settings.hpp"
+
+namespace impactlab {
+
+template <class State>
+class OdeintDopri5 {
+  using ErrorStepper = boost::numeric::odeint::runge_kutta_dopri5<State>;
+  using Controlled = boost::numeric::odeint::controlled_runge_kutta<ErrorStepper>;
+
+ public:
+  static constexpr const char* name = "dopri5";
+  static constexpr bool has_polish = true;
+
+  explicit OdeintDopri5(const StepperSettings& settings)
+      : settings_(settings),
+        controlled_(typename Controlled::error_checker_type(settings.atol, settings.rtol),
+                    typename Controlled::step_adjuster_type(settings.max_step)) {}
+
+  template <class Rhs>
+  void initialize(const Rhs& rhs, const State& x, double t, double dt) {
+    x_ = x;
+    t_ = t;
+    dt_ = std::min(dt, settings_.max_step);
+    rhs(x_, dxdt_, t_);
+  }
+
+  // One accepted step, never past t_limit.
+  template <class Rhs>
+  void do_step(const Rhs& rhs, double t_limit) {
+    x_old_ = x_;
+    dxdt_old_ = dxdt_;
+    t_old_ = t_;
+    for (int attempt = 0;; ++attempt) {
+      if (attempt > 500) throw std::runtime_error("dopri5: step size underflow");
+      const double room = t_limit - t_old_;
+      const bool clipped = dt_ >= room;
+      double dt = clipped ? room : dt_;
+      double t = t_old_;
+      const auto result = controlled_.try_step(rhs, x_old_, dxdt_old_, t, x_, dxdt_, dt);
+      if (result == boost::numeric::odeint::success) {
+        t_ = clipped ? t_limit : t;
+        if (!clipped || dt > dt_) dt_ = std::min(dt, settings_.max_step);
+        return;
+      }
+      dt_ = dt;
+    }
+  }
+
+  // Dense output inside the last step (4th order).
+  void calc_state(double t, State& x) const {
+    controlled_.stepper().calc_state(t, x, x_old_, dxdt_old_, t_old_, x_, dxdt_, t_);
+  }
+
+  template <class Rhs>
+  void state_at(const Rhs&, double t, State& x) const { calc_state(t, x); }
+
+  // The 5th-order step from the last step's start to t: what the integrator
+  // itself would give had it stepped to t.
+  template <class Rhs>
+  void polish_state(const Rhs& rhs, double t, State& x) {
+    State dxdt_end;
+    polisher_.do_step(rhs, x_old_, dxdt_old_, t_old_, x, dxdt_end, t - t_old_);
+  }
+
+  [[nodiscard]] double previous_time() const { return t_old_; }
+  [[nodiscard]] double current_time() const { return t_; }
+  [[nodiscard]] const State& current_state() const { return x_; }
+  [[nodiscard]] const State& previous_state() const { return x_old_; }
+  [[nodiscard]] double suggested_step() const { return dt_; }
+
+ private:
+  StepperSettings settings_;
+  Controlled controlled_;
+  ErrorStepper polisher_;
+  State x_{}, x_old_{}, dxdt_{}, dxdt_old_{};
+  double t_ = 0.0, t_old_ = 0.0, dt_ = 0.0;
+};
+
+}  // namespace impactlab

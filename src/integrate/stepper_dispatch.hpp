@@ -1,0 +1,58 @@
+// Choosing a stepper by name, once per run: the name selects a template
+// instantiation of the whole event loop, so nothing inside it dispatches at
+// run time.
+#pragma once
+
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "core/hybrid_system.hpp"
+#include "integrate/exact_flow_stepper.hpp"
+#include "integrate/gsl_rk8pd.hpp"
+#include "integrate/odeint_bulirsch_stoer.hpp"
+#include "integrate/odeint_dopri5.hpp"
+#include "integrate/stepper_settings.hpp"
+
+namespace impactlab {
+
+// every integrator.method value, in the order the docs list them
+inline constexpr std::array<std::string_view, 4> stepper_names = {"dopri5", "bulirsch_stoer",
+                                                                  "rk8pd", "exact"};
+
+inline bool is_stepper_name(std::string_view name) {
+  for (auto known : stepper_names)
+    if (known == name) return true;
+  return false;
+}
+
+// Calls `body(stepper)` with a freshly constructed stepper of the named method
+// for `System`, and returns what it returns. `exact` needs HasExactFlow.
+template <HybridSystem System, class Body>
+decltype(auto) with_stepper(std::string_view method, const StepperSettings& settings, Body&& body) {
+  using State = typename System::State;
+  if (method == "dopri5") {
+    OdeintDopri5<State> stepper(settings);
+    return body(stepper);
+  }
+  if (method == "bulirsch_stoer") {
+    OdeintBulirschStoer<State> stepper(settings);
+    return body(stepper);
+  }
+  if (method == "rk8pd") {
+    GslRk8pd<State> stepper(settings);
+    return body(stepper);
+  }
+  if (method == "exact") {
+    if constexpr (HasExactFlow<System>) {
+      ExactFlowStepper<System> stepper(settings);
+      return body(stepper);
+    } else {
+      throw std::invalid_argument("integrator.method = exact: this oscillator has no closed-form flow");
+    }
+  }
+  throw std::invalid_argument("integrator.method = " + std::string(method) + ": unknown method");
+}
+
+}  // namespace impactlab
