@@ -1,0 +1,117 @@
+// The pendulum's scene schema and runner.
+#include <cmath>
+#include <numbers>
+
+#include "io/bad_input.hpp"
+#include "io/oscillator_registry.hpp"
+#include "io/run_system.hpp"
+#include "oscillators/pendulum_walls/pendulum_walls.hpp"
+
+namespace impactlab {
+
+namespace {
+
+SceneSchema make_schema() {
+  SceneSchema schema{"pendulum_walls", "theta", common_keys()};
+  const double inf = 1e308;
+  std::vector<KeySpec> own = {
+      {.key = "model", .help = "impact model: newton (Model N); paper and rigid: later versions",
+       .is_text = true, .default_text = "newton", .choices = {"newton", "paper", "rigid"}},
+      {.key = "m", .unit = "kg", .help = "bob mass", .default_number = 0.5, .lower = 0.0,
+       .upper = inf, .lower_open = true},
+      {.key = "l", .unit = "m", .help = "rod length", .default_number = 0.7, .lower = 0.0,
+       .upper = inf, .lower_open = true},
+      {.key = "b", .unit = "m", .help = "half the distance between the walls (b < l)",
+       .default_number = 0.05, .lower = 0.0, .upper = inf, .lower_open = true},
+      {.key = "d", .unit = "N m s/rad", .help = "damping at the pivot", .default_number = 0.01,
+       .lower = 0.0, .upper = inf},
+      {.key = "g", .unit = "m/s^2", .help = "gravity", .default_number = 9.81, .lower = 0.0,
+       .upper = inf},
+      {.key = "V0", .unit = "m/s", .help = "pivot velocity amplitude", .default_number = 1.5,
+       .lower = 0.0, .upper = inf},
+      {.key = "omega", .unit = "rad/s", .help = "forcing frequency", .default_number = 7.0,
+       .lower = 0.0, .upper = inf, .lower_open = true},
+      {.key = "e_n", .help = "normal restitution", .default_number = 0.3, .lower = 0.0,
+       .upper = 1.0},
+      {.key = "e_t", .help = "tangential restitution e_y of Model P", .default_number = -0.1,
+       .lower = -1.0, .upper = 0.0},
+      {.key = "mu", .help = "Coulomb friction coefficient", .default_number = 0.6, .lower = 0.0,
+       .upper = inf},
+      {.key = "accumulation_tol",
+       .help = "accepted error of an accumulation (chattering) estimate",
+       .default_number = 1e-3, .lower = 0.0, .upper = 0.5, .lower_open = true},
+      {.key = "initial.theta", .unit = "rad", .help = "initial angle, |theta| <= asin(b/l)",
+       .default_number = 0.0, .lower = -inf, .upper = inf},
+      {.key = "initial.theta_dot", .unit = "rad/s", .help = "initial angular velocity",
+       .default_number = 0.1, .lower = -inf, .upper = inf},
+  };
+  schema.keys.insert(schema.keys.end(), own.begin(), own.end());
+  return schema;
+}
+
+const SceneSchema& schema() {
+  static const SceneSchema instance = make_schema();
+  return instance;
+}
+
+std::string_view mode_name(PendulumWalls::Mode mode) {
+  switch (mode) {
+    case PendulumWalls::Mode::free: return "free";
+    case PendulumWalls::Mode::contact_right: return "contact_right";
+    case PendulumWalls::Mode::contact_left: return "contact_left";
+  }
+  return "unknown";
+}
+
+RunOutput run(const Scene& scene, const RunRequest& request) {
+  const std::string& model = scene.text("model");
+  if (model != "newton")
+    throw BadInput("model", model, "not available in this version (only newton)");
+  if (scene.text("integrator.method") == "exact")
+    throw BadInput("integrator.method", "exact", "the pendulum has no closed-form flow");
+
+  PendulumWallsParameters p;
+  p.m = scene.number("m");
+  p.l = scene.number("l");
+  p.b = scene.number("b");
+  p.d = scene.number("d");
+  p.g = scene.number("g");
+  p.V0 = scene.number("V0");
+  p.omega = scene.number("omega");
+  p.e_n = scene.number("e_n");
+  p.e_t = scene.number("e_t");
+  p.mu = scene.number("mu");
+  p.accumulation_tol = scene.number("accumulation_tol");
+  if (!(p.b < p.l)) throw BadInput("b", to_text(p.b), "the walls must be closer than l (b < l)");
+  const PendulumWalls system(p);
+
+  const double theta = scene.number("initial.theta");
+  if (std::fabs(theta) > system.wall_angle())
+    throw BadInput("initial.theta", to_text(theta),
+                   "the bob would start inside a wall (|theta| > asin(b/l) = " +
+                       to_text(system.wall_angle()) + ")");
+  const PendulumWalls::State x0{theta, scene.number("initial.theta_dot"), 0.0};
+  const double period = 2.0 * std::numbers::pi / p.omega;
+
+  RunOutput output =
+      run_system(system, x0, PendulumWalls::Mode::free, scene, request, period, mode_name);
+  double friction_work = 0.0;
+  for (const auto& event : output.events)
+    if (event.kind == EventKind::contact_end) friction_work = event.friction_work;
+  output.derived = {
+      {"theta0_rad", system.wall_angle()},
+      {"mu_tan_theta0", p.mu * std::tan(system.wall_angle())},
+      {"forcing_period_s", period},
+      {"friction_work_J", friction_work},
+  };
+  return output;
+}
+
+}  // namespace
+
+const OscillatorEntry& pendulum_walls_entry() {
+  static const OscillatorEntry entry{&schema(), &run};
+  return entry;
+}
+
+}  // namespace impactlab

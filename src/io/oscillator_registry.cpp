@@ -1,0 +1,27 @@
+#include "io/oscillator_registry.hpp"
+
+#include <array>
+#include <string>
+
+#include "io/bad_input.hpp"
+
+namespace impactlab {
+
+// defined in oscillators/<name>/<name>_scene.cpp
+const OscillatorEntry& pendulum_walls_entry();
+
+std::span<const OscillatorEntry> oscillators() {
+  static const std::array<OscillatorEntry, 1> entries = {pendulum_walls_entry()};
+  return entries;
+}
+
+const OscillatorEntry& oscillator_entry(std::string_view name) {
+  std::string known;
+  for (const auto& entry : oscillators()) {
+    if (entry.schema->oscillator == name) return entry;
+    known += (known.empty() ? "" : ", ") + std::string(entry.schema->oscillator);
+  }
+  throw BadInput("oscillator", std::string(name), "unknown oscillator (known: " + known + ")");
+}
+
+}  // namespace impactlab

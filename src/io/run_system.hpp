@@ -1,0 +1,105 @@
+// Runs any hybrid system for a scene: resolves the time span and integrator
+// from the scene, picks the stepper by name once, drives the event loop, and
+// collects events, samples and counters into a RunOutput.
+#pragma once
+
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <string_view>
+
+#include "core/simulator.hpp"
+#include "integrate/stepper_dispatch.hpp"
+#include "io/bad_input.hpp"
+#include "io/run_output.hpp"
+#include "io/scene.hpp"
+
+namespace impactlab {
+
+namespace detail {
+
+// Samples the trajectory at fixed intervals and reports progress at each
+// hundredth of the run.
+template <class ModeName>
+class SamplingObserver {
+ public:
+  SamplingObserver(double t0, double t_end, const RunRequest& request, RunOutput& output,
+                   ModeName mode_name)
+      : t0_(t0), span_(t_end - t0), request_(request), output_(output), mode_name_(mode_name) {
+    next_sample_ = request.sample_step > 0.0 ? t0 : INFINITY;
+    next_progress_ = request.progress ? t0 + 0.01 * span_ : INFINITY;
+  }
+
+  [[nodiscard]] double next_time() const { return std::min(next_sample_, next_progress_); }
+
+  template <class State, class Mode>
+  void observe(double t, const State& x, Mode mode) {
+    if (t >= next_sample_) {
+      output_.samples.push_back({t, x[0], x[1], mode_name_(mode)});
+      ++sample_index_;
+      next_sample_ = t0_ + static_cast<double>(sample_index_) * request_.sample_step;
+    }
+    if (t >= next_progress_) {
+      request_.progress((t - t0_) / span_);
+      ++progress_index_;
+      next_progress_ = progress_index_ >= 99 ? INFINITY
+                                             : t0_ + 0.01 * static_cast<double>(progress_index_ + 1) * span_;
+    }
+  }
+
+ private:
+  double t0_, span_;
+  const RunRequest& request_;
+  RunOutput& output_;
+  ModeName mode_name_;
+  double next_sample_, next_progress_;
+  long sample_index_ = 0, progress_index_ = 0;
+};
+
+}  // namespace detail
+
+// forcing_period: the scene's natural time unit for `periods` (s).
+// mode_name: Mode -> std::string_view, for the trajectory's mode column.
+template <HybridSystem System, class ModeName>
+RunOutput run_system(const System& system, const typename System::State& x0,
+                     typename System::Mode mode0, const Scene& scene, const RunRequest& request,
+                     double forcing_period, ModeName mode_name) {
+  RunOutput output;
+  output.t0 = scene.number("t0");
+  output.t_end = request.periods > 0.0 ? output.t0 + request.periods * forcing_period
+                                       : request.t_end;
+  if (!(output.t_end > output.t0) || !std::isfinite(output.t_end))
+    throw BadInput("--t-end", std::to_string(output.t_end), "must be finite and after t0");
+
+  StepperSettings settings;
+  settings.rtol = scene.number("integrator.rtol");
+  settings.atol = scene.number("integrator.atol");
+  settings.max_step = system.max_step();
+  LoopOptions options;
+  options.location.grazing_tolerance = settings.atol;
+
+  EventLog log(request.keep_events);
+  if (request.keep_events) log.reserve(1024);
+  detail::SamplingObserver<ModeName> observer(output.t0, output.t_end, request, output, mode_name);
+
+  const auto start = std::chrono::steady_clock::now();
+  const auto result = with_stepper<System>(
+      scene.text("integrator.method"), settings, [&](auto& stepper) {
+        return simulate(system, stepper, x0, mode0, output.t0, output.t_end, options, log,
+                        observer);
+      });
+  output.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  output.events = log.records();
+  output.t_final = result.t;
+  output.termination = std::string(to_string(result.termination));
+  output.steps = result.counters.steps;
+  output.rhs_evaluations = result.counters.rhs_evaluations;
+  output.impacts = log.count(EventKind::impact);
+  output.contact_phases = log.count(EventKind::contact_start);
+  output.accumulations = log.count(EventKind::accumulation);
+  output.grazings = log.count(EventKind::grazing);
+  return output;
+}
+
+}  // namespace impactlab

@@ -1,0 +1,210 @@
+#include "io/scene.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "io/bad_input.hpp"
+#include "io/builtin_scenes.hpp"
+#include "io/oscillator_registry.hpp"
+#include "integrate/stepper_dispatch.hpp"
+
+namespace impactlab {
+
+namespace {
+
+const KeySpec* find_key(const SceneSchema& schema, std::string_view key) {
+  for (const auto& spec : schema.keys)
+    if (spec.key == key) return &spec;
+  return nullptr;
+}
+
+std::string known_keys(const SceneSchema& schema) {
+  std::string list;
+  for (const auto& spec : schema.keys) {
+    if (!list.empty()) list += ", ";
+    list += spec.key;
+  }
+  return list;
+}
+
+std::string builtin_names() {
+  std::string list;
+  for (const auto& scene : builtin_scenes()) {
+    if (!list.empty()) list += ", ";
+    list += scene.name;
+  }
+  return list;
+}
+
+// A number written on the command line: the whole text must parse, and the
+// result must be finite.
+double parse_number(const std::string& key, const std::string& text) {
+  double value = 0.0;
+  const char* first = text.data();
+  const char* last = text.data() + text.size();
+  const auto [end, error] = std::from_chars(first, last, value);
+  if (text.empty() || error != std::errc() || end != last)
+    throw BadInput(key, text, "not a number");
+  if (!std::isfinite(value)) throw BadInput(key, text, "not a finite number");
+  return value;
+}
+
+// Flattens the TOML document into dotted keys (one level of tables).
+void flatten(const toml::table& table, const std::string& prefix,
+             std::map<std::string, SceneValue>& out) {
+  for (const auto& [raw_key, node] : table) {
+    const std::string key = prefix.empty() ? std::string(raw_key.str())
+                                           : prefix + "." + std::string(raw_key.str());
+    if (const auto* sub = node.as_table()) {
+      if (!prefix.empty()) throw BadInput(key, "(table)", "tables nest one level at most");
+      flatten(*sub, key, out);
+    } else if (const auto* text = node.as_string()) {
+      out[key] = text->get();
+    } else if (const auto* integer = node.as_integer()) {
+      out[key] = static_cast<double>(integer->get());
+    } else if (const auto* floating = node.as_floating_point()) {
+      out[key] = floating->get();
+    } else {
+      const std::string shown = node.is_boolean()  ? (node.as_boolean()->get() ? "true" : "false")
+                                : node.is_array() ? "(array)"
+                                                  : "(date or time)";
+      throw BadInput(key, shown, "expected a number or a string");
+    }
+  }
+}
+
+std::string read_scene_text(std::string_view name_or_path) {
+  for (const auto& scene : builtin_scenes())
+    if (scene.name == name_or_path) return std::string(scene.text);
+  const std::filesystem::path path(name_or_path);
+  std::error_code ignored;
+  if (!std::filesystem::is_regular_file(path, ignored))
+    throw BadInput("scene", std::string(name_or_path),
+                   "no built-in scene or scene file of that name (built-in: " + builtin_names() +
+                       ")");
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in) throw BadInput("scene", std::string(name_or_path), "cannot read the file");
+  return text.str();
+}
+
+}  // namespace
+
+double Scene::number(const std::string& key) const { return std::get<double>(values.at(key)); }
+
+const std::string& Scene::text(const std::string& key) const {
+  return std::get<std::string>(values.at(key));
+}
+
+std::string to_text(const SceneValue& value) {
+  if (const auto* text = std::get_if<std::string>(&value)) return *text;
+  return fmt::format("{}", std::get<double>(value));
+}
+
+std::vector<KeySpec> common_keys() {
+  std::vector<std::string_view> methods(stepper_names.begin(), stepper_names.end());
+  return {
+      {.key = "name", .help = "scene name", .is_text = true, .default_text = ""},
+      {.key = "description", .help = "what the scene is", .is_text = true, .default_text = ""},
+      {.key = "t0", .unit = "s", .help = "start time", .default_number = 0.0},
+      {.key = "integrator.method",
+       .help = "dense-output stepper, or the closed-form flow",
+       .is_text = true,
+       .default_text = "dopri5",
+       .choices = methods},
+      {.key = "integrator.rtol", .help = "relative tolerance per step", .default_number = 1e-10,
+       .lower = 0.0, .upper = 1.0, .lower_open = true},
+      {.key = "integrator.atol", .unit = "state units", .help = "absolute tolerance per step",
+       .default_number = 1e-12, .lower = 0.0, .upper = 1.0, .lower_open = true},
+  };
+}
+
+void validate(const Scene& scene, const SceneSchema& schema) {
+  for (const auto& [key, value] : scene.values) {
+    const KeySpec* spec = find_key(schema, key);
+    if (!spec)
+      throw BadInput(key, to_text(value),
+                     fmt::format("unknown key for oscillator {} (known: {})", schema.oscillator,
+                                 known_keys(schema)));
+    if (spec->is_text) {
+      const auto* text = std::get_if<std::string>(&value);
+      if (!text) throw BadInput(key, to_text(value), "expected text");
+      if (!spec->choices.empty()) {
+        bool allowed = false;
+        std::string listed;
+        for (auto choice : spec->choices) {
+          allowed = allowed || choice == *text;
+          listed += (listed.empty() ? "" : ", ") + std::string(choice);
+        }
+        if (!allowed) throw BadInput(key, *text, "expected one of: " + listed);
+      }
+      continue;
+    }
+    const auto* number = std::get_if<double>(&value);
+    if (!number) throw BadInput(key, to_text(value), "expected a number");
+    if (!std::isfinite(*number)) throw BadInput(key, to_text(value), "not a finite number");
+    const bool below = spec->lower_open ? !(*number > spec->lower) : !(*number >= spec->lower);
+    const bool above = spec->upper_open ? !(*number < spec->upper) : !(*number <= spec->upper);
+    if (below || above)
+      throw BadInput(key, to_text(value),
+                     fmt::format("out of range {}{}, {}{}", spec->lower_open ? "(" : "[",
+                                 spec->lower, spec->upper, spec->upper_open ? ")" : "]"));
+  }
+}
+
+Scene load_scene(std::string_view name_or_path) {
+  const std::string text = read_scene_text(name_or_path);
+  std::map<std::string, SceneValue> values;
+  try {
+    flatten(toml::parse(text, std::string(name_or_path)), "", values);
+  } catch (const toml::parse_error& error) {
+    throw BadInput("scene", std::string(name_or_path),
+                   fmt::format("malformed TOML at line {}: {}", error.source().begin.line,
+                               error.description()));
+  }
+  const auto oscillator = values.find("oscillator");
+  if (oscillator == values.end())
+    throw BadInput("oscillator", "(missing)", "a scene must name its oscillator");
+  const std::string oscillator_name = to_text(oscillator->second);
+  values.erase(oscillator);
+  const SceneSchema& schema = *oscillator_entry(oscillator_name).schema;
+
+  Scene scene{std::string(name_or_path), oscillator_name, std::move(values)};
+  validate(scene, schema);
+  for (const auto& spec : schema.keys) {
+    if (scene.values.contains(std::string(spec.key))) continue;
+    if (spec.is_text)
+      scene.values[std::string(spec.key)] = std::string(spec.default_text);
+    else
+      scene.values[std::string(spec.key)] = spec.default_number;
+  }
+  return scene;
+}
+
+void apply_override(Scene& scene, std::string_view assignment) {
+  const auto equals = assignment.find('=');
+  if (equals == std::string_view::npos || equals == 0)
+    throw BadInput("--set", std::string(assignment), "expected KEY=VALUE");
+  const std::string key(assignment.substr(0, equals));
+  const std::string text(assignment.substr(equals + 1));
+  const SceneSchema& schema = *oscillator_entry(scene.oscillator).schema;
+  const KeySpec* spec = find_key(schema, key);
+  if (!spec)
+    throw BadInput(key, text,
+                   fmt::format("unknown key for oscillator {} (known: {})", schema.oscillator,
+                               known_keys(schema)));
+  if (spec->is_text)
+    scene.values[key] = text;
+  else
+    scene.values[key] = parse_number(key, text);
+  validate(scene, schema);
+}
+
+}  // namespace impactlab

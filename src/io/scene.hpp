@@ -1,0 +1,63 @@
+// Scenes: which oscillator, which model, its parameters, initial state and
+// integrator, read from a TOML scene file (or a built-in one) and changed by
+// `--set KEY=VALUE`. Every key is declared once in its oscillator's schema,
+// with default, range, unit and help; that table drives validation, the
+// `scenes` listing and the meta.json record.
+#pragma once
+
+#include <map>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+namespace impactlab {
+
+// One declared scene key. Numbers have a range; text has a list of choices.
+struct KeySpec {
+  std::string_view key;            // bare (omega) or dotted (initial.theta)
+  std::string_view unit;           // "rad/s", "" for dimensionless or text
+  std::string_view help;
+  bool is_text = false;
+  double default_number = 0.0;
+  double lower = -1e308, upper = 1e308;  // admissible range
+  bool lower_open = false, upper_open = false;  // exclude the bound itself
+  std::string_view default_text{};
+  std::vector<std::string_view> choices{};
+};
+
+struct SceneSchema {
+  std::string_view oscillator;
+  std::string_view main_coordinate;  // q in events.csv: "theta", "x", "y"
+  std::vector<KeySpec> keys;
+};
+
+using SceneValue = std::variant<double, std::string>;
+
+struct Scene {
+  std::string name;        // built-in name or file path
+  std::string oscillator;  // schema it follows
+  std::map<std::string, SceneValue> values;  // every key of the schema, resolved
+
+  [[nodiscard]] double number(const std::string& key) const;
+  [[nodiscard]] const std::string& text(const std::string& key) const;
+};
+
+// Keys every oscillator accepts (integrator and start time), merged into each
+// oscillator's schema.
+std::vector<KeySpec> common_keys();
+
+// Reads a built-in scene by name or a scene file by path, fills defaults from
+// the schema, and validates every key and value. Throws BadInput.
+Scene load_scene(std::string_view name_or_path);
+
+// Applies `KEY=VALUE` (repeatable --set) and validates again. Throws BadInput.
+void apply_override(Scene& scene, std::string_view assignment);
+
+// Checks every value against the schema's ranges and choices. Throws BadInput.
+void validate(const Scene& scene, const SceneSchema& schema);
+
+// The value as text, for error messages and listings.
+std::string to_text(const SceneValue& value);
+
+}  // namespace impactlab
