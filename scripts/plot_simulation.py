@@ -1,0 +1,79 @@
+#!/usr/bin/env python3
+"""Draws a simulation's picture: the main coordinate against time with the
+walls, impacts and contact phases marked, and the phase portrait.
+
+usage: /usr/bin/python3 scripts/plot_simulation.py RUN_DIR [RUN_DIR ...]
+Each RUN_DIR is an `impactlab simulate --sample DT --out RUN_DIR` output; the
+picture is written to RUN_DIR/simulation.png.
+"""
+import csv
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read_csv(path):
+    with open(path, newline="") as handle:
+        return list(csv.DictReader(handle))
+
+
+def plot_run(run_dir):
+    meta = json.load(open(os.path.join(run_dir, "meta.json")))
+    samples = read_csv(os.path.join(run_dir, "trajectory.csv"))
+    events = read_csv(os.path.join(run_dir, "events.csv"))
+    q_name = meta["columns"]["events.csv"]["q"]
+    t = [float(s["t"]) for s in samples]
+    q = [float(s["q"]) for s in samples]
+    qdot = [float(s["qdot"]) for s in samples]
+
+    figure, (history, phase) = plt.subplots(
+        1, 2, figsize=(12, 4.5), gridspec_kw={"width_ratios": [2.2, 1]})
+    history.plot(t, q, lw=0.8, color="tab:blue", label=q_name)
+    wall = meta.get("derived", {}).get("theta0_rad")
+    if wall is not None:
+        for side in (1, -1):
+            history.axhline(side * wall, color="k", lw=0.8, ls="--")
+    impacts = [e for e in events if e["kind"] == "impact"]
+    history.plot([float(e["t"]) for e in impacts], [float(e["q"]) for e in impacts],
+                 "o", ms=2.5, color="tab:red", label=f"impacts ({len(impacts)})")
+    start = None
+    shaded = False
+    for e in events:
+        if e["kind"] == "contact_start":
+            start = float(e["t"])
+        elif e["kind"] == "contact_end" and start is not None:
+            history.axvspan(start, float(e["t"]), color="tab:orange", alpha=0.35,
+                            label=None if shaded else "sustained contact")
+            shaded = True
+            start = None
+    history.set_xlabel("t (s)")
+    history.set_ylabel(f"{q_name} (rad)" if q_name == "theta" else f"{q_name} (m)")
+    history.legend(loc="upper right", fontsize=8)
+    keys = meta["scene"]["keys"]
+    shown = [k for k in ("V0", "omega", "e_n", "mu", "A", "r", "zeta", "sigma") if k in keys]
+    history.set_title(f"{meta['scene']['source']}: "
+                      + ", ".join(f"{k} = {keys[k]['value']:g}" for k in shown)
+                      + f"   [{meta['integrator']['method']}, rtol {meta['integrator']['rtol']:g}]",
+                      fontsize=9)
+    phase.plot(q, qdot, lw=0.5, color="tab:blue")
+    phase.set_xlabel(q_name)
+    phase.set_ylabel(f"d{q_name}/dt")
+    phase.set_title("phase portrait", fontsize=9)
+    figure.tight_layout()
+    target = os.path.join(run_dir, "simulation.png")
+    figure.savefig(target + ".tmp.png", dpi=110)
+    os.replace(target + ".tmp.png", target)
+    plt.close(figure)
+    print(f"wrote {target}")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 2:
+        sys.exit(__doc__)
+    for directory in sys.argv[1:]:
+        plot_run(directory)

@@ -1,0 +1,174 @@
+// The command-line contract of DESIGN.md: bad input exits with status 2 and
+// one line on stderr naming the key and the value, writes nothing; a good run
+// writes complete events.csv and meta.json.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+struct Outcome {
+  int status;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::filesystem::path scratch(const std::string& name) {
+  auto dir = std::filesystem::temp_directory_path() /
+             ("impactlab_cli_test_" + std::to_string(::getpid())) / name;
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+Outcome run(const std::string& arguments) {
+  const auto dir = scratch("io");
+  std::filesystem::create_directories(dir);
+  const auto out = dir / "stdout";
+  const auto err = dir / "stderr";
+  const std::string command = std::string(IMPACTLAB_BINARY) + " " + arguments + " >" +
+                              out.string() + " 2>" + err.string() + " </dev/null";
+  const int raw = std::system(command.c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+}
+
+int line_count(const std::string& text) {
+  int lines = 0;
+  for (char c : text) lines += c == '\n';
+  return lines;
+}
+
+struct BadCase {
+  std::string name;        // test name
+  std::string arguments;   // "{scene}" stands for a scene file written from scene_text
+  std::string key;
+  std::string value;
+  std::string scene_text{};
+};
+
+class BadInput : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadInput, ExitsTwoWithOneLineNamingKeyAndValue) {
+  const auto& c = GetParam();
+  std::string arguments = c.arguments;
+  if (!c.scene_text.empty()) {
+    const auto dir = scratch("scenes");
+    std::filesystem::create_directories(dir);
+    const auto path = dir / (c.name + ".toml");
+    std::ofstream(path) << c.scene_text;
+    arguments.replace(arguments.find("{scene}"), 7, path.string());
+  }
+  const auto out_dir = scratch("bad_out");
+  const Outcome outcome = run(arguments + " --out " + out_dir.string());
+  EXPECT_EQ(outcome.status, 2) << outcome.err;
+  EXPECT_EQ(line_count(outcome.err), 1) << outcome.err;
+  EXPECT_NE(outcome.err.find(c.key), std::string::npos) << outcome.err;
+  EXPECT_NE(outcome.err.find(c.value), std::string::npos) << outcome.err;
+  // nothing half-written
+  EXPECT_FALSE(std::filesystem::exists(out_dir / "events.csv"));
+  EXPECT_FALSE(std::filesystem::exists(out_dir / "meta.json"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    DesignContract, BadInput,
+    ::testing::Values(
+        BadCase{"unknown_scene", "simulate no_such_scene", "scene", "no_such_scene"},
+        BadCase{"unknown_key", "simulate jin2003 --set colour=3", "colour", "3"},
+        BadCase{"restitution_above_one", "simulate jin2003 --set e_n=1.5", "e_n", "1.5"},
+        BadCase{"restitution_negative", "simulate jin2003 --set e_n=-0.1", "e_n", "-0.1"},
+        BadCase{"tangential_restitution_positive", "simulate jin2003 --set e_t=0.5", "e_t", "0.5"},
+        BadCase{"friction_negative", "simulate jin2003 --set mu=-1", "mu", "-1"},
+        BadCase{"walls_at_rod_length", "simulate jin2003 --set b=0.7", "b", "0.7"},
+        BadCase{"walls_beyond_rod", "simulate jin2003 --set b=2", "b", "2"},
+        BadCase{"not_a_number", "simulate jin2003 --set omega=nan", "omega", "nan"},
+        BadCase{"infinite", "simulate jin2003 --set V0=inf", "V0", "inf"},
+        BadCase{"text_for_number", "simulate jin2003 --set V0=fast", "V0", "fast"},
+        BadCase{"zero_tolerance", "simulate jin2003 --set integrator.rtol=0", "integrator.rtol", "0"},
+        BadCase{"unknown_method", "simulate jin2003 --set integrator.method=euler",
+                "integrator.method", "euler"},
+        BadCase{"exact_without_flow", "simulate jin2003 --set integrator.method=exact",
+                "integrator.method", "exact"},
+        BadCase{"start_inside_wall", "simulate jin2003 --set initial.theta=0.2", "initial.theta",
+                "0.2"},
+        BadCase{"unknown_model", "simulate jin2003 --set model=quantum", "model", "quantum"},
+        BadCase{"oscillator_not_settable", "simulate jin2003 --set oscillator=bouncing_ball",
+                "oscillator", "bouncing_ball"},
+        BadCase{"assignment_without_value", "simulate jin2003 --set omega", "--set", "omega"},
+        BadCase{"negative_periods", "simulate jin2003 --periods -5", "--periods", "-5"},
+        BadCase{"nan_periods", "simulate jin2003 --periods nan", "--periods", "nan"},
+        BadCase{"infinite_end", "simulate jin2003 --t-end inf", "--t-end", "inf"},
+        BadCase{"unknown_option", "simulate jin2003 --bogus-option", "--bogus-option", "bogus"},
+        BadCase{"malformed_file", "simulate {scene}", "scene", "malformed_file",
+                "oscillator = \"pendulum_walls\"\nm = \n"},
+        BadCase{"unknown_oscillator", "simulate {scene}", "oscillator", "spring",
+                "oscillator = \"spring\"\n"},
+        BadCase{"file_value_out_of_range", "simulate {scene}", "l", "-0.7",
+                "oscillator = \"pendulum_walls\"\nl = -0.7\n"},
+        BadCase{"file_boolean_value", "simulate {scene}", "m", "true",
+                "oscillator = \"pendulum_walls\"\nm = true\n"}),
+    [](const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; });
+
+TEST(Simulate, WritesCompleteEventsAndMeta) {
+  const auto out_dir = scratch("good");
+  const Outcome outcome =
+      run("simulate jin2003 --periods 20 --quiet --sample 0.01 --out " + out_dir.string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_TRUE(outcome.out.empty());
+  const std::string events = slurp(out_dir / "events.csv");
+  ASSERT_EQ(events.rfind("t,kind,wall,q,qdot_before,qdot_after", 0), 0u);
+  const auto meta = nlohmann::json::parse(slurp(out_dir / "meta.json"));
+  EXPECT_EQ(meta["scene"]["oscillator"], "pendulum_walls");
+  EXPECT_EQ(meta["integrator"]["method"], "dopri5");
+  EXPECT_EQ(meta["run"]["termination"], "completed");
+  EXPECT_GT(meta["counts"]["impacts"].get<int>(), 0);
+  EXPECT_EQ(meta["scene"]["keys"]["omega"]["unit"], "rad/s");
+  // one line per event after the header
+  EXPECT_EQ(line_count(events) - 1, meta["counts"]["events"].get<int>());
+  // no temporary left behind
+  for (const auto& entry : std::filesystem::directory_iterator(out_dir))
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
+}
+
+TEST(Simulate, SetOverridesReachTheRun) {
+  const auto out_dir = scratch("override");
+  const Outcome outcome = run("simulate jin2003 --periods 5 --quiet --set omega=6.5 --set "
+                              "integrator.method=rk8pd --out " + out_dir.string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const auto meta = nlohmann::json::parse(slurp(out_dir / "meta.json"));
+  EXPECT_EQ(meta["scene"]["keys"]["omega"]["value"].get<double>(), 6.5);
+  EXPECT_EQ(meta["integrator"]["method"], "rk8pd");
+  EXPECT_NEAR(meta["run"]["t_end_s"].get<double>(), 5 * 2 * M_PI / 6.5, 1e-12);
+}
+
+TEST(Scenes, ListsTheDefaultScene) {
+  const Outcome outcome = run("scenes");
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_NE(outcome.out.find("jin2003"), std::string::npos);
+  const Outcome keys = run("scenes jin2003");
+  ASSERT_EQ(keys.status, 0) << keys.err;
+  EXPECT_NE(keys.out.find("initial.theta_dot"), std::string::npos);
+}
+
+TEST(Help, EverySubcommandHasHelp) {
+  for (const std::string sub : {"", "simulate ", "scenes "}) {
+    const Outcome outcome = run(sub + "--help");
+    EXPECT_EQ(outcome.status, 0) << sub;
+    EXPECT_NE(outcome.out.find("Usage"), std::string::npos) << sub;
+  }
+  EXPECT_EQ(run("--version").status, 0);
+}
+
+}  // namespace
