@@ -8,6 +8,7 @@ picture is written to RUN_DIR/simulation.png.
 """
 import csv
 import json
+import math
 import os
 import sys
 
@@ -34,10 +35,18 @@ def plot_run(run_dir):
     figure, (history, phase) = plt.subplots(
         1, 2, figsize=(12, 4.5), gridspec_kw={"width_ratios": [2.2, 1]})
     history.plot(t, q, lw=0.8, color="tab:blue", label=q_name)
-    wall = meta.get("derived", {}).get("theta0_rad")
-    if wall is not None:
+    keys = meta["scene"]["keys"]
+    oscillator = meta["scene"]["oscillator"]
+    if oscillator == "pendulum_walls":
+        wall = meta["derived"]["theta0_rad"]
         for side in (1, -1):
-            history.axhline(side * wall, color="k", lw=0.8, ls="--")
+            history.axhline(side * wall, color="k", lw=0.8, ls="--", label=None if side < 0 else "walls")
+    elif oscillator == "linear_impact":
+        history.axhline(keys["sigma"]["value"], color="k", lw=0.8, ls="--", label="stop")
+    elif oscillator == "bouncing_ball":
+        amplitude, omega = keys["A"]["value"], keys["omega"]["value"]
+        history.plot(t, [amplitude * math.sin(omega * ti) for ti in t], color="k", lw=0.8,
+                     label="table")
     impacts = [e for e in events if e["kind"] == "impact"]
     history.plot([float(e["t"]) for e in impacts], [float(e["q"]) for e in impacts],
                  "o", ms=2.5, color="tab:red", label=f"impacts ({len(impacts)})")
@@ -52,9 +61,9 @@ def plot_run(run_dir):
             shaded = True
             start = None
     history.set_xlabel("t (s)")
-    history.set_ylabel(f"{q_name} (rad)" if q_name == "theta" else f"{q_name} (m)")
+    unit = {"theta": "rad", "y": "m", "x": "nondimensional"}.get(q_name, "")
+    history.set_ylabel(f"{q_name} ({unit})")
     history.legend(loc="upper right", fontsize=8)
-    keys = meta["scene"]["keys"]
     shown = [k for k in ("V0", "omega", "e_n", "mu", "A", "r", "zeta", "sigma") if k in keys]
     history.set_title(f"{meta['scene']['source']}: "
                       + ", ".join(f"{k} = {keys[k]['value']:g}" for k in shown)

@@ -9,9 +9,12 @@ namespace impactlab {
 
 // defined in oscillators/<name>/<name>_scene.cpp
 const OscillatorEntry& pendulum_walls_entry();
+const OscillatorEntry& linear_impact_entry();
+const OscillatorEntry& bouncing_ball_entry();
 
 std::span<const OscillatorEntry> oscillators() {
-  static const std::array<OscillatorEntry, 1> entries = {pendulum_walls_entry()};
+  static const std::array<OscillatorEntry, 3> entries = {
+      pendulum_walls_entry(), linear_impact_entry(), bouncing_ball_entry()};
   return entries;
 }
 

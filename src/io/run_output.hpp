@@ -38,7 +38,7 @@ struct RunOutput {
   std::uint64_t steps = 0, rhs_evaluations = 0;
   std::uint64_t impacts = 0, contact_phases = 0, accumulations = 0, grazings = 0;
   double wall_time = 0.0;        // s
-  nlohmann::json derived;        // oscillator-specific quantities (θ0, final energy, ...)
+  nlohmann::json derived = nlohmann::json::object();  // oscillator-specific quantities (θ0, ...)
 };
 
 }  // namespace impactlab

@@ -1,0 +1,72 @@
+// The bouncing ball's scene schema and runner.
+#include <cmath>
+#include <numbers>
+
+#include "io/bad_input.hpp"
+#include "io/oscillator_registry.hpp"
+#include "io/run_system.hpp"
+#include "oscillators/bouncing_ball/bouncing_ball.hpp"
+
+namespace impactlab {
+
+namespace {
+
+SceneSchema make_schema() {
+  SceneSchema schema{"bouncing_ball", "y", common_keys()};
+  const double inf = 1e308;
+  std::vector<KeySpec> own = {
+      {.key = "g", .unit = "m/s^2", .help = "gravity", .default_number = 9.81, .lower = 0.0,
+       .upper = inf, .lower_open = true},
+      {.key = "A", .unit = "m", .help = "table amplitude", .default_number = 0.0112,
+       .lower = 0.0, .upper = inf},
+      {.key = "omega", .unit = "rad/s", .help = "table angular frequency", .default_number = 30.0,
+       .lower = 0.0, .upper = inf, .lower_open = true},
+      {.key = "r", .help = "coefficient of restitution", .default_number = 0.8, .lower = 0.0,
+       .upper = 1.0},
+      {.key = "accumulation_tol",
+       .help = "accepted error of an accumulation (chattering) estimate",
+       .default_number = 1e-3, .lower = 0.0, .upper = 0.5, .lower_open = true},
+      {.key = "initial.y", .unit = "m", .help = "initial height, on or above the table",
+       .default_number = 0.05, .lower = -inf, .upper = inf},
+      {.key = "initial.y_dot", .unit = "m/s", .help = "initial velocity", .default_number = 0.0,
+       .lower = -inf, .upper = inf},
+  };
+  schema.keys.insert(schema.keys.end(), own.begin(), own.end());
+  return schema;
+}
+
+const SceneSchema& schema() {
+  static const SceneSchema instance = make_schema();
+  return instance;
+}
+
+std::string_view mode_name(BouncingBall::Mode mode) {
+  return mode == BouncingBall::Mode::free ? "free" : "stuck";
+}
+
+RunOutput run(const Scene& scene, const RunRequest& request) {
+  BouncingBallParameters p;
+  p.g = scene.number("g");
+  p.A = scene.number("A");
+  p.omega = scene.number("omega");
+  p.r = scene.number("r");
+  p.accumulation_tol = scene.number("accumulation_tol");
+  const double y = scene.number("initial.y");
+  const double table = p.A * std::sin(p.omega * scene.number("t0"));
+  if (y < table)
+    throw BadInput("initial.y", to_text(y),
+                   "starts below the table (z(t0) = " + to_text(table) + " m)");
+  const BouncingBall system(p);
+  return run_system(system, BouncingBall::State{y, scene.number("initial.y_dot")},
+                    BouncingBall::Mode::free, scene, request, 2.0 * std::numbers::pi / p.omega,
+                    mode_name);
+}
+
+}  // namespace
+
+const OscillatorEntry& bouncing_ball_entry() {
+  static const OscillatorEntry entry{&schema(), &run};
+  return entry;
+}
+
+}  // namespace impactlab

@@ -1,0 +1,75 @@
+// The linear impact oscillator's scene schema and runner.
+#include <numbers>
+
+#include "io/bad_input.hpp"
+#include "io/oscillator_registry.hpp"
+#include "io/run_system.hpp"
+#include "oscillators/linear_impact/linear_impact.hpp"
+
+namespace impactlab {
+
+namespace {
+
+SceneSchema make_schema() {
+  SceneSchema schema{"linear_impact", "x", common_keys()};
+  const double inf = 1e308;
+  std::vector<KeySpec> own = {
+      {.key = "zeta", .help = "damping ratio", .default_number = 0.05, .lower = 0.0, .upper = inf},
+      {.key = "A", .unit = "length", .help = "forcing amplitude", .default_number = 1.0,
+       .lower = -inf, .upper = inf},
+      {.key = "omega", .help = "forcing frequency over the natural frequency",
+       .default_number = 2.0, .lower = 0.0, .upper = inf, .lower_open = true},
+      {.key = "sigma", .unit = "length", .help = "position of the stop", .default_number = 0.2,
+       .lower = -inf, .upper = inf},
+      {.key = "r", .help = "coefficient of restitution", .default_number = 0.8, .lower = 0.0,
+       .upper = 1.0},
+      {.key = "accumulation_tol",
+       .help = "accepted error of an accumulation (chattering) estimate",
+       .default_number = 1e-3, .lower = 0.0, .upper = 0.5, .lower_open = true},
+      {.key = "initial.x", .unit = "length", .help = "initial position, x <= sigma",
+       .default_number = 0.0, .lower = -inf, .upper = inf},
+      {.key = "initial.x_dot", .unit = "length/time", .help = "initial velocity",
+       .default_number = 0.0, .lower = -inf, .upper = inf},
+  };
+  schema.keys.insert(schema.keys.end(), own.begin(), own.end());
+  return schema;
+}
+
+const SceneSchema& schema() {
+  static const SceneSchema instance = make_schema();
+  return instance;
+}
+
+std::string_view mode_name(LinearImpact::Mode mode) {
+  return mode == LinearImpact::Mode::free ? "free" : "stuck";
+}
+
+RunOutput run(const Scene& scene, const RunRequest& request) {
+  LinearImpactParameters p;
+  p.zeta = scene.number("zeta");
+  p.A = scene.number("A");
+  p.omega = scene.number("omega");
+  p.sigma = scene.number("sigma");
+  p.r = scene.number("r");
+  p.accumulation_tol = scene.number("accumulation_tol");
+  if (scene.text("integrator.method") == "exact" && !LinearImpact::has_exact_flow(p))
+    throw BadInput("zeta", to_text(p.zeta),
+                   "method = exact needs an underdamped, non-resonant oscillator (zeta < 1, and "
+                   "omega != 1 when zeta = 0)");
+  const double x = scene.number("initial.x");
+  if (x > p.sigma)
+    throw BadInput("initial.x", to_text(x), "starts beyond the stop sigma = " + to_text(p.sigma));
+  const LinearImpact system(p);
+  return run_system(system, LinearImpact::State{x, scene.number("initial.x_dot")},
+                    LinearImpact::Mode::free, scene, request,
+                    2.0 * std::numbers::pi / p.omega, mode_name);
+}
+
+}  // namespace
+
+const OscillatorEntry& linear_impact_entry() {
+  static const OscillatorEntry entry{&schema(), &run};
+  return entry;
+}
+
+}  // namespace impactlab
