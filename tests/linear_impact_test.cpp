@@ -11,8 +11,10 @@
 #include <cmath>
 #include <complex>
 #include <cstdint>
+#include <iomanip>
 #include <limits>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -90,8 +92,9 @@ double refine(F&& f, double a, double b) {
 
 // The first time after t0 where the gap σ − x of `motion` reaches zero. A grid
 // of `step` finds sign changes; where the gap's rate changes sign from
-// negative to positive between two positive samples, the minimum is located
-// and checked, so a pair of roots between grid points is not missed.
+// negative to positive between two samples, the minimum is located and
+// checked, so a pair of roots between grid points is not missed; a hop off
+// the stop shorter than one grid step is caught at its maximum.
 double first_contact(const LinearImpactParameters& p, const ClosedFormMotion& motion, double t0,
                      double horizon) {
   const double step = std::min(2.0 * std::numbers::pi / p.omega, 2.0 * std::numbers::pi) / 2000.0;
@@ -103,12 +106,11 @@ double first_contact(const LinearImpactParameters& p, const ClosedFormMotion& mo
     const double tb = t0 + i * step;
     const double right = gap(tb);
     if (right <= 0.0) {
-      // leaving the stop (left == 0) and back within one grid step would be a
-      // hop this grid cannot resolve; the parameters here never produce one
-      EXPECT_GT(left, 0.0) << "reference grid too coarse at t = " << ta;
+      // a hop off the stop shorter than one grid step: the root after its maximum
+      if (i == 1 && gap_rate(ta) > 0.0) return refine(gap, refine(gap_rate, ta, tb), tb);
       return refine(gap, ta, tb);
     }
-    if (gap_rate(ta) < 0.0 && gap_rate(tb) > 0.0) {
+    if (left > 0.0 && gap_rate(ta) < 0.0 && gap_rate(tb) > 0.0) {
       const double t_min = refine(gap_rate, ta, tb);
       if (gap(t_min) <= 0.0) return refine(gap, ta, t_min);
     }
@@ -152,18 +154,27 @@ LinearImpactParameters periodic_case() {
 
 constexpr int compared_impacts = 50;
 
+// a measured error as a test property, in the XML report
+std::string scientific(double value) {
+  std::ostringstream out;
+  out << std::scientific << std::setprecision(3) << value;
+  return out.str();
+}
+
 struct ImpactErrors {
   double time = 0.0;      // max |t − t_ref|
   double velocity = 0.0;  // max |ẋ − ẋ_ref| over ẋ⁻ and ẋ⁺
 };
 
+// Events of a run with rtol = atol = `tolerance` and the steps bounded by
+// `max_step_multiple` times the system's largest step.
 std::vector<EventRecord> simulate_events(const LinearImpact& system, std::string_view method,
                                          double tolerance, LinearImpact::State x0, double t0,
-                                         double t_end) {
+                                         double t_end, double max_step_multiple = 1.0) {
   StepperSettings settings;
   settings.rtol = tolerance;
   settings.atol = tolerance;
-  settings.max_step = system.max_step();
+  settings.max_step = max_step_multiple * system.max_step();
   EventLog log;
   const LoopOptions options;
   const auto result = impactlab::with_stepper<LinearImpact>(method, settings, [&](auto& stepper) {
@@ -174,11 +185,13 @@ std::vector<EventRecord> simulate_events(const LinearImpact& system, std::string
   return log.records();
 }
 
-ImpactErrors impact_errors(std::string_view method, double tolerance) {
+ImpactErrors impact_errors(std::string_view method, double tolerance,
+                           double max_step_multiple = 1.0) {
   const LinearImpactParameters p = periodic_case();
   const auto reference = reference_impacts(p, 0.0, 0.0, 0.0, compared_impacts);
   const double t_end = reference.back().t + 0.5 * std::numbers::pi / p.omega;
-  const auto events = simulate_events(LinearImpact(p), method, tolerance, {0.0, 0.0}, 0.0, t_end);
+  const auto events = simulate_events(LinearImpact(p), method, tolerance, {0.0, 0.0}, 0.0, t_end,
+                                      max_step_multiple);
   ImpactErrors errors;
   EXPECT_EQ(events.size(), reference.size());
   for (std::size_t i = 0; i < std::min(events.size(), reference.size()); ++i) {
@@ -197,16 +210,20 @@ class LinearImpactAgainstClosedForm : public ::testing::TestWithParam<std::strin
 TEST_P(LinearImpactAgainstClosedForm, FirstFiftyImpactsAgreeAtTightTolerance) {
   const bool exact = GetParam() == "exact";
   const ImpactErrors errors = impact_errors(GetParam(), 1e-13);
-  RecordProperty("max_time_error", std::to_string(errors.time));
-  RecordProperty("max_velocity_error", std::to_string(errors.velocity));
+  RecordProperty("max_time_error", scientific(errors.time));
+  RecordProperty("max_velocity_error", scientific(errors.velocity));
   EXPECT_LT(errors.time, exact ? 1e-11 : 1e-9);
   EXPECT_LT(errors.velocity, exact ? 1e-11 : 1e-9);
 }
 
+// With the default step bound rk8pd's 8th-order steps already meet 1e-6 at
+// the bound; a bound of a quarter forcing period lets the tolerance, not the
+// bound, set every stepper's step.
 TEST_P(LinearImpactAgainstClosedForm, ErrorShrinksAsToleranceTightens) {
-  const ImpactErrors loose = impact_errors(GetParam(), 1e-6);
-  const ImpactErrors medium = impact_errors(GetParam(), 1e-9);
-  const ImpactErrors tight = impact_errors(GetParam(), 1e-12);
+  constexpr double quarter_period = 4.0;  // multiple of max_step()
+  const ImpactErrors loose = impact_errors(GetParam(), 1e-6, quarter_period);
+  const ImpactErrors medium = impact_errors(GetParam(), 1e-9, quarter_period);
+  const ImpactErrors tight = impact_errors(GetParam(), 1e-12, quarter_period);
   if (GetParam() == "exact") {
     // the closed form does not depend on the tolerance: round-off throughout
     for (const ImpactErrors& e : {loose, medium, tight}) {
@@ -220,8 +237,8 @@ TEST_P(LinearImpactAgainstClosedForm, ErrorShrinksAsToleranceTightens) {
   EXPECT_TRUE(medium.time > tight.time || tight.time <= 1e-11) << tight.time;
   EXPECT_TRUE(medium.velocity > tight.velocity || tight.velocity <= 1e-11) << tight.velocity;
   // and the loose run is still close: the tolerance governs the error
-  EXPECT_LT(loose.time, 1e-3);
-  EXPECT_LT(loose.velocity, 1e-3);
+  EXPECT_LT(loose.time, 1e-4);
+  EXPECT_LT(loose.velocity, 1e-4);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllSteppers, LinearImpactAgainstClosedForm,

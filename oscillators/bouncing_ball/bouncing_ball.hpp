@@ -142,7 +142,8 @@ class BouncingBall {
   }
 
   // At the accumulation point the ball rides on the table if the table pushes
-  // it; otherwise it leaves the table with the table's velocity.
+  // it; otherwise it leaves the table with the table's velocity. The records
+  // carry the ball's state there, which is the table's (q = z, q̇ = ż).
   Transition<State, Mode> enter_stuck(double t, EventLog& log) const {
     const State riding = on_table(t);
     log.record({t, EventKind::accumulation, wall, riding[0], riding[1], riding[1]});

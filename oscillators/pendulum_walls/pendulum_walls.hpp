@@ -112,17 +112,19 @@ class PendulumWalls {
   }
 
   // free:    k = 0 gap to the right wall, k = 1 gap to the left wall (m)
-  // contact: k = 0 normal force λ_N (N), k = 1 tangential velocity (m/s)
+  // contact: k = 0 release: the frictionless normal force −m g_e tan θ0 (N),
+  //          which has the sign and the zeros of λ_N whenever the contact is
+  //          consistent (D = cos θ0 − s μ sin θ0 > 0 for the slip sign s in
+  //          force; every change of s is an event where D is checked), but no
+  //          jump where the slip reverses;
+  //          k = 1 tangential velocity (m/s), a slip reversal
   [[nodiscard]] WitnessSample witness(Mode mode, std::size_t k, const State& x, double t) const {
     if (mode == Mode::free) {
       const double side = k == 0 ? 1.0 : -1.0;
       return {p_.b - side * p_.l * std::sin(x[0]), -side * p_.l * std::cos(x[0]) * x[1]};
     }
-    if (k == 0) {
-      const double s = sign(pivot_velocity(t));
-      const double denominator = friction_denominator(s);
-      return {normal_force(t, s), -p_.m * effective_gravity_rate(t) * sin0_ / denominator};
-    }
+    if (k == 0)
+      return {normal_force(t, 0.0), -p_.m * effective_gravity_rate(t) * sin0_ / cos0_};
     return {pivot_velocity(t), p_.V0 * p_.omega * std::cos(p_.omega * t)};
   }
 

@@ -151,13 +151,15 @@ RunResult<typename System::State, typename System::Mode> simulate(
     return true;
   };
 
-  // events at t0: a witness at zero, moving towards its trigger side
+  // events at t0: a witness at zero, moving towards its trigger side or not
+  // moving at all (a state resting on a wall: the system decides whether it
+  // stays in contact or leaves)
   for (std::size_t k = 0; k < system.witness_count(rhs.mode); ++k) {
     const WitnessSample w = system.witness(rhs.mode, k, x, t);
     const TriggerDirection direction = system.trigger_direction(rhs.mode, k);
     const bool at_zero = std::fabs(w.value) <= options.location.grazing_tolerance;
-    const bool inward = direction == TriggerDirection::falling  ? w.rate < 0.0
-                        : direction == TriggerDirection::rising ? w.rate > 0.0
+    const bool inward = direction == TriggerDirection::falling  ? w.rate <= 0.0
+                        : direction == TriggerDirection::rising ? w.rate >= 0.0
                                                                 : false;
     if (at_zero && inward) {
       if (!apply_event(k, CrossingKind::crossing, t, x)) return finish(Termination::stopped_by_model);
@@ -166,6 +168,8 @@ RunResult<typename System::State, typename System::Mode> simulate(
   }
   emit_observations(t, [&](double, State& out) { out = x; });
 
+  constexpr std::size_t no_witness = static_cast<std::size_t>(-1);
+  std::size_t just_grazed = no_witness;  // witness whose grazing was the last event
   stepper.initialize(rhs, x, t, std::min(0.01 * system.max_step(), t_end - t0));
   while (t < t_end) {
     stepper.do_step(rhs, t_end);
@@ -181,7 +185,8 @@ RunResult<typename System::State, typename System::Mode> simulate(
 
     const LocatedEvent event = locate_first_event(system, rhs.mode, ta, tb,
                                                   stepper.previous_state(), x_end, state_at,
-                                                  options.location);
+                                                  options.location, just_grazed);
+    just_grazed = no_witness;
     if (!event.found) {
       emit_observations(tb, state_at);
       t = tb;
@@ -208,8 +213,10 @@ RunResult<typename System::State, typename System::Mode> simulate(
       state_at(te, xe);
     }
     emit_observations(te, state_at);
+    const auto mode_before = rhs.mode;
     if (!apply_event(event.witness, event.kind, te, xe))
       return finish(Termination::stopped_by_model);
+    if (event.kind == CrossingKind::grazing && rhs.mode == mode_before) just_grazed = event.witness;
     if (zeno_guard_fired()) return finish(Termination::no_progress);
     stepper.initialize(rhs, x, t, stepper.suggested_step());
   }

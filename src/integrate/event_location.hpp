@@ -75,11 +75,15 @@ double bracketed_root(F&& f, double a, double b, double fa, double fb) {
 // Finds the earliest event of `mode` in [ta, tb]. `state_at(t, x)` is the
 // stepper's dense output. Witnesses whose value at ta is not on the armed side
 // (just after an event, or resting on a wall) are only armed once they leave.
+// `just_grazed` names a witness whose grazing was the event at ta: the state
+// there may still be closing on zero by the integrator's error, and the same
+// minimum must not be found again in the first sub-interval.
 template <HybridSystem System, class StateAt>
 LocatedEvent locate_first_event(const System& system, typename System::Mode mode, double ta,
                                 double tb, const typename System::State& x_start,
                                 const typename System::State& x_end, StateAt&& state_at,
-                                const EventLocationOptions& options) {
+                                const EventLocationOptions& options,
+                                std::size_t just_grazed = static_cast<std::size_t>(-1)) {
   using State = typename System::State;
   constexpr int max_samples = 16;
   const int n = std::min(std::max(options.samples, 1), max_samples);
@@ -146,7 +150,7 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
         candidate = {true, detail::bracketed_root(value_at, tl, tr, left.value, right.value), k,
                      CrossingKind::crossing};
       } else if (left.value > 0.0 && right.value > 0.0 && left.rate < 0.0 && right.rate > 0.0 &&
-                 direction != TriggerDirection::either) {
+                 direction != TriggerDirection::either && !(i == 0 && k == just_grazed)) {
         // a minimum of the oriented witness lies inside (tl, tr)
         const double t_min = detail::bracketed_root(
             [&](double t) { return -rate_at(t); }, tl, tr, -left.rate, -right.rate);
