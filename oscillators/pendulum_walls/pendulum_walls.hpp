@@ -111,7 +111,10 @@ class PendulumWalls {
     return TriggerDirection::either;
   }
 
-  // free:    k = 0 gap to the right wall, k = 1 gap to the left wall (m)
+  // free:    k = 0 angular gap to the right wall θ0 − θ, k = 1 to the left
+  //          wall θ + θ0 (rad): sin is increasing on [−π/2, π/2], so these
+  //          have the sign and the zeros of the gaps b ∓ l sin θ (m) without
+  //          a sine per evaluation, and are in the state's units (atol)
   // contact: k = 0 release: the frictionless normal force −m g_e tan θ0 (N),
   //          which has the sign and the zeros of λ_N whenever the contact is
   //          consistent (D = cos θ0 − s μ sin θ0 > 0 for the slip sign s in
@@ -121,7 +124,7 @@ class PendulumWalls {
   [[nodiscard]] WitnessSample witness(Mode mode, std::size_t k, const State& x, double t) const {
     if (mode == Mode::free) {
       const double side = k == 0 ? 1.0 : -1.0;
-      return {p_.b - side * p_.l * std::sin(x[0]), -side * p_.l * std::cos(x[0]) * x[1]};
+      return {theta0_ - side * x[0], -side * x[1]};
     }
     if (k == 0)
       return {normal_force(t, 0.0), -p_.m * effective_gravity_rate(t) * sin0_ / cos0_};
