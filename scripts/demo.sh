@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 scripts/deps.sh
 scripts/build.sh
 
-out=out/demo
+out="$PWD/out/demo"
 echo
 echo "== jin2003 at V0 = 1.5 m/s (the paper's default scene), 100 forcing periods"
 build/impactlab simulate jin2003 --periods 100 --sample 0.005 --out "$out/jin2003"
