@@ -83,6 +83,8 @@ RunResult<typename System::State, typename System::Mode> simulate(
     Observer&& observer = Observer{}) {
   using State = typename System::State;
   RunResult<State, typename System::Mode> result;
+  EventLocationOptions location = options.location;
+  location.max_step = system.max_step();
   ModeRhs<System> rhs{&system, mode, &result.counters.rhs_evaluations};
   double t = t0;
   double zeno_checkpoint_time = t0;
@@ -177,6 +179,7 @@ RunResult<typename System::State, typename System::Mode> simulate(
     const double ta = stepper.previous_time();
     const double tb = std::min(stepper.current_time(), t_end);
     auto state_at = [&](double ts, State& out) { stepper.state_at(rhs, ts, out); };
+    auto scan_at = [&](double ts, State& out) { stepper.scan_state(rhs, ts, out); };
     State x_end;
     if (tb == stepper.current_time())
       x_end = stepper.current_state();
@@ -185,7 +188,8 @@ RunResult<typename System::State, typename System::Mode> simulate(
 
     const LocatedEvent event = locate_first_event(system, rhs.mode, ta, tb,
                                                   stepper.previous_state(), x_end, state_at,
-                                                  options.location, just_grazed);
+                                                  scan_at, Stepper::has_cheap_scan, location,
+                                                  just_grazed);
     just_grazed = no_witness;
     if (!event.found) {
       emit_observations(tb, state_at);

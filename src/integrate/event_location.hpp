@@ -1,7 +1,11 @@
 // Event location on the dense output of one step.
 //
-// Each witness of the current mode is sampled at `samples + 1` equally spaced
-// times across the step together with its time derivative. A sign change in
+// Each witness of the current mode is sampled at equally spaced times across
+// the step together with its time derivative, with sub-intervals no longer
+// than the system's max_step / samples_per_max_step (the system's max_step
+// is its statement of the time scale on which witnesses turn), so a short
+// step of a low-order method is scanned at its ends only and a long step of a
+// high-order method is subdivided. A sign change in
 // the trigger direction between two samples brackets a crossing. Where the
 // witness stays on the armed side at both samples but its rate changes sign
 // towards the trigger side and back, an extremum lies between them: it is
@@ -27,7 +31,8 @@
 namespace impactlab {
 
 struct EventLocationOptions {
-  int samples = 4;                // sub-intervals per step for the witness scan
+  int samples_per_max_step = 4;   // scan sub-intervals per system max_step
+  double max_step = INFINITY;      // the system's max_step (s), set by the loop
   double grazing_tolerance = 1e-12;  // |witness| at an extremum counted as touching
 };
 
@@ -73,20 +78,27 @@ double bracketed_root(F&& f, double a, double b, double fa, double fb) {
 }  // namespace detail
 
 // Finds the earliest event of `mode` in [ta, tb]. `state_at(t, x)` is the
-// stepper's dense output. Witnesses whose value at ta is not on the armed side
+// stepper's dense output; `scan_at(t, x)` a cheaper interpolant for the
+// scan's interior samples (`cheap_scan`; for most steppers scan_at is
+// state_at and cheap_scan is false). Witnesses whose value at ta is not on the armed side
 // (just after an event, or resting on a wall) are only armed once they leave.
 // `just_grazed` names a witness whose grazing was the event at ta: the state
 // there may still be closing on zero by the integrator's error, and the same
 // minimum must not be found again in the first sub-interval.
-template <HybridSystem System, class StateAt>
+template <HybridSystem System, class StateAt, class ScanAt>
 LocatedEvent locate_first_event(const System& system, typename System::Mode mode, double ta,
                                 double tb, const typename System::State& x_start,
                                 const typename System::State& x_end, StateAt&& state_at,
+                                ScanAt&& scan_at, bool cheap_scan,
                                 const EventLocationOptions& options,
                                 std::size_t just_grazed = static_cast<std::size_t>(-1)) {
   using State = typename System::State;
   constexpr int max_samples = 16;
-  const int n = std::min(std::max(options.samples, 1), max_samples);
+  const double longest = options.max_step / std::max(options.samples_per_max_step, 1);
+  const int n = std::isfinite(longest)
+                    ? static_cast<int>(std::clamp(std::ceil((tb - ta) / longest), 1.0,
+                                                  static_cast<double>(max_samples)))
+                    : max_samples;
   const std::size_t witness_count = system.witness_count(mode);
 
   // states at the sample times, shared by every witness
@@ -99,7 +111,7 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
     else if (i == n)
       states[i] = x_end;
     else
-      state_at(times[i], states[i]);
+      scan_at(times[i], states[i]);
   }
 
   LocatedEvent best;
@@ -127,12 +139,12 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
       return detail::oriented(system.witness(mode, k, x, t), direction, either_sign).rate;
     };
 
-    WitnessSample left = sample(0);
-    for (int i = 0; i < n; ++i) {
-      const WitnessSample right = sample(i + 1);
+    // The event pattern between two samples, if any, refined on state_at.
+    // Its bracket ends must be samples of state_at itself: TOMS 748 needs a
+    // sign change of the function it refines.
+    auto classify = [&](int i, const WitnessSample& left,
+                        const WitnessSample& right) -> LocatedEvent {
       const double tl = times[i], tr = times[i + 1];
-      if (best.found && tl >= best.t) break;
-      LocatedEvent candidate;
       // a witness that starts at zero moving to its armed side (just after
       // its own event) and is back on the trigger side at the next sample has
       // made a hop: its maximum lies between, the crossing after that maximum
@@ -143,28 +155,66 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
           const double t_max = detail::bracketed_root(rate_at, tl, tr, left.rate, right.rate);
           const double v_max = value_at(t_max);
           if (v_max > 0.0)
-            candidate = {true, detail::bracketed_root(value_at, t_max, tr, v_max, right.value),
-                         k, CrossingKind::crossing};
+            return {true, detail::bracketed_root(value_at, t_max, tr, v_max, right.value), k,
+                    CrossingKind::crossing};
         }
       } else if (left.value > 0.0 && right.value <= 0.0) {
-        candidate = {true, detail::bracketed_root(value_at, tl, tr, left.value, right.value), k,
-                     CrossingKind::crossing};
+        return {true, detail::bracketed_root(value_at, tl, tr, left.value, right.value), k,
+                CrossingKind::crossing};
       } else if (left.value > 0.0 && right.value > 0.0 && left.rate < 0.0 && right.rate > 0.0 &&
                  direction != TriggerDirection::either && !(i == 0 && k == just_grazed)) {
         // a minimum of the oriented witness lies inside (tl, tr)
         const double t_min = detail::bracketed_root(
             [&](double t) { return -rate_at(t); }, tl, tr, -left.rate, -right.rate);
         const double v_min = value_at(t_min);
-        if (v_min <= -options.grazing_tolerance) {
-          candidate = {true, detail::bracketed_root(value_at, tl, t_min, left.value, v_min), k,
-                       CrossingKind::crossing};
-        } else if (v_min <= options.grazing_tolerance) {
-          candidate = {true, t_min, k, CrossingKind::grazing};
-        }
+        if (v_min <= -options.grazing_tolerance)
+          return {true, detail::bracketed_root(value_at, tl, t_min, left.value, v_min), k,
+                  CrossingKind::crossing};
+        if (v_min <= options.grazing_tolerance) return {true, t_min, k, CrossingKind::grazing};
       }
-      if (candidate.found) {
-        if (!best.found || candidate.t < best.t) best = candidate;
-        break;
+      return {};
+    };
+    // whether two scan samples show one of classify's patterns
+    auto classify_pattern = [&](int i, const WitnessSample& left, const WitnessSample& right) {
+      const bool leaving_zero =
+          i == 0 && std::fabs(left.value) <= options.grazing_tolerance && left.rate > 0.0;
+      if (leaving_zero) return right.value <= 0.0;
+      if (!(left.value > 0.0)) return false;
+      return right.value <= 0.0 || (left.rate < 0.0 && right.rate > 0.0 &&
+                                    direction != TriggerDirection::either &&
+                                    !(i == 0 && k == just_grazed));
+    };
+    // a sample of state_at (the scan's interior samples may come from scan_at)
+    auto refined_sample = [&](int i) {
+      if (i == 0 || i == n) return sample(i);
+      State x;
+      state_at(times[i], x);
+      return detail::oriented(system.witness(mode, k, x, times[i]), direction, either_sign);
+    };
+    // A cheap scan only decides whether this witness needs the accurate one:
+    // where it shows any pattern, every sample of the step is taken again
+    // from state_at and classified, so an interpolant's error can cost time
+    // but never an event that the accurate samples show.
+    bool needs_accurate_scan = !cheap_scan;
+    if (cheap_scan) {
+      WitnessSample left = sample(0);
+      for (int i = 0; i < n && !needs_accurate_scan; ++i) {
+        const WitnessSample right = sample(i + 1);
+        needs_accurate_scan = classify_pattern(i, left, right);
+        left = right;
+      }
+    }
+    if (!needs_accurate_scan) continue;
+    WitnessSample left = refined_sample(0);
+    for (int i = 0; i < n; ++i) {
+      const WitnessSample right = cheap_scan ? refined_sample(i + 1) : sample(i + 1);
+      if (best.found && times[i] >= best.t) break;
+      if (classify_pattern(i, left, right)) {
+        const LocatedEvent candidate = classify(i, left, right);
+        if (candidate.found) {
+          if (!best.found || candidate.t < best.t) best = candidate;
+          break;
+        }
       }
       left = right;
     }

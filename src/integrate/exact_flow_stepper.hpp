@@ -17,6 +17,7 @@ class ExactFlowStepper {
 
  public:
   static constexpr const char* name = "exact";
+  static constexpr bool has_cheap_scan = false;  // scan_state cheaper than state_at
   static constexpr bool has_polish = false;
 
   explicit ExactFlowStepper(const StepperSettings& settings) : settings_(settings) {}
@@ -41,6 +42,10 @@ class ExactFlowStepper {
 
   template <class Rhs>
   void state_at(const Rhs&, double t, State& x) const { calc_state(t, x); }
+
+  // the event scan uses the same dense output
+  template <class Rhs>
+  void scan_state(const Rhs&, double t, State& x) const { calc_state(t, x); }
 
   void polish_state(const ModeRhs<System>&, double t, State& x) { calc_state(t, x); }
 

@@ -2,6 +2,10 @@
 // with GSL's standard step control. GSL offers no continuous extension for
 // rk8pd, so the state inside a step is the rk8pd step itself re-taken from the
 // step's start to the requested time: 8th-order accurate, at 13 evaluations.
+// The event locator's coarse scan of a step only has to find where to look,
+// so it uses the cubic Hermite interpolant of the step's end states and
+// derivatives (which GSL's evolve has already computed: no evaluation), and
+// every refinement uses the re-taken step.
 #pragma once
 
 #include <algorithm>
@@ -52,6 +56,7 @@ class GslRk8pd {
 
  public:
   static constexpr const char* name = "rk8pd";
+  static constexpr bool has_cheap_scan = true;  // scan_state cheaper than state_at
   static constexpr bool has_polish = false;
 
   explicit GslRk8pd(const StepperSettings& settings)
@@ -77,7 +82,6 @@ class GslRk8pd {
   void do_step(const Rhs& rhs, double t_limit) {
     x_old_ = x_;
     t_old_ = t_;
-    have_dxdt_old_ = false;
     gsl_odeiv2_system system = bind(rhs);
     const double t_stop = std::min(t_limit, t_old_ + settings_.max_step);
     double t = t_old_;
@@ -88,6 +92,9 @@ class GslRk8pd {
                                std::string(gsl_strerror(status)));
     t_ = t;
     dt_ = std::min(dt_, settings_.max_step);
+    // the derivatives at both ends of the accepted step, as evolve computed them
+    std::copy_n(evolve_->dydt_in, dimension, dxdt_old_.begin());
+    std::copy_n(evolve_->dydt_out, dimension, dxdt_.begin());
   }
 
   // The state at t inside the last step: the rk8pd step re-taken from the
@@ -99,10 +106,6 @@ class GslRk8pd {
       return;
     }
     gsl_odeiv2_system system = bind(rhs);
-    if (!have_dxdt_old_) {
-      rhs(x_old_, dxdt_old_, t_old_);
-      have_dxdt_old_ = true;
-    }
     x = x_old_;
     State error;
     gsl_odeiv2_step_apply(restep_.get(), t_old_, t - t_old_, x.data(), error.data(),
@@ -111,6 +114,19 @@ class GslRk8pd {
 
   template <class Rhs>
   void polish_state(const Rhs& rhs, double t, State& x) { state_at(rhs, t, x); }
+
+  // cubic Hermite interpolant of the last step (for the event scan only)
+  template <class Rhs>
+  void scan_state(const Rhs&, double t, State& x) const {
+    const double h = t_ - t_old_;
+    const double s = (t - t_old_) / h;
+    const double h00 = (1.0 + 2.0 * s) * (1.0 - s) * (1.0 - s);
+    const double h10 = s * (1.0 - s) * (1.0 - s);
+    const double h01 = s * s * (3.0 - 2.0 * s);
+    const double h11 = s * s * (s - 1.0);
+    for (std::size_t i = 0; i < dimension; ++i)
+      x[i] = h00 * x_old_[i] + h10 * h * dxdt_old_[i] + h01 * x_[i] + h11 * h * dxdt_[i];
+  }
 
   [[nodiscard]] double previous_time() const { return t_old_; }
   [[nodiscard]] double current_time() const { return t_; }
@@ -123,8 +139,7 @@ class GslRk8pd {
   std::unique_ptr<gsl_odeiv2_step, StepDeleter> step_, restep_;
   std::unique_ptr<gsl_odeiv2_control, ControlDeleter> control_;
   std::unique_ptr<gsl_odeiv2_evolve, EvolveDeleter> evolve_;
-  State x_{}, x_old_{}, dxdt_old_{};
-  bool have_dxdt_old_ = false;
+  State x_{}, x_old_{}, dxdt_{}, dxdt_old_{};
   double t_ = 0.0, t_old_ = 0.0, dt_ = 0.0;
 };
 

@@ -18,6 +18,7 @@ class OdeintBulirschStoer {
 
  public:
   static constexpr const char* name = "bulirsch_stoer";
+  static constexpr bool has_cheap_scan = false;  // scan_state cheaper than state_at
   static constexpr bool has_polish = false;
 
   explicit OdeintBulirschStoer(const StepperSettings& settings)
@@ -38,6 +39,10 @@ class OdeintBulirschStoer {
 
   template <class Rhs>
   void state_at(const Rhs&, double t, State& x) const { calc_state(t, x); }
+
+  // the event scan uses the same dense output
+  template <class Rhs>
+  void scan_state(const Rhs&, double t, State& x) const { calc_state(t, x); }
 
   template <class Rhs>
   void polish_state(const Rhs&, double t, State& x) { calc_state(t, x); }

@@ -20,6 +20,7 @@ class OdeintDopri5 {
 
  public:
   static constexpr const char* name = "dopri5";
+  static constexpr bool has_cheap_scan = false;  // scan_state cheaper than state_at
   static constexpr bool has_polish = true;
 
   explicit OdeintDopri5(const StepperSettings& settings)
@@ -64,6 +65,10 @@ class OdeintDopri5 {
 
   template <class Rhs>
   void state_at(const Rhs&, double t, State& x) const { calc_state(t, x); }
+
+  // the event scan uses the same dense output
+  template <class Rhs>
+  void scan_state(const Rhs&, double t, State& x) const { calc_state(t, x); }
 
   // The 5th-order step from the last step's start to t: what the integrator
   // itself would give had it stepped to t.
