@@ -139,6 +139,38 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
       return detail::oriented(system.witness(mode, k, x, t), direction, either_sign).rate;
     };
 
+    // A simple crossing in [tl, tr] (f(tl) > 0 >= f(tr) on state_at). With a
+    // cheap scan the root of the interpolant is found first and Newton's
+    // method on state_at (value and rate from one evaluation) finishes it;
+    // TOMS 748 on state_at is the fallback, and the only method otherwise.
+    auto crossing_root = [&](double tl, double tr, double fl, double fr) {
+      if (cheap_scan) {
+        auto scan_value = [&](double t) {
+          State x;
+          scan_at(t, x);
+          return detail::oriented(system.witness(mode, k, x, t), direction, either_sign).value;
+        };
+        const double hl = scan_value(tl), hr = scan_value(tr);
+        double t = hl > 0.0 && hr <= 0.0 ? detail::bracketed_root(scan_value, tl, tr, hl, hr)
+                                         : 0.5 * (tl + tr);
+        for (int iteration = 0; iteration < 6; ++iteration) {
+          State x;
+          state_at(t, x);
+          const WitnessSample w =
+              detail::oriented(system.witness(mode, k, x, t), direction, either_sign);
+          if (w.value == 0.0) return t;
+          if (!(w.rate < 0.0)) break;
+          const double next = t - w.value / w.rate;
+          if (!(next >= tl && next <= tr)) break;
+          const bool converged = std::fabs(next - t) <= 4.0 * std::numeric_limits<double>::epsilon() *
+                                                           std::fabs(t);
+          t = next;
+          if (converged) return t;
+        }
+      }
+      return detail::bracketed_root(value_at, tl, tr, fl, fr);
+    };
+
     // The event pattern between two samples, if any, refined on state_at.
     // Its bracket ends must be samples of state_at itself: TOMS 748 needs a
     // sign change of the function it refines.
@@ -159,8 +191,7 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
                     CrossingKind::crossing};
         }
       } else if (left.value > 0.0 && right.value <= 0.0) {
-        return {true, detail::bracketed_root(value_at, tl, tr, left.value, right.value), k,
-                CrossingKind::crossing};
+        return {true, crossing_root(tl, tr, left.value, right.value), k, CrossingKind::crossing};
       } else if (left.value > 0.0 && right.value > 0.0 && left.rate < 0.0 && right.rate > 0.0 &&
                  direction != TriggerDirection::either && !(i == 0 && k == just_grazed)) {
         // a minimum of the oriented witness lies inside (tl, tr)
