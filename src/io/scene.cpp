@@ -126,6 +126,12 @@ std::vector<KeySpec> common_keys() {
   };
 }
 
+KeySpec accumulation_tolerance_key() {
+  return {.key = "accumulation_tol",
+          .help = "accepted error of an accumulation (chattering) estimate",
+          .default_number = 1e-3, .lower = 0.0, .upper = 0.5, .lower_open = true};
+}
+
 void validate(const Scene& scene, const SceneSchema& schema) {
   for (const auto& [key, value] : scene.values) {
     const KeySpec* spec = find_key(schema, key);

@@ -47,6 +47,10 @@ struct Scene {
 // oscillator's schema.
 std::vector<KeySpec> common_keys();
 
+// `accumulation_tol`, the key of every oscillator whose impacts can
+// accumulate (src/contact/accumulation.hpp).
+KeySpec accumulation_tolerance_key();
+
 // Reads a built-in scene by name or a scene file by path, fills defaults from
 // the schema, and validates every key and value. Throws BadInput.
 Scene load_scene(std::string_view name_or_path);
