@@ -211,7 +211,9 @@ class PendulumWalls {
   }
 
   Transition<State, Mode> release(Mode, int wall, const State& x, double t, EventLog& log) const {
-    EventRecord end{t, EventKind::contact_end, wall, x[0], 0.0, 0.0};
+    // in contact θ is ±θ0 exactly; a stepper's round-off (extrapolation in
+    // Bulirsch–Stoer) must not move the recorded or the continued state
+    EventRecord end{t, EventKind::contact_end, wall, wall * theta0_, 0.0, 0.0};
     end.normal_force = 0.0;
     end.tangential_velocity = pivot_velocity(t);
     end.friction_work = x[2];
@@ -222,14 +224,15 @@ class PendulumWalls {
   Transition<State, Mode> slip_reversal(Mode mode, int wall, const State& x, double t,
                                         EventLog& log) const {
     const double s_new = sign(std::cos(p_.omega * t)) * (p_.V0 > 0.0 ? 1.0 : 0.0);
+    const State resting = on_wall(wall, x[2]);
     if (is_painleve(friction_denominator(s_new)))
-      return stop_painleve(mode, wall, x, t, 0.0, log);
-    EventRecord reversal{t, EventKind::slip_reversal, wall, x[0], 0.0, 0.0};
+      return stop_painleve(mode, wall, resting, t, 0.0, log);
+    EventRecord reversal{t, EventKind::slip_reversal, wall, resting[0], 0.0, 0.0};
     reversal.normal_force = normal_force(t, s_new);
     reversal.tangential_velocity = 0.0;
     reversal.friction_work = x[2];
     log.record(reversal);
-    return {x, mode, t, false};
+    return {resting, mode, t, false};
   }
 
   PendulumWallsParameters p_;
