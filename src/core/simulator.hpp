@@ -112,7 +112,7 @@ RunResult<typename System::State, typename System::Mode> simulate(
     const auto transition = system.on_event(rhs.mode, witness, kind, xe, te, log);
     if (transition.stop) {
       t = te;
-      x = xe;
+      x = transition.state;
       return false;
     }
     // the state between the event and a later restart time (an accumulation
