@@ -69,10 +69,14 @@ void impacts_per_second(benchmark::State& state, std::string_view method, double
 
 BENCHMARK_CAPTURE(impacts_per_second, periodic_dopri5, "dopri5", 1.5)
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(impacts_per_second, periodic_rkf78, "rkf78", 1.5)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(impacts_per_second, periodic_bulirsch_stoer, "bulirsch_stoer", 1.5)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(impacts_per_second, periodic_rk8pd, "rk8pd", 1.5)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(impacts_per_second, chattering_dopri5, "dopri5", 4.163)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(impacts_per_second, chattering_rkf78, "rkf78", 4.163)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(impacts_per_second, chattering_bulirsch_stoer, "bulirsch_stoer", 4.163)
     ->Unit(benchmark::kMillisecond);

@@ -96,7 +96,7 @@ TEST_P(HotLoop, BouncingBallWithStickingAllocatesNothing) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Steppers, HotLoop,
-                         ::testing::Values("dopri5", "bulirsch_stoer", "rk8pd", "exact"),
+                         ::testing::ValuesIn(stepper_names),
                          [](const auto& info) { return std::string(info.param); });
 
 }  // namespace

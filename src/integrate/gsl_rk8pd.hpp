@@ -17,6 +17,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 
+#include "integrate/cubic_hermite.hpp"
 #include "integrate/stepper_settings.hpp"
 
 namespace impactlab {
@@ -118,14 +119,7 @@ class GslRk8pd {
   // cubic Hermite interpolant of the last step (for the event scan only)
   template <class Rhs>
   void scan_state(const Rhs&, double t, State& x) const {
-    const double h = t_ - t_old_;
-    const double s = (t - t_old_) / h;
-    const double h00 = (1.0 + 2.0 * s) * (1.0 - s) * (1.0 - s);
-    const double h10 = s * (1.0 - s) * (1.0 - s);
-    const double h01 = s * s * (3.0 - 2.0 * s);
-    const double h11 = s * s * (s - 1.0);
-    for (std::size_t i = 0; i < dimension; ++i)
-      x[i] = h00 * x_old_[i] + h10 * h * dxdt_old_[i] + h01 * x_[i] + h11 * h * dxdt_[i];
+    cubic_hermite(t_old_, x_old_, dxdt_old_, t_, x_, dxdt_, t, x);
   }
 
   [[nodiscard]] double previous_time() const { return t_old_; }

@@ -13,13 +13,14 @@
 #include "integrate/gsl_rk8pd.hpp"
 #include "integrate/odeint_bulirsch_stoer.hpp"
 #include "integrate/odeint_dopri5.hpp"
+#include "integrate/odeint_fehlberg78.hpp"
 #include "integrate/stepper_settings.hpp"
 
 namespace impactlab {
 
 // every integrator.method value, in the order the docs list them
-inline constexpr std::array<std::string_view, 4> stepper_names = {"dopri5", "bulirsch_stoer",
-                                                                  "rk8pd", "exact"};
+inline constexpr std::array<std::string_view, 5> stepper_names = {
+    "dopri5", "rkf78", "bulirsch_stoer", "rk8pd", "exact"};
 
 inline bool is_stepper_name(std::string_view name) {
   for (auto known : stepper_names)
@@ -34,6 +35,10 @@ decltype(auto) with_stepper(std::string_view method, const StepperSettings& sett
   using State = typename System::State;
   if (method == "dopri5") {
     OdeintDopri5<State> stepper(settings);
+    return body(stepper);
+  }
+  if (method == "rkf78") {
+    OdeintFehlberg78<State> stepper(settings);
     return body(stepper);
   }
   if (method == "bulirsch_stoer") {
