@@ -1,10 +1,10 @@
-// The Fehlberg 7(8) stepper's constructors, compiled once (see CMakeLists.txt
+// The Fehlberg 7(8) stepper's constructor, compiled once (see CMakeLists.txt
 // for why they live apart).
 #include "integrate/odeint_fehlberg78.hpp"
 
 namespace impactlab {
 
-template class OdeintFehlberg78<std::array<double, 2>>;
-template class OdeintFehlberg78<std::array<double, 3>>;
+template OdeintFehlberg78<std::array<double, 2>>::OdeintFehlberg78(const StepperSettings&);
+template OdeintFehlberg78<std::array<double, 3>>::OdeintFehlberg78(const StepperSettings&);
 
 }  // namespace impactlab
