@@ -231,4 +231,59 @@ TEST_P(EventLoop, NoEventTwiceAtTheSameInstant) {
 INSTANTIATE_TEST_SUITE_P(AllSteppers, EventLoop, ::testing::ValuesIn(impactlab::stepper_names),
                          [](const auto& info) { return std::string(info.param); });
 
+// A ball bouncing on a fixed floor under gravity, with restitution and no
+// accumulation handling at all: its impacts accumulate at a finite time
+// (Zeno). The loop must stop on its own with no_progress there, not hang and
+// not let the ball through the floor.
+class ZenoBall {
+ public:
+  using State = std::array<double, 2>;  // {height (m), velocity (m/s)}
+  enum class Mode { free };
+  static constexpr std::size_t max_witnesses = 1;
+  static constexpr double gravity = 9.81;       // m/s²
+  static constexpr double restitution = 0.5;
+
+  void rhs(Mode, const State& x, State& dxdt, double) const {
+    dxdt[0] = x[1];
+    dxdt[1] = -gravity;
+  }
+  [[nodiscard]] std::size_t witness_count(Mode) const { return 1; }
+  [[nodiscard]] impactlab::TriggerDirection trigger_direction(Mode, std::size_t) const {
+    return impactlab::TriggerDirection::falling;
+  }
+  [[nodiscard]] impactlab::WitnessSample witness(Mode, std::size_t, const State& x,
+                                                 double) const {
+    return {x[0], x[1]};
+  }
+  impactlab::Transition<State, Mode> on_event(Mode, std::size_t, impactlab::CrossingKind,
+                                              const State& x, double t, EventLog& log) const {
+    log.record({t, EventKind::impact, -1, x[0], x[1], -restitution * x[1]});
+    return {{0.0, -restitution * x[1]}, Mode::free, t, false};
+  }
+  [[nodiscard]] double max_step() const { return 0.05; }
+};
+
+TEST_P(EventLoop, UnresolvedZenoStopsWithNoProgress) {
+  if (GetParam() == "exact") GTEST_SKIP() << "ZenoBall has no closed-form flow here";
+  const ZenoBall ball;
+  // dropped from 1 m: first impact at √(2/g), then flights 2 r^k v1 / g
+  const double v1 = std::sqrt(2.0 * ZenoBall::gravity);
+  const double accumulation = v1 / ZenoBall::gravity +
+                              2.0 * ZenoBall::restitution * v1 /
+                                  (ZenoBall::gravity * (1.0 - ZenoBall::restitution));
+  StepperSettings settings;
+  settings.rtol = settings.atol = 1e-12;
+  settings.max_step = ball.max_step();
+  EventLog log;
+  const auto result = impactlab::with_stepper<ZenoBall>(GetParam(), settings, [&](auto& stepper) {
+    return impactlab::simulate(ball, stepper, ZenoBall::State{1.0, 0.0}, ZenoBall::Mode::free,
+                               0.0, 2.0 * accumulation, LoopOptions{}, log);
+  });
+  EXPECT_EQ(result.termination, Termination::no_progress);
+  EXPECT_NEAR(result.t, accumulation, 1e-6);
+  // the ball never got through the floor by more than the tolerance
+  EXPECT_GE(result.state[0], -1e-9);
+  for (const EventRecord& e : log.records()) EXPECT_LE(e.t, accumulation + 1e-6);
+}
+
 }  // namespace

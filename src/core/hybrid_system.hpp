@@ -32,8 +32,11 @@ struct WitnessSample {
 
 // How a witness reached zero.
 enum class CrossingKind {
-  crossing,  // a sign change in the trigger direction
-  grazing,   // an extremum of the witness that touches zero within tolerance
+  crossing,    // a sign change in the trigger direction
+  grazing,     // an extremum of the witness that touches zero within tolerance
+  unresolved,  // past zero by more than the tolerance with no crossing found:
+               // hops below round-off (an accumulation the model did not
+               // resolve); the loop stops instead of letting the state through
 };
 
 // What the system does after an event: the state and mode to continue from,

@@ -29,7 +29,9 @@ namespace impactlab {
 enum class Termination {
   completed,        // reached the end time
   stopped_by_model, // the system asked to stop (for example a Painlevé diagnostic)
-  no_progress,      // the Zeno guard fired
+  no_progress,      // the Zeno guard fired, or a witness went past zero by
+                    // more than the tolerance with no event found (hops below
+                    // round-off): an accumulation the model did not resolve
 };
 
 constexpr std::string_view to_string(Termination termination) {
@@ -197,6 +199,12 @@ RunResult<typename System::State, typename System::Mode> simulate(
       x = x_end;
       if (t >= t_end && !apply_event_at_end(ta)) return finish(Termination::stopped_by_model);
       continue;
+    }
+
+    if (event.kind == CrossingKind::unresolved) {
+      t = event.t;
+      state_at(t, x);
+      return finish(Termination::no_progress);
     }
 
     // the state at the event: the dense output, then (where the stepper can)

@@ -205,8 +205,13 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
       }
       return {};
     };
-    // whether two scan samples show one of classify's patterns
+    // a sample past zero by more than the tolerance, on the trigger side
+    auto violated = [&](const WitnessSample& w) {
+      return direction != TriggerDirection::either && w.value < -options.grazing_tolerance;
+    };
+    // whether two scan samples show one of classify's patterns (or a violation)
     auto classify_pattern = [&](int i, const WitnessSample& left, const WitnessSample& right) {
+      if (violated(left) || violated(right)) return true;
       const bool leaving_zero =
           i == 0 && std::fabs(left.value) <= options.grazing_tolerance && left.rate > 0.0;
       if (leaving_zero) return right.value <= 0.0;
@@ -241,7 +246,11 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
       const WitnessSample right = cheap_scan ? refined_sample(i + 1) : sample(i + 1);
       if (best.found && times[i] >= best.t) break;
       if (classify_pattern(i, left, right)) {
-        const LocatedEvent candidate = classify(i, left, right);
+        LocatedEvent candidate = classify(i, left, right);
+        // past zero without a crossing: the last sample still on the armed
+        // side (or the step's start) is where the run can be trusted up to
+        if (!candidate.found && (violated(left) || violated(right)))
+          candidate = {true, times[i], k, CrossingKind::unresolved};
         if (candidate.found) {
           if (!best.found || candidate.t < best.t) best = candidate;
           break;
