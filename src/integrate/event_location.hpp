@@ -162,10 +162,11 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
           if (!(w.rate < 0.0)) break;
           const double next = t - w.value / w.rate;
           if (!(next >= tl && next <= tr)) break;
-          const bool converged = std::fabs(next - t) <= 4.0 * std::numeric_limits<double>::epsilon() *
-                                                           std::fabs(t);
+          // converged: keep the evaluated time (within a few ulps of next),
+          // whose state the stepper still holds
+          if (std::fabs(next - t) <= 4.0 * std::numeric_limits<double>::epsilon() * std::fabs(t))
+            return t;
           t = next;
-          if (converged) return t;
         }
       }
       return detail::bracketed_root(value_at, tl, tr, fl, fr);

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <memory>
 #include <stdexcept>
@@ -81,6 +82,7 @@ class GslRk8pd {
 
   template <class Rhs>
   void do_step(const Rhs& rhs, double t_limit) {
+    t_last_ = NAN;  // the last re-taken state belongs to the previous step
     x_old_ = x_;
     t_old_ = t_;
     gsl_odeiv2_system system = bind(rhs);
@@ -106,11 +108,17 @@ class GslRk8pd {
       x = x_;
       return;
     }
+    if (t == t_last_) {
+      x = x_last_;
+      return;
+    }
     gsl_odeiv2_system system = bind(rhs);
     x = x_old_;
     State error;
     gsl_odeiv2_step_apply(restep_.get(), t_old_, t - t_old_, x.data(), error.data(),
                           dxdt_old_.data(), nullptr, &system);
+    t_last_ = t;
+    x_last_ = x;
   }
 
   template <class Rhs>
@@ -135,6 +143,8 @@ class GslRk8pd {
   std::unique_ptr<gsl_odeiv2_evolve, EvolveDeleter> evolve_;
   State x_{}, x_old_{}, dxdt_{}, dxdt_old_{};
   double t_ = 0.0, t_old_ = 0.0, dt_ = 0.0;
+  double t_last_ = NAN;  // time of the last re-taken state (the event
+  State x_last_{};       // refinement asks for its final time twice)
 };
 
 }  // namespace impactlab

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <stdexcept>
 
@@ -42,6 +43,7 @@ class OdeintFehlberg78 {
   // One accepted step, never past t_limit.
   template <class Rhs>
   void do_step(const Rhs& rhs, double t_limit) {
+    t_last_ = NAN;  // the last re-taken state belongs to the previous step
     x_old_ = x_;
     dxdt_old_ = dxdt_;
     t_old_ = t_;
@@ -70,7 +72,13 @@ class OdeintFehlberg78 {
       x = x_;
       return;
     }
+    if (t == t_last_) {
+      x = x_last_;
+      return;
+    }
     controlled_.stepper().do_step(rhs, x_old_, dxdt_old_, t_old_, x, t - t_old_);
+    t_last_ = t;
+    x_last_ = x;
   }
 
   template <class Rhs>
@@ -93,6 +101,8 @@ class OdeintFehlberg78 {
   Controlled controlled_;
   State x_{}, x_old_{}, dxdt_{}, dxdt_old_{};
   double t_ = 0.0, t_old_ = 0.0, dt_ = 0.0;
+  double t_last_ = NAN;  // time of the last re-taken state (the event
+  State x_last_{};       // refinement asks for its final time twice)
 };
 
 template <class State>
