@@ -5,10 +5,10 @@
 #pragma once
 
 #include <algorithm>
-#include <stdexcept>
 
 #include <boost/numeric/odeint.hpp>
 
+#include "integrate/step_to_limit.hpp"
 #include "integrate/stepper_settings.hpp"
 
 namespace impactlab {
@@ -42,20 +42,9 @@ class OdeintDopri5 {
     x_old_ = x_;
     dxdt_old_ = dxdt_;
     t_old_ = t_;
-    for (int attempt = 0;; ++attempt) {
-      if (attempt > 500) throw std::runtime_error("dopri5: step size underflow");
-      const double room = t_limit - t_old_;
-      const bool clipped = dt_ >= room;
-      double dt = clipped ? room : dt_;
-      double t = t_old_;
-      const auto result = controlled_.try_step(rhs, x_old_, dxdt_old_, t, x_, dxdt_, dt);
-      if (result == boost::numeric::odeint::success) {
-        t_ = clipped ? t_limit : t;
-        if (!clipped || dt > dt_) dt_ = std::min(dt, settings_.max_step);
-        return;
-      }
-      dt_ = dt;
-    }
+    t_ = step_to_limit(t_old_, t_limit, settings_.max_step, dt_, name, [&](double& t, double& dt) {
+      return controlled_.try_step(rhs, x_old_, dxdt_old_, t, x_, dxdt_, dt);
+    });
   }
 
   // Dense output inside the last step (4th order).

@@ -10,11 +10,11 @@
 #include <algorithm>
 #include <cmath>
 #include <array>
-#include <stdexcept>
 
 #include <boost/numeric/odeint.hpp>
 
 #include "integrate/cubic_hermite.hpp"
+#include "integrate/step_to_limit.hpp"
 #include "integrate/stepper_settings.hpp"
 
 namespace impactlab {
@@ -47,21 +47,10 @@ class OdeintFehlberg78 {
     x_old_ = x_;
     dxdt_old_ = dxdt_;
     t_old_ = t_;
-    for (int attempt = 0;; ++attempt) {
-      if (attempt > 500) throw std::runtime_error("rkf78: step size underflow");
-      const double room = t_limit - t_old_;
-      const bool clipped = dt_ >= room;
-      double dt = clipped ? room : dt_;
-      double t = t_old_;
-      const auto result = controlled_.try_step(rhs, x_old_, dxdt_old_, t, x_, dt);
-      if (result == boost::numeric::odeint::success) {
-        t_ = clipped ? t_limit : t;
-        if (!clipped || dt > dt_) dt_ = std::min(dt, settings_.max_step);
-        rhs(x_, dxdt_, t_);
-        return;
-      }
-      dt_ = dt;
-    }
+    t_ = step_to_limit(t_old_, t_limit, settings_.max_step, dt_, name, [&](double& t, double& dt) {
+      return controlled_.try_step(rhs, x_old_, dxdt_old_, t, x_, dt);
+    });
+    rhs(x_, dxdt_, t_);
   }
 
   // The state at t inside the last step: the 8th-order step re-taken from
