@@ -1,20 +1,25 @@
 // Event location on the dense output of one step.
 //
-// Each witness of the current mode is sampled at equally spaced times across
-// the step together with its time derivative, with sub-intervals no longer
-// than the system's max_step / samples_per_max_step (the system's max_step
-// is its statement of the time scale on which witnesses turn), so a short
-// step of a low-order method is scanned at its ends only and a long step of a
-// high-order method is subdivided. A sign change in
-// the trigger direction between two samples brackets a crossing. Where the
-// witness stays on the armed side at both samples but its rate changes sign
-// towards the trigger side and back, an extremum lies between them: it is
-// located as a root of the rate, and if the witness there has passed zero the
-// crossing is bracketed between the left sample and the extremum; if it only
-// touches zero (within the grazing tolerance) the event is a grazing. This is
-// what keeps a double root (a grazing contact) inside one step from being
-// missed. Brackets are refined with Boost.Math's TOMS 748 to full double
-// precision in time, which is below the integrator's own accuracy.
+// Each witness of the current mode is sampled, with its time derivative, at
+// equally spaced times across the step. The sub-intervals are no longer than
+// the system's max_step / samples_per_max_step (a system's max_step states
+// the time scale on which its witnesses turn), so a short step of a
+// low-order method is scanned at its ends only and a long step of a
+// high-order method is subdivided. Between two samples:
+// * a sign change in the trigger direction brackets a crossing;
+// * a witness on the armed side at both samples whose rate turns from
+//   towards zero to away from it has an extremum between them, located as a
+//   root of the rate: past zero there, the crossing before it is bracketed;
+//   touching zero within the grazing tolerance, the event is a grazing. This
+//   is what keeps a double root (a grazing contact) inside one step from
+//   being missed;
+// * a witness past zero by more than the tolerance with no crossing before
+//   it is reported as unresolved (the loop stops rather than let the state
+//   through).
+// Brackets are refined with Boost.Math's TOMS 748 to a few ulps in time,
+// below the integrator's own accuracy. Steppers without a continuous
+// extension scan on a cheap interpolant first and redo the scan on their own
+// re-taken steps only where it shows one of these patterns.
 #pragma once
 
 #include <array>
