@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -151,6 +152,30 @@ TEST(Simulate, SetOverridesReachTheRun) {
   EXPECT_EQ(meta["scene"]["keys"]["omega"]["value"].get<double>(), 6.5);
   EXPECT_EQ(meta["integrator"]["method"], "rk8pd");
   EXPECT_NEAR(meta["run"]["t_end_s"].get<double>(), 5 * 2 * M_PI / 6.5, 1e-12);
+}
+
+// μ tan θ0 = 15 · 0.0716 > 1: the first impact that slips downwards (γ_T > 0)
+// is a Painlevé configuration, so the run stops there with exit status 3 and
+// complete outputs that say why.
+TEST(Simulate, PainleveStopExitsThreeWithCompleteOutputs) {
+  const auto out_dir = scratch("painleve");
+  const Outcome outcome = run("simulate jin2003 --quiet --set mu=15 --out " + out_dir.string());
+  EXPECT_EQ(outcome.status, 3) << outcome.err;
+  EXPECT_EQ(line_count(outcome.err), 1) << outcome.err;
+  EXPECT_NE(outcome.err.find("painleve"), std::string::npos) << outcome.err;
+  const auto meta = nlohmann::json::parse(slurp(out_dir / "meta.json"));
+  EXPECT_EQ(meta["run"]["termination"], "stopped_by_model");
+  const std::string events = slurp(out_dir / "events.csv");
+  const auto last_line_start = events.rfind('\n', events.size() - 2) + 1;
+  const std::string last = events.substr(last_line_start);
+  EXPECT_NE(last.find(",painleve,"), std::string::npos) << last;
+  // its tangential velocity (8th column) points down the wall
+  std::vector<std::string> fields;
+  std::stringstream row(last);
+  for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+  ASSERT_GE(fields.size(), 8u);
+  EXPECT_GT(std::stod(fields[7]), 0.0);
+  EXPECT_EQ(meta["run"]["t_final_s"].get<double>(), std::stod(fields[0]));
 }
 
 TEST(Scenes, ListsTheDefaultScene) {
