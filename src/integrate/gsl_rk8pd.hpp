@@ -9,7 +9,6 @@
 #pragma once
 
 #include <algorithm>
-#include <cmath>
 #include <array>
 #include <memory>
 #include <stdexcept>
@@ -18,7 +17,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 
-#include "integrate/cubic_hermite.hpp"
+#include "integrate/step_record.hpp"
 #include "integrate/stepper_settings.hpp"
 
 namespace impactlab {
@@ -63,88 +62,73 @@ class GslRk8pd {
 
   explicit GslRk8pd(const StepperSettings& settings)
       : settings_(settings),
-        step_(gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, dimension)),
+        step_gsl_(gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, dimension)),
         restep_(gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, dimension)),
         control_(gsl_odeiv2_control_standard_new(settings.atol, settings.rtol, 1.0, 0.0)),
         evolve_(gsl_odeiv2_evolve_alloc(dimension)) {
-    if (!step_ || !restep_ || !control_ || !evolve_)
+    if (!step_gsl_ || !restep_ || !control_ || !evolve_)
       throw std::runtime_error("rk8pd: GSL allocation failed");
   }
 
   template <class Rhs>
   void initialize(const Rhs&, const State& x, double t, double dt) {
-    x_ = x;
-    t_ = t;
+    step_.x = x;
+    step_.t = t;
     dt_ = std::min(dt, settings_.max_step);
     gsl_odeiv2_evolve_reset(evolve_.get());
-    gsl_odeiv2_step_reset(step_.get());
+    gsl_odeiv2_step_reset(step_gsl_.get());
   }
 
   template <class Rhs>
   void do_step(const Rhs& rhs, double t_limit) {
-    t_last_ = NAN;  // the last re-taken state belongs to the previous step
-    x_old_ = x_;
-    t_old_ = t_;
+    step_.begin_step();
     gsl_odeiv2_system system = bind(rhs);
-    const double t_stop = std::min(t_limit, t_old_ + settings_.max_step);
-    double t = t_old_;
-    const int status = gsl_odeiv2_evolve_apply(evolve_.get(), control_.get(), step_.get(),
-                                               &system, &t, t_stop, &dt_, x_.data());
+    const double t_stop = std::min(t_limit, step_.t_old + settings_.max_step);
+    double t = step_.t_old;
+    const int status = gsl_odeiv2_evolve_apply(evolve_.get(), control_.get(), step_gsl_.get(),
+                                               &system, &t, t_stop, &dt_, step_.x.data());
     if (status != GSL_SUCCESS)
       throw std::runtime_error("rk8pd: gsl_odeiv2_evolve_apply failed: " +
                                std::string(gsl_strerror(status)));
-    t_ = t;
+    step_.t = t;
     dt_ = std::min(dt_, settings_.max_step);
     // the derivatives at both ends of the accepted step, as evolve computed them
-    std::copy_n(evolve_->dydt_in, dimension, dxdt_old_.begin());
-    std::copy_n(evolve_->dydt_out, dimension, dxdt_.begin());
+    std::copy_n(evolve_->dydt_in, dimension, step_.dxdt_old.begin());
+    std::copy_n(evolve_->dydt_out, dimension, step_.dxdt.begin());
   }
 
   // The state at t inside the last step: the rk8pd step re-taken from the
   // step's start (needs the functor of the last step).
   template <class Rhs>
   void state_at(const Rhs& rhs, double t, State& x) {
-    if (t == t_) {
-      x = x_;
-      return;
-    }
-    if (t == t_last_) {
-      x = x_last_;
-      return;
-    }
-    gsl_odeiv2_system system = bind(rhs);
-    x = x_old_;
-    State error;
-    gsl_odeiv2_step_apply(restep_.get(), t_old_, t - t_old_, x.data(), error.data(),
-                          dxdt_old_.data(), nullptr, &system);
-    t_last_ = t;
-    x_last_ = x;
+    step_.state_at(t, x, [&](State& out) {
+      gsl_odeiv2_system system = bind(rhs);
+      out = step_.x_old;
+      State error;
+      gsl_odeiv2_step_apply(restep_.get(), step_.t_old, t - step_.t_old, out.data(),
+                            error.data(), step_.dxdt_old.data(), nullptr, &system);
+    });
   }
 
   template <class Rhs>
   void polish_state(const Rhs& rhs, double t, State& x) { state_at(rhs, t, x); }
 
-  // cubic Hermite interpolant of the last step (for the event scan only)
   template <class Rhs>
-  void scan_state(const Rhs&, double t, State& x) const {
-    cubic_hermite(t_old_, x_old_, dxdt_old_, t_, x_, dxdt_, t, x);
-  }
+  void scan_state(const Rhs&, double t, State& x) const { step_.interpolate(t, x); }
 
-  [[nodiscard]] double previous_time() const { return t_old_; }
-  [[nodiscard]] double current_time() const { return t_; }
-  [[nodiscard]] const State& current_state() const { return x_; }
-  [[nodiscard]] const State& previous_state() const { return x_old_; }
+  [[nodiscard]] double previous_time() const { return step_.t_old; }
+  [[nodiscard]] double current_time() const { return step_.t; }
+  [[nodiscard]] const State& current_state() const { return step_.x; }
+  [[nodiscard]] const State& previous_state() const { return step_.x_old; }
   [[nodiscard]] double suggested_step() const { return dt_; }
 
  private:
   StepperSettings settings_;
-  std::unique_ptr<gsl_odeiv2_step, StepDeleter> step_, restep_;
+  std::unique_ptr<gsl_odeiv2_step, StepDeleter> step_gsl_, restep_;
   std::unique_ptr<gsl_odeiv2_control, ControlDeleter> control_;
   std::unique_ptr<gsl_odeiv2_evolve, EvolveDeleter> evolve_;
-  State x_{}, x_old_{}, dxdt_{}, dxdt_old_{};
-  double t_ = 0.0, t_old_ = 0.0, dt_ = 0.0;
-  double t_last_ = NAN;  // time of the last re-taken state (the event
-  State x_last_{};       // refinement asks for its final time twice)
+  StepRecord<State> step_;
+  double dt_ = 0.0;  // carried step size (s)
 };
 
 }  // namespace impactlab

@@ -8,12 +8,11 @@
 #pragma once
 
 #include <algorithm>
-#include <cmath>
 #include <array>
 
 #include <boost/numeric/odeint.hpp>
 
-#include "integrate/cubic_hermite.hpp"
+#include "integrate/step_record.hpp"
 #include "integrate/step_to_limit.hpp"
 #include "integrate/stepper_settings.hpp"
 
@@ -34,64 +33,51 @@ class OdeintFehlberg78 {
 
   template <class Rhs>
   void initialize(const Rhs& rhs, const State& x, double t, double dt) {
-    x_ = x;
-    t_ = t;
+    step_.x = x;
+    step_.t = t;
     dt_ = std::min(dt, settings_.max_step);
-    rhs(x_, dxdt_, t_);
+    rhs(step_.x, step_.dxdt, step_.t);
   }
 
   // One accepted step, never past t_limit.
   template <class Rhs>
   void do_step(const Rhs& rhs, double t_limit) {
-    t_last_ = NAN;  // the last re-taken state belongs to the previous step
-    x_old_ = x_;
-    dxdt_old_ = dxdt_;
-    t_old_ = t_;
-    t_ = step_to_limit(t_old_, t_limit, settings_.max_step, dt_, name, [&](double& t, double& dt) {
-      return controlled_.try_step(rhs, x_old_, dxdt_old_, t, x_, dt);
-    });
-    rhs(x_, dxdt_, t_);
+    step_.begin_step();
+    step_.t = step_to_limit(step_.t_old, t_limit, settings_.max_step, dt_, name,
+                            [&](double& t, double& dt) {
+                              return controlled_.try_step(rhs, step_.x_old, step_.dxdt_old, t,
+                                                          step_.x, dt);
+                            });
+    rhs(step_.x, step_.dxdt, step_.t);
   }
 
   // The state at t inside the last step: the 8th-order step re-taken from
   // the step's start.
   template <class Rhs>
   void state_at(const Rhs& rhs, double t, State& x) {
-    if (t == t_) {
-      x = x_;
-      return;
-    }
-    if (t == t_last_) {
-      x = x_last_;
-      return;
-    }
-    controlled_.stepper().do_step(rhs, x_old_, dxdt_old_, t_old_, x, t - t_old_);
-    t_last_ = t;
-    x_last_ = x;
+    step_.state_at(t, x, [&](State& out) {
+      controlled_.stepper().do_step(rhs, step_.x_old, step_.dxdt_old, step_.t_old, out,
+                                    t - step_.t_old);
+    });
   }
 
   template <class Rhs>
   void polish_state(const Rhs& rhs, double t, State& x) { state_at(rhs, t, x); }
 
-  // cubic Hermite interpolant of the last step (for the event scan only)
   template <class Rhs>
-  void scan_state(const Rhs&, double t, State& x) const {
-    cubic_hermite(t_old_, x_old_, dxdt_old_, t_, x_, dxdt_, t, x);
-  }
+  void scan_state(const Rhs&, double t, State& x) const { step_.interpolate(t, x); }
 
-  [[nodiscard]] double previous_time() const { return t_old_; }
-  [[nodiscard]] double current_time() const { return t_; }
-  [[nodiscard]] const State& current_state() const { return x_; }
-  [[nodiscard]] const State& previous_state() const { return x_old_; }
+  [[nodiscard]] double previous_time() const { return step_.t_old; }
+  [[nodiscard]] double current_time() const { return step_.t; }
+  [[nodiscard]] const State& current_state() const { return step_.x; }
+  [[nodiscard]] const State& previous_state() const { return step_.x_old; }
   [[nodiscard]] double suggested_step() const { return dt_; }
 
  private:
   StepperSettings settings_;
   Controlled controlled_;
-  State x_{}, x_old_{}, dxdt_{}, dxdt_old_{};
-  double t_ = 0.0, t_old_ = 0.0, dt_ = 0.0;
-  double t_last_ = NAN;  // time of the last re-taken state (the event
-  State x_last_{};       // refinement asks for its final time twice)
+  StepRecord<State> step_;
+  double dt_ = 0.0;  // carried step size (s)
 };
 
 template <class State>
