@@ -8,7 +8,9 @@ packages=(
   libeigen3-dev libgsl-dev libboost-dev libfftw3-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-numpy python3-matplotlib
+  libopenmpi-dev openmpi-bin
+  python3 python3-numpy python3-matplotlib python3-scipy
+  jupyter-nbconvert python3-nbformat python3-ipykernel
 )
 
 missing=()

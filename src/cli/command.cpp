@@ -1,0 +1,119 @@
+#include "cli/command.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+
+#include <unistd.h>
+
+#include "io/oscillator_registry.hpp"
+
+namespace impactlab::cli {
+
+namespace {
+
+std::string check_number(const std::string& text, bool positive) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0') return "not a number: " + text;
+  if (!std::isfinite(value)) return "not a finite number: " + text;
+  if (positive && !(value > 0.0)) return "must be > 0: " + text;
+  return {};
+}
+
+}  // namespace
+
+const CLI::Validator& finite_number() {
+  static const CLI::Validator validator(
+      [](std::string& text) { return check_number(text, false); }, "FINITE");
+  return validator;
+}
+
+const CLI::Validator& positive_number() {
+  static const CLI::Validator validator(
+      [](std::string& text) { return check_number(text, true); }, "POSITIVE");
+  return validator;
+}
+
+void SceneOptions::add_to(CLI::App& command) {
+  command.add_option("scene", scene, "built-in scene name or path to a scene file (.toml)")
+      ->capture_default_str();
+  command.add_option("--set", assignments,
+                     "KEY=VALUE, repeatable: a parameter (omega, V0, e_n, ...) or a dotted key "
+                     "(initial.theta, integrator.rtol)");
+  auto* t_end_option =
+      command.add_option("--t-end", t_end, "end time (s)")->check(finite_number());
+  command.add_option("--periods", periods, "forcing periods to run from t0 (default 100)")
+      ->check(positive_number())
+      ->excludes(t_end_option);
+  command.add_option("--out", out, "output directory (default out/<scene>)");
+  command.add_option("--threads", threads, "worker threads (a single run uses one)")
+      ->check(CLI::Range(1, 1024));
+  command.add_flag("--quiet", quiet, "print nothing but errors");
+}
+
+Scene SceneOptions::load() const {
+  Scene loaded = load_scene(scene);
+  for (const auto& assignment : assignments) apply_override(loaded, assignment);
+  return loaded;
+}
+
+RunRequest SceneOptions::request() const {
+  RunRequest request;
+  if (t_end != 0.0) {
+    request.periods = 0.0;
+    request.t_end = t_end;
+  } else {
+    request.periods = periods > 0.0 ? periods : 100.0;
+  }
+  return request;
+}
+
+std::filesystem::path SceneOptions::output_directory() const {
+  if (!out.empty()) return out;
+  return std::filesystem::path("out") / std::filesystem::path(scene).stem();
+}
+
+ProgressBar::ProgressBar(bool enabled) : enabled_(enabled && ::isatty(STDERR_FILENO)) {}
+
+ProgressBar::~ProgressBar() {
+  if (drawn_) std::fputs("\n", stderr);
+}
+
+void ProgressBar::update(double fraction) {
+  if (!enabled_) return;
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (elapsed < 0.5) return;
+  const int width = 40;
+  const int filled = static_cast<int>(fraction * width);
+  std::fprintf(stderr, "\r[%s%s] %3.0f%%  %.1f s", std::string(filled, '#').c_str(),
+               std::string(width - filled, ' ').c_str(), 100.0 * fraction, elapsed);
+  drawn_ = true;
+}
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+nlohmann::json scene_record(const Scene& scene) {
+  const SceneSchema& schema = *oscillator_entry(scene.oscillator).schema;
+  nlohmann::json parameters = nlohmann::json::object();
+  for (const auto& spec : schema.keys) {
+    const auto& value = scene.values.at(std::string(spec.key));
+    nlohmann::json entry;
+    if (const auto* number = std::get_if<double>(&value))
+      entry["value"] = *number;
+    else
+      entry["value"] = std::get<std::string>(value);
+    if (!spec.unit.empty()) entry["unit"] = spec.unit;
+    parameters[std::string(spec.key)] = entry;
+  }
+  return {{"source", scene.name}, {"oscillator", scene.oscillator}, {"keys", parameters}};
+}
+
+}  // namespace impactlab::cli

@@ -1,0 +1,12 @@
+// The subcommands of the `impactlab` program, one function each; each is
+// defined in src/cli/<name>_command.cpp.
+#pragma once
+
+#include "cli/command.hpp"
+
+namespace impactlab::cli {
+
+Command add_scenes_command(CLI::App& app);
+Command add_simulate_command(CLI::App& app);
+
+}  // namespace impactlab::cli
