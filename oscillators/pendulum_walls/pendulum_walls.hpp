@@ -1,27 +1,39 @@
 // The parametrically excited pendulum between two walls (Jin, Hu & Bishop
-// 2003), Model N of MODEL.md: Newton impacts with Coulomb friction, chattering
-// resolved at its accumulation point, a sustained sliding-contact phase with
-// its normal force λ_N and friction work, release where λ_N vanishes, and a
-// typed Painlevé diagnostic where the contact problem is inconsistent.
+// 2003) under two impact models of MODEL.md:
+//   Model N (PendulumWalls): Newton impacts with Coulomb friction, chattering
+//     resolved at its accumulation point, a sustained sliding-contact phase
+//     with its normal force λ_N and friction work, release where λ_N
+//     vanishes, and a typed Painlevé diagnostic where the contact problem is
+//     inconsistent.
+//   Model P (PaperPendulumWalls): the paper's piecewise sliding impact. An
+//     impact that fails the paper's instantaneous-impact test (Eq. 25,
+//     sliding_impact.hpp) holds the bob on the wall, sliding with the pivot,
+//     until λ_N vanishes (Eq. 20); the bob then leaves with θ̇ = −e_n θ̇0, the
+//     normal restitution applied at release (Eq. 23). Impacts that pass the
+//     test, and every impact when e_t = −1, are Model N's.
 //
 // Coordinates: θ from the downward vertical (rad), positive towards the right
 // wall x = +b. The pivot moves vertically with velocity V0 sin ωt (y down).
 //     free flight   m l² θ̈ + d θ̇ + m l g_e(t) sin θ = 0,  g_e = g − V0 ω cos ωt
 //     walls         θ = ±θ0, θ0 = asin(b / l)
 // State: {θ (rad), θ̇ (rad/s), W_f (J)}, W_f being the work done by friction
-// in contact phases since t0 (it grows only in contact modes).
+// in contact phases since t0 (it grows only in contact modes); Model P adds
+// θ̇_release (rad/s), the rate the bob leaves the wall with at the end of the
+// current contact phase (0 after chattering; −e_n θ̇0 in a sliding impact).
 #pragma once
 
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <numbers>
+#include <optional>
 
 #include "contact/accumulation.hpp"
 #include "contact/newton_impact.hpp"
 #include "contact/painleve.hpp"
 #include "core/event_log.hpp"
 #include "core/hybrid_system.hpp"
+#include "oscillators/pendulum_walls/sliding_impact.hpp"
 
 namespace impactlab {
 
@@ -39,13 +51,19 @@ struct PendulumWallsParameters {
   double accumulation_tol = 1e-3;  // accepted relative error of an accumulation estimate
 };
 
-class PendulumWalls {
+enum class PendulumModel { newton, paper };
+
+enum class PendulumMode { free, contact_right, contact_left };
+
+template <PendulumModel model>
+class BasicPendulumWalls {
  public:
-  using State = std::array<double, 3>;
-  enum class Mode { free, contact_right, contact_left };
+  static constexpr bool is_paper_model = model == PendulumModel::paper;
+  using State = std::array<double, is_paper_model ? 4 : 3>;
+  using Mode = PendulumMode;
   static constexpr std::size_t max_witnesses = 2;
 
-  explicit PendulumWalls(const PendulumWallsParameters& p)
+  explicit BasicPendulumWalls(const PendulumWallsParameters& p)
       : p_(p),
         theta0_(std::asin(p.b / p.l)),
         sin0_(p.b / p.l),
@@ -96,12 +114,14 @@ class PendulumWalls {
       dxdt[1] = -(p_.d * x[1] + p_.m * p_.l * effective_gravity(t) * std::sin(x[0])) /
                 (p_.m * p_.l * p_.l);
       dxdt[2] = 0.0;
+      if constexpr (is_paper_model) dxdt[3] = 0.0;
       return;
     }
     const double slip = pivot_velocity(t);
     dxdt[0] = 0.0;
     dxdt[1] = 0.0;
     dxdt[2] = p_.mu * normal_force(t, sign(slip)) * std::fabs(slip);
+    if constexpr (is_paper_model) dxdt[3] = 0.0;
   }
 
   [[nodiscard]] std::size_t witness_count(Mode) const { return 2; }
@@ -144,9 +164,20 @@ class PendulumWalls {
 
   static Mode contact_mode(int wall) { return wall > 0 ? Mode::contact_right : Mode::contact_left; }
 
-  // the state resting on a wall
-  [[nodiscard]] State on_wall(int wall, double friction_work) const {
-    return {wall * theta0_, 0.0, friction_work};
+  // the state resting on a wall; release_rate: θ̇ at the end of the contact
+  // (Model P only)
+  [[nodiscard]] State on_wall(int wall, double friction_work, double release_rate = 0.0) const {
+    if constexpr (is_paper_model)
+      return {wall * theta0_, 0.0, friction_work, release_rate};
+    else
+      return {wall * theta0_, 0.0, friction_work};
+  }
+
+  [[nodiscard]] static double release_rate(const State& x) {
+    if constexpr (is_paper_model)
+      return x[3];
+    else
+      return 0.0;
   }
 
   Transition<State, Mode> stop_painleve(Mode mode, int wall, const State& x, double t,
@@ -178,9 +209,18 @@ class PendulumWalls {
     EventRecord record{t, EventKind::impact, wall, x[0], x[1], impact.qdot_after};
     record.normal_impulse = impact.normal_impulse;
     record.tangential_velocity = gamma_t;
+    if constexpr (is_paper_model) {
+      const double normal_speed = p_.l * cos0_ * std::fabs(x[1]);
+      record.instantaneous_residual =
+          instantaneous_impact_residual(normal_speed, gamma_t, p_.e_n, p_.e_t, sin0_ / cos0_);
+      record.sliding_residual = sliding_condition_residual(p_.V0, p_.omega, p_.g, p_.e_t, gamma_t);
+      if (!is_instantaneous_impact(normal_speed, gamma_t, p_.e_n, p_.e_t, sin0_ / cos0_))
+        if (auto held = sliding_impact(wall, x, t, record, log)) return *held;
+    }
     log.record(record);
 
-    State after{wall * theta0_, impact.qdot_after, x[2]};
+    State after = on_wall(wall, x[2]);
+    after[1] = impact.qdot_after;
     // chattering: is the wall attracting, and is the accumulation estimate good?
     const double approach = -effective_gravity(t) * sin0_ * cos0_;
     const double approach_rate = -effective_gravity_rate(t) * sin0_ * cos0_;
@@ -189,6 +229,35 @@ class PendulumWalls {
         p_.accumulation_tol, 1.0 / p_.omega);
     if (!remaining) return {after, Mode::free, t, false};
     return enter_contact(wall, x[2], t + *remaining, log);
+  }
+
+  // Model P: the bob stays on the wall, sliding with the pivot, its normal
+  // velocity taken up by an impulse with e_n = 0; the contact phase ends where
+  // λ_N vanishes and release() gives back θ̇ = −e_n θ̇0. No sliding impact
+  // when the wall cannot hold the bob (λ_N ≤ 0 already): the impact is then
+  // Newton's, instantaneous (nullopt).
+  std::optional<Transition<State, Mode>> sliding_impact(int wall, const State& x, double t,
+                                                        EventRecord& record,
+                                                        EventLog& log) const {
+    const double slip = pivot_velocity(t);
+    // at zero slip the slip about to start decides the friction direction
+    const double s = slip != 0.0 ? sign(slip) : sign(std::cos(p_.omega * t));
+    if (is_painleve(friction_denominator(s))) return stop_painleve(Mode::free, wall, x, t, 0.0, log);
+    const double lambda = normal_force(t, s);
+    if (!(lambda > 0.0)) return std::nullopt;
+    const NewtonImpactResult take_up = newton_impact(
+        x[1], p_.m * p_.l * p_.l, -wall * p_.l * cos0_, -wall * p_.l * sin0_,
+        record.tangential_velocity, 0.0, p_.mu);
+    record.qdot_after = 0.0;
+    record.normal_impulse = take_up.normal_impulse;
+    log.record(record);
+    EventRecord start{t, EventKind::contact_start, wall, wall * theta0_, 0.0, 0.0};
+    start.normal_force = lambda;
+    start.tangential_velocity = slip;
+    start.friction_work = x[2];
+    log.record(start);
+    return Transition<State, Mode>{on_wall(wall, x[2], -p_.e_n * x[1]), contact_mode(wall), t,
+                                   false};
   }
 
   Transition<State, Mode> enter_contact(int wall, double friction_work, double t,
@@ -213,18 +282,21 @@ class PendulumWalls {
   Transition<State, Mode> release(Mode, int wall, const State& x, double t, EventLog& log) const {
     // in contact θ is ±θ0 exactly; a stepper's round-off (extrapolation in
     // Bulirsch–Stoer) must not move the recorded or the continued state
-    EventRecord end{t, EventKind::contact_end, wall, wall * theta0_, 0.0, 0.0};
+    const double rate = release_rate(x);
+    EventRecord end{t, EventKind::contact_end, wall, wall * theta0_, 0.0, rate};
     end.normal_force = 0.0;
     end.tangential_velocity = pivot_velocity(t);
     end.friction_work = x[2];
     log.record(end);
-    return {on_wall(wall, x[2]), Mode::free, t, false};
+    State left = on_wall(wall, x[2]);
+    left[1] = rate;
+    return {left, Mode::free, t, false};
   }
 
   Transition<State, Mode> slip_reversal(Mode mode, int wall, const State& x, double t,
                                         EventLog& log) const {
     const double s_new = sign(std::cos(p_.omega * t)) * (p_.V0 > 0.0 ? 1.0 : 0.0);
-    const State resting = on_wall(wall, x[2]);
+    const State resting = on_wall(wall, x[2], release_rate(x));
     if (is_painleve(friction_denominator(s_new)))
       return stop_painleve(mode, wall, resting, t, 0.0, log);
     EventRecord reversal{t, EventKind::slip_reversal, wall, resting[0], 0.0, 0.0};
@@ -241,6 +313,10 @@ class PendulumWalls {
   double cos0_;    // cos θ0
 };
 
+using PendulumWalls = BasicPendulumWalls<PendulumModel::newton>;
+using PaperPendulumWalls = BasicPendulumWalls<PendulumModel::paper>;
+
 static_assert(HybridSystem<PendulumWalls>);
+static_assert(HybridSystem<PaperPendulumWalls>);
 
 }  // namespace impactlab

@@ -1,5 +1,6 @@
 // The pendulum's scene schema and runner.
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include "io/bad_input.hpp"
@@ -15,7 +16,7 @@ SceneSchema make_schema() {
   SceneSchema schema{"pendulum_walls", "theta", common_keys()};
   const double inf = 1e308;
   std::vector<KeySpec> own = {
-      {.key = "model", .help = "impact model: newton (Model N); paper and rigid: later versions",
+      {.key = "model", .help = "impact model: newton (Model N), paper (Model P, the paper's sliding impact); rigid: later",
        .is_text = true, .default_text = "newton", .choices = {"newton", "paper", "rigid"}},
       {.key = "m", .unit = "kg", .help = "bob mass", .default_number = 0.5, .lower = 0.0,
        .upper = inf, .lower_open = true},
@@ -52,22 +53,16 @@ const SceneSchema& schema() {
   return instance;
 }
 
-std::string_view mode_name(PendulumWalls::Mode mode) {
+std::string_view mode_name(PendulumMode mode) {
   switch (mode) {
-    case PendulumWalls::Mode::free: return "free";
-    case PendulumWalls::Mode::contact_right: return "contact_right";
-    case PendulumWalls::Mode::contact_left: return "contact_left";
+    case PendulumMode::free: return "free";
+    case PendulumMode::contact_right: return "contact_right";
+    case PendulumMode::contact_left: return "contact_left";
   }
   return "unknown";
 }
 
-RunOutput run(const Scene& scene, const RunRequest& request) {
-  const std::string& model = scene.text("model");
-  if (model != "newton")
-    throw BadInput("model", model, "not available in this version (only newton)");
-  if (scene.text("integrator.method") == "exact")
-    throw BadInput("integrator.method", "exact", "the pendulum has no closed-form flow");
-
+PendulumWallsParameters parameters(const Scene& scene) {
   PendulumWallsParameters p;
   p.m = scene.number("m");
   p.l = scene.number("l");
@@ -81,28 +76,58 @@ RunOutput run(const Scene& scene, const RunRequest& request) {
   p.mu = scene.number("mu");
   p.accumulation_tol = scene.number("accumulation_tol");
   if (!(p.b < p.l)) throw BadInput("b", to_text(p.b), "the walls must be closer than l (b < l)");
-  const PendulumWalls system(p);
+  return p;
+}
+
+template <PendulumModel model>
+RunOutput run_model(const Scene& scene, const RunRequest& request) {
+  using System = BasicPendulumWalls<model>;
+  const PendulumWallsParameters p = parameters(scene);
+  const System system(p);
 
   const double theta = scene.number("initial.theta");
   if (std::fabs(theta) > system.wall_angle())
     throw BadInput("initial.theta", to_text(theta),
                    "the bob would start inside a wall (|theta| > asin(b/l) = " +
                        to_text(system.wall_angle()) + ")");
-  const PendulumWalls::State x0{theta, scene.number("initial.theta_dot"), 0.0};
+  typename System::State x0{};
+  x0[0] = theta;
+  x0[1] = scene.number("initial.theta_dot");
   const double period = 2.0 * std::numbers::pi / p.omega;
 
-  RunOutput output =
-      run_system(system, x0, PendulumWalls::Mode::free, scene, request, period, mode_name);
+  RunOutput output = run_system(system, x0, PendulumMode::free, scene, request, period, mode_name);
   double friction_work = 0.0;
-  for (const auto& event : output.events)
+  std::uint64_t sliding_impacts = 0;
+  for (std::size_t i = 0; i < output.events.size(); ++i) {
+    const EventRecord& event = output.events[i];
     if (event.kind == EventKind::contact_end) friction_work = event.friction_work;
+    // a sliding impact: a contact phase that starts at an impact, not at the
+    // accumulation point of a chatter
+    if (event.kind == EventKind::contact_start && i > 0 &&
+        output.events[i - 1].kind == EventKind::impact)
+      ++sliding_impacts;
+  }
   output.derived = {
       {"theta0_rad", system.wall_angle()},
       {"mu_tan_theta0", p.mu * std::tan(system.wall_angle())},
       {"forcing_period_s", period},
       {"friction_work_J", friction_work},
   };
+  if constexpr (System::is_paper_model) {
+    output.derived["sliding_impacts"] = sliding_impacts;
+    output.derived["slip_end_velocity_m_per_s"] = slip_end_velocity(p.V0, p.omega, p.g);
+  }
   return output;
+}
+
+RunOutput run(const Scene& scene, const RunRequest& request) {
+  const std::string& model = scene.text("model");
+  if (model == "rigid")
+    throw BadInput("model", model, "not available in this version (newton or paper)");
+  if (scene.text("integrator.method") == "exact")
+    throw BadInput("integrator.method", "exact", "the pendulum has no closed-form flow");
+  if (model == "paper") return run_model<PendulumModel::paper>(scene, request);
+  return run_model<PendulumModel::newton>(scene, request);
 }
 
 }  // namespace

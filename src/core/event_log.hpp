@@ -49,6 +49,11 @@ struct EventRecord {
   double normal_force = not_computed;         // λ_N at the event (N)
   double friction_work = not_computed;        // work done by friction over the
                                               // contact phase that ends here (J)
+  // Model P of the pendulum (oscillators/pendulum_walls/sliding_impact.hpp),
+  // at each impact: the residual of the instantaneous-impact condition
+  // (paper's Eq. 26) and of the sliding-impact condition (Eqs. 21-22) (m/s)
+  double instantaneous_residual = not_computed;
+  double sliding_residual = not_computed;
 };
 
 // Counts every event and keeps the records unless told not to (a benchmark or

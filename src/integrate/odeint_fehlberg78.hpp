@@ -86,11 +86,14 @@ OdeintFehlberg78<State>::OdeintFehlberg78(const StepperSettings& settings)
       controlled_(typename Controlled::error_checker_type(settings.atol, settings.rtol),
                   typename Controlled::step_adjuster_type(settings.max_step)) {}
 
-// the constructor for the one-degree-of-freedom states, {q, q̇} and {θ, θ̇, W_f},
+// the constructor for the one-degree-of-freedom states, {q, q̇}, {θ, θ̇, W_f}
+// and Model P's {θ, θ̇, W_f, θ̇_release},
 // is compiled in odeint_fehlberg78.cpp only (the rest stays inline)
 extern template OdeintFehlberg78<std::array<double, 2>>::OdeintFehlberg78(
     const StepperSettings&);
 extern template OdeintFehlberg78<std::array<double, 3>>::OdeintFehlberg78(
+    const StepperSettings&);
+extern template OdeintFehlberg78<std::array<double, 4>>::OdeintFehlberg78(
     const StepperSettings&);
 
 }  // namespace impactlab
