@@ -203,7 +203,9 @@ TEST_P(PaperModel, ImpactOnTheInstantaneousConditionDoesNotSlide) {
   EXPECT_NEAR(exact.log.records()[0].instantaneous_residual, 0.0, 1e-12);
   EXPECT_NEAR(exact.log.records()[0].qdot_after, -0.3 * rate0, 1e-14);
   for (const auto& e : exact.log.records()) {
-    if (e.t == t0) EXPECT_NE(e.kind, EventKind::contact_start);
+    if (e.t == t0) {
+      EXPECT_NE(e.kind, EventKind::contact_start);
+    }
   }
 
   const auto perturbed =
