@@ -65,7 +65,8 @@ def plot_run(run_dir):
     history.set_ylabel(f"{q_name} ({unit})")
     history.legend(loc="upper right", fontsize=8)
     shown = [k for k in ("V0", "omega", "e_n", "mu", "A", "r", "zeta", "sigma") if k in keys]
-    history.set_title(f"{meta['scene']['source']}: "
+    model = f" (model {meta['model']})" if "model" in keys else ""
+    history.set_title(f"{meta['scene']['source']}{model}: "
                       + ", ".join(f"{k} = {keys[k]['value']:g}" for k in shown)
                       + f"   [{meta['integrator']['method']}, rtol {meta['integrator']['rtol']:g}]",
                       fontsize=9)

@@ -41,13 +41,14 @@ void prepare_output_directory(const std::filesystem::path& directory) {
     throw BadInput("--out", directory.string(), "cannot create the output directory");
 }
 
-namespace {
-
-// a number with all its digits, or nothing where it was not computed
-std::string field(double value) {
+std::string csv_field(double value) {
   if (std::isnan(value)) return "";
   return fmt::format("{:.17g}", value);
 }
+
+namespace {
+
+std::string field(double value) { return csv_field(value); }
 
 }  // namespace
 

@@ -45,4 +45,8 @@ void write_trajectory_csv(AtomicFile& file, std::span<const TrajectorySample> sa
 
 void write_json(AtomicFile& file, const nlohmann::json& document);
 
+// A CSV number with all its digits (round-trips), or an empty field for NaN
+// (not computed).
+std::string csv_field(double value);
+
 }  // namespace impactlab
