@@ -6,6 +6,7 @@
 #include "io/oscillator_registry.hpp"
 #include "io/run_system.hpp"
 #include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include "oscillators/pendulum_walls/rigid_pendulum_scene.hpp"
 
 namespace impactlab {
 
@@ -42,6 +43,10 @@ SceneSchema make_schema() {
        .default_number = 0.0, .lower = -inf, .upper = inf},
       {.key = "initial.theta_dot", .unit = "rad/s", .help = "initial angular velocity",
        .default_number = 0.1, .lower = -inf, .upper = inf},
+      {.key = "radius", .unit = "m", .help = "ball radius (model rigid; radius < b)",
+       .default_number = 0.0, .lower = 0.0, .upper = inf},
+      {.key = "spin", .help = "ball on a free bearing or fixed to the rod (model rigid)",
+       .is_text = true, .default_text = "locked", .choices = {"locked", "free"}},
   };
   schema.keys.insert(schema.keys.end(), own.begin(), own.end());
   return schema;
@@ -63,6 +68,7 @@ std::string_view mode_name(PendulumWalls::Mode mode) {
 
 RunOutput run(const Scene& scene, const RunRequest& request) {
   const std::string& model = scene.text("model");
+  if (model == "rigid") return run_rigid_pendulum(scene, request);
   if (model != "newton")
     throw BadInput("model", model, "not available in this version (only newton)");
   if (scene.text("integrator.method") == "exact")

@@ -49,6 +49,7 @@ struct EventRecord {
   double normal_force = not_computed;         // λ_N at the event (N)
   double friction_work = not_computed;        // work done by friction over the
                                               // contact phase that ends here (J)
+  double tangential_velocity_after = not_computed;  // γ_T just after an impact (m/s)
 };
 
 // Counts every event and keeps the records unless told not to (a benchmark or

@@ -54,12 +54,12 @@ std::string field(double value) {
 void write_events_csv(AtomicFile& file, std::span<const EventRecord> events) {
   auto& out = file.stream();
   out << "t,kind,wall,q,qdot_before,qdot_after,normal_impulse,tangential_velocity,normal_force,"
-         "friction_work\n";
+         "friction_work,tangential_velocity_after\n";
   for (const auto& e : events) {
     out << field(e.t) << ',' << to_string(e.kind) << ',' << e.wall << ',' << field(e.q) << ','
         << field(e.qdot_before) << ',' << field(e.qdot_after) << ',' << field(e.normal_impulse)
         << ',' << field(e.tangential_velocity) << ',' << field(e.normal_force) << ','
-        << field(e.friction_work) << '\n';
+        << field(e.friction_work) << ',' << field(e.tangential_velocity_after) << '\n';
   }
 }
 
