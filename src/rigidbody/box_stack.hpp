@@ -12,10 +12,13 @@
 //
 // Contacts: each box k rests on box k − 1 (box 0 on the ground y = 0); the
 // two bottom corners of the upper box against the top face of the lower one,
-// kept while within `contact_margin` of it. This is the contact generation of
-// a stack, not a general collision detector.
+// kept while within `contact_margin` of it; a corner above the face may
+// approach it at gap/dt (speculative contact), so that a box is not held up
+// by a contact it has not reached. This is the contact generation of a
+// stack, not a general collision detector.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -40,8 +43,9 @@ struct BoxStackStepReport {
 };
 
 // bodies[0] is the ground (static), bodies[k + 1] is box k
+// dt: the step (s), for the approach speed that closes a gap within it
 inline std::vector<Contact2D> box_stack_contacts(const BoxStackModel& model,
-                                                 const std::vector<Body2D>& bodies) {
+                                                 const std::vector<Body2D>& bodies, double dt) {
   std::vector<Contact2D> contacts;
   for (std::size_t k = 0; k < model.half_extents.size(); ++k) {
     const int upper = static_cast<int>(k) + 1;
@@ -57,7 +61,7 @@ inline std::vector<Contact2D> box_stack_contacts(const BoxStackModel& model,
       const Eigen::Vector2d corner = bodies[upper].world_point({side * h.x(), -h.y()});
       const double gap = (corner - face_point).dot(normal);
       if (gap > model.contact_margin) continue;
-      contacts.push_back({upper, lower, corner, normal, -gap});
+      contacts.push_back({upper, lower, corner, normal, -gap, std::max(0.0, gap) / dt});
     }
   }
   return contacts;
@@ -66,21 +70,22 @@ inline std::vector<Contact2D> box_stack_contacts(const BoxStackModel& model,
 inline BoxStackStepReport box_stack_step(const BoxStackModel& model, std::vector<Body2D>& bodies,
                                          double dt) {
   BoxStackStepReport report;
-  const std::vector<Contact2D> contacts = box_stack_contacts(model, bodies);
+  const std::vector<Contact2D> contacts = box_stack_contacts(model, bodies, dt);
   report.contacts = contacts.size();
   report.collision = collision_pass(bodies, contacts, model.solver);
   for (auto& body : bodies)
     if (!body.is_static()) body.velocity.y() -= model.gravity * dt;
-  report.contact = contact_pass(bodies, contacts, model.solver);
+  std::vector<Eigen::Vector2d> accumulated;  // contact impulses of this step (N s)
+  report.contact = contact_pass(bodies, contacts, model.solver, accumulated);
   std::vector<std::vector<int>> levels;
   for (std::size_t k = 1; k < bodies.size(); ++k) levels.push_back({static_cast<int>(k)});
-  report.shock = shock_propagation(bodies, contacts, levels, model.solver);
+  report.shock = shock_propagation(bodies, contacts, levels, model.solver, accumulated);
   for (auto& body : bodies) {
     body.position += body.velocity * dt;
     body.angle += body.angular_velocity * dt;
   }
   for (int k = 1; k <= model.correction_sweeps; ++k)
-    correct_positions(bodies, box_stack_contacts(model, bodies),
+    correct_positions(bodies, box_stack_contacts(model, bodies, dt),
                       static_cast<double>(k) / model.correction_sweeps);
   return report;
 }

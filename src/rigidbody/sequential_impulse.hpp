@@ -8,8 +8,9 @@
 //                    that approach (u_n < 0), each resolved by the
 //                    Newton–Coulomb impulse with e_n; stops when none approach
 //   contact pass     after the velocities are advanced by gravity, sweeps
-//                    with a restitution ramped from −1 to 0 (the last sweep
-//                    is plastic), which puts resting contacts to rest
+//                    that put the resting contacts to rest (projected
+//                    Gauss–Seidel with a plastic target; GBF ramp a
+//                    restitution from −1 to 0 instead, see contact_pass)
 //   shock propagation bodies taken level by level in the gravity order
 //                    (bottom up): the contacts of a level are swept with the
 //                    bodies below treated as static, so that the weight of a
@@ -21,9 +22,11 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cmath>
 #include <vector>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include "rigidbody/body2d.hpp"
@@ -38,11 +41,15 @@ struct Contact2D {
   Eigen::Vector2d point;     // world contact point (m)
   Eigen::Vector2d normal;    // unit normal, from b towards a
   double depth = 0.0;        // penetration (m), > 0 when overlapping
+  double allowed_approach = 0.0;  // u_n may go down to −this (m/s): a gap
+                                  // −depth > 0 that the step of dt closes
+                                  // only at this speed is not a contact yet
 };
 
 struct PassReport {
   int sweeps = 0;         // full passes over the contact set
-  double residual = 0.0;  // max(0, −u_n) over the contacts at the end (m/s)
+  double residual = 0.0;  // max(0, −u_n − allowed approach) over the contacts
+                          // at the end (m/s)
 };
 
 struct SequentialImpulseSettings {
@@ -51,7 +58,8 @@ struct SequentialImpulseSettings {
   int collision_iterations = 10;  // N of GBF's collision pass (5–15)
   int contact_iterations = 20;    // sweeps of the contact pass
   int shock_iterations = 20;      // sweeps per level of shock propagation
-  double approach_tolerance = 1e-12;  // u_n below −this counts as approaching (m/s)
+  double approach_tolerance = 1e-12;  // u_n below −this counts as approaching, and
+                                      // sweeps stop when no velocity changes by more (m/s)
 };
 
 // relative normal velocity of a contact, u_n = n·(u_a − u_b) (m/s)
@@ -63,32 +71,29 @@ inline double normal_velocity(const std::vector<Body2D>& bodies, const Contact2D
   return c.normal.dot(u);
 }
 
-// Applies the Newton–Coulomb impulse of one contact if it approaches; a body
-// flagged in `frozen` is treated as static. Returns the approach speed seen.
+// Applies the Newton–Coulomb impulse of one contact if it approaches.
+// Returns the approach speed seen (m/s).
 inline double resolve_contact(std::vector<Body2D>& bodies, const Contact2D& c, double e_n,
-                              double mu, double tolerance, const std::vector<char>* frozen = nullptr) {
-  Body2D a = bodies[c.a];
-  Body2D b = bodies[c.b];
-  if (frozen && (*frozen)[c.a]) a.inverse_mass = a.inverse_inertia = 0.0;
-  if (frozen && (*frozen)[c.b]) b.inverse_mass = b.inverse_inertia = 0.0;
+                              double mu, double tolerance) {
+  Body2D& a = bodies[c.a];
+  Body2D& b = bodies[c.b];
   const Eigen::Vector2d r_a = c.point - a.position;
   const Eigen::Vector2d r_b = c.point - b.position;
   const Eigen::Vector2d u = a.point_velocity(r_a) - b.point_velocity(r_b);
-  if (!(c.normal.dot(u) < -tolerance)) return 0.0;
+  if (!(c.normal.dot(u) < -c.allowed_approach - tolerance)) return 0.0;
   const Eigen::Matrix2d K = collision_matrix(a, r_a, b, r_b);
   const auto impulse = newton_coulomb_impulse<2>(K, u, c.normal, {e_n, mu, 0.0});
   if (impulse.regime == ImpulseRegime::inconsistent) return -c.normal.dot(u);
   a.apply_impulse(impulse.impulse, r_a);
   b.apply_impulse(-impulse.impulse, r_b);
-  if (!(frozen && (*frozen)[c.a])) bodies[c.a] = a;
-  if (!(frozen && (*frozen)[c.b])) bodies[c.b] = b;
   return -c.normal.dot(u);
 }
 
 inline double approach_residual(const std::vector<Body2D>& bodies,
                                 const std::vector<Contact2D>& contacts) {
   double worst = 0.0;
-  for (const auto& c : contacts) worst = std::max(worst, -normal_velocity(bodies, c));
+  for (const auto& c : contacts)
+    worst = std::max(worst, -normal_velocity(bodies, c) - c.allowed_approach);
   return worst;
 }
 
@@ -107,41 +112,117 @@ inline PassReport collision_pass(std::vector<Body2D>& bodies, const std::vector<
   return report;
 }
 
-// GBF's contact pass: restitution ramped from −1 towards 0, the last sweep plastic.
-inline PassReport contact_pass(std::vector<Body2D>& bodies, const std::vector<Contact2D>& contacts,
-                               const SequentialImpulseSettings& s) {
+// Projected (block) Gauss–Seidel on the contact impulses with a plastic
+// target (u_n⁺ = 0, and u_t⁺ = 0 inside the friction cone): each contact
+// keeps its accumulated impulse (P_n, P_t); a sweep solves each contact's
+// 2×2 block for the impulse that would stop it, projects the accumulated
+// impulse onto the cone P_n ≥ 0, |P_t| ≤ μ P_n (on the cone's edge the
+// normal velocity is still brought to zero) and applies the change.
+// Unlike one-sided impulses, the projection can take back an impulse that a
+// later contact made unnecessary, so the sweeps converge to the solution of
+// the contact LCP instead of leaving bodies separating (jitter).
+// Bodies flagged in `frozen` are static; only contacts with `active` set take
+// part. `accumulated` (one (P_n, P_t) per contact, N s) carries the impulses
+// over from an earlier pass of the same step: friction can only use the
+// normal impulse of the whole step, not of one pass.
+inline PassReport projected_gauss_seidel(std::vector<Body2D>& bodies,
+                                         const std::vector<Contact2D>& contacts,
+                                         const std::vector<char>& active, double mu, int max_sweeps,
+                                         double tolerance,
+                                         std::vector<Eigen::Vector2d>& accumulated,
+                                         const std::vector<char>* frozen = nullptr) {
   PassReport report;
-  const int sweeps = std::max(1, s.contact_iterations);
-  for (int k = 0; k < sweeps; ++k) {
+  accumulated.resize(contacts.size(), Eigen::Vector2d::Zero());
+  const auto inverse_of = [&](int index, Body2D body) {
+    if (frozen && (*frozen)[index]) body.inverse_mass = body.inverse_inertia = 0.0;
+    return body;
+  };
+  for (int sweep = 0; sweep < max_sweeps; ++sweep) {
     ++report.sweeps;
-    const double restitution = sweeps > 1 ? -static_cast<double>(sweeps - 1 - k) / (sweeps - 1) : 0.0;
-    for (const auto& c : contacts) resolve_contact(bodies, c, restitution, s.mu, s.approach_tolerance);
+    double largest_change = 0.0;  // of a contact velocity this sweep (m/s)
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+      if (!active[i]) continue;
+      const Contact2D& c = contacts[i];
+      Body2D a = inverse_of(c.a, bodies[c.a]);
+      Body2D b = inverse_of(c.b, bodies[c.b]);
+      const Eigen::Vector2d r_a = c.point - a.position, r_b = c.point - b.position;
+      const Eigen::Vector2d t(-c.normal.y(), c.normal.x());
+      Eigen::Matrix2d frame;  // world from contact coordinates (n, t)
+      frame << c.normal, t;
+      const Eigen::Matrix2d K = frame.transpose() * collision_matrix(a, r_a, b, r_b) * frame;
+      // velocities relative to the target u_n⁺ = −allowed_approach
+      const Eigen::Vector2d u = frame.transpose() * (a.point_velocity(r_a) - b.point_velocity(r_b)) +
+                                Eigen::Vector2d(c.allowed_approach, 0.0);
+      if (!(K(0, 0) > 0.0)) continue;
+      // the contact's own 2×2 block solved exactly: sticking target u⁺ = 0,
+      // then projected onto the cone (separate, or slide on its edge with
+      // u_n⁺ = 0)
+      Eigen::Vector2d next = accumulated[i] - K.ldlt().solve(u);
+      if (!(next(0) > 0.0)) {
+        next.setZero();
+      } else if (std::fabs(next(1)) > mu * next(0)) {
+        const double sigma = next(1) > 0.0 ? 1.0 : -1.0;
+        const Eigen::Vector2d edge(1.0, sigma * mu);
+        const double j = (K.row(0).dot(accumulated[i]) - u(0)) / K.row(0).dot(edge);
+        next = j > 0.0 ? Eigen::Vector2d(j * edge) : Eigen::Vector2d::Zero();
+      }
+      const Eigen::Vector2d change = next - accumulated[i];
+      accumulated[i] = next;
+      const Eigen::Vector2d impulse = frame * change;
+      largest_change = std::max(largest_change, (K * change).norm());
+      a.apply_impulse(impulse, r_a);
+      b.apply_impulse(-impulse, r_b);
+      if (!(frozen && (*frozen)[c.a])) bodies[c.a] = a;
+      if (!(frozen && (*frozen)[c.b])) bodies[c.b] = b;
+    }
+    if (largest_change <= tolerance) break;
   }
-  report.residual = approach_residual(bodies, contacts);
+  report.residual = 0.0;
+  for (std::size_t i = 0; i < contacts.size(); ++i)
+    if (active[i])
+      report.residual = std::max(report.residual,
+                                 -normal_velocity(bodies, contacts[i]) - contacts[i].allowed_approach);
   return report;
 }
 
+// GBF's contact pass, after the velocities were advanced by the forces:
+// puts the resting contacts to rest. GBF ramp a restitution from −1 to 0
+// over one-sided sweeps; here the sweeps are projected Gauss–Seidel with
+// the plastic target, which converges to the same end state (e = 0)
+// without the overshoot of one-sided impulses.
+inline PassReport contact_pass(std::vector<Body2D>& bodies, const std::vector<Contact2D>& contacts,
+                               const SequentialImpulseSettings& s,
+                               std::vector<Eigen::Vector2d>& accumulated) {
+  const std::vector<char> all(contacts.size(), 1);
+  return projected_gauss_seidel(bodies, contacts, all, s.mu, std::max(1, s.contact_iterations),
+                                s.approach_tolerance, accumulated);
+}
+
 // Shock propagation: levels[k] lists the bodies of level k, bottom up along
-// gravity; the bodies of the levels below are static while a level is swept.
+// gravity. Each level's contacts with itself and with the levels below are
+// solved with the bodies below frozen (static); its contacts with the bodies
+// above wait for their own level. The weight of a stack is so carried down in
+// one pass instead of one body per sweep.
 inline PassReport shock_propagation(std::vector<Body2D>& bodies,
                                     const std::vector<Contact2D>& contacts,
                                     const std::vector<std::vector<int>>& levels,
-                                    const SequentialImpulseSettings& s) {
+                                    const SequentialImpulseSettings& s,
+                                    std::vector<Eigen::Vector2d>& accumulated) {
   PassReport report;
   std::vector<char> frozen(bodies.size(), 0);
   for (std::size_t i = 0; i < bodies.size(); ++i) frozen[i] = bodies[i].is_static() ? 1 : 0;
-  std::vector<char> in_level(bodies.size(), 0);
+  std::vector<char> in_level(bodies.size(), 0), active(contacts.size(), 0);
   for (const auto& level : levels) {
     std::fill(in_level.begin(), in_level.end(), 0);
     for (int body : level) in_level[body] = 1;
-    for (int sweep = 0; sweep < s.shock_iterations; ++sweep) {
-      ++report.sweeps;
-      bool any = false;
-      for (const auto& c : contacts)
-        if (in_level[c.a] || in_level[c.b])
-          any = resolve_contact(bodies, c, 0.0, s.mu, s.approach_tolerance, &frozen) > 0.0 || any;
-      if (!any) break;
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+      const Contact2D& c = contacts[i];
+      const bool a_here = in_level[c.a], b_here = in_level[c.b];
+      active[i] = (a_here && (b_here || frozen[c.b])) || (b_here && frozen[c.a]);
     }
+    report.sweeps += projected_gauss_seidel(bodies, contacts, active, s.mu, s.shock_iterations,
+                                            s.approach_tolerance, accumulated, &frozen)
+                         .sweeps;
     for (int body : level) frozen[body] = 1;
   }
   report.residual = approach_residual(bodies, contacts);
