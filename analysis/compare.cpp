@@ -171,9 +171,13 @@ nlohmann::json comparison_numbers(const Comparison& comparison) {
       friction_work += c.friction_work;
     }
     std::vector<double> ratios;
-    for (const auto& e : run.impacts)
-      if (!std::isnan(e.tangential_velocity_after) && std::fabs(e.tangential_velocity) > 1e-9)
+    std::size_t sticking = 0;  // impacts that leave no slip, |γ_T⁺| <= 1e-9 m/s
+    for (const auto& e : run.impacts) {
+      if (std::isnan(e.tangential_velocity_after)) continue;
+      sticking += std::fabs(e.tangential_velocity_after) <= 1e-9 ? 1 : 0;
+      if (std::fabs(e.tangential_velocity) > 1e-9)
         ratios.push_back(e.tangential_velocity_after / e.tangential_velocity);
+    }
     numbers["models"][run.model] = {
         {"impacts", run.impacts.size()},
         {"contact_phases", run.contacts.size()},
@@ -184,6 +188,7 @@ nlohmann::json comparison_numbers(const Comparison& comparison) {
         {"steps", run.output.steps},
         {"wall_time_s", run.output.wall_time},
         {"section_points", run.output.samples.size()},
+        {"sticking_impacts", sticking},
         {"tangential_ratio_median", ratios.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(ratios))},
         {"radius_m", run.scene.values.contains("radius") ? run.scene.number("radius") : 0.0},
         {"spin", run.scene.values.contains("spin") ? run.scene.text("spin") : ""},
@@ -234,26 +239,36 @@ std::string comparison_summary(const Comparison& comparison, const nlohmann::jso
       "Scene `{}` ({}), {} forcing periods of T = {:.6g} s from t0 = {:.6g} s. "
       "Each model runs the same scene with only the key `model` changed.\n\n"
       "| model | impacts | contact phases | time in contact (s) | friction work (J) | "
-      "median γ_T⁺/γ_T⁻ | termination | wall time (s) |\n|---|---|---|---|---|---|---|---|\n",
+      "median γ_T⁺/γ_T⁻ | impacts leaving no slip | termination | wall time (s) |\n"
+      "|---|---|---|---|---|---|---|---|---|\n",
       scene.name, scene.name, scene.oscillator,
       std::round((comparison.runs.front().output.t_end - comparison.runs.front().output.t0) /
                  comparison.period),
       comparison.period, comparison.runs.front().output.t0);
   for (const auto& run : comparison.runs) {
     const auto& m = numbers["models"][run.model];
-    text += fmt::format("| {} | {} | {} | {:.6g} | {:.6g} | {} | {} | {:.3f} |\n", run.model,
+    text += fmt::format("| {} | {} | {} | {:.6g} | {:.6g} | {} | {} | {} | {:.3f} |\n", run.model,
                         m["impacts"].get<std::size_t>(), m["contact_phases"].get<std::size_t>(),
                         m["contact_time_s"].get<double>(), m["friction_work_J"].get<double>(),
                         m["tangential_ratio_median"].is_null()
                             ? std::string("—")
                             : fmt::format("{:.4g}", m["tangential_ratio_median"].get<double>()),
+                        m["tangential_ratio_median"].is_null()
+                            ? std::string("—")
+                            : std::to_string(m["sticking_impacts"].get<std::size_t>()),
                         m["termination"].get<std::string>(), m["wall_time_s"].get<double>());
   }
   text += "\n## Where they agree\n\n";
   for (const auto& pair : numbers["pairs"]) {
     const std::string a = pair["reference"], b = pair["model"];
     const std::size_t agree = pair["agreeing_impacts"], matched = pair["matched_impacts"];
-    if (pair["first_disagreement"].is_null()) {
+    if (agree == 0 && matched > 0) {
+      text += fmt::format(
+          "- `{}` and `{}`: the impact sequences differ from the first impact (t = {:.6g} s). "
+          "Mean distance of the {} strobe points {:.3g}.\n",
+          a, b, pair["first_disagreement_t_s"].get<double>(),
+          pair["section_points"].get<std::size_t>(), pair["section_mean_distance"].get<double>());
+    } else if (pair["first_disagreement"].is_null()) {
       text += fmt::format(
           "- `{}` and `{}`: all {} impacts matched in order agree (same wall, times within "
           "{:.0e} s; largest time difference {:.3g} s, largest angular-velocity difference "
