@@ -115,7 +115,7 @@ class RigidPendulumWalls {
     }
     const double slip = tangential_velocity(wall, x, t);
     const double s = slip > 0.0 ? 1.0 : slip < 0.0 ? -1.0 : 0.0;
-    const double lambda_n = sliding_normal_force(wall, t, s);
+    const double lambda_n = sliding_normal_force(t, s);
     // I_b φ̈ = W_T,φ λ_T = (−w r)(−μ s λ_N)
     dxdt[3] = spin_free_ ? wall * r_ * p_.mu * s * lambda_n / ball_inertia_ : 0.0;
     dxdt[4] = p_.mu * lambda_n * std::fabs(slip);
@@ -141,7 +141,7 @@ class RigidPendulumWalls {
     }
     const int wall = wall_of(mode);
     if (is_stick(mode)) {
-      const StickForces f = stick_forces(wall, t);
+      const StickForces f = stick_forces(t);
       if (k == 0) return {f.normal, f.normal_rate};
       const double s = f.tangential >= 0.0 ? 1.0 : -1.0;
       return {p_.mu * f.normal - s * f.tangential, p_.mu * f.normal_rate - s * f.tangential_rate};
@@ -152,7 +152,7 @@ class RigidPendulumWalls {
     const double slip = tangential_velocity(wall, x, t);
     const double s = slip > 0.0 ? 1.0 : slip < 0.0 ? -1.0 : 0.0;
     const double spin_acceleration =
-        spin_free_ ? wall * r_ * p_.mu * s * sliding_normal_force(wall, t, s) / ball_inertia_ : 0.0;
+        spin_free_ ? wall * r_ * p_.mu * s * sliding_normal_force(t, s) / ball_inertia_ : 0.0;
     return {slip, pivot_acceleration(t) - wall * r_ * spin_acceleration};
   }
 
@@ -203,16 +203,16 @@ class RigidPendulumWalls {
   static Mode slide_mode(int wall) { return wall > 0 ? Mode::slide_right : Mode::slide_left; }
   static Mode stick_mode(int wall) { return wall > 0 ? Mode::stick_right : Mode::stick_left; }
 
-  // λ_N of a sliding contact at rest on wall w with slip sign s (θ̈ = 0):
+  // λ_N of a sliding contact at rest on either wall with slip sign s (θ̈ = 0):
   // λ_N = −h_θ / (W_N − μ s W_T,θ) = −m g_e sin θ0 / (cos θ0 − s μ sin θ0)
-  [[nodiscard]] double sliding_normal_force(int, double t, double s) const {
+  [[nodiscard]] double sliding_normal_force(double t, double s) const {
     return -p_.m * effective_gravity(t) * sin0_ / (cos0_ - s * p_.mu * sin0_);
   }
 
-  // sticking on wall w (spin free, θ̈ = 0, γ̇_T = 0): I_b φ̈ = −w r λ_T with
+  // sticking on wall w, the same on both (spin free, θ̈ = 0, γ̇_T = 0): I_b φ̈ = −w r λ_T with
   // φ̈ = w V0 ω cos ωt / r gives λ_T = −I_b V0 ω cos ωt / r²; then
   // 0 = h_θ + W_N λ_N + W_T,θ λ_T gives λ_N = −m g_e tan θ0 − tan θ0 λ_T
-  [[nodiscard]] StickForces stick_forces(int, double t) const {
+  [[nodiscard]] StickForces stick_forces(double t) const {
     const double tan0 = sin0_ / cos0_;
     const double lambda_t = -ball_inertia_ * pivot_acceleration(t) / (r_ * r_);
     const double lambda_t_rate =
@@ -343,10 +343,10 @@ class RigidPendulumWalls {
   Transition<State, Mode> stick_breaks(Mode mode, int wall, const State& x, double t,
                                        EventLog& log) const {
     const State resting = on_wall(wall, x);
-    const double s = stick_forces(wall, t).tangential > 0.0 ? -1.0 : 1.0;
+    const double s = stick_forces(t).tangential > 0.0 ? -1.0 : 1.0;
     if (!(cos0_ - s * p_.mu * sin0_ > 1e-9)) return stop_painleve(mode, wall, resting, t, 0.0, log);
     EventRecord record{t, EventKind::slip_reversal, wall, resting[0], 0.0, 0.0};
-    record.normal_force = sliding_normal_force(wall, t, s);
+    record.normal_force = sliding_normal_force(t, s);
     record.tangential_velocity = 0.0;
     record.friction_work = resting[4];
     log.record(record);
