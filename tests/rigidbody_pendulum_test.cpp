@@ -18,6 +18,8 @@
 #include <vector>
 
 #include "core/event_log.hpp"
+#include "oscillators/pendulum_walls/rigid_pendulum_walls.hpp"
+#include "rigidbody/contact_phase.hpp"
 #include "io/bad_input.hpp"
 #include "io/oscillator_registry.hpp"
 #include "io/scene.hpp"
@@ -130,6 +132,62 @@ TEST(RigidPendulum, FreeSpinImpactsFollowTheHandImpulseEquations) {
   EXPECT_GT(sticks, 0);  // both branches of the impulse law were checked
   EXPECT_GT(slides, 0);
   EXPECT_TRUE(rigid.derived.contains("emergent_e_t_median"));
+}
+
+// The generalized contact of the pendulum through the contact-phase solver,
+// against the forces solved by hand from m l² θ̈ = h_θ + W_N λ_N + W_T,θ λ_T
+// with θ̈ = 0 (and, sticking, I_b φ̈ = −w r λ_T with γ̇_T = 0).
+TEST(RigidPendulum, ContactForcesAreTheHandSolutions) {
+  RigidPendulumParameters p;
+  p.pendulum.V0 = 4.163;
+  p.radius = 0.01;
+  const double m = 0.5, l = 0.7, b = 0.05, g = 9.81, w_forcing = 7.0, mu = 0.6;
+  const double sin0 = (b - p.radius) / l, cos0 = std::sqrt(1.0 - sin0 * sin0);
+  const double t = 0.1;  // g_e = g − V0 ω cos ωt < 0: the wall attracts
+  const double g_e = g - p.pendulum.V0 * w_forcing * std::cos(w_forcing * t);
+  ASSERT_LT(g_e, 0.0);
+  for (const int wall : {1, -1}) {
+    // spin locked, sliding with the pivot: W_T,θ = −w (l sin θ0 + r)
+    p.spin_free = false;
+    p.pendulum.mu = mu;
+    const RigidPendulumWalls locked(p);
+    const RigidPendulumWalls::State resting{wall * locked.wall_angle(), 0.0, 0.0, 0.0, 0.0};
+    const double slip = p.pendulum.V0 * std::sin(w_forcing * t);
+    const double s = slip > 0 ? 1.0 : -1.0;
+    const auto sliding = rigidbody::contact_forces<1>(locked.locked_spin_contact(wall, resting, t),
+                                                      mu, slip, 0.0);
+    ASSERT_EQ(sliding.regime, rigidbody::ContactRegime::slide);
+    EXPECT_NEAR(sliding.normal, -m * g_e * sin0 / (cos0 - s * mu * (sin0 + p.radius / l)), 1e-12);
+    EXPECT_NEAR(sliding.tangential, -mu * s * sliding.normal, 1e-12);
+
+    // spin free, rolling with the pivot: λ_T = −I_b V0 ω cos ωt / r²,
+    // λ_N = −m g_e tan θ0 − tan θ0 λ_T; this needs |λ_T| ≤ μ λ_N, so a
+    // rough wall (μ tan θ0 < 1 still)
+    p.spin_free = true;
+    p.pendulum.mu = 8.0;
+    ASSERT_LT(p.pendulum.mu * sin0 / cos0, 1.0);
+    const RigidPendulumWalls free_spin(p);
+    const double ball_inertia = 0.4 * m * p.radius * p.radius;
+    RigidPendulumWalls::State rolling = resting;
+    rolling[3] = wall * slip / p.radius;  // γ_T = V0 sin ωt − w r φ̇ = 0
+    const double lambda_t =
+        -ball_inertia * p.pendulum.V0 * w_forcing * std::cos(w_forcing * t) / (p.radius * p.radius);
+    const double lambda_n = -m * g_e * sin0 / cos0 - sin0 / cos0 * lambda_t;
+    ASSERT_LE(std::fabs(lambda_t), p.pendulum.mu * lambda_n);
+    const auto sticking = rigidbody::contact_forces<2>(
+        free_spin.free_spin_contact(wall, rolling, t), p.pendulum.mu, 0.0, 1e-12);
+    ASSERT_EQ(sticking.regime, rigidbody::ContactRegime::stick) << "wall " << wall;
+    EXPECT_NEAR(sticking.tangential, lambda_t, 1e-12);
+    EXPECT_NEAR(sticking.normal, lambda_n, 1e-12);
+
+    // at μ = 0.6 the same rolling state cannot stick: the slip starts
+    // opposite to the friction the rolling would need
+    const auto slipping = rigidbody::contact_forces<2>(
+        free_spin.free_spin_contact(wall, rolling, t), mu, 0.0, 1e-12);
+    ASSERT_EQ(slipping.regime, rigidbody::ContactRegime::slide);
+    EXPECT_EQ(slipping.slip_sign, lambda_t > 0 ? -1.0 : 1.0);
+    EXPECT_NEAR(slipping.normal, -m * g_e * sin0 / (cos0 - slipping.slip_sign * mu * sin0), 1e-12);
+  }
 }
 
 TEST(RigidPendulum, RadiusMustFitAndSpinNeedsARadius) {

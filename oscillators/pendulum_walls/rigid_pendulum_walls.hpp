@@ -204,9 +204,15 @@ class RigidPendulumWalls {
   static Mode stick_mode(int wall) { return wall > 0 ? Mode::stick_right : Mode::stick_left; }
 
   // λ_N of a sliding contact at rest on either wall with slip sign s (θ̈ = 0):
-  // λ_N = −h_θ / (W_N − μ s W_T,θ) = −m g_e sin θ0 / (cos θ0 − s μ sin θ0)
+  // λ_N = −h_θ / (W_N − μ s W_T,θ), W_T,θ = −w (l sin θ0 + r) with the spin
+  // locked (the ball turns with the rod), −w l sin θ0 with it free:
+  // λ_N = −m g_e sin θ0 / (cos θ0 − s μ (sin θ0 + r_locked / l))
   [[nodiscard]] double sliding_normal_force(double t, double s) const {
-    return -p_.m * effective_gravity(t) * sin0_ / (cos0_ - s * p_.mu * sin0_);
+    return -p_.m * effective_gravity(t) * sin0_ / friction_denominator(s);
+  }
+  [[nodiscard]] double friction_denominator(double s) const {
+    const double locked_radius = spin_free_ ? 0.0 : r_;
+    return cos0_ - s * p_.mu * (sin0_ + locked_radius / p_.l);
   }
 
   // sticking on wall w, the same on both (spin free, θ̈ = 0, γ̇_T = 0): I_b φ̈ = −w r λ_T with
@@ -344,7 +350,7 @@ class RigidPendulumWalls {
                                        EventLog& log) const {
     const State resting = on_wall(wall, x);
     const double s = stick_forces(t).tangential > 0.0 ? -1.0 : 1.0;
-    if (!(cos0_ - s * p_.mu * sin0_ > 1e-9)) return stop_painleve(mode, wall, resting, t, 0.0, log);
+    if (!(friction_denominator(s) > 1e-9)) return stop_painleve(mode, wall, resting, t, 0.0, log);
     EventRecord record{t, EventKind::slip_reversal, wall, resting[0], 0.0, 0.0};
     record.normal_force = sliding_normal_force(t, s);
     record.tangential_velocity = 0.0;
