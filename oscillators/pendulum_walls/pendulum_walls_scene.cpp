@@ -7,6 +7,7 @@
 #include "io/oscillator_registry.hpp"
 #include "io/run_system.hpp"
 #include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include "oscillators/pendulum_walls/rigid_pendulum_scene.hpp"
 
 namespace impactlab {
 
@@ -16,7 +17,7 @@ SceneSchema make_schema() {
   SceneSchema schema{"pendulum_walls", "theta", common_keys()};
   const double inf = 1e308;
   std::vector<KeySpec> own = {
-      {.key = "model", .help = "impact model: newton (Model N), paper (Model P, the paper's sliding impact); rigid: later",
+      {.key = "model", .help = "impact model: newton (Model N), paper (Model P, the paper's sliding impact), rigid (rod and ball as rigid bodies)",
        .is_text = true, .default_text = "newton", .choices = {"newton", "paper", "rigid"}},
       {.key = "m", .unit = "kg", .help = "bob mass", .default_number = 0.5, .lower = 0.0,
        .upper = inf, .lower_open = true},
@@ -43,6 +44,10 @@ SceneSchema make_schema() {
        .default_number = 0.0, .lower = -inf, .upper = inf},
       {.key = "initial.theta_dot", .unit = "rad/s", .help = "initial angular velocity",
        .default_number = 0.1, .lower = -inf, .upper = inf},
+      {.key = "radius", .unit = "m", .help = "ball radius (model rigid; radius < b)",
+       .default_number = 0.0, .lower = 0.0, .upper = inf},
+      {.key = "spin", .help = "ball on a free bearing or fixed to the rod (model rigid)",
+       .is_text = true, .default_text = "locked", .choices = {"locked", "free"}},
   };
   schema.keys.insert(schema.keys.end(), own.begin(), own.end());
   return schema;
@@ -122,8 +127,7 @@ RunOutput run_model(const Scene& scene, const RunRequest& request) {
 
 RunOutput run(const Scene& scene, const RunRequest& request) {
   const std::string& model = scene.text("model");
-  if (model == "rigid")
-    throw BadInput("model", model, "not available in this version (newton or paper)");
+  if (model == "rigid") return run_rigid_pendulum(scene, request);
   if (scene.text("integrator.method") == "exact")
     throw BadInput("integrator.method", "exact", "the pendulum has no closed-form flow");
   if (model == "paper") return run_model<PendulumModel::paper>(scene, request);

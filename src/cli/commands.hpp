@@ -9,5 +9,6 @@ namespace impactlab::cli {
 Command add_scenes_command(CLI::App& app);
 Command add_simulate_command(CLI::App& app);
 Command add_reproduce_command(CLI::App& app);
+Command add_compare_command(CLI::App& app);
 
 }  // namespace impactlab::cli

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
       add_scenes_command(app),
       add_simulate_command(app),
       add_reproduce_command(app),
+      add_compare_command(app),
   };
 
   const std::vector<std::string> command_line(argv, argv + argc);

@@ -54,6 +54,7 @@ struct EventRecord {
   // (paper's Eq. 26) and of the sliding-impact condition (Eqs. 21-22) (m/s)
   double instantaneous_residual = not_computed;
   double sliding_residual = not_computed;
+  double tangential_velocity_after = not_computed;  // γ_T just after an impact (m/s)
 };
 
 // Counts every event and keeps the records unless told not to (a benchmark or

@@ -7,5 +7,6 @@ namespace impactlab {
 template OdeintFehlberg78<std::array<double, 2>>::OdeintFehlberg78(const StepperSettings&);
 template OdeintFehlberg78<std::array<double, 3>>::OdeintFehlberg78(const StepperSettings&);
 template OdeintFehlberg78<std::array<double, 4>>::OdeintFehlberg78(const StepperSettings&);
+template OdeintFehlberg78<std::array<double, 5>>::OdeintFehlberg78(const StepperSettings&);
 
 }  // namespace impactlab

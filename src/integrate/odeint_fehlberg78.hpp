@@ -87,13 +87,16 @@ OdeintFehlberg78<State>::OdeintFehlberg78(const StepperSettings& settings)
                   typename Controlled::step_adjuster_type(settings.max_step)) {}
 
 // the constructor for the one-degree-of-freedom states, {q, q̇}, {θ, θ̇, W_f}
-// and Model P's {θ, θ̇, W_f, θ̇_release},
-// is compiled in odeint_fehlberg78.cpp only (the rest stays inline)
+// and Model P's {θ, θ̇, W_f, θ̇_release}, and the rigid pendulum's
+// {θ, θ̇, φ, φ̇, W_f}, is compiled in odeint_fehlberg78.cpp only (the rest
+// stays inline)
 extern template OdeintFehlberg78<std::array<double, 2>>::OdeintFehlberg78(
     const StepperSettings&);
 extern template OdeintFehlberg78<std::array<double, 3>>::OdeintFehlberg78(
     const StepperSettings&);
 extern template OdeintFehlberg78<std::array<double, 4>>::OdeintFehlberg78(
+    const StepperSettings&);
+extern template OdeintFehlberg78<std::array<double, 5>>::OdeintFehlberg78(
     const StepperSettings&);
 
 }  // namespace impactlab

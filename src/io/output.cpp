@@ -55,13 +55,13 @@ std::string field(double value) { return csv_field(value); }
 void write_events_csv(AtomicFile& file, std::span<const EventRecord> events) {
   auto& out = file.stream();
   out << "t,kind,wall,q,qdot_before,qdot_after,normal_impulse,tangential_velocity,normal_force,"
-         "friction_work,instantaneous_residual,sliding_residual\n";
+         "friction_work,instantaneous_residual,sliding_residual,tangential_velocity_after\n";
   for (const auto& e : events) {
     out << field(e.t) << ',' << to_string(e.kind) << ',' << e.wall << ',' << field(e.q) << ','
         << field(e.qdot_before) << ',' << field(e.qdot_after) << ',' << field(e.normal_impulse)
         << ',' << field(e.tangential_velocity) << ',' << field(e.normal_force) << ','
         << field(e.friction_work) << ',' << field(e.instantaneous_residual) << ','
-        << field(e.sliding_residual) << '\n';
+        << field(e.sliding_residual) << ',' << field(e.tangential_velocity_after) << '\n';
   }
 }
 

@@ -37,7 +37,8 @@ class AtomicFile {
 void prepare_output_directory(const std::filesystem::path& directory);
 
 // events.csv: t,kind,wall,q,qdot_before,qdot_after, then normal_impulse,
-// tangential_velocity, normal_force, friction_work (empty where not computed).
+// tangential_velocity, normal_force, friction_work, tangential_velocity_after
+// (empty where not computed).
 void write_events_csv(AtomicFile& file, std::span<const EventRecord> events);
 
 // trajectory.csv: t,q,qdot,mode

@@ -1,0 +1,373 @@
+// The pendulum between two walls as a rigid-body scene (model = "rigid",
+// MODEL.md §2): the rod of Model N with, at its end, a ball of radius r and
+// mass m (a solid sphere, I_b = (2/5) m r² about its centre) that may spin on
+// a frictionless bearing. Impacts are resolved by the general Newton–Coulomb
+// impulse on the collision matrix K = W M⁻¹ Wᵀ (src/rigidbody/), persistent
+// contacts by the acceleration-level contact problem (contact_phase.hpp).
+//
+// Generalized coordinates q = (θ, φ): θ the rod's angle from the downward
+// vertical (rad, positive towards the right wall), φ the ball's absolute
+// rotation angle in the same sense (rad). Pivot velocity V0 sin ωt, y down.
+//     spin free    M = diag(m l², I_b),  h = (−d θ̇ − m l g_e sin θ, 0)
+//     spin locked  φ ≡ θ: one coordinate, M = m l² + I_b
+// The ball touches the wall x = ±b at the point of its surface nearest the
+// wall, so the walls are reached at θ = ±θ0, sin θ0 = (b − r) / l. At wall
+// w = ±1:
+//     γ_N = −w l cos θ θ̇                    W_N = (−w l cos θ, 0)
+//     γ_T = V0 sin ωt − l sin θ θ̇ − w r φ̇    W_T = (−l sin θ, −w r)
+// (γ_T: velocity of the ball's material contact point along the wall, y down).
+// With the spin locked W_T = −l sin θ − w r, and at r = 0 everything reduces
+// to Model N (pendulum_walls.hpp): the same witnesses, the same accumulation
+// rule, and the Newton–Coulomb impulse on the rank-one K slides with
+// θ̇⁺ = −e_n θ̇⁻, which is Model N's impact law.
+//
+// Modes: free flight; sliding contact on a wall (θ ≡ ±θ0, θ̇ = 0; the ball
+// slides and, if free, is spun by friction); sticking contact (spin free
+// only: the ball rolls on the wall as the pivot moves it). The stick case of
+// the impulse has tangential restitution 0 (the lecture's default): any
+// tangential restitution of the model emerges from the impulse mechanics.
+// State: {θ, θ̇, φ, φ̇, W_f}, W_f the friction work in contact phases (J).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+
+#include <Eigen/Core>
+
+#include "contact/accumulation.hpp"
+#include "core/event_log.hpp"
+#include "core/hybrid_system.hpp"
+#include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include "rigidbody/contact_phase.hpp"
+#include "rigidbody/generalized_system.hpp"
+
+namespace impactlab {
+
+struct RigidPendulumParameters {
+  PendulumWallsParameters pendulum;  // m, l, b, d, g, V0, ω, e_n, μ (e_t unused)
+  double radius = 0.0;               // ball radius r (m), 0 <= r < b
+  bool spin_free = false;            // ball on a free bearing (true) or fixed to the rod
+};
+
+class RigidPendulumWalls {
+ public:
+  using State = std::array<double, 5>;
+  enum class Mode { free, slide_right, slide_left, stick_right, stick_left };
+  static constexpr std::size_t max_witnesses = 2;
+
+  explicit RigidPendulumWalls(const RigidPendulumParameters& p)
+      : p_(p.pendulum),
+        r_(p.radius),
+        spin_free_(p.spin_free),
+        ball_inertia_(0.4 * p.pendulum.m * p.radius * p.radius),
+        rod_inertia_(p.pendulum.m * p.pendulum.l * p.pendulum.l),
+        theta_inertia_(spin_free_ ? rod_inertia_ : rod_inertia_ + ball_inertia_),
+        sin0_((p.pendulum.b - p.radius) / p.pendulum.l),
+        theta0_(std::asin(sin0_)),
+        cos0_(std::cos(theta0_)) {}
+
+  [[nodiscard]] double wall_angle() const { return theta0_; }
+  [[nodiscard]] double ball_inertia() const { return ball_inertia_; }
+  [[nodiscard]] bool spin_free() const { return spin_free_; }
+
+  [[nodiscard]] double effective_gravity(double t) const {
+    return p_.g - p_.V0 * p_.omega * std::cos(p_.omega * t);
+  }
+  [[nodiscard]] double effective_gravity_rate(double t) const {
+    return p_.V0 * p_.omega * p_.omega * std::sin(p_.omega * t);
+  }
+  [[nodiscard]] double pivot_velocity(double t) const { return p_.V0 * std::sin(p_.omega * t); }
+  [[nodiscard]] double pivot_acceleration(double t) const {
+    return p_.V0 * p_.omega * std::cos(p_.omega * t);
+  }
+
+  // γ_T at wall w (m/s)
+  [[nodiscard]] double tangential_velocity(int wall, const State& x, double t) const {
+    return pivot_velocity(t) - p_.l * std::sin(x[0]) * x[1] - wall * r_ * x[3];
+  }
+
+  [[nodiscard]] double max_step() const {
+    const double forcing_period = 2.0 * std::numbers::pi / p_.omega;
+    const double natural_period = 2.0 * std::numbers::pi * std::sqrt(p_.l / p_.g);
+    return std::min(forcing_period, natural_period) / 16.0;
+  }
+
+  void rhs(Mode mode, const State& x, State& dxdt, double t) const {
+    if (mode == Mode::free) {
+      dxdt[0] = x[1];
+      dxdt[1] = -(p_.d * x[1] + p_.m * p_.l * effective_gravity(t) * std::sin(x[0])) / theta_inertia_;
+      dxdt[2] = x[3];
+      dxdt[3] = spin_free_ ? 0.0 : dxdt[1];
+      dxdt[4] = 0.0;
+      return;
+    }
+    const int wall = wall_of(mode);
+    dxdt[0] = 0.0;
+    dxdt[1] = 0.0;
+    dxdt[2] = x[3];
+    if (is_stick(mode)) {
+      // rolling on the wall: γ̇_T = V0 ω cos ωt − w r φ̈ = 0
+      dxdt[3] = wall * pivot_acceleration(t) / r_;
+      dxdt[4] = 0.0;
+      return;
+    }
+    const double slip = tangential_velocity(wall, x, t);
+    const double s = slip > 0.0 ? 1.0 : slip < 0.0 ? -1.0 : 0.0;
+    const double lambda_n = sliding_normal_force(t, s);
+    // I_b φ̈ = W_T,φ λ_T = (−w r)(−μ s λ_N)
+    dxdt[3] = spin_free_ ? wall * r_ * p_.mu * s * lambda_n / ball_inertia_ : 0.0;
+    dxdt[4] = p_.mu * lambda_n * std::fabs(slip);
+  }
+
+  [[nodiscard]] std::size_t witness_count(Mode) const { return 2; }
+
+  [[nodiscard]] TriggerDirection trigger_direction(Mode mode, std::size_t k) const {
+    if (mode == Mode::free || k == 0 || is_stick(mode)) return TriggerDirection::falling;
+    return TriggerDirection::either;
+  }
+
+  // free:  k = 0, 1 angular gaps θ0 ∓ θ to the right and left walls (rad)
+  // slide: k = 0 the frictionless normal force −m g_e tan θ0 (N), with the
+  //        sign and zeros of λ_N while the contact is consistent (as Model N);
+  //        k = 1 the slip γ_T (m/s)
+  // stick: k = 0 the sticking normal force λ_N (N); k = 1 the friction cone
+  //        margin μ λ_N − |λ_T| (N)
+  [[nodiscard]] WitnessSample witness(Mode mode, std::size_t k, const State& x, double t) const {
+    if (mode == Mode::free) {
+      const double side = k == 0 ? 1.0 : -1.0;
+      return {theta0_ - side * x[0], -side * x[1]};
+    }
+    const int wall = wall_of(mode);
+    if (is_stick(mode)) {
+      const StickForces f = stick_forces(t);
+      if (k == 0) return {f.normal, f.normal_rate};
+      const double s = f.tangential >= 0.0 ? 1.0 : -1.0;
+      return {p_.mu * f.normal - s * f.tangential, p_.mu * f.normal_rate - s * f.tangential_rate};
+    }
+    if (k == 0)
+      return {-p_.m * effective_gravity(t) * sin0_ / cos0_,
+              -p_.m * effective_gravity_rate(t) * sin0_ / cos0_};
+    const double slip = tangential_velocity(wall, x, t);
+    const double s = slip > 0.0 ? 1.0 : slip < 0.0 ? -1.0 : 0.0;
+    const double spin_acceleration =
+        spin_free_ ? wall * r_ * p_.mu * s * sliding_normal_force(t, s) / ball_inertia_ : 0.0;
+    return {slip, pivot_acceleration(t) - wall * r_ * spin_acceleration};
+  }
+
+  Transition<State, Mode> on_event(Mode mode, std::size_t k, CrossingKind crossing,
+                                   const State& x, double t, EventLog& log) const {
+    if (mode == Mode::free) return on_wall_reached(k == 0 ? 1 : -1, crossing, x, t, log);
+    const int wall = wall_of(mode);
+    if (k == 0) return release(wall, x, t, log);
+    if (is_stick(mode)) return stick_breaks(mode, wall, x, t, log);
+    return slip_stops(mode, wall, x, t, log);
+  }
+
+  // The contact of wall w in generalized coordinates at state x, time t
+  // (generalized_system.hpp), for the spin free (N = 2) or locked (N = 1).
+  [[nodiscard]] rigidbody::GeneralizedContact<2> free_spin_contact(int wall, const State& x,
+                                                                   double t) const {
+    rigidbody::GeneralizedContact<2> c;
+    c.mass << rod_inertia_, 0.0, 0.0, ball_inertia_;
+    c.forces << -p_.d * x[1] - p_.m * p_.l * effective_gravity(t) * std::sin(x[0]), 0.0;
+    c.jacobian << -wall * p_.l * std::cos(x[0]), 0.0, -p_.l * std::sin(x[0]), -wall * r_;
+    c.velocity_offset << 0.0, pivot_velocity(t);
+    c.acceleration_drift << wall * p_.l * std::sin(x[0]) * x[1] * x[1],
+        pivot_acceleration(t) - p_.l * std::cos(x[0]) * x[1] * x[1];
+    return c;
+  }
+  [[nodiscard]] rigidbody::GeneralizedContact<1> locked_spin_contact(int wall, const State& x,
+                                                                     double t) const {
+    rigidbody::GeneralizedContact<1> c;
+    c.mass << theta_inertia_;
+    c.forces << -p_.d * x[1] - p_.m * p_.l * effective_gravity(t) * std::sin(x[0]);
+    c.jacobian << -wall * p_.l * std::cos(x[0]), -p_.l * std::sin(x[0]) - wall * r_;
+    c.velocity_offset << 0.0, pivot_velocity(t);
+    c.acceleration_drift << wall * p_.l * std::sin(x[0]) * x[1] * x[1],
+        pivot_acceleration(t) - p_.l * std::cos(x[0]) * x[1] * x[1];
+    return c;
+  }
+
+ private:
+  struct StickForces {
+    double normal, normal_rate;          // λ_N (N), λ̇_N (N/s)
+    double tangential, tangential_rate;  // λ_T (N), λ̇_T (N/s)
+  };
+
+  static int wall_of(Mode mode) {
+    return mode == Mode::slide_right || mode == Mode::stick_right ? 1 : -1;
+  }
+  static bool is_stick(Mode mode) { return mode == Mode::stick_right || mode == Mode::stick_left; }
+  static Mode slide_mode(int wall) { return wall > 0 ? Mode::slide_right : Mode::slide_left; }
+  static Mode stick_mode(int wall) { return wall > 0 ? Mode::stick_right : Mode::stick_left; }
+
+  // λ_N of a sliding contact at rest on either wall with slip sign s (θ̈ = 0):
+  // λ_N = −h_θ / (W_N − μ s W_T,θ), W_T,θ = −w (l sin θ0 + r) with the spin
+  // locked (the ball turns with the rod), −w l sin θ0 with it free:
+  // λ_N = −m g_e sin θ0 / (cos θ0 − s μ (sin θ0 + r_locked / l))
+  [[nodiscard]] double sliding_normal_force(double t, double s) const {
+    return -p_.m * effective_gravity(t) * sin0_ / friction_denominator(s);
+  }
+  [[nodiscard]] double friction_denominator(double s) const {
+    const double locked_radius = spin_free_ ? 0.0 : r_;
+    return cos0_ - s * p_.mu * (sin0_ + locked_radius / p_.l);
+  }
+
+  // sticking on wall w, the same on both (spin free, θ̈ = 0, γ̇_T = 0): I_b φ̈ = −w r λ_T with
+  // φ̈ = w V0 ω cos ωt / r gives λ_T = −I_b V0 ω cos ωt / r²; then
+  // 0 = h_θ + W_N λ_N + W_T,θ λ_T gives λ_N = −m g_e tan θ0 − tan θ0 λ_T
+  [[nodiscard]] StickForces stick_forces(double t) const {
+    const double tan0 = sin0_ / cos0_;
+    const double lambda_t = -ball_inertia_ * pivot_acceleration(t) / (r_ * r_);
+    const double lambda_t_rate =
+        ball_inertia_ * p_.V0 * p_.omega * p_.omega * std::sin(p_.omega * t) / (r_ * r_);
+    return {-p_.m * effective_gravity(t) * tan0 - tan0 * lambda_t,
+            -p_.m * effective_gravity_rate(t) * tan0 - tan0 * lambda_t_rate, lambda_t,
+            lambda_t_rate};
+  }
+
+  [[nodiscard]] State on_wall(int wall, const State& x) const {
+    return {wall * theta0_, 0.0, x[2], spin_free_ ? x[3] : 0.0, x[4]};
+  }
+
+  Transition<State, Mode> stop_painleve(Mode mode, int wall, const State& x, double t,
+                                        double qdot_after, EventLog& log) const {
+    EventRecord painleve{t, EventKind::painleve, wall, x[0], x[1], qdot_after};
+    painleve.tangential_velocity = tangential_velocity(wall, x, t);
+    log.record(painleve);
+    return {x, mode, t, true};
+  }
+
+  // the Newton–Coulomb impulse at wall w: θ̇⁺, φ̇⁺ and the impulse
+  struct WallImpact {
+    double theta_dot, phi_dot;
+    rigidbody::NewtonCoulombImpulse<2> impulse;
+  };
+  [[nodiscard]] WallImpact impact_at(int wall, const State& x, double t) const {
+    const rigidbody::ImpactCoefficients coefficients{p_.e_n, p_.mu, 0.0};
+    if (spin_free_) {
+      const auto result = rigidbody::generalized_impact<2>(free_spin_contact(wall, x, t),
+                                                           Eigen::Vector2d(x[1], x[3]), coefficients);
+      return {result.qdot_after(0), result.qdot_after(1), result.impulse};
+    }
+    const auto result = rigidbody::generalized_impact<1>(
+        locked_spin_contact(wall, x, t), Eigen::Matrix<double, 1, 1>(x[1]), coefficients);
+    return {result.qdot_after(0), result.qdot_after(0), result.impulse};
+  }
+
+  Transition<State, Mode> on_wall_reached(int wall, CrossingKind crossing, const State& x,
+                                          double t, EventLog& log) const {
+    const double gamma_t = tangential_velocity(wall, x, t);
+    if (crossing == CrossingKind::grazing) {
+      EventRecord graze{t, EventKind::grazing, wall, x[0], x[1], x[1]};
+      graze.tangential_velocity = gamma_t;
+      log.record(graze);
+      return {x, Mode::free, t, false};
+    }
+    const WallImpact impact = impact_at(wall, x, t);
+    if (impact.impulse.regime == rigidbody::ImpulseRegime::inconsistent)
+      return stop_painleve(Mode::free, wall, x, t, x[1], log);
+    State after{wall * theta0_, impact.theta_dot, x[2], impact.phi_dot, x[4]};
+    EventRecord record{t, EventKind::impact, wall, x[0], x[1], impact.theta_dot};
+    record.normal_impulse = impact.impulse.normal_impulse;
+    record.tangential_velocity = gamma_t;
+    record.tangential_velocity_after = tangential_velocity(wall, after, t);
+    log.record(record);
+
+    // chattering, with Model N's rule: normal acceleration towards the wall
+    // at rest, −γ̈_N = −(m l² / M_θ) g_e sin θ0 cos θ0, and its rate
+    const double share = rod_inertia_ / theta_inertia_;
+    const double approach = -effective_gravity(t) * sin0_ * cos0_ * share;
+    const double approach_rate = -effective_gravity_rate(t) * sin0_ * cos0_ * share;
+    const auto remaining = time_to_accumulation(
+        {p_.l * cos0_ * std::fabs(impact.theta_dot), approach, approach_rate, p_.e_n},
+        p_.accumulation_tol, 1.0 / p_.omega);
+    if (!remaining) return {after, Mode::free, t, false};
+    return enter_contact(wall, after, t + *remaining, log);
+  }
+
+  // The contact problem at rest on wall w at time t: which contact mode, or
+  // a Painlevé stop, or free flight (no compressive force).
+  Transition<State, Mode> settle(Mode from, int wall, const State& resting, double t,
+                                 EventKind kind, EventLog& log) const {
+    const double slip = tangential_velocity(wall, resting, t);
+    const rigidbody::ContactForces forces =
+        spin_free_ ? rigidbody::contact_forces<2>(free_spin_contact(wall, resting, t), p_.mu, slip, 0.0)
+                   : rigidbody::contact_forces<1>(locked_spin_contact(wall, resting, t), p_.mu,
+                                                  slip, 0.0);
+    if (forces.regime == rigidbody::ContactRegime::painleve_no_solution ||
+        forces.regime == rigidbody::ContactRegime::painleve_ambiguous)
+      return stop_painleve(from, wall, resting, t, 0.0, log);
+    if (forces.regime == rigidbody::ContactRegime::detached) {
+      if (kind != EventKind::contact_start) {
+        EventRecord end{t, EventKind::contact_end, wall, resting[0], 0.0, 0.0};
+        end.normal_force = 0.0;
+        end.tangential_velocity = slip;
+        end.friction_work = resting[4];
+        log.record(end);
+      }
+      return {resting, Mode::free, t, false};
+    }
+    EventRecord record{t, kind, wall, resting[0], 0.0, 0.0};
+    record.normal_force = forces.normal;
+    record.tangential_velocity = slip;
+    record.friction_work = resting[4];
+    log.record(record);
+    const Mode next =
+        forces.regime == rigidbody::ContactRegime::stick ? stick_mode(wall) : slide_mode(wall);
+    return {resting, next, t, false};
+  }
+
+  Transition<State, Mode> enter_contact(int wall, const State& after, double t,
+                                        EventLog& log) const {
+    const State resting = on_wall(wall, after);
+    log.record({t, EventKind::accumulation, wall, resting[0], 0.0, 0.0});
+    return settle(Mode::free, wall, resting, t, EventKind::contact_start, log);
+  }
+
+  Transition<State, Mode> release(int wall, const State& x, double t, EventLog& log) const {
+    EventRecord end{t, EventKind::contact_end, wall, wall * theta0_, 0.0, 0.0};
+    end.normal_force = 0.0;
+    end.tangential_velocity = tangential_velocity(wall, on_wall(wall, x), t);
+    end.friction_work = x[4];
+    log.record(end);
+    return {on_wall(wall, x), Mode::free, t, false};
+  }
+
+  // the slip reached zero: stick, or slide on in the direction the contact
+  // problem allows (a slip reversal)
+  Transition<State, Mode> slip_stops(Mode mode, int wall, const State& x, double t,
+                                     EventLog& log) const {
+    State resting = on_wall(wall, x);
+    if (spin_free_) resting[3] = wall * pivot_velocity(t) / r_;  // γ_T = 0 exactly
+    return settle(mode, wall, resting, t, EventKind::slip_reversal, log);
+  }
+
+  // the friction force reached the cone's edge: slip starts opposite to λ_T
+  Transition<State, Mode> stick_breaks(Mode mode, int wall, const State& x, double t,
+                                       EventLog& log) const {
+    const State resting = on_wall(wall, x);
+    const double s = stick_forces(t).tangential > 0.0 ? -1.0 : 1.0;
+    if (!(friction_denominator(s) > 1e-9)) return stop_painleve(mode, wall, resting, t, 0.0, log);
+    EventRecord record{t, EventKind::slip_reversal, wall, resting[0], 0.0, 0.0};
+    record.normal_force = sliding_normal_force(t, s);
+    record.tangential_velocity = 0.0;
+    record.friction_work = resting[4];
+    log.record(record);
+    return {resting, slide_mode(wall), t, false};
+  }
+
+  PendulumWallsParameters p_;
+  double r_;              // ball radius (m)
+  bool spin_free_;
+  double ball_inertia_;   // I_b (kg m²)
+  double rod_inertia_;    // m l² (kg m²)
+  double theta_inertia_;  // M_θ: m l² (spin free) or m l² + I_b (locked) (kg m²)
+  double sin0_, theta0_, cos0_;
+};
+
+static_assert(HybridSystem<RigidPendulumWalls>);
+
+}  // namespace impactlab

@@ -1,0 +1,69 @@
+// The rigid pendulum's hot loop allocates nothing: fixed-size Eigen matrices
+// in the impulse and contact problems, closed forms in the right-hand side
+// and the witnesses. Every allocation of this test program is counted by
+// replacing the global operator new (as tests/allocation_test.cpp does for
+// the other oscillators).
+#include <atomic>
+#include <cstdlib>
+#include <new>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "core/simulator.hpp"
+#include "integrate/odeint_dopri5.hpp"
+#include "integrate/gsl_rk8pd.hpp"
+#include "oscillators/pendulum_walls/rigid_pendulum_walls.hpp"
+
+namespace {
+std::atomic<long> allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  ++allocations;
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+// matching the replaced operator new above, which allocates with malloc
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace impactlab {
+namespace {
+
+template <class Stepper>
+void expect_no_allocation(bool spin_free, double V0) {
+  RigidPendulumParameters p;
+  p.pendulum.V0 = V0;
+  p.radius = 0.01;
+  p.spin_free = spin_free;
+  const RigidPendulumWalls system(p);
+  StepperSettings settings;
+  settings.rtol = 1e-10;
+  settings.atol = 1e-12;
+  settings.max_step = system.max_step();
+  Stepper stepper(settings);
+  EventLog log(false);
+  const long before = allocations.load();
+  simulate(system, stepper, RigidPendulumWalls::State{0.0, 0.1, 0.0, 0.0, 0.0},
+           RigidPendulumWalls::Mode::free, 0.0, 100 * 2 * std::numbers::pi / p.pendulum.omega,
+           LoopOptions{}, log);
+  EXPECT_EQ(allocations.load() - before, 0);
+  EXPECT_GT(log.count(EventKind::impact), 90u);
+}
+
+TEST(RigidPendulumHotLoop, SpinFreeWithStickingImpactsAllocatesNothing) {
+  expect_no_allocation<OdeintDopri5<RigidPendulumWalls::State>>(true, 1.5);
+}
+
+TEST(RigidPendulumHotLoop, SpinFreeWithContactPhasesAllocatesNothing) {
+  expect_no_allocation<GslRk8pd<RigidPendulumWalls::State>>(true, 4.163);
+}
+
+TEST(RigidPendulumHotLoop, SpinLockedAllocatesNothing) {
+  expect_no_allocation<OdeintDopri5<RigidPendulumWalls::State>>(false, 4.163);
+}
+
+}  // namespace
+}  // namespace impactlab

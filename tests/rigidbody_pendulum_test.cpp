@@ -1,0 +1,206 @@
+// The pendulum between walls as a rigid-body scene (model = "rigid",
+// oscillators/pendulum_walls/rigid_pendulum_walls.hpp), run through the
+// library exactly as the command line runs it:
+// * reduction: spin locked and radius 0 reproduce Model N's impact sequence
+//   (times, angular velocities, normal impulses) to 1e-9, over the paper's
+//   scene with its chattering and sliding-contact phases; a radius of 1e-12 m
+//   stays within 1e-9 of it over a shorter span;
+// * the default model of the pendulum stays Model N;
+// * spin free: every impact obeys θ̇⁺ = −e_n θ̇⁻ (γ_N depends on θ̇ alone), and
+//   the tangential velocity change is the one the impulse equations give by
+//   hand: γ_T⁺ = 0 where the ball sticks (then |P_T| ≤ μ P_N), otherwise the
+//   sliding friction −μ s P_N acting on rod and ball;
+// * bad combinations of radius and spin are BadInput.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/event_log.hpp"
+#include "oscillators/pendulum_walls/rigid_pendulum_walls.hpp"
+#include "rigidbody/contact_phase.hpp"
+#include "io/bad_input.hpp"
+#include "io/oscillator_registry.hpp"
+#include "io/scene.hpp"
+
+namespace impactlab {
+namespace {
+
+RunOutput run_scene(const std::vector<std::string>& assignments, double periods) {
+  Scene scene = load_scene("jin2003");
+  for (const auto& assignment : assignments) apply_override(scene, assignment);
+  RunRequest request;
+  request.periods = periods;
+  return oscillator_entry(scene.oscillator).run(scene, request);
+}
+
+std::vector<EventRecord> impacts_of(const RunOutput& output) {
+  std::vector<EventRecord> impacts;
+  for (const auto& e : output.events)
+    if (e.kind == EventKind::impact) impacts.push_back(e);
+  return impacts;
+}
+
+void expect_same_impacts(const RunOutput& newton, const RunOutput& rigid, double tolerance) {
+  const auto a = impacts_of(newton), b = impacts_of(rigid);
+  ASSERT_GT(a.size(), 20u);
+  ASSERT_EQ(a.size(), b.size());
+  double worst_t = 0.0, worst_qdot = 0.0, worst_impulse = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].wall, b[i].wall) << "impact " << i;
+    worst_t = std::max(worst_t, std::fabs(a[i].t - b[i].t));
+    worst_qdot = std::max({worst_qdot, std::fabs(a[i].qdot_before - b[i].qdot_before),
+                           std::fabs(a[i].qdot_after - b[i].qdot_after)});
+    worst_impulse = std::max(worst_impulse, std::fabs(a[i].normal_impulse - b[i].normal_impulse));
+  }
+  EXPECT_LE(worst_t, tolerance);
+  EXPECT_LE(worst_qdot, tolerance);
+  EXPECT_LE(worst_impulse, tolerance);
+  EXPECT_EQ(newton.contact_phases, rigid.contact_phases);
+  EXPECT_EQ(newton.accumulations, rigid.accumulations);
+}
+
+TEST(RigidPendulum, LockedSpinZeroRadiusReproducesModelN) {
+  // V0 = 1.5 m/s: impacts only; V0 = 4.163 m/s (the paper's Fig. 4c): g_e
+  // changes sign, the impacts chatter, accumulate and a sliding contact follows
+  const RunOutput newton = run_scene({}, 60.0);
+  const RunOutput rigid = run_scene({"model=rigid", "spin=locked", "radius=0"}, 60.0);
+  EXPECT_EQ(rigid.termination, "completed");
+  expect_same_impacts(newton, rigid, 1e-9);
+
+  const RunOutput newton_contact = run_scene({"V0=4.163"}, 20.0);
+  const RunOutput rigid_contact = run_scene({"V0=4.163", "model=rigid", "radius=0"}, 20.0);
+  ASSERT_GT(newton_contact.contact_phases, 0u);
+  expect_same_impacts(newton_contact, rigid_contact, 1e-9);
+  // the contact phases themselves: start and release times
+  std::vector<double> a, b;
+  for (const auto& e : newton_contact.events)
+    if (e.kind == EventKind::contact_start || e.kind == EventKind::contact_end) a.push_back(e.t);
+  for (const auto& e : rigid_contact.events)
+    if (e.kind == EventKind::contact_start || e.kind == EventKind::contact_end) b.push_back(e.t);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(a[i], b[i], 1e-9);
+}
+
+TEST(RigidPendulum, LockedSpinTinyRadiusStaysWithinTheReductionTolerance) {
+  const RunOutput newton = run_scene({"V0=4.163"}, 10.0);
+  const RunOutput rigid = run_scene({"V0=4.163", "model=rigid", "spin=locked", "radius=1e-12"}, 10.0);
+  expect_same_impacts(newton, rigid, 1e-9);
+}
+
+TEST(RigidPendulum, DefaultModelIsTheOneDegreeOfFreedomModel) {
+  const Scene scene = load_scene("jin2003");
+  EXPECT_EQ(scene.text("model"), "newton");
+  const RunOutput output = run_scene({}, 2.0);
+  EXPECT_FALSE(output.derived.contains("ball_inertia_kg_m2"));
+  for (const auto& e : output.events) EXPECT_TRUE(std::isnan(e.tangential_velocity_after));
+}
+
+TEST(RigidPendulum, FreeSpinImpactsFollowTheHandImpulseEquations) {
+  const double m = 0.5, l = 0.7, b = 0.05, r = 0.01, e_n = 0.3, mu = 0.6;
+  const double ball_inertia = 0.4 * m * r * r, sin0 = (b - r) / l;
+  const double cos0 = std::sqrt(1.0 - sin0 * sin0);
+  const RunOutput rigid = run_scene({"model=rigid", "spin=free", "radius=0.01"}, 30.0);
+  const auto impacts = impacts_of(rigid);
+  ASSERT_GT(impacts.size(), 20u);
+  int sticks = 0, slides = 0;
+  for (const auto& e : impacts) {
+    const double w = e.wall;
+    EXPECT_NEAR(e.qdot_after, -e_n * e.qdot_before, 1e-12);
+    // rod: m l² Δθ̇ = W_N P_N + W_T,θ P_T with W_N = −w l cos θ0, W_T,θ = −w l sin θ0
+    const double p_n = e.normal_impulse;
+    const double p_t = (m * l * l * (e.qdot_after - e.qdot_before) + w * l * cos0 * p_n) /
+                       (-w * l * sin0);
+    EXPECT_GE(p_n, 0.0);
+    if (std::fabs(e.tangential_velocity_after) <= 1e-9) {
+      ++sticks;
+      EXPECT_LE(std::fabs(p_t), mu * p_n * (1.0 + 1e-9));
+      continue;
+    }
+    ++slides;
+    // slide: P_T = −μ s P_N; ball: I_b Δφ̇ = −w r P_T; Δγ_T = −l sin θ Δθ̇ − w r Δφ̇
+    const double s = e.tangential_velocity > 0 ? 1.0 : -1.0;
+    const double p_t_slide = -mu * s * p_n;
+    EXPECT_NEAR(p_t, p_t_slide, 1e-9 * (1.0 + std::fabs(p_n)));
+    const double delta_phi_dot = -w * r * p_t_slide / ball_inertia;
+    const double delta_gamma =
+        -w * l * sin0 * (e.qdot_after - e.qdot_before) - w * r * delta_phi_dot;
+    EXPECT_NEAR(e.tangential_velocity_after - e.tangential_velocity, delta_gamma, 1e-9);
+    EXPECT_GT(e.tangential_velocity_after * e.tangential_velocity, 0.0);  // no reversal
+  }
+  EXPECT_GT(sticks, 0);  // both branches of the impulse law were checked
+  EXPECT_GT(slides, 0);
+  EXPECT_TRUE(rigid.derived.contains("emergent_e_t_median"));
+}
+
+// The generalized contact of the pendulum through the contact-phase solver,
+// against the forces solved by hand from m l² θ̈ = h_θ + W_N λ_N + W_T,θ λ_T
+// with θ̈ = 0 (and, sticking, I_b φ̈ = −w r λ_T with γ̇_T = 0).
+TEST(RigidPendulum, ContactForcesAreTheHandSolutions) {
+  RigidPendulumParameters p;
+  p.pendulum.V0 = 4.163;
+  p.radius = 0.01;
+  const double m = 0.5, l = 0.7, b = 0.05, g = 9.81, w_forcing = 7.0, mu = 0.6;
+  const double sin0 = (b - p.radius) / l, cos0 = std::sqrt(1.0 - sin0 * sin0);
+  const double t = 0.1;  // g_e = g − V0 ω cos ωt < 0: the wall attracts
+  const double g_e = g - p.pendulum.V0 * w_forcing * std::cos(w_forcing * t);
+  ASSERT_LT(g_e, 0.0);
+  for (const int wall : {1, -1}) {
+    // spin locked, sliding with the pivot: W_T,θ = −w (l sin θ0 + r)
+    p.spin_free = false;
+    p.pendulum.mu = mu;
+    const RigidPendulumWalls locked(p);
+    const RigidPendulumWalls::State resting{wall * locked.wall_angle(), 0.0, 0.0, 0.0, 0.0};
+    const double slip = p.pendulum.V0 * std::sin(w_forcing * t);
+    const double s = slip > 0 ? 1.0 : -1.0;
+    const auto sliding = rigidbody::contact_forces<1>(locked.locked_spin_contact(wall, resting, t),
+                                                      mu, slip, 0.0);
+    ASSERT_EQ(sliding.regime, rigidbody::ContactRegime::slide);
+    EXPECT_NEAR(sliding.normal, -m * g_e * sin0 / (cos0 - s * mu * (sin0 + p.radius / l)), 1e-12);
+    EXPECT_NEAR(sliding.tangential, -mu * s * sliding.normal, 1e-12);
+
+    // spin free, rolling with the pivot: λ_T = −I_b V0 ω cos ωt / r²,
+    // λ_N = −m g_e tan θ0 − tan θ0 λ_T; this needs |λ_T| ≤ μ λ_N, so a
+    // rough wall (μ tan θ0 < 1 still)
+    p.spin_free = true;
+    p.pendulum.mu = 8.0;
+    ASSERT_LT(p.pendulum.mu * sin0 / cos0, 1.0);
+    const RigidPendulumWalls free_spin(p);
+    const double ball_inertia = 0.4 * m * p.radius * p.radius;
+    RigidPendulumWalls::State rolling = resting;
+    rolling[3] = wall * slip / p.radius;  // γ_T = V0 sin ωt − w r φ̇ = 0
+    const double lambda_t =
+        -ball_inertia * p.pendulum.V0 * w_forcing * std::cos(w_forcing * t) / (p.radius * p.radius);
+    const double lambda_n = -m * g_e * sin0 / cos0 - sin0 / cos0 * lambda_t;
+    ASSERT_LE(std::fabs(lambda_t), p.pendulum.mu * lambda_n);
+    const auto sticking = rigidbody::contact_forces<2>(
+        free_spin.free_spin_contact(wall, rolling, t), p.pendulum.mu, 0.0, 1e-12);
+    ASSERT_EQ(sticking.regime, rigidbody::ContactRegime::stick) << "wall " << wall;
+    EXPECT_NEAR(sticking.tangential, lambda_t, 1e-12);
+    EXPECT_NEAR(sticking.normal, lambda_n, 1e-12);
+
+    // at μ = 0.6 the same rolling state cannot stick: the slip starts
+    // opposite to the friction the rolling would need
+    const auto slipping = rigidbody::contact_forces<2>(
+        free_spin.free_spin_contact(wall, rolling, t), mu, 0.0, 1e-12);
+    ASSERT_EQ(slipping.regime, rigidbody::ContactRegime::slide);
+    EXPECT_EQ(slipping.slip_sign, lambda_t > 0 ? -1.0 : 1.0);
+    EXPECT_NEAR(slipping.normal, -m * g_e * sin0 / (cos0 - slipping.slip_sign * mu * sin0), 1e-12);
+  }
+}
+
+TEST(RigidPendulum, RadiusMustFitAndSpinNeedsARadius) {
+  EXPECT_THROW(run_scene({"model=rigid", "radius=0.05"}, 1.0), BadInput);
+  EXPECT_THROW(run_scene({"model=rigid", "spin=free", "radius=0"}, 1.0), BadInput);
+  try {
+    run_scene({"model=rigid", "radius=0.06"}, 1.0);
+    FAIL() << "no BadInput";
+  } catch (const BadInput& bad) {
+    EXPECT_EQ(bad.key(), "radius");
+    EXPECT_EQ(bad.value(), "0.06");
+  }
+}
+
+}  // namespace
+}  // namespace impactlab
