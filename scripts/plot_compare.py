@@ -61,6 +61,9 @@ def main(directory):
     top.set_ylabel("θ̇ before impact (rad/s)")
     top.set_title("impacts, matched by order in compare_impacts.csv")
     top.legend(fontsize=8)
+    if not contacts:
+        middle.text(0.5, 0.5, "no contact phase", transform=middle.transAxes, ha="center")
+    middle.set_xlim(top.get_xlim())
     middle.set_yticks(range(len(models)))
     middle.set_yticklabels(models)
     middle.set_xlabel("t (s)")
