@@ -51,6 +51,8 @@ def main(directory):
                      markersize=3, label=f"{model} ({len(points)} impacts)")
         spans = [(float(c["t_start"]), float(c["t_end"])) for c in contacts if c["model"] == model]
         middle.broken_barh([(a, b - a) for a, b in spans], (index - 0.4, 0.8))
+        # short intervals are invisible as bars: mark their starts too
+        middle.plot([a for a, _ in spans], [index] * len(spans), "|", markersize=14)
         q = column(section, "q_" + model)
         qdot = column(section, "qdot_" + model)
         pairs = [(a, b) for a, b in zip(q, qdot) if a is not None and b is not None]
