@@ -190,6 +190,35 @@ TEST(RigidPendulum, ContactForcesAreTheHandSolutions) {
   }
 }
 
+// Regression: a slide that started from a stick (or a stop of the slip) with
+// the slip at zero to round-off took its friction direction from the sign of
+// that round-off, hovered at γ_T = 0 and crawled through 6 million steps;
+// the slip direction is now the mode's. On a rough wall (μ = 15) the ball
+// rolls on the wall in every contact phase and the run takes as many steps as
+// on a smooth one, where it never rolls.
+TEST(RigidPendulum, RollingContactsDoNotCrawl) {
+  RunRequest request;
+  request.periods = 50.0;
+  request.sample_step = 1e-3;
+  const auto run_with = [&](const std::string& mu) {
+    Scene scene = load_scene("jin2003");
+    for (const std::string assignment : {"model=rigid", "spin=free", "radius=0.01", "V0=5"})
+      apply_override(scene, assignment);
+    apply_override(scene, "mu=" + mu);
+    return oscillator_entry(scene.oscillator).run(scene, request);
+  };
+  const RunOutput rough = run_with("15");
+  const RunOutput smooth = run_with("0.6");
+  EXPECT_EQ(rough.termination, "completed");
+  EXPECT_GT(rough.contact_phases, 40u);
+  std::size_t rolling = 0, rolling_smooth = 0;
+  for (const auto& sample : rough.samples) rolling += sample.mode.starts_with("stick") ? 1 : 0;
+  for (const auto& sample : smooth.samples) rolling_smooth += sample.mode.starts_with("stick") ? 1 : 0;
+  EXPECT_GT(rolling, 1000u);
+  EXPECT_EQ(rolling_smooth, 0u);
+  EXPECT_LT(rough.steps, 2 * smooth.steps);
+}
+
 TEST(RigidPendulum, RadiusMustFitAndSpinNeedsARadius) {
   EXPECT_THROW(run_scene({"model=rigid", "radius=0.05"}, 1.0), BadInput);
   EXPECT_THROW(run_scene({"model=rigid", "spin=free", "radius=0"}, 1.0), BadInput);
