@@ -310,9 +310,12 @@ class RigidPendulumWalls {
 
   // The contact problem at rest on wall w at time t: which contact mode, or
   // a Painlevé stop, or free flight (no compressive force).
+  // slip_stopped: the event is the slip reaching zero, so γ_T = 0 whatever
+  // its round-off (the contact problem then decides stick or slide, and the
+  // slide's direction).
   Transition<State, Mode> settle(Mode from, int wall, const State& resting, double t,
-                                 EventKind kind, EventLog& log) const {
-    const double slip = tangential_velocity(wall, resting, t);
+                                 EventKind kind, EventLog& log, bool slip_stopped = false) const {
+    const double slip = slip_stopped ? 0.0 : tangential_velocity(wall, resting, t);
     const rigidbody::ContactForces forces =
         spin_free_ ? rigidbody::contact_forces<2>(free_spin_contact(wall, resting, t), p_.mu, slip, 0.0)
                    : rigidbody::contact_forces<1>(locked_spin_contact(wall, resting, t), p_.mu,
@@ -363,7 +366,7 @@ class RigidPendulumWalls {
                                      EventLog& log) const {
     State resting = on_wall(wall, x);
     if (spin_free_) resting[3] = wall * pivot_velocity(t) / r_;  // γ_T = 0 exactly
-    return settle(mode, wall, resting, t, EventKind::slip_reversal, log);
+    return settle(mode, wall, resting, t, EventKind::slip_reversal, log, true);
   }
 
   // the friction force reached the cone's edge: slip starts opposite to λ_T
