@@ -51,6 +51,8 @@ def main(directory):
                      markersize=3, label=f"{model} ({len(points)} impacts)")
         spans = [(float(c["t_start"]), float(c["t_end"])) for c in contacts if c["model"] == model]
         middle.broken_barh([(a, b - a) for a, b in spans], (index - 0.4, 0.8))
+        # short intervals are invisible as bars: mark their starts too
+        middle.plot([a for a, _ in spans], [index] * len(spans), "|", markersize=14)
         q = column(section, "q_" + model)
         qdot = column(section, "qdot_" + model)
         pairs = [(a, b) for a, b in zip(q, qdot) if a is not None and b is not None]
@@ -61,6 +63,9 @@ def main(directory):
     top.set_ylabel("θ̇ before impact (rad/s)")
     top.set_title("impacts, matched by order in compare_impacts.csv")
     top.legend(fontsize=8)
+    if not contacts:
+        middle.text(0.5, 0.5, "no contact phase", transform=middle.transAxes, ha="center")
+    middle.set_xlim(top.get_xlim())
     middle.set_yticks(range(len(models)))
     middle.set_yticklabels(models)
     middle.set_xlabel("t (s)")

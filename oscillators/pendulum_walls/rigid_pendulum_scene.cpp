@@ -18,8 +18,10 @@ namespace {
 std::string_view mode_name(RigidPendulumWalls::Mode mode) {
   switch (mode) {
     case RigidPendulumWalls::Mode::free: return "free";
-    case RigidPendulumWalls::Mode::slide_right: return "slide_right";
-    case RigidPendulumWalls::Mode::slide_left: return "slide_left";
+    case RigidPendulumWalls::Mode::slide_right_pos: return "slide_right_pos";
+    case RigidPendulumWalls::Mode::slide_right_neg: return "slide_right_neg";
+    case RigidPendulumWalls::Mode::slide_left_pos: return "slide_left_pos";
+    case RigidPendulumWalls::Mode::slide_left_neg: return "slide_left_neg";
     case RigidPendulumWalls::Mode::stick_right: return "stick_right";
     case RigidPendulumWalls::Mode::stick_left: return "stick_left";
   }

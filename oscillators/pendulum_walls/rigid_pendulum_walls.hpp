@@ -21,8 +21,8 @@
 // rule, and the Newton–Coulomb impulse on the rank-one K slides with
 // θ̇⁺ = −e_n θ̇⁻, which is Model N's impact law.
 //
-// Modes: free flight; sliding contact on a wall (θ ≡ ±θ0, θ̇ = 0; the ball
-// slides and, if free, is spun by friction); sticking contact (spin free
+// Modes: free flight; sliding contact on a wall with a given slip direction
+// (θ ≡ ±θ0, θ̇ = 0; the ball slides and, if free, is spun by friction); sticking contact (spin free
 // only: the ball rolls on the wall as the pivot moves it). The stick case of
 // the impulse has tangential restitution 0 (the lecture's default): any
 // tangential restitution of the model emerges from the impulse mechanics.
@@ -54,7 +54,18 @@ struct RigidPendulumParameters {
 class RigidPendulumWalls {
  public:
   using State = std::array<double, 5>;
-  enum class Mode { free, slide_right, slide_left, stick_right, stick_left };
+  // slide modes carry the slip's sign s = sgn γ_T (pos: the contact point
+  // slides down the wall, y down), so that the friction's direction is that
+  // of the mode and not of a slip that sits at zero to round-off
+  enum class Mode {
+    free,
+    slide_right_pos,
+    slide_right_neg,
+    slide_left_pos,
+    slide_left_neg,
+    stick_right,
+    stick_left,
+  };
   static constexpr std::size_t max_witnesses = 2;
 
   explicit RigidPendulumWalls(const RigidPendulumParameters& p)
@@ -114,7 +125,7 @@ class RigidPendulumWalls {
       return;
     }
     const double slip = tangential_velocity(wall, x, t);
-    const double s = slip > 0.0 ? 1.0 : slip < 0.0 ? -1.0 : 0.0;
+    const double s = slip_sign_of(mode);
     const double lambda_n = sliding_normal_force(t, s);
     // I_b φ̈ = W_T,φ λ_T = (−w r)(−μ s λ_N)
     dxdt[3] = spin_free_ ? wall * r_ * p_.mu * s * lambda_n / ball_inertia_ : 0.0;
@@ -125,13 +136,13 @@ class RigidPendulumWalls {
 
   [[nodiscard]] TriggerDirection trigger_direction(Mode mode, std::size_t k) const {
     if (mode == Mode::free || k == 0 || is_stick(mode)) return TriggerDirection::falling;
-    return TriggerDirection::either;
+    return slip_sign_of(mode) > 0.0 ? TriggerDirection::falling : TriggerDirection::rising;
   }
 
   // free:  k = 0, 1 angular gaps θ0 ∓ θ to the right and left walls (rad)
   // slide: k = 0 the frictionless normal force −m g_e tan θ0 (N), with the
   //        sign and zeros of λ_N while the contact is consistent (as Model N);
-  //        k = 1 the slip γ_T (m/s)
+  //        k = 1 the slip γ_T (m/s), reaching zero from the mode's side
   // stick: k = 0 the sticking normal force λ_N (N); k = 1 the friction cone
   //        margin μ λ_N − |λ_T| (N)
   [[nodiscard]] WitnessSample witness(Mode mode, std::size_t k, const State& x, double t) const {
@@ -150,7 +161,7 @@ class RigidPendulumWalls {
       return {-p_.m * effective_gravity(t) * sin0_ / cos0_,
               -p_.m * effective_gravity_rate(t) * sin0_ / cos0_};
     const double slip = tangential_velocity(wall, x, t);
-    const double s = slip > 0.0 ? 1.0 : slip < 0.0 ? -1.0 : 0.0;
+    const double s = slip_sign_of(mode);
     const double spin_acceleration =
         spin_free_ ? wall * r_ * p_.mu * s * sliding_normal_force(t, s) / ball_inertia_ : 0.0;
     return {slip, pivot_acceleration(t) - wall * r_ * spin_acceleration};
@@ -197,10 +208,19 @@ class RigidPendulumWalls {
   };
 
   static int wall_of(Mode mode) {
-    return mode == Mode::slide_right || mode == Mode::stick_right ? 1 : -1;
+    return mode == Mode::slide_right_pos || mode == Mode::slide_right_neg ||
+                   mode == Mode::stick_right
+               ? 1
+               : -1;
+  }
+  static double slip_sign_of(Mode mode) {
+    return mode == Mode::slide_right_pos || mode == Mode::slide_left_pos ? 1.0 : -1.0;
   }
   static bool is_stick(Mode mode) { return mode == Mode::stick_right || mode == Mode::stick_left; }
-  static Mode slide_mode(int wall) { return wall > 0 ? Mode::slide_right : Mode::slide_left; }
+  static Mode slide_mode(int wall, double s) {
+    if (wall > 0) return s > 0.0 ? Mode::slide_right_pos : Mode::slide_right_neg;
+    return s > 0.0 ? Mode::slide_left_pos : Mode::slide_left_neg;
+  }
   static Mode stick_mode(int wall) { return wall > 0 ? Mode::stick_right : Mode::stick_left; }
 
   // λ_N of a sliding contact at rest on either wall with slip sign s (θ̈ = 0):
@@ -290,9 +310,12 @@ class RigidPendulumWalls {
 
   // The contact problem at rest on wall w at time t: which contact mode, or
   // a Painlevé stop, or free flight (no compressive force).
+  // slip_stopped: the event is the slip reaching zero, so γ_T = 0 whatever
+  // its round-off (the contact problem then decides stick or slide, and the
+  // slide's direction).
   Transition<State, Mode> settle(Mode from, int wall, const State& resting, double t,
-                                 EventKind kind, EventLog& log) const {
-    const double slip = tangential_velocity(wall, resting, t);
+                                 EventKind kind, EventLog& log, bool slip_stopped = false) const {
+    const double slip = slip_stopped ? 0.0 : tangential_velocity(wall, resting, t);
     const rigidbody::ContactForces forces =
         spin_free_ ? rigidbody::contact_forces<2>(free_spin_contact(wall, resting, t), p_.mu, slip, 0.0)
                    : rigidbody::contact_forces<1>(locked_spin_contact(wall, resting, t), p_.mu,
@@ -315,8 +338,9 @@ class RigidPendulumWalls {
     record.tangential_velocity = slip;
     record.friction_work = resting[4];
     log.record(record);
-    const Mode next =
-        forces.regime == rigidbody::ContactRegime::stick ? stick_mode(wall) : slide_mode(wall);
+    const Mode next = forces.regime == rigidbody::ContactRegime::stick
+                          ? stick_mode(wall)
+                          : slide_mode(wall, forces.slip_sign);
     return {resting, next, t, false};
   }
 
@@ -342,13 +366,16 @@ class RigidPendulumWalls {
                                      EventLog& log) const {
     State resting = on_wall(wall, x);
     if (spin_free_) resting[3] = wall * pivot_velocity(t) / r_;  // γ_T = 0 exactly
-    return settle(mode, wall, resting, t, EventKind::slip_reversal, log);
+    return settle(mode, wall, resting, t, EventKind::slip_reversal, log, true);
   }
 
   // the friction force reached the cone's edge: slip starts opposite to λ_T
   Transition<State, Mode> stick_breaks(Mode mode, int wall, const State& x, double t,
                                        EventLog& log) const {
-    const State resting = on_wall(wall, x);
+    // the slip starts from zero: the integrated spin's round-off must not
+    // start it on the wrong side of its witness
+    State resting = on_wall(wall, x);
+    resting[3] = wall * pivot_velocity(t) / r_;
     const double s = stick_forces(t).tangential > 0.0 ? -1.0 : 1.0;
     if (!(friction_denominator(s) > 1e-9)) return stop_painleve(mode, wall, resting, t, 0.0, log);
     EventRecord record{t, EventKind::slip_reversal, wall, resting[0], 0.0, 0.0};
@@ -356,7 +383,7 @@ class RigidPendulumWalls {
     record.tangential_velocity = 0.0;
     record.friction_work = resting[4];
     log.record(record);
-    return {resting, slide_mode(wall), t, false};
+    return {resting, slide_mode(wall, s), t, false};
   }
 
   PendulumWallsParameters p_;

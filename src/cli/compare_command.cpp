@@ -22,6 +22,8 @@ namespace {
 
 // The models to run: the listed ones, or every model the scene accepts.
 std::vector<std::string> models_to_run(const Scene& scene, const std::string& list, bool quiet) {
+  if (!scene.values.contains("model"))
+    throw BadInput("oscillator", scene.oscillator, "this oscillator has no `model` key to compare");
   if (!list.empty()) return parse_model_list(list);
   std::vector<std::string> accepted;
   for (const auto& model : scene_models(scene)) {
