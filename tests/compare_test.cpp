@@ -4,8 +4,8 @@
 // * the program on jin2003 with newton,rigid: complete outputs, and, since
 //   the rigid model at radius 0 with the spin locked is Model N, the two
 //   impact columns agree to 1e-9 (MODEL.md §2's reduction);
-// * a model the scene rejects (paper, in this version) exits 2 with one line
-//   naming the key and the value, and writes nothing.
+// * a model the scene rejects (an unknown one) exits 2 with one line naming
+//   the key and the value, and writes nothing.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -148,12 +148,12 @@ TEST(CompareCommand, NewtonAndReducedRigidAgreeOnJin2003) {
 }
 
 TEST(CompareCommand, RejectedModelExitsTwoAndWritesNothing) {
-  const auto out = scratch("paper");
+  const auto out = scratch("unknown");
   const Outcome outcome =
-      run("compare jin2003 --models newton,paper --periods 2 --quiet --out " + out.string());
+      run("compare jin2003 --models newton,bogus --periods 2 --quiet --out " + out.string());
   EXPECT_EQ(outcome.status, 2);
   EXPECT_EQ(std::count(outcome.err.begin(), outcome.err.end(), '\n'), 1) << outcome.err;
-  EXPECT_NE(outcome.err.find("model = paper"), std::string::npos) << outcome.err;
+  EXPECT_NE(outcome.err.find("model = bogus"), std::string::npos) << outcome.err;
   EXPECT_FALSE(std::filesystem::exists(out / "compare_impacts.csv"));
   EXPECT_FALSE(std::filesystem::exists(out / "compare.json"));
 }
