@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   const std::vector<Command> commands = {
       add_scenes_command(app),
       add_simulate_command(app),
+      add_bench_command(app),
   };
 
   const std::vector<std::string> command_line(argv, argv + argc);
