@@ -130,8 +130,11 @@ void run_scipy(const BenchOptions& options, const BenchPlan& plan,
                                {"oscillator", result.scene.oscillator},
                                {"keys", keys},
                                {"t0", result.scene.number("t0")},
+                               // half a period past the reference's window, so that an
+                               // impact at its very end is not lost; max_impacts stops it
                                {"t_end", result.scene.number("t0") +
-                                             plan.reference_periods * result.forcing_period},
+                                             (plan.reference_periods + 0.5) *
+                                                 result.forcing_period},
                                {"max_impacts", result.reference.impacts.size()},
                                {"methods", {plan.scipy_methods[m]}},
                                {"rtols", plan.scipy_rtols[m]},
