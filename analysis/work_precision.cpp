@@ -1,8 +1,8 @@
 #include "analysis/work_precision.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <stdexcept>
 
 #include "io/oscillator_registry.hpp"
@@ -25,6 +25,14 @@ Scene with_tolerances(Scene scene, const std::string& method, double rtol, doubl
   apply_override(scene, "integrator.rtol=" + exact_text(rtol));
   apply_override(scene, "integrator.atol=" + exact_text(atol));
   return scene;
+}
+
+// CPU time of the calling thread (s): on a shared machine, the work of one
+// core, unlike wall time, does not grow with the other processes' load
+double thread_cpu_seconds() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
 double median(std::vector<double> values) {
@@ -134,18 +142,19 @@ WorkPrecisionPoint measure_point(const Scene& scene, const std::string& method, 
   point.method = method;
   point.rtol = rtol;
   point.atol = atol;
-  std::vector<double> seconds;
+  std::vector<double> cpu_seconds, wall_seconds;
   for (int repetition = 0; repetition < std::max(repetitions, 1); ++repetition) {
-    // wall-clock stamps at each hundredth of the simulated time, for the
-    // first and last tenth of the run
-    std::vector<std::chrono::steady_clock::time_point> stamps;
+    // thread CPU time at each hundredth of the simulated time, for the first
+    // and last tenth of the run
+    std::vector<double> stamps;
     stamps.reserve(128);
     RunRequest request;
     request.periods = periods;
-    request.progress = [&stamps](double) { stamps.push_back(std::chrono::steady_clock::now()); };
-    const auto start = std::chrono::steady_clock::now();
+    request.progress = [&stamps](double) { stamps.push_back(thread_cpu_seconds()); };
+    const double start = thread_cpu_seconds();
     const RunOutput output = oscillator_entry(scene.oscillator).run(run_scene, request);
-    seconds.push_back(output.wall_time);
+    cpu_seconds.push_back(thread_cpu_seconds() - start);
+    wall_seconds.push_back(output.wall_time);
     if (repetition > 0) continue;
 
     const std::vector<ImpactSample> impacts = impacts_of(output.events);
@@ -167,14 +176,17 @@ WorkPrecisionPoint measure_point(const Scene& scene, const std::string& method, 
       };
       const auto first = impacts_between(0.0, 0.1);
       const auto last = impacts_between(0.89, 0.99);
-      const double first_seconds = std::chrono::duration<double>(stamps[9] - start).count();
-      const double last_seconds = std::chrono::duration<double>(stamps[98] - stamps[88]).count();
-      if (first > 0) point.first_tenth_seconds_per_impact = first_seconds / static_cast<double>(first);
-      if (last > 0) point.last_tenth_seconds_per_impact = last_seconds / static_cast<double>(last);
+      if (first > 0)
+        point.first_tenth_seconds_per_impact = (stamps[9] - start) / static_cast<double>(first);
+      if (last > 0)
+        point.last_tenth_seconds_per_impact =
+            (stamps[98] - stamps[88]) / static_cast<double>(last);
     }
   }
-  point.seconds_per_impact =
-      point.impacts > 0 ? median(seconds) / static_cast<double>(point.impacts) : NAN;
+  if (point.impacts > 0) {
+    point.seconds_per_impact = median(cpu_seconds) / static_cast<double>(point.impacts);
+    point.wall_seconds_per_impact = median(wall_seconds) / static_cast<double>(point.impacts);
+  }
   return point;
 }
 

@@ -167,11 +167,13 @@ struct WorkPrecisionPoint {
   std::string method;
   double rtol = 0.0, atol = 0.0;
   std::uint64_t impacts = 0;           // impacts of one timed run
-  double seconds_per_impact = 0.0;     // median over the repetitions (wall, one core)
+  double seconds_per_impact = NAN;       // CPU s of the running thread per impact, median
+                                        // over the repetitions (one core)
+  double wall_seconds_per_impact = NAN;  // wall s per impact, median
   double rhs_per_impact = 0.0;         // right-hand-side evaluations per impact
   double steps_per_impact = 0.0;       // accepted steps per impact
   ImpactErrors errors;                 // against the case's reference
-  double first_tenth_seconds_per_impact = NAN;  // wall per impact in the first tenth of
+  double first_tenth_seconds_per_impact = NAN;  // CPU s per impact in the first tenth of
   double last_tenth_seconds_per_impact = NAN;   // simulated time and in the last tenth
   std::string termination;             // of the timed run
 };

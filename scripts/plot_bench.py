@@ -5,7 +5,7 @@ Usage: plot_bench.py DIR
 
 Reads DIR/work_precision.csv and DIR/work_precision.json and writes, for each
 bench case, DIR/<case>.png: the largest impact-time error over the first N
-impacts against the wall time per impact (left) and against the right-hand-side
+impacts against the CPU time per impact (left) and against the right-hand-side
 evaluations per impact (right), one line per stepper over its tolerance
 ladder; impactlab's steppers solid, SciPy's solve_ivp event loop dashed.
 """
@@ -53,7 +53,7 @@ def main():
             for axis in (by_time, by_rhs):
                 axis.axhline(reference["time_spread"], color="grey", linewidth=0.8, linestyle=":",
                              label="reference spread")
-        by_time.set_xlabel("wall time per impact (µs, one core)")
+        by_time.set_xlabel("CPU time per impact (µs, one core)")
         by_rhs.set_xlabel("right-hand-side evaluations per impact")
         for axis in (by_time, by_rhs):
             axis.set_ylabel("max impact-time error over the first "
