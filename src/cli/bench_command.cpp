@@ -4,12 +4,13 @@
 // Writes work_precision.csv and its sidecar work_precision.json (meta last),
 // and <case>.png by scripts/plot_bench.py, into --out
 // (default notebooks_data/bench).
+#include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <numbers>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <numbers>
+#include <variant>
 
 #include <fmt/format.h>
 
@@ -151,7 +152,10 @@ void run_scipy(const BenchOptions& options, const BenchPlan& plan,
                                           spec_path.string(), result_path.string());
   const int status = std::system(command.c_str());
   std::filesystem::remove(spec_path);
-  if (status != 0) throw std::runtime_error("the SciPy event loop failed: " + command);
+  if (status != 0) {
+    std::filesystem::remove(result_path);
+    throw std::runtime_error("the SciPy event loop failed: " + command);
+  }
   nlohmann::json scipy_result;
   {
     std::ifstream result_file(result_path);
