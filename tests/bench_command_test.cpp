@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <sys/wait.h>
@@ -145,14 +146,23 @@ TEST_F(BenchQuick, ErrorsFallAsTheToleranceTightens) {
   EXPECT_LT(errors["bouncing_ball/impactlab/exact"].at(1e-10), 1e-12);
 }
 
-TEST(BenchBadInput, RepetitionsOutOfRangeExitsTwo) {
+// bad options are refused before any work: exit 2, one line naming the option
+TEST(BenchBadInput, ExitsTwoWithOneLineNamingTheOption) {
   const fs::path directory =
       fs::temp_directory_path() / ("impactlab_bench_bad_" + std::to_string(::getpid()));
   fs::create_directories(directory);
-  const CommandResult result = run_impactlab("bench --quick --repetitions 0", directory);
-  EXPECT_EQ(result.status, 2);
-  EXPECT_NE(result.stderr_text.find("--repetitions"), std::string::npos) << result.stderr_text;
-  EXPECT_EQ(std::count(result.stderr_text.begin(), result.stderr_text.end(), '\n'), 1);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--repetitions 0", "--repetitions"},
+      {"--python /nonexistent/python", "--python"},
+      {"--out /proc/impactlab/bench", "--out"},
+  };
+  for (const auto& [arguments, option] : cases) {
+    const CommandResult result = run_impactlab("bench --quick " + arguments, directory);
+    EXPECT_EQ(result.status, 2) << arguments;
+    EXPECT_NE(result.stderr_text.find(option), std::string::npos) << result.stderr_text;
+    EXPECT_EQ(std::count(result.stderr_text.begin(), result.stderr_text.end(), '\n'), 1)
+        << result.stderr_text;
+  }
   fs::remove_all(directory);
 }
 

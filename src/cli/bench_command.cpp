@@ -469,7 +469,8 @@ Command add_bench_command(CLI::App& app) {
                       "timed repetitions per point (median; default 3, 1 with --quick)")
       ->check(CLI::Range(1, 100));
   command->add_option("--python", options->python, "Python with NumPy, SciPy and matplotlib")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::ExistingFile);
   command->add_flag("--quiet", options->quiet, "print nothing but errors");
   return {command, [options](const std::vector<std::string>& command_line) {
             return run_bench(*options, command_line);
