@@ -21,6 +21,7 @@
 #include <boost/math/tools/roots.hpp>
 #include <gtest/gtest.h>
 
+#include "analysis/work_precision.hpp"
 #include "core/simulator.hpp"
 #include "integrate/stepper_dispatch.hpp"
 #include "oscillators/bouncing_ball/bouncing_ball.hpp"
@@ -227,6 +228,23 @@ TEST_P(BouncingBallAgainstClosedForm, FlightsAreExactAtAnyTolerance) {
 INSTANTIATE_TEST_SUITE_P(AllSteppers, BouncingBallAgainstClosedForm,
                          ::testing::ValuesIn(impactlab::stepper_names),
                          [](const auto& info) { return std::string(info.param); });
+
+// The bench's closed-form reference (analysis/work_precision.hpp: the
+// oscillator's exact_flow with a root search of its own) against the
+// independent flights above, impact by impact.
+TEST(WorkPrecisionReference, ClosedFormImpactsMatchIndependentFlights) {
+  const BouncingBallParameters p = periodic_case();
+  const Flight start = periodic_start(p);
+  const auto reference = reference_impacts(start, compared_impacts);
+  const auto impacts = impactlab::closed_form_impacts(
+      BouncingBall(p), BouncingBall::State{start.y0, start.v0}, BouncingBall::Mode::free,
+      start.t0, reference.back().t + 0.1, compared_impacts);
+  ASSERT_EQ(impacts.size(), reference.size());
+  for (std::size_t i = 0; i < impacts.size(); ++i) {
+    EXPECT_NEAR(impacts[i].t, reference[i].t, 1e-12) << "impact " << i;
+    EXPECT_NEAR(impacts[i].qdot_before, reference[i].ydot_before, 1e-11) << "impact " << i;
+  }
+}
 
 TEST(BouncingBallExactFlow, FreeFlightIsAParabola) {
   const BouncingBall system(periodic_case());

@@ -22,6 +22,7 @@
 #include <boost/math/tools/roots.hpp>
 #include <gtest/gtest.h>
 
+#include "analysis/work_precision.hpp"
 #include "core/simulator.hpp"
 #include "integrate/stepper_dispatch.hpp"
 #include "oscillators/linear_impact/linear_impact.hpp"
@@ -244,6 +245,22 @@ TEST_P(LinearImpactAgainstClosedForm, ErrorShrinksAsToleranceTightens) {
 INSTANTIATE_TEST_SUITE_P(AllSteppers, LinearImpactAgainstClosedForm,
                          ::testing::ValuesIn(impactlab::stepper_names),
                          [](const auto& info) { return std::string(info.param); });
+
+// The bench's closed-form reference (analysis/work_precision.hpp: the
+// oscillator's exact_flow with a root search of its own) against the
+// independent closed form above, impact by impact.
+TEST(WorkPrecisionReference, ClosedFormImpactsMatchIndependentClosedForm) {
+  const LinearImpactParameters p = periodic_case();
+  const auto reference = reference_impacts(p, 0.0, 0.0, 0.0, compared_impacts);
+  const auto impacts = impactlab::closed_form_impacts(
+      LinearImpact(p), LinearImpact::State{0.0, 0.0}, LinearImpact::Mode::free, 0.0,
+      reference.back().t + 1.0, compared_impacts);
+  ASSERT_EQ(impacts.size(), reference.size());
+  for (std::size_t i = 0; i < impacts.size(); ++i) {
+    EXPECT_NEAR(impacts[i].t, reference[i].t, 1e-11) << "impact " << i;
+    EXPECT_NEAR(impacts[i].qdot_before, reference[i].xdot_before, 1e-11) << "impact " << i;
+  }
+}
 
 TEST(LinearImpactExactFlow, MatchesIndependentClosedForm) {
   const LinearImpactParameters p = periodic_case();

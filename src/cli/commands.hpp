@@ -6,6 +6,7 @@
 
 namespace impactlab::cli {
 
+Command add_bench_command(CLI::App& app);
 Command add_scenes_command(CLI::App& app);
 Command add_simulate_command(CLI::App& app);
 Command add_reproduce_command(CLI::App& app);

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
       add_simulate_command(app),
       add_reproduce_command(app),
       add_compare_command(app),
+      add_bench_command(app),
   };
 
   const std::vector<std::string> command_line(argv, argv + argc);

@@ -107,8 +107,9 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
   const std::size_t witness_count = system.witness_count(mode);
 
   // states at the sample times, shared by every witness
-  std::array<double, max_samples + 1> times{};
-  std::array<State, max_samples + 1> states{};
+  // filled up to n below (no zero-initialisation: this runs once per step)
+  std::array<double, max_samples + 1> times;
+  std::array<State, max_samples + 1> states;
   for (int i = 0; i <= n; ++i) {
     times[i] = i == n ? tb : ta + (tb - ta) * static_cast<double>(i) / n;
     if (i == 0)
