@@ -522,6 +522,40 @@ TEST_P(HardCasePendulum, StartOnAWallMovingInIsOneImpactAtT0) {
   EXPECT_GT(r.events[1].t, t0 + 1e-3);
 }
 
+// The accumulation rule where the wall's attraction is momentarily constant:
+// on the right wall at ωt0 = 0 with V0 = 1.5 m/s, g_e = g − V0 ω < 0 (the
+// wall attracts) and its rate is 0, so a first-order test alone accepts the
+// constant-acceleration estimate at once, with t_rem of several seconds
+// (a jump over periods where the wall repels). Every accepted accumulation
+// must lie within a stretch where g_e < 0 throughout, checked on a fine grid
+// from the impact that triggered it.
+TEST_P(HardCasePendulum, AccumulationNeverJumpsOverAStretchWhereTheWallRepels) {
+  PendulumWallsParameters p;
+  p.V0 = 1.5;
+  const PendulumWalls system(p);
+  // θ̇0 = 0.5 rad/s: the rebound escapes the weak attraction, no accumulation
+  // is due; θ̇0 = 0.002 rad/s: the rebounds are small enough to accumulate
+  // before the wall repels again (ωt = 0.365 rad)
+  for (const double rate : {0.5, 0.002}) {
+    const auto r = run(system, GetParam(), {system.wall_angle(), rate, 0.0},
+                       PendulumWalls::Mode::free, 0.0, 20.0, 1e-10, 1e-12);
+    int accumulations = 0;
+    for (std::size_t i = 1; i < r.events.size(); ++i) {
+      if (r.events[i].kind != EventKind::accumulation) continue;
+      ++accumulations;
+      const double from = r.events[i - 1].t, to = r.events[i].t;
+      for (int k = 0; k <= 1000; ++k) {
+        const double t = from + (to - from) * k / 1000.0;
+        ASSERT_LT(p.g - p.V0 * p.omega * std::cos(p.omega * t), 0.0)
+            << "θ̇0 = " << rate << ": accumulation at " << to << " s jumps over t = " << t;
+      }
+    }
+    if (rate < 0.01) {
+      EXPECT_GT(accumulations, 0);
+    }
+  }
+}
+
 // The ball resting on the table at t0 while the table pushes it (g + z̈ > 0
 // at t0 = 0): the event at t0 is a zero-speed touch, its own accumulation
 // point; it rides from t0 and is released at the closed-form time.

@@ -66,6 +66,9 @@ class BouncingBall {
   [[nodiscard]] double table_push_rate(double t) const {
     return -p_.A * p_.omega * p_.omega * p_.omega * std::cos(p_.omega * t);
   }
+  [[nodiscard]] double table_push_curvature(double t) const {
+    return p_.A * p_.omega * p_.omega * p_.omega * p_.omega * std::sin(p_.omega * t);
+  }
 
   [[nodiscard]] double max_step() const { return 2.0 * std::numbers::pi / p_.omega / 16.0; }
 
@@ -135,7 +138,8 @@ class BouncingBall {
     // chattering: is the table pushing the ball back, and is the accumulation
     // estimate good? (with g + z̈ <= 0 the table pulls away: the ball is free)
     const auto remaining = time_to_accumulation(
-        {std::fabs(impact.qdot_after), table_push(t), table_push_rate(t), p_.r},
+        {std::fabs(impact.qdot_after), table_push(t), table_push_rate(t), p_.r,
+         table_push_curvature(t)},
         p_.accumulation_tol, 1.0 / p_.omega);
     if (!remaining) return {after, Mode::free, t, false};
     return enter_stuck(t + *remaining, log);

@@ -63,12 +63,16 @@ class LinearImpact {
   [[nodiscard]] const LinearImpactParameters& parameters() const { return p_; }
 
   // ẍ of a mass at rest on the stop (x = σ, ẋ = 0): A cos ωt − σ. Positive
-  // while the forcing pushes the mass into the stop. Its rate is the second.
+  // while the forcing pushes the mass into the stop; then its rate and the
+  // rate of that.
   [[nodiscard]] double stop_push(double t) const {
     return p_.A * std::cos(p_.omega * t) - p_.sigma;
   }
   [[nodiscard]] double stop_push_rate(double t) const {
     return -p_.A * p_.omega * std::sin(p_.omega * t);
+  }
+  [[nodiscard]] double stop_push_curvature(double t) const {
+    return -p_.A * p_.omega * p_.omega * std::cos(p_.omega * t);
   }
 
   [[nodiscard]] double max_step() const {
@@ -159,7 +163,8 @@ class LinearImpact {
 
     // chattering: is the stop attracting, and is the accumulation estimate good?
     const auto remaining =
-        time_to_accumulation({std::fabs(impact.qdot_after), stop_push(t), stop_push_rate(t), p_.r},
+        time_to_accumulation({std::fabs(impact.qdot_after), stop_push(t), stop_push_rate(t), p_.r,
+                              stop_push_curvature(t)},
                              p_.accumulation_tol, 1.0 / p_.omega);
     if (!remaining) return {after, Mode::free, t, false};
     return enter_stuck(t + *remaining, log);

@@ -80,6 +80,9 @@ class BasicPendulumWalls {
   [[nodiscard]] double effective_gravity_rate(double t) const {
     return p_.V0 * p_.omega * p_.omega * std::sin(p_.omega * t);
   }
+  [[nodiscard]] double effective_gravity_curvature(double t) const {
+    return p_.V0 * p_.omega * p_.omega * p_.omega * std::cos(p_.omega * t);
+  }
   // velocity of the pivot, and of a bob resting on a wall, along the wall (m/s)
   [[nodiscard]] double pivot_velocity(double t) const { return p_.V0 * std::sin(p_.omega * t); }
 
@@ -226,8 +229,10 @@ class BasicPendulumWalls {
     // chattering: is the wall attracting, and is the accumulation estimate good?
     const double approach = -effective_gravity(t) * sin0_ * cos0_;
     const double approach_rate = -effective_gravity_rate(t) * sin0_ * cos0_;
+    const double approach_curvature = -effective_gravity_curvature(t) * sin0_ * cos0_;
     const auto remaining = time_to_accumulation(
-        {p_.l * cos0_ * std::fabs(impact.qdot_after), approach, approach_rate, p_.e_n},
+        {p_.l * cos0_ * std::fabs(impact.qdot_after), approach, approach_rate, p_.e_n,
+         approach_curvature},
         p_.accumulation_tol, 1.0 / p_.omega);
     if (!remaining) return {after, Mode::free, t, false};
     return enter_contact(wall, x[2], t + *remaining, log);

@@ -89,6 +89,9 @@ class RigidPendulumWalls {
   [[nodiscard]] double effective_gravity_rate(double t) const {
     return p_.V0 * p_.omega * p_.omega * std::sin(p_.omega * t);
   }
+  [[nodiscard]] double effective_gravity_curvature(double t) const {
+    return p_.V0 * p_.omega * p_.omega * p_.omega * std::cos(p_.omega * t);
+  }
   [[nodiscard]] double pivot_velocity(double t) const { return p_.V0 * std::sin(p_.omega * t); }
   [[nodiscard]] double pivot_acceleration(double t) const {
     return p_.V0 * p_.omega * std::cos(p_.omega * t);
@@ -297,12 +300,14 @@ class RigidPendulumWalls {
     log.record(record);
 
     // chattering, with Model N's rule: normal acceleration towards the wall
-    // at rest, −γ̈_N = −(m l² / M_θ) g_e sin θ0 cos θ0, and its rate
+    // at rest, −γ̈_N = −(m l² / M_θ) g_e sin θ0 cos θ0, and its two rates
     const double share = rod_inertia_ / theta_inertia_;
     const double approach = -effective_gravity(t) * sin0_ * cos0_ * share;
     const double approach_rate = -effective_gravity_rate(t) * sin0_ * cos0_ * share;
+    const double approach_curvature = -effective_gravity_curvature(t) * sin0_ * cos0_ * share;
     const auto remaining = time_to_accumulation(
-        {p_.l * cos0_ * std::fabs(impact.theta_dot), approach, approach_rate, p_.e_n},
+        {p_.l * cos0_ * std::fabs(impact.theta_dot), approach, approach_rate, p_.e_n,
+         approach_curvature},
         p_.accumulation_tol, 1.0 / p_.omega);
     if (!remaining) return {after, Mode::free, t, false};
     return enter_contact(wall, after, t + *remaining, log);
