@@ -22,6 +22,7 @@
 #include "contact/painleve.hpp"
 #include "core/event_log.hpp"
 #include "core/hybrid_system.hpp"
+#include "core/has_jacobian.hpp"
 
 namespace impactlab {
 
@@ -139,6 +140,46 @@ class PendulumWalls {
     return slip_reversal(mode, wall, x, t, log);
   }
 
+  // --- linearisation (core/has_jacobian.hpp), on (θ, θ̇); W_f is bookkeeping ---
+
+  // free: ∂(θ̇, θ̈)/∂(θ, θ̇) = [[0, 1], [−g_e(t) cos θ / l, −d / (m l²)]];
+  // contact: zero (θ ≡ ±θ0, θ̇ = 0)
+  void jacobian(Mode mode, const State& x, double t, TangentMatrix& j) const {
+    if (mode != Mode::free) {
+      j = {};
+      return;
+    }
+    j = {{{0.0, 1.0},
+          {-effective_gravity(t) * std::cos(x[0]) / p_.l, -p_.d / (p_.m * p_.l * p_.l)}}};
+  }
+
+  // free: the angular gaps θ0 ∓ θ; contact: the witnesses depend on t alone
+  [[nodiscard]] TangentVector witness_gradient(Mode mode, std::size_t k, const State&,
+                                               double) const {
+    if (mode != Mode::free) return {0.0, 0.0};
+    return {k == 0 ? -1.0 : 1.0, 0.0};
+  }
+
+  // An impact sets θ⁺ = ±θ0, θ̇⁺ = −e_n θ̇⁻: ∂g/∂x = [[0, 0], [0, −e_n]], no
+  // explicit time dependence. A grazing touch leaves the state alone. Entering
+  // contact (an accumulation), a release (where g_e vanishes, a time set by the
+  // forcing) and a slip reversal collapse nearby states into one.
+  [[nodiscard]] ResetJacobian reset_jacobian(Mode mode, std::size_t, CrossingKind crossing,
+                                             const State&, double t,
+                                             const Transition<State, Mode>& after) const {
+    ResetJacobian reset;
+    if (crossing == CrossingKind::grazing || after.stop) {
+      reset.state = {{{1.0, 0.0}, {0.0, 1.0}}};
+      return reset;
+    }
+    if (mode != Mode::free || after.mode != Mode::free || after.time > t) {
+      reset.collapses = true;
+      return reset;
+    }
+    reset.state = {{{0.0, 0.0}, {0.0, -p_.e_n}}};
+    return reset;
+  }
+
  private:
   static double sign(double v) { return v > 0.0 ? 1.0 : v < 0.0 ? -1.0 : 0.0; }
 
@@ -242,5 +283,6 @@ class PendulumWalls {
 };
 
 static_assert(HybridSystem<PendulumWalls>);
+static_assert(HasJacobian<PendulumWalls>);
 
 }  // namespace impactlab

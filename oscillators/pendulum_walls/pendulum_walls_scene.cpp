@@ -2,6 +2,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "analysis/run_periodic.hpp"
+#include "analysis/run_section.hpp"
 #include "io/bad_input.hpp"
 #include "io/oscillator_registry.hpp"
 #include "io/run_system.hpp"
@@ -61,7 +63,8 @@ std::string_view mode_name(PendulumWalls::Mode mode) {
   return "unknown";
 }
 
-RunOutput run(const Scene& scene, const RunRequest& request) {
+// The system a scene describes (checks that need several keys at once throw BadInput).
+PendulumWalls make_system(const Scene& scene) {
   const std::string& model = scene.text("model");
   if (model != "newton")
     throw BadInput("model", model, "not available in this version (only newton)");
@@ -81,14 +84,44 @@ RunOutput run(const Scene& scene, const RunRequest& request) {
   p.mu = scene.number("mu");
   p.accumulation_tol = scene.number("accumulation_tol");
   if (!(p.b < p.l)) throw BadInput("b", to_text(p.b), "the walls must be closer than l (b < l)");
-  const PendulumWalls system(p);
+  return PendulumWalls(p);
+}
 
+PendulumWalls::State initial_state(const Scene& scene, const PendulumWalls& system) {
   const double theta = scene.number("initial.theta");
   if (std::fabs(theta) > system.wall_angle())
     throw BadInput("initial.theta", to_text(theta),
                    "the bob would start inside a wall (|theta| > asin(b/l) = " +
                        to_text(system.wall_angle()) + ")");
-  const PendulumWalls::State x0{theta, scene.number("initial.theta_dot"), 0.0};
+  return {theta, scene.number("initial.theta_dot"), 0.0};
+}
+
+SectionResult section(const Scene& scene, const SectionRequest& request) {
+  const PendulumWalls system = make_system(scene);
+  const double theta0 = system.wall_angle();
+  // a continued state beyond a moved wall, or resting on a wall, starts on
+  // the wall at rest in free flight (the event at t0 decides contact again);
+  // the friction work restarts from zero at each parameter value
+  auto admissible = [theta0](PendulumWalls::State& x, PendulumWalls::Mode& mode) {
+    if (mode != PendulumWalls::Mode::free) x = {mode == PendulumWalls::Mode::contact_right ? theta0 : -theta0, 0.0, 0.0};
+    if (std::fabs(x[0]) > theta0) x[0] = std::copysign(theta0, x[0]);
+    x[2] = 0.0;
+    mode = PendulumWalls::Mode::free;
+  };
+  return run_section(system, initial_state(scene, system), PendulumWalls::Mode::free, scene,
+                     request, system.parameters().omega, admissible);
+}
+
+PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request) {
+  const PendulumWalls system = make_system(scene);
+  return run_periodic(system, initial_state(scene, system), PendulumWalls::Mode::free, scene,
+                      request, system.parameters().omega);
+}
+
+RunOutput run(const Scene& scene, const RunRequest& request) {
+  const PendulumWalls system = make_system(scene);
+  const PendulumWallsParameters& p = system.parameters();
+  const PendulumWalls::State x0 = initial_state(scene, system);
   const double period = 2.0 * std::numbers::pi / p.omega;
 
   RunOutput output =
@@ -108,7 +141,7 @@ RunOutput run(const Scene& scene, const RunRequest& request) {
 }  // namespace
 
 const OscillatorEntry& pendulum_walls_entry() {
-  static const OscillatorEntry entry{&schema(), &run};
+  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit};
   return entry;
 }
 

@@ -8,5 +8,8 @@ namespace impactlab::cli {
 
 Command add_scenes_command(CLI::App& app);
 Command add_simulate_command(CLI::App& app);
+Command add_poincare_command(CLI::App& app);
+Command add_sweep_command(CLI::App& app);
+Command add_periodic_command(CLI::App& app);
 
 }  // namespace impactlab::cli

@@ -92,5 +92,9 @@ extern template OdeintFehlberg78<std::array<double, 2>>::OdeintFehlberg78(
     const StepperSettings&);
 extern template OdeintFehlberg78<std::array<double, 3>>::OdeintFehlberg78(
     const StepperSettings&);
+extern template OdeintFehlberg78<std::array<double, 6>>::OdeintFehlberg78(
+    const StepperSettings&);
+extern template OdeintFehlberg78<std::array<double, 7>>::OdeintFehlberg78(
+    const StepperSettings&);
 
 }  // namespace impactlab
