@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   const std::vector<Command> commands = {
       add_scenes_command(app),
       add_simulate_command(app),
-      add_poincare_command(app), add_sweep_command(app), add_periodic_command(app),
+      add_poincare_command(app), add_sweep_command(app), add_periodic_command(app), add_spectrum_command(app),
   };
 
   const std::vector<std::string> command_line(argv, argv + argc);
