@@ -12,6 +12,7 @@
 #include <string>
 #include <tuple>
 
+#include "analysis/crossing_section.hpp"
 #include "analysis/floquet.hpp"
 #include "analysis/flow_setup.hpp"
 #include "analysis/section.hpp"
@@ -130,6 +131,31 @@ SectionResult run_section(const System& system, const typename System::State& x0
       const double end = std::max(t + static_cast<double>(request.points) * period,
                                   observer.last_time());
       if (!advance(end, record_log, observer)) return result;
+    } else if (request.section.kind != SectionKind::impact) {
+      // a user-given section: the system with one more witness, in whole periods
+      const CrossingSection<System> crossing(system, request.section, result.points);
+      const std::uint64_t chunk = std::max<std::uint64_t>(request.points, 1);
+      for (std::uint64_t periods = 0; result.points.size() < request.points; periods += chunk) {
+        if (periods >= max_periods) {
+          result.termination = "crossings_not_reached";
+          break;
+        }
+        const auto run = with_stepper<CrossingSection<System>>(
+            setup.method, stepper_settings(system, setup), [&](auto& crossing_stepper) {
+              return simulate(crossing, crossing_stepper, x, mode, t,
+                              t + static_cast<double>(chunk) * period, options, record_log);
+            });
+        result.steps += run.counters.steps;
+        result.rhs_evaluations += run.counters.rhs_evaluations;
+        x = run.state;
+        mode = run.mode;
+        t = run.t;
+        if (run.termination != Termination::completed) {
+          result.termination = detail::termination_text(run);
+          break;
+        }
+      }
+      if (result.points.size() > request.points) result.points.resize(request.points);
     } else {
       const std::uint64_t chunk = std::max<std::uint64_t>(request.points, 1);
       for (std::uint64_t periods = 0; result.points.size() < request.points; periods += chunk) {

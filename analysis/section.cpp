@@ -44,12 +44,31 @@ SectionSpec parse_section(std::string_view text, std::string_view key) {
     }
     throw bad("the wall after impact: must be +1, -1 or 0 (any wall)");
   }
-  throw bad("expected strobe[:PHASE] or impact[:WALL]");
+  // user-given: q=LEVEL[:DIRECTION] or qdot=LEVEL[:DIRECTION]
+  const auto equals = kind.find('=');
+  const std::string_view variable = kind.substr(0, equals);
+  if (equals != std::string_view::npos && (variable == "q" || variable == "qdot")) {
+    section.kind = variable == "q" ? SectionKind::q_crossing : SectionKind::qdot_crossing;
+    const std::string number(kind.substr(equals + 1));
+    char* end = nullptr;
+    section.level = std::strtod(number.c_str(), &end);
+    if (end == number.c_str() || *end != '\0' || !std::isfinite(section.level))
+      throw bad("the level after q= or qdot= must be a finite number");
+    if (argument.empty() || argument == "up") section.direction = 1;
+    else if (argument == "down") section.direction = -1;
+    else if (argument == "both") section.direction = 0;
+    else throw bad("the crossing direction must be up, down or both");
+    return section;
+  }
+  throw bad("expected strobe[:PHASE], impact[:WALL], q=LEVEL[:up|down|both] or qdot=LEVEL[:...]");
 }
 
 std::string to_string(const SectionSpec& section) {
   if (section.kind == SectionKind::strobe) return fmt::format("strobe:{}", section.phase);
-  return fmt::format("impact:{}", section.wall);
+  if (section.kind == SectionKind::impact) return fmt::format("impact:{}", section.wall);
+  const char* direction = section.direction > 0 ? "up" : section.direction < 0 ? "down" : "both";
+  return fmt::format("{}={}:{}", section.kind == SectionKind::q_crossing ? "q" : "qdot",
+                     section.level, direction);
 }
 
 }  // namespace impactlab

@@ -17,15 +17,20 @@ namespace impactlab {
 enum class SectionKind {
   strobe,  // stroboscopic: the state where the forcing phase ωt (mod 2π) equals `phase`
   impact,  // the impact map: the state just before each impact with `wall`
+  q_crossing,     // a user-given section: q = level, crossed in `direction`
+  qdot_crossing,  // a user-given section: q̇ = level, crossed in `direction`
 };
 
 struct SectionSpec {
   SectionKind kind = SectionKind::strobe;
   double phase = 0.0;  // rad in [0, 2π): the forcing phase of a stroboscopic section
   int wall = 0;        // impact map: +1 / -1, or 0 for every wall
+  double level = 0.0;  // user-given section: the value of q or q̇
+  int direction = 1;   // user-given section: +1 increasing, −1 decreasing, 0 both
 };
 
-// Parses `strobe[:PHASE]` or `impact[:WALL]` (WALL: +1, -1, 1, or 0 for any);
+// Parses `strobe[:PHASE]`, `impact[:WALL]` (WALL: +1, -1, 1, or 0 for any),
+// `q=LEVEL[:up|down|both]` or `qdot=LEVEL[:up|down|both]` (default up);
 // BadInput (key `key`) otherwise.
 SectionSpec parse_section(std::string_view text, std::string_view key);
 std::string to_string(const SectionSpec& section);

@@ -111,6 +111,23 @@ TEST(Poincare, ImpactMapPointsLieOnTheStop) {
   }
 }
 
+TEST(Poincare, UserGivenSectionCrossesTheLevelInItsDirection) {
+  for (const std::string direction : {"up", "down"}) {
+    const auto out = scratch("crossing-" + direction);
+    const Outcome o = run("poincare linear_impact --section q=-1.5:" + direction +
+                          " --transient 20 --points 6 --quiet --out " + out.string());
+    ASSERT_EQ(o.status, 0) << o.err;
+    const auto rows = lines(slurp(out / "poincare.csv"));
+    ASSERT_EQ(rows.size(), 7u);
+    EXPECT_EQ(rows[0], "k,t,q,qdot,phase");
+    for (std::size_t k = 1; k < rows.size(); ++k) {
+      const auto v = fields(rows[k]);
+      EXPECT_NEAR(v[2], -1.5, 1e-9) << rows[k];
+      EXPECT_GT(direction == "up" ? v[3] : -v[3], 0.0) << rows[k];
+    }
+  }
+}
+
 TEST(Sweep, OneDimensionalColumnsAndBothDirections) {
   const auto out = scratch("columns");
   const Outcome o = run(sweep_1d + " --out " + out.string());
@@ -222,6 +239,8 @@ INSTANTIATE_TEST_SUITE_P(
                               "moon"},
                       BadCase{"poincare jin2003 --section impact:2", "--section", "impact:2"},
                       BadCase{"poincare jin2003 --section strobe:nan", "--section",
-                              "strobe:nan"}));
+                              "strobe:nan"},
+                      BadCase{"poincare jin2003 --section q=0.01:sideways", "--section",
+                              "q=0.01:sideways"}));
 
 }  // namespace

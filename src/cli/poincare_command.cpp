@@ -35,15 +35,17 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
   const SceneSchema& schema = *oscillator_entry(scene.oscillator).schema;
   const std::string q_name(schema.main_coordinate);
   const bool impact_map = request.section.kind == SectionKind::impact;
+  const bool user_section = request.section.kind != SectionKind::impact &&
+                            request.section.kind != SectionKind::strobe;
   AtomicFile csv(directory / "poincare.csv");
   auto& out = csv.stream();
-  out << (impact_map ? "k,t,q,qdot,wall,phase\n" : "k,t,q,qdot\n");
+  out << (impact_map ? "k,t,q,qdot,wall,phase\n" : user_section ? "k,t,q,qdot,phase\n" : "k,t,q,qdot\n");
   for (std::size_t k = 0; k < result.points.size(); ++k) {
     const SectionPoint& p = result.points[k];
     out << k << ',' << number(p.t) << ',' << number(p.q) << ',' << number(p.qdot);
-    if (impact_map)
-      out << ',' << p.wall << ','
-          << number(std::fmod(result.omega * p.t, 2.0 * std::numbers::pi));
+    if (impact_map) out << ',' << p.wall;
+    if (impact_map || user_section)
+      out << ',' << number(std::fmod(result.omega * p.t, 2.0 * std::numbers::pi));
     out << '\n';
   }
 
@@ -70,7 +72,7 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
         {"q", q_name},
         {"qdot", "d" + q_name + "/dt" + (impact_map ? " just before the impact" : "")},
         {"wall", "wall hit (+1 / -1), impact map only"},
-        {"phase", "forcing phase omega t mod 2 pi (rad), impact map only"}}},
+        {"phase", "forcing phase omega t mod 2 pi (rad), impact map and user-given sections"}}},
       {"files", {"poincare.csv", "meta.json"}},
   };
   if (lyapunov) {

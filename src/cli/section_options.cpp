@@ -23,8 +23,9 @@ void SectionOptions::add_to(CLI::App& command, const std::string& points_help) {
   command.add_option("--out", scene.out, "output directory (default out/<scene>)");
   command.add_flag("--quiet", scene.quiet, "print nothing but errors");
   command.add_option("--section", section,
-                     "strobe[:PHASE] (forcing phase wt mod 2pi, rad) or impact[:WALL] "
-                     "(+1, -1, 0 = any wall)")
+                     "strobe[:PHASE] (forcing phase wt mod 2pi, rad), impact[:WALL] "
+                     "(+1, -1, 0 = any wall), or a user-given section q=LEVEL[:up|down|both] "
+                     "or qdot=LEVEL[:up|down|both]")
       ->capture_default_str();
   auto* by_impacts = command.add_option("--transient-impacts", transient_impacts,
                                         "discard this many impacts instead of periods");
