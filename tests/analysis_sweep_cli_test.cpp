@@ -1,4 +1,4 @@
-// The `poincare` and `sweep` commands end to end: the output contract
+// The `poincare`, `sweep` and `periodic` commands end to end: the output contract
 // (columns, sidecar), serial, threaded and MPI sweeps giving byte-identical
 // files, a sweep interrupted midway resuming without recomputing its finished
 // points (and leaving no data file before it is complete), and bad input
@@ -209,6 +209,25 @@ TEST(Sweep, PlotWritesAPngOrSaysWhyNot) {
     EXPECT_NE(o.err.find("plot skipped"), std::string::npos) << o.err;
 }
 
+TEST(Periodic, DetectsThePeriodAndReportsFloquetMultipliers) {
+  // jin2003: the stroboscopic points repeat every second period
+  const auto out = scratch("periodic");
+  ASSERT_EQ(run("periodic jin2003 --quiet --out " + out.string()).status, 0);
+  auto result = nlohmann::json::parse(slurp(out / "periodic.json"));
+  EXPECT_EQ(result["request"]["period"], 2);
+  EXPECT_TRUE(result["converged"]);
+  EXPECT_LT(result["floquet_multipliers"][0]["abs"].get<double>(), 1.0);
+
+  // the linear impact oscillator's one-impact orbit: det M = r² e^{−2ζT}
+  // (the flow contracts areas by e^{−2ζT}, the impact by r²)
+  ASSERT_EQ(run("periodic linear_impact --quiet --out " + out.string()).status, 0);
+  result = nlohmann::json::parse(slurp(out / "periodic.json"));
+  EXPECT_EQ(result["request"]["period"], 1);
+  const double product = result["floquet_multipliers"][0]["abs"].get<double>() *
+                         result["floquet_multipliers"][1]["abs"].get<double>();
+  EXPECT_NEAR(product, 0.8 * 0.8 * std::exp(-2.0 * 0.05 * std::numbers::pi), 1e-10);
+}
+
 struct BadCase {
   std::string arguments;
   std::string key, value;
@@ -241,6 +260,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"poincare jin2003 --section strobe:nan", "--section",
                               "strobe:nan"},
                       BadCase{"poincare jin2003 --section q=0.01:sideways", "--section",
-                              "q=0.01:sideways"}));
+                              "q=0.01:sideways"},
+                      BadCase{"periodic jin2003 --period 0", "--period", "0"}));
 
 }  // namespace

@@ -1,14 +1,18 @@
 // `impactlab periodic`: a period-n orbit located by Newton shooting on the
 // stroboscopic map with the saltation-corrected monodromy matrix, and its
-// Floquet multipliers; writes periodic.json.
+// Floquet multipliers; writes periodic.json. n is given, or detected from the
+// stroboscopic points after the transient (--period auto, the default).
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 
 #include <fmt/format.h>
 
 #include "analysis/periodic.hpp"
+#include "analysis/sweep.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
+#include "cli/section_options.hpp"
 #include "io/bad_input.hpp"
 #include "io/oscillator_registry.hpp"
 #include "io/output.hpp"
@@ -19,7 +23,7 @@ namespace {
 
 struct PeriodicOptions {
   SceneOptions scene;
-  int period = 1;
+  std::string period = "auto";  // n, or auto: the period of the stroboscopic points
   double phase = 0.0;
   double transient = 100.0;
   int max_iterations = 30;
@@ -36,7 +40,27 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
   if (!entry.periodic_orbit)
     throw BadInput("oscillator", scene.oscillator, "has no periodic-orbit entry");
   PeriodicRequest request;
-  request.period = options.period;
+  std::string period_source = "given";
+  if (options.period == "auto") {
+    // the period of 64 stroboscopic points after the transient (1 if none is found)
+    SectionRequest probe;
+    probe.section.phase = options.phase;
+    probe.transient_periods = options.transient;
+    probe.points = 64;
+    SweepPlan plan;
+    plan.max_period = 32;
+    const SectionResult points = run_section_for(scene, probe);
+    const int detected = classify(points, plan).period;
+    request.period = detected > 0 ? detected : 1;
+    period_source = detected > 0 ? "detected from 64 stroboscopic points"
+                                 : "none detected in 64 stroboscopic points: 1 tried";
+  } else {
+    char* end = nullptr;
+    const long n = std::strtol(options.period.c_str(), &end, 10);
+    if (end == options.period.c_str() || *end != '\0' || n < 1 || n > 1000)
+      throw BadInput("--period", options.period, "expected auto or a whole number from 1 to 1000");
+    request.period = static_cast<int>(n);
+  }
   request.phase = options.phase;
   request.transient_periods = options.transient;
   request.max_iterations = options.max_iterations;
@@ -57,6 +81,7 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
       {"scene", scene_record(scene)},
       {"request",
        {{"period", request.period},
+        {"period_source", period_source},
         {"phase_rad", request.phase},
         {"transient_periods", request.transient_periods},
         {"max_iterations", request.max_iterations},
@@ -99,8 +124,9 @@ Command add_periodic_command(CLI::App& app) {
   command->add_option("--set", options->scene.assignments, "KEY=VALUE, repeatable");
   command->add_option("--out", options->scene.out, "output directory (default out/<scene>)");
   command->add_flag("--quiet", options->scene.quiet, "print nothing but errors");
-  command->add_option("--period", options->period, "n: period in forcing periods")
-      ->check(CLI::Range(1, 1000))
+  command->add_option("--period", options->period,
+                      "n: the orbit's period in forcing periods, or auto (the period of the "
+                      "stroboscopic points after the transient)")
       ->capture_default_str();
   command->add_option("--phase", options->phase, "section phase omega t mod 2 pi (rad)")
       ->check(CLI::Range(0.0, 6.283185307179586))

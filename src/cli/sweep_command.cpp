@@ -11,8 +11,6 @@
 #include <iostream>
 #include <map>
 #include <mutex>
-#include <numbers>
-#include <set>
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -155,8 +153,15 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
       {"scene", scene_record(scene)},
       {"axes", [&] {
          nlohmann::json axes = nlohmann::json::array();
-         for (const auto& a : plan.axes)
-           axes.push_back({{"name", a.name}, {"from", a.from}, {"to", a.to}, {"count", a.count}});
+         for (const auto& a : plan.axes) {
+           const auto spec = std::find_if(entry.schema->keys.begin(), entry.schema->keys.end(),
+                                          [&](const KeySpec& k) { return k.key == a.name; });
+           axes.push_back({{"name", a.name},
+                           {"unit", std::string(spec->unit)},
+                           {"from", a.from},
+                           {"to", a.to},
+                           {"count", a.count}});
+         }
          return axes;
        }()},
       {"direction", to_string(plan.direction)},
@@ -313,8 +318,7 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
   AtomicFile meta_file(directory / "meta.json");
   write_json(meta_file, meta);
   meta_file.commit();
-  for (int rank = 0; rank < std::max(mpi.size(), 1); ++rank)
-    std::filesystem::remove(directory / checkpoint_name(rank));
+  // the sweep is complete: its checkpoints (of any rank count) are spent
   for (const auto& entry_file : std::filesystem::directory_iterator(directory)) {
     const std::string name = entry_file.path().filename().string();
     if (name.starts_with("checkpoint-") && name.ends_with(".jsonl"))
