@@ -149,4 +149,55 @@ TEST(Saltation, PendulumModelNFreeFlightAndImpactsMatchFiniteDifferences) {
   expect_matrix_near(tangent.jacobian, reference, 1e-5);
 }
 
+// A period with a contact phase: every nearby state chatters into contact
+// and is released at the time the forcing sets (g + z̈ = 0), riding on the
+// table, so the period map is locally constant. The tangent map is exactly
+// zero (the saltation matrix of the accumulation is zero); the finite
+// differences of the full simulation show the same.
+TEST(Saltation, BouncingBallStickingPhaseCollapsesNearbyStates) {
+  const impactlab::BouncingBallParameters p;  // the scene's Γ ≈ 1.03, r = 0.8: sticks each period
+  const impactlab::BouncingBall system(p);
+  const FlowSetup setup{"exact", 1e-12, 1e-13};
+  const double period = 2.0 * std::numbers::pi / p.omega;
+  // a start in flight: the first of the times 50T + kT/8 where the ball is free
+  auto run_to = [&](double t_end, impactlab::EventLog& log) {
+    return impactlab::with_stepper<impactlab::BouncingBall>(
+        setup.method, impactlab::stepper_settings(system, setup), [&](auto& stepper) {
+          return impactlab::simulate(system, stepper, impactlab::BouncingBall::State{0.05, 0.0},
+                                     impactlab::BouncingBall::Mode::free, 0.0, t_end,
+                                     impactlab::loop_options(setup), log);
+        });
+  };
+  double start = 0.0;
+  impactlab::BouncingBall::State x0{};
+  for (int k = 0; k < 8 && start == 0.0; ++k) {
+    impactlab::EventLog ignored(false);
+    const auto at = run_to(50 * period + k * period / 8, ignored);
+    if (at.mode == impactlab::BouncingBall::Mode::free) {
+      start = 50 * period + k * period / 8;
+      x0 = at.state;
+    }
+  }
+  ASSERT_GT(start, 0.0);
+  impactlab::EventLog log(true);
+  const auto run = impactlab::with_stepper<impactlab::BouncingBall>(
+      setup.method, impactlab::stepper_settings(system, setup), [&](auto& stepper) {
+        return impactlab::simulate(system, stepper, x0, impactlab::BouncingBall::Mode::free, start,
+                                   start + period, impactlab::loop_options(setup), log);
+      });
+  ASSERT_EQ(run.mode, impactlab::BouncingBall::Mode::free);
+  ASSERT_EQ(log.count(impactlab::EventKind::contact_start), 1u);
+  ASSERT_EQ(log.count(impactlab::EventKind::contact_end), 1u);
+  const auto tangent = impactlab::flow_with_jacobian(
+      system, setup, x0, impactlab::BouncingBall::Mode::free, start, start + period);
+  const auto reference = finite_difference_jacobian(
+      system, setup, x0, impactlab::BouncingBall::Mode::free, start, start + period,
+      {1e-6, 1e-6});
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      EXPECT_EQ(tangent.jacobian[i][j], 0.0);
+      EXPECT_LT(std::fabs(reference[i][j]), 1e-6) << "entry " << i << j;
+    }
+}
+
 }  // namespace
