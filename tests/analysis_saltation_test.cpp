@@ -200,4 +200,52 @@ TEST(Saltation, BouncingBallStickingPhaseCollapsesNearbyStates) {
     }
 }
 
+// The same for the pendulum (Model N) at V0 = 5 m/s, where the steady state
+// chatters into a sliding contact on a wall and is released where g_e = 0.
+TEST(Saltation, PendulumContactPhaseCollapsesNearbyStates) {
+  impactlab::PendulumWallsParameters p;
+  p.V0 = 5.0;
+  const impactlab::PendulumWalls system(p);
+  const FlowSetup setup{"rk8pd", 1e-12, 1e-13};
+  const double period = 2.0 * std::numbers::pi / p.omega;
+  using Pendulum = impactlab::PendulumWalls;
+  auto run_from = [&](const Pendulum::State& x, Pendulum::Mode mode, double t0, double t1,
+                      impactlab::EventLog& log) {
+    return impactlab::with_stepper<Pendulum>(
+        setup.method, impactlab::stepper_settings(system, setup), [&](auto& stepper) {
+          return impactlab::simulate(system, stepper, x, mode, t0, t1,
+                                     impactlab::loop_options(setup), log);
+        });
+  };
+  // a start in free flight after the transient: the first of 100T + kT/8
+  double start = 0.0;
+  Pendulum::State x0{};
+  for (int k = 0; k < 16 && start == 0.0; ++k) {
+    impactlab::EventLog ignored(false);
+    const auto at = run_from({0.0, 0.1, 0.0}, Pendulum::Mode::free, 0.0,
+                             100 * period + k * period / 8, ignored);
+    if (at.mode == Pendulum::Mode::free && at.termination == impactlab::Termination::completed) {
+      start = 100 * period + k * period / 8;
+      x0 = at.state;
+    }
+  }
+  ASSERT_GT(start, 0.0);
+  const double end = start + 2 * period;  // the steady state has period 2
+  impactlab::EventLog log(true);
+  const auto run = run_from(x0, Pendulum::Mode::free, start, end, log);
+  ASSERT_EQ(run.termination, impactlab::Termination::completed);
+  ASSERT_GE(log.count(impactlab::EventKind::contact_start), 1u);
+  ASSERT_GE(log.count(impactlab::EventKind::contact_end), 1u);
+  ASSERT_EQ(run.mode, Pendulum::Mode::free);
+  const auto tangent =
+      impactlab::flow_with_jacobian(system, setup, x0, Pendulum::Mode::free, start, end);
+  const auto reference = finite_difference_jacobian(system, setup, x0, Pendulum::Mode::free,
+                                                    start, end, {1e-7, 1e-6});
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      EXPECT_EQ(tangent.jacobian[i][j], 0.0);
+      EXPECT_LT(std::fabs(reference[i][j]), 1e-6) << "entry " << i << j;
+    }
+}
+
 }  // namespace
