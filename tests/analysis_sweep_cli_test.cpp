@@ -168,6 +168,7 @@ TEST(Sweep, MpiRunWritesTheSameFileAsTheSerialRun) {
   const Outcome o = run(sweep_2d + " --out " + parallel.string(),
                         "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
                         "OMPI_MCA_rmaps_base_oversubscribe=1 mpirun -n 2 --oversubscribe ");
+  if (o.err.find("built without MPI") != std::string::npos) GTEST_SKIP() << "built without MPI";
   ASSERT_EQ(o.status, 0) << o.err;
   EXPECT_EQ(slurp(serial / "classes.csv"), slurp(parallel / "classes.csv"));
   const auto meta = nlohmann::json::parse(slurp(parallel / "meta.json"));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <stdexcept>
 
 #ifdef IMPACTLAB_HAVE_MPI
 #include <mpi.h>
@@ -10,7 +11,12 @@
 namespace impactlab::cli {
 
 MpiSession::MpiSession() {
-#ifdef IMPACTLAB_HAVE_MPI
+#ifndef IMPACTLAB_HAVE_MPI
+  // several copies of a program without MPI would each run the whole sweep
+  const char* world = std::getenv("OMPI_COMM_WORLD_SIZE");
+  if (world != nullptr && std::atoi(world) > 1)
+    throw std::runtime_error("launched by mpirun, but this impactlab was built without MPI");
+#else
   if (std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr) return;
   int provided = 0;
   MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
