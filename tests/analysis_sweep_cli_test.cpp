@@ -198,6 +198,30 @@ TEST(Sweep, InterruptedSweepResumesWithoutRecomputingFinishedPoints) {
   EXPECT_EQ(slurp(whole / "summary.csv"), slurp(resumed / "summary.csv"));
 }
 
+TEST(Sweep, KilledSweepLeavesNoDataFileAndResumes) {
+  const std::string sweep = "sweep jin2003 --param omega=5:9:200 --direction both --transient 50 "
+                            "--points 20 --quiet";
+  const auto whole = scratch("kill_whole"), killed = scratch("killed");
+  ASSERT_EQ(run(sweep + " --out " + whole.string()).status, 0);
+  // SIGKILL once the checkpoint holds a few points
+  fs::create_directories(killed);
+  const std::string checkpoint = (killed / "checkpoint-0.jsonl").string();
+  const std::string script =
+      std::string(IMPACTLAB_BINARY) + " " + sweep + " --out " + killed.string() +
+      " & pid=$!; while [ \"$(cat " + checkpoint + " 2>/dev/null | wc -l)\" -lt 6 ]; do "
+      "kill -0 $pid 2>/dev/null || break; sleep 0.01; done; kill -9 $pid; wait $pid";
+  std::system(("sh -c '" + script + "' >/dev/null 2>&1").c_str());
+  if (fs::exists(killed / "bifurcation.csv")) GTEST_SKIP() << "the sweep finished before the kill";
+  EXPECT_FALSE(fs::exists(killed / "summary.csv"));
+  EXPECT_FALSE(fs::exists(killed / "meta.json"));
+  const Outcome resumed = run(sweep + " --resume --out " + killed.string());
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  const auto meta = nlohmann::json::parse(slurp(killed / "meta.json"));
+  EXPECT_GE(meta["run"]["points_reused_from_checkpoint"].get<int>(), 5);
+  EXPECT_EQ(slurp(whole / "bifurcation.csv"), slurp(killed / "bifurcation.csv"));
+  EXPECT_EQ(slurp(whole / "summary.csv"), slurp(killed / "summary.csv"));
+}
+
 TEST(Sweep, PlotWritesAPngOrSaysWhyNot) {
   const auto out = scratch("plot");
   const Outcome o = run("sweep linear_impact --param omega=2:2.5:6 --transient 20 --points 8 "
