@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <exception>
 #include <stdexcept>
 
 #ifdef IMPACTLAB_HAVE_MPI
@@ -28,7 +29,10 @@ MpiSession::MpiSession() {
 
 MpiSession::~MpiSession() {
 #ifdef IMPACTLAB_HAVE_MPI
-  if (active_) MPI_Finalize();
+  if (!active_) return;
+  // a rank that fails must not leave the others waiting for it in a gather
+  if (std::uncaught_exceptions() > 0) MPI_Abort(MPI_COMM_WORLD, 1);
+  MPI_Finalize();
 #endif
 }
 

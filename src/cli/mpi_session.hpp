@@ -12,7 +12,7 @@ namespace impactlab::cli {
 class MpiSession {
  public:
   MpiSession();   // MPI_Init when launched by mpirun
-  ~MpiSession();  // MPI_Finalize
+  ~MpiSession();  // MPI_Finalize; MPI_Abort when unwinding from an exception
   MpiSession(const MpiSession&) = delete;
   MpiSession& operator=(const MpiSession&) = delete;
 

@@ -127,7 +127,6 @@ void write_outputs(const std::filesystem::path& directory, const SweepPlan& plan
 }
 
 int run_sweep(const SweepOptions& options, const std::vector<std::string>& command_line) {
-  MpiSession mpi;
   const Scene scene = options.section.scene.load();
   const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
   if (!entry.section)
@@ -149,6 +148,9 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
 
   const auto directory = options.section.scene.output_directory();
   prepare_output_directory(directory);
+  // MPI starts once the input is known to be good: bad input exits with
+  // status 2 on every rank alike, before any rank waits for another
+  MpiSession mpi;
   const nlohmann::json definition = {
       {"scene", scene_record(scene)},
       {"axes", [&] {
