@@ -126,11 +126,8 @@ void write_outputs(const std::filesystem::path& directory, const SweepPlan& plan
   files = {"classes.csv"};
 }
 
-int run_sweep(const SweepOptions& options, const std::vector<std::string>& command_line) {
-  const Scene scene = options.section.scene.load();
-  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
-  if (!entry.section)
-    throw BadInput("oscillator", scene.oscillator, "has no Poincare-section entry");
+// The plan the options describe, validated against the scene (BadInput).
+SweepPlan plan_from(const SweepOptions& options, const Scene& scene) {
   SweepPlan plan;
   for (const auto& text : options.params) plan.axes.push_back(parse_axis(text, "--param"));
   plan.direction = parse_direction(options.direction, "--direction");
@@ -139,33 +136,31 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
   plan.period_tolerance = options.period_tolerance;
   plan.max_period = options.max_period;
   // Lyapunov: on by default for 2D maps, off for 1D sweeps
-  plan.section.lyapunov =
-      options.lyapunov || (plan.axes.size() == 2 && !options.no_lyapunov);
+  plan.section.lyapunov = options.lyapunov || (plan.axes.size() == 2 && !options.no_lyapunov);
   validate_plan(plan, scene);
   if (plan.axes.size() == 2 && plan.direction != SweepDirection::up)
     throw BadInput("--direction", options.direction,
                    "a 2D sweep follows the first parameter upwards only");
+  return plan;
+}
 
-  const auto directory = options.section.scene.output_directory();
-  prepare_output_directory(directory);
-  // MPI starts once the input is known to be good: bad input exits with
-  // status 2 on every rank alike, before any rank waits for another
-  MpiSession mpi;
-  const nlohmann::json definition = {
+// Everything that decides the sweep's results (and nothing that does not,
+// such as threads or ranks): the checkpoint header and meta.json's "sweep".
+nlohmann::json sweep_definition(const SweepOptions& options, const SweepPlan& plan,
+                                const Scene& scene, const SceneSchema& schema) {
+  nlohmann::json axes = nlohmann::json::array();
+  for (const auto& a : plan.axes) {
+    const auto spec = std::find_if(schema.keys.begin(), schema.keys.end(),
+                                   [&](const KeySpec& k) { return k.key == a.name; });
+    axes.push_back({{"name", a.name},
+                    {"unit", std::string(spec->unit)},
+                    {"from", a.from},
+                    {"to", a.to},
+                    {"count", a.count}});
+  }
+  return {
       {"scene", scene_record(scene)},
-      {"axes", [&] {
-         nlohmann::json axes = nlohmann::json::array();
-         for (const auto& a : plan.axes) {
-           const auto spec = std::find_if(entry.schema->keys.begin(), entry.schema->keys.end(),
-                                          [&](const KeySpec& k) { return k.key == a.name; });
-           axes.push_back({{"name", a.name},
-                           {"unit", std::string(spec->unit)},
-                           {"from", a.from},
-                           {"to", a.to},
-                           {"count", a.count}});
-         }
-         return axes;
-       }()},
+      {"axes", axes},
       {"direction", to_string(plan.direction)},
       {"chunks", plan.chunks},
       {"section", options.section.record()},
@@ -175,60 +170,66 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
       {"max_period", plan.max_period},
       {"impactlab_version", IMPACTLAB_VERSION},
   };
-  const std::string header = nlohmann::json{{"impactlab_sweep_checkpoint", definition}}.dump();
+}
 
-  std::map<RecordKey, SweepRecord> done;
-  if (options.resume) done = read_checkpoints(directory, header);
-  const std::size_t reused = done.size();
-  const auto checkpoint_path = directory / checkpoint_name(mpi.rank());
+// This rank's checkpoint, opened for appending; one that is not this
+// sweep's (or any, without --resume) is started afresh with the header.
+std::ofstream open_checkpoint(const std::filesystem::path& path, const std::string& header,
+                              bool resume) {
   {
-    // a checkpoint that is not this sweep's is started afresh
-    std::ifstream existing(checkpoint_path);
+    std::ifstream existing(path);
     std::string first;
-    const bool keep = options.resume && std::getline(existing, first) && first == header;
-    if (!keep) std::ofstream(checkpoint_path, std::ios::trunc) << header << '\n';
+    const bool keep = resume && std::getline(existing, first) && first == header;
+    if (!keep) std::ofstream(path, std::ios::trunc) << header << '\n';
   }
-  std::ofstream checkpoint(checkpoint_path, std::ios::app);
-  if (!checkpoint) throw BadInput("--out", directory.string(), "cannot write the checkpoint");
+  std::ofstream checkpoint(path, std::ios::app);
+  if (!checkpoint) throw BadInput("--out", path.parent_path().string(), "cannot write the checkpoint");
+  return checkpoint;
+}
 
-  const std::vector<SweepTask> tasks = sweep_tasks(plan);
-  std::vector<const SweepTask*> mine;
-  std::size_t my_points = 0, total_points = 0;
-  for (const auto& task : tasks) {
-    total_points += task.points.size();
-    if (task.id % mpi.size() == mpi.rank()) {
-      mine.push_back(&task);
-      my_points += task.points.size();
-    }
-  }
+struct RankWork {
+  std::vector<std::vector<SweepRecord>> records;  // per task of this rank, in order
+  bool stopped = false;                           // --stop-after ended it early
+};
 
-  ProgressBar progress(!options.section.scene.quiet && mpi.rank() == 0);
-  std::mutex mutex;
+// Runs this rank's tasks on `threads` threads: finished points are taken from
+// `done`, new ones appended to the checkpoint as they finish.
+RankWork run_rank_tasks(const Scene& scene, const SweepPlan& plan,
+                        const std::vector<const SweepTask*>& tasks,
+                        const std::map<RecordKey, SweepRecord>& done, std::ofstream& checkpoint,
+                        const SweepOptions& options, bool show_progress) {
+  std::size_t points = 0;
+  for (const SweepTask* task : tasks) points += task->points.size();
+  ProgressBar progress(show_progress);
+  std::mutex mutex;  // guards the checkpoint, the progress bar and `failure`
   std::size_t finished = 0;
   std::atomic<long> new_points{0};
   std::atomic<bool> stopped{false};
   std::exception_ptr failure;
-  std::vector<std::vector<SweepRecord>> results(mine.size());
-  const auto start = std::chrono::steady_clock::now();
+  RankWork work;
+  work.records.resize(tasks.size());
+  auto advance_progress = [&] {
+    progress.update(static_cast<double>(++finished) / static_cast<double>(points));
+  };
 
 #pragma omp parallel for schedule(dynamic, 1) num_threads(options.threads)
-  for (std::size_t m = 0; m < mine.size(); ++m) {
+  for (std::size_t m = 0; m < tasks.size(); ++m) {
     try {
-      const SweepTask& task = *mine[m];
-      results[m] = run_sweep_task(
+      const SweepTask& task = *tasks[m];
+      work.records[m] = run_sweep_task(
           scene, plan, task,
           [&](int position) -> const SweepRecord* {
             const auto it = done.find({task.id, position});
             if (it == done.end()) return nullptr;
             std::lock_guard lock(mutex);
-            progress.update(static_cast<double>(++finished) / static_cast<double>(my_points));
+            advance_progress();
             return &it->second;
           },
           [&](const SweepRecord& record) {
             const std::string line = to_json_line(record);
             std::lock_guard lock(mutex);
             checkpoint << line << '\n' << std::flush;
-            progress.update(static_cast<double>(++finished) / static_cast<double>(my_points));
+            advance_progress();
           },
           [&] {
             if (stopped) return false;
@@ -245,36 +246,29 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
     }
   }
   if (failure) std::rethrow_exception(failure);
-  const double wall_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  work.stopped = stopped;
+  return work;
+}
 
-  // every rank's records to rank 0
-  std::string text;
-  for (const auto& records : results)
-    for (const auto& record : records) text += to_json_line(record) + '\n';
-  const std::vector<std::string> gathered = mpi.gather(text);
-  if (mpi.rank() != 0) return stopped ? exit_stopped_early : exit_done;
-
+// The records in every rank's text (one checkpoint line each), by key.
+std::map<RecordKey, SweepRecord> parse_records(const std::vector<std::string>& texts) {
   std::map<RecordKey, SweepRecord> all;
-  for (const auto& part : gathered) {
+  for (const auto& text : texts) {
     std::size_t begin = 0;
-    while (begin < part.size()) {
-      const std::size_t end = part.find('\n', begin);
-      if (auto record = from_json_line(std::string_view(part).substr(begin, end - begin)))
+    while (begin < text.size()) {
+      const std::size_t end = text.find('\n', begin);
+      if (auto record = from_json_line(std::string_view(text).substr(begin, end - begin)))
         all.emplace(RecordKey{record->task, record->position}, std::move(*record));
-      begin = end == std::string::npos ? part.size() : end + 1;
+      begin = end == std::string::npos ? text.size() : end + 1;
     }
   }
-  if (all.size() < total_points) {
-    std::cerr << fmt::format(
-        "impactlab: sweep stopped after {} of {} points (checkpoint in {}); run again with "
-        "--resume to finish it\n",
-        all.size(), total_points, directory.string());
-    return exit_stopped_early;
-  }
+  return all;
+}
 
-  std::vector<std::string> files;
-  write_outputs(directory, plan, tasks, all, files);
+void write_meta(const std::filesystem::path& directory, const nlohmann::json& definition,
+                const Scene& scene, const SceneSchema& schema,
+                const std::map<RecordKey, SweepRecord>& all, nlohmann::json run,
+                const std::vector<std::string>& command_line, std::vector<std::string> files) {
   std::uint64_t steps = 0, rhs = 0, stopped_points = 0;
   for (const auto& [key, record] : all) {
     steps += record.result.steps;
@@ -282,19 +276,14 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
     if (record.result.termination != "completed") ++stopped_points;
   }
   files.push_back("meta.json");
-  const std::string q_name(entry.schema->main_coordinate);
-  nlohmann::json meta = {
+  const std::string q_name(schema.main_coordinate);
+  const nlohmann::json meta = {
       {"impactlab_version", IMPACTLAB_VERSION},
       {"command", command_line},
       {"created_utc", utc_now()},
       {"sweep", definition},
       {"scene", scene_record(scene)},
-      {"run",
-       {{"threads", options.threads},
-        {"mpi_ranks", mpi.size()},
-        {"tasks", tasks.size()},
-        {"points_reused_from_checkpoint", reused},
-        {"wall_time_s", wall_time}}},
+      {"run", std::move(run)},
       {"counts",
        {{"points", all.size()},
         {"points_stopped_early", stopped_points},
@@ -320,13 +309,73 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
   AtomicFile meta_file(directory / "meta.json");
   write_json(meta_file, meta);
   meta_file.commit();
-  // the sweep is complete: its checkpoints (of any rank count) are spent
-  for (const auto& entry_file : std::filesystem::directory_iterator(directory)) {
-    const std::string name = entry_file.path().filename().string();
-    if (name.starts_with("checkpoint-") && name.ends_with(".jsonl"))
-      std::filesystem::remove(entry_file.path());
+}
+
+int run_sweep(const SweepOptions& options, const std::vector<std::string>& command_line) {
+  const Scene scene = options.section.scene.load();
+  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
+  if (!entry.section)
+    throw BadInput("oscillator", scene.oscillator, "has no Poincare-section entry");
+  const SweepPlan plan = plan_from(options, scene);
+  const auto directory = options.section.scene.output_directory();
+  prepare_output_directory(directory);
+  // MPI starts once the input is known to be good: bad input exits with
+  // status 2 on every rank alike, before any rank waits for another
+  MpiSession mpi;
+
+  const nlohmann::json definition = sweep_definition(options, plan, scene, *entry.schema);
+  const std::string header = nlohmann::json{{"impactlab_sweep_checkpoint", definition}}.dump();
+  std::map<RecordKey, SweepRecord> done;
+  if (options.resume) done = read_checkpoints(directory, header);
+  std::ofstream checkpoint =
+      open_checkpoint(directory / checkpoint_name(mpi.rank()), header, options.resume);
+
+  // this rank's share: task id mod ranks
+  const std::vector<SweepTask> tasks = sweep_tasks(plan);
+  std::vector<const SweepTask*> mine;
+  std::size_t total_points = 0;
+  for (const auto& task : tasks) {
+    total_points += task.points.size();
+    if (task.id % mpi.size() == mpi.rank()) mine.push_back(&task);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const RankWork work = run_rank_tasks(scene, plan, mine, done, checkpoint, options,
+                                       !options.section.scene.quiet && mpi.rank() == 0);
+  const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  // every rank's records to rank 0, which writes
+  std::string text;
+  for (const auto& records : work.records)
+    for (const auto& record : records) text += to_json_line(record) + '\n';
+  const std::vector<std::string> gathered = mpi.gather(text);
+  if (mpi.rank() != 0) return work.stopped ? exit_stopped_early : exit_done;
+  const std::map<RecordKey, SweepRecord> all = parse_records(gathered);
+  if (all.size() < total_points) {
+    std::cerr << fmt::format(
+        "impactlab: sweep stopped after {} of {} points (checkpoint in {}); run again with "
+        "--resume to finish it\n",
+        all.size(), total_points, directory.string());
+    return exit_stopped_early;
   }
 
+  std::vector<std::string> files;
+  write_outputs(directory, plan, tasks, all, files);
+  write_meta(directory, definition, scene, *entry.schema, all,
+             {{"threads", options.threads},
+              {"mpi_ranks", mpi.size()},
+              {"tasks", tasks.size()},
+              {"points_reused_from_checkpoint", done.size()},
+              {"wall_time_s", wall_time}},
+             command_line, files);
+  // the sweep is complete: its checkpoints (of any rank count) are spent
+  for (const auto& file : std::filesystem::directory_iterator(directory)) {
+    const std::string name = file.path().filename().string();
+    if (name.starts_with("checkpoint-") && name.ends_with(".jsonl"))
+      std::filesystem::remove(file.path());
+  }
+
+  const std::string q_name(entry.schema->main_coordinate);
   if (options.section.plot) {
     if (plan.axes.size() == 1)
       plot_with_python("bifurcation", directory / "bifurcation.csv",
@@ -338,7 +387,7 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
   if (!options.section.scene.quiet)
     std::cout << fmt::format("{}: {} points ({} reused), {} threads x {} ranks, {:.3f} s wall\n"
                              "wrote {}\n",
-                             scene.name, all.size(), reused, options.threads, mpi.size(),
+                             scene.name, all.size(), done.size(), options.threads, mpi.size(),
                              wall_time, (directory / files.front()).string());
   return exit_done;
 }
