@@ -42,7 +42,7 @@ FlowWithJacobian<typename System::State, typename System::Mode> flow_with_jacobi
   EventLog log(false);
   const auto run = with_stepper<Tangent>(
       setup.method, stepper_settings(tangent, setup), [&](auto& stepper) {
-        return simulate(tangent, stepper, Tangent::start(x0), mode, t0, t1, loop_options(setup),
+        return simulate(tangent, stepper, tangent.start(x0, mode), mode, t0, t1, loop_options(setup),
                         log);
       });
   return {Tangent::base_state(run.state), run.mode, Tangent::fundamental_matrix(run.state),

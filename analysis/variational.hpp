@@ -32,12 +32,14 @@ class Variational {
 
   [[nodiscard]] const Base& base() const { return base_; }
 
-  // The base state with Φ = I appended.
-  static State start(const BaseState& x) {
+  // The base state with Φ = I appended (Φ = 0 in a mode that pins the state:
+  // there nearby states are the same state).
+  State start(const BaseState& x, Mode mode) const {
     State v{};
     std::copy(x.begin(), x.end(), v.begin());
-    v[base_size] = 1.0;
-    v[base_size + 3] = 1.0;
+    const double identity = base_.pinned(mode) ? 0.0 : 1.0;
+    v[base_size] = identity;
+    v[base_size + 3] = identity;
     return v;
   }
   static BaseState base_state(const State& v) {

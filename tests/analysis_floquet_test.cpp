@@ -26,6 +26,7 @@
 #include "analysis/floquet.hpp"
 #include "analysis/sweep.hpp"
 #include "io/scene.hpp"
+#include "oscillators/bouncing_ball/bouncing_ball.hpp"
 #include "oscillators/linear_impact/linear_impact.hpp"
 #include "oscillators/pendulum_walls/pendulum_walls.hpp"
 
@@ -290,6 +291,29 @@ TEST(Lyapunov, StablePeriodTwoOrbitOfThePendulum) {
   RecordProperty("lyapunov_minus_floquet",
                  fmt_number(lyapunov.exponent -
                             std::log(std::abs(orbit.multipliers[0])) / (2 * period)));
+}
+
+TEST(Lyapunov, BallRestingOnTheTableMergesNearbyStates) {
+  // Γ = Aω²/g ≈ 0.46 < 1: the table never throws the ball; a nearby ball
+  // (lifted or thrown a little) falls back, chatters and rides again, so the
+  // tangent map of the riding mode is zero and the exponent is −∞
+  impactlab::BouncingBallParameters p;
+  p.A = 0.005;
+  const impactlab::BouncingBall system(p);
+  const double period = two_pi / p.omega;
+  const impactlab::BouncingBall::State riding{system.table_position(0.0),
+                                              system.table_velocity(0.0)};
+  const auto lyapunov = impactlab::largest_lyapunov_exponent(
+      system, exact_flow, riding, impactlab::BouncingBall::Mode::stuck, 0.0, period, 20, 2);
+  EXPECT_EQ(lyapunov.exponent, -INFINITY);
+  // and a ball thrown up 1 mm above it lands, chatters and rides: the flow's
+  // Jacobian over a few periods is zero as well
+  const auto thrown = impactlab::flow_with_jacobian(
+      system, exact_flow, {riding[0] + 1e-3, riding[1]}, impactlab::BouncingBall::Mode::free, 0.0,
+      5 * period);
+  EXPECT_EQ(thrown.mode, impactlab::BouncingBall::Mode::stuck);
+  for (const auto& row : thrown.jacobian)
+    for (double v : row) EXPECT_EQ(v, 0.0);
 }
 
 }  // namespace

@@ -131,6 +131,9 @@ class BouncingBall {
     return {1.0, 0.0};
   }
 
+  // the stuck mode pins the ball to the table
+  [[nodiscard]] bool pinned(Mode mode) const { return mode == Mode::stuck; }
+
   // An impact sets y⁺ = z(t), ẏ⁺ = (1 + r) ż(t) − r ẏ⁻: ∂g/∂x = [[0, 0], [0, −r]]
   // and, because the table moves, ∂g/∂t = (ż, (1 + r) z̈). A grazing touch
   // leaves the state alone; an accumulation and a release collapse nearby

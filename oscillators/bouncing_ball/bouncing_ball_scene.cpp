@@ -81,8 +81,11 @@ SectionResult section(const Scene& scene, const SectionRequest& request) {
       mode = BouncingBall::Mode::free;
     }
   };
-  return run_section(system, initial_state(scene, system), BouncingBall::Mode::free, scene,
-                     request, system.parameters().omega, admissible);
+  // a continued run does not start from the scene's initial state (which a
+  // swept table amplitude may have put below the table)
+  const BouncingBall::State x0 = request.start ? BouncingBall::State{} : initial_state(scene, system);
+  return run_section(system, x0, BouncingBall::Mode::free, scene, request,
+                     system.parameters().omega, admissible);
 }
 
 PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request) {

@@ -159,6 +159,9 @@ class LinearImpact {
     return {-1.0, 0.0};
   }
 
+  // the stuck mode pins the mass to the stop at rest
+  [[nodiscard]] bool pinned(Mode mode) const { return mode == Mode::stuck; }
+
   // An impact sets x⁺ = σ, ẋ⁺ = −r ẋ⁻: ∂g/∂x = [[0, 0], [0, −r]], no explicit
   // time dependence. A grazing touch leaves the state alone. An accumulation
   // (rest on the stop) and a release (at a time set by the forcing) collapse

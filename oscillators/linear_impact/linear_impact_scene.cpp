@@ -85,8 +85,11 @@ SectionResult section(const Scene& scene, const SectionRequest& request) {
       mode = LinearImpact::Mode::free;
     }
   };
-  return run_section(system, initial_state(scene, system), LinearImpact::Mode::free, scene,
-                     request, system.parameters().omega, admissible);
+  // a continued run does not start from the scene's initial state (which a
+  // swept sigma may have left beyond the stop)
+  const LinearImpact::State x0 = request.start ? LinearImpact::State{} : initial_state(scene, system);
+  return run_section(system, x0, LinearImpact::Mode::free, scene, request,
+                     system.parameters().omega, admissible);
 }
 
 PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request) {

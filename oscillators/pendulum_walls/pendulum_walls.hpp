@@ -160,6 +160,9 @@ class PendulumWalls {
     return {k == 0 ? -1.0 : 1.0, 0.0};
   }
 
+  // the contact modes pin the bob to a wall at rest
+  [[nodiscard]] bool pinned(Mode mode) const { return mode != Mode::free; }
+
   // An impact sets θ⁺ = ±θ0, θ̇⁺ = −e_n θ̇⁻: ∂g/∂x = [[0, 0], [0, −e_n]], no
   // explicit time dependence. A grazing touch leaves the state alone. Entering
   // contact (an accumulation), a release (where g_e vanishes, a time set by the

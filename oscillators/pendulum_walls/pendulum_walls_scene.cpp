@@ -108,8 +108,12 @@ SectionResult section(const Scene& scene, const SectionRequest& request) {
     x[2] = 0.0;
     mode = PendulumWalls::Mode::free;
   };
-  return run_section(system, initial_state(scene, system), PendulumWalls::Mode::free, scene,
-                     request, system.parameters().omega, admissible);
+  // a continued run does not start from the scene's initial state (which a
+  // swept b may have put inside a wall)
+  const PendulumWalls::State x0 =
+      request.start ? PendulumWalls::State{} : initial_state(scene, system);
+  return run_section(system, x0, PendulumWalls::Mode::free, scene, request,
+                     system.parameters().omega, admissible);
 }
 
 PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request) {

@@ -44,6 +44,9 @@ concept HasJacobian = HybridSystem<S> &&
       { system.witness_gradient(mode, k, x, t) } -> std::same_as<TangentVector>;
       // the linearisation of the transition that on_event returned as `after`
       { system.reset_jacobian(mode, k, crossing, x, t, after) } -> std::same_as<ResetJacobian>;
+      // whether the mode pins the state to a constraint (resting on a wall or
+      // table): nearby states in it are the same state, tangent vectors are zero
+      { system.pinned(mode) } -> std::convertible_to<bool>;
     };
 
 }  // namespace impactlab
