@@ -51,19 +51,23 @@ def classes(csv, png, param1, param2):
     iy = np.searchsorted(y, data[param2])
     period[iy, ix] = np.where(data["period"] > 0, data["period"], np.nan)
     lyapunov[iy, ix] = np.asarray(data["lyapunov"], dtype=float)
+    merged = np.isneginf(lyapunov)  # rest on a wall: nearby states merge
     lyapunov[~np.isfinite(lyapunov)] = np.nan
-    panels = 2 if np.isfinite(lyapunov).any() else 1
+    panels = 2 if (np.isfinite(lyapunov).any() or merged.any()) else 1
     fig, axes = plt.subplots(1, panels, figsize=(6 * panels, 5), squeeze=False)
     mesh = axes[0, 0].pcolormesh(x, y, period, shading="nearest", cmap="tab10", vmin=0.5,
                                  vmax=10.5)
     fig.colorbar(mesh, ax=axes[0, 0], label="period of the section map (blank: none found)")
     axes[0, 0].set_title("period")
     if panels == 2:
+        limit = np.nanmax(np.abs(lyapunov)) if np.isfinite(lyapunov).any() else 1.0
         mesh = axes[0, 1].pcolormesh(x, y, lyapunov, shading="nearest", cmap="coolwarm",
-                                     vmin=-np.nanmax(np.abs(lyapunov)),
-                                     vmax=np.nanmax(np.abs(lyapunov)))
+                                     vmin=-limit, vmax=limit)
         fig.colorbar(mesh, ax=axes[0, 1], label="largest Lyapunov exponent (1/time)")
-        axes[0, 1].set_title("largest Lyapunov exponent")
+        # -inf (contact phases merge nearby states) in black
+        axes[0, 1].pcolormesh(x, y, np.where(merged, 1.0, np.nan), shading="nearest",
+                              cmap="gray", vmin=1.0, vmax=2.0)
+        axes[0, 1].set_title("largest Lyapunov exponent (black: -inf, contact)")
     for ax in axes[0]:
         ax.set_xlabel(param1)
         ax.set_ylabel(param2)
