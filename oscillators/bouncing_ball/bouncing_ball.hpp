@@ -23,6 +23,7 @@
 #include "contact/newton_impact.hpp"
 #include "core/event_log.hpp"
 #include "core/hybrid_system.hpp"
+#include "core/has_jacobian.hpp"
 
 namespace impactlab {
 
@@ -115,6 +116,48 @@ class BouncingBall {
     x[1] = x0[1] + (table_velocity(t) - table_velocity(t0));
   }
 
+  // --- linearisation (core/has_jacobian.hpp), on (y, ẏ) ---
+
+  // The flow of both modes is affine in the initial state (a parabola, the
+  // table's motion), so the exact flow also gives its Jacobian.
+  static constexpr bool affine_flow = true;
+
+  // both modes: ∂(ẏ, ÿ)/∂(y, ẏ) = [[0, 1], [0, 0]] (ÿ is −g or z̈(t))
+  void jacobian(Mode, const State&, double, TangentMatrix& j) const {
+    j = {{{0.0, 1.0}, {0.0, 0.0}}};
+  }
+
+  // free: the gap y − z(t); stuck: the push depends on t alone
+  [[nodiscard]] TangentVector witness_gradient(Mode mode, std::size_t, const State&,
+                                               double) const {
+    if (mode == Mode::stuck) return {0.0, 0.0};
+    return {1.0, 0.0};
+  }
+
+  // the stuck mode pins the ball to the table
+  [[nodiscard]] bool pinned(Mode mode) const { return mode == Mode::stuck; }
+
+  // An impact sets y⁺ = z(t), ẏ⁺ = (1 + r) ż(t) − r ẏ⁻: ∂g/∂x = [[0, 0], [0, −r]]
+  // and, because the table moves, ∂g/∂t = (ż, (1 + r) z̈). A grazing touch
+  // leaves the state alone; an accumulation and a release collapse nearby
+  // states into one.
+  [[nodiscard]] ResetJacobian reset_jacobian(Mode mode, std::size_t, CrossingKind crossing,
+                                             const State&, double t,
+                                             const Transition<State, Mode>& after) const {
+    ResetJacobian reset;
+    if (crossing == CrossingKind::grazing) {
+      reset.state = {{{1.0, 0.0}, {0.0, 1.0}}};
+      return reset;
+    }
+    if (mode == Mode::stuck || after.mode == Mode::stuck || after.time > t) {
+      reset.collapses = true;
+      return reset;
+    }
+    reset.state = {{{0.0, 0.0}, {0.0, -p_.r}}};
+    reset.time = {table_velocity(t), (1.0 + p_.r) * table_acceleration(t)};
+    return reset;
+  }
+
  private:
   // the ball resting on the table at t
   [[nodiscard]] State on_table(double t) const { return {table_position(t), table_velocity(t)}; }
@@ -160,6 +203,7 @@ class BouncingBall {
 };
 
 static_assert(HybridSystem<BouncingBall>);
+static_assert(HasJacobian<BouncingBall>);
 static_assert(HasExactFlow<BouncingBall>);
 
 }  // namespace impactlab

@@ -2,6 +2,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "analysis/run_periodic.hpp"
+#include "analysis/run_section.hpp"
 #include "io/bad_input.hpp"
 #include "io/oscillator_registry.hpp"
 #include "io/run_system.hpp"
@@ -42,28 +44,60 @@ std::string_view mode_name(BouncingBall::Mode mode) {
   return mode == BouncingBall::Mode::free ? "free" : "stuck";
 }
 
-RunOutput run(const Scene& scene, const RunRequest& request) {
+// The system a scene describes.
+BouncingBall make_system(const Scene& scene) {
   BouncingBallParameters p;
   p.g = scene.number("g");
   p.A = scene.number("A");
   p.omega = scene.number("omega");
   p.r = scene.number("r");
   p.accumulation_tol = scene.number("accumulation_tol");
+  return BouncingBall(p);
+}
+
+BouncingBall::State initial_state(const Scene& scene, const BouncingBall& system) {
   const double y = scene.number("initial.y");
-  const double table = p.A * std::sin(p.omega * scene.number("t0"));
+  const double table = system.table_position(scene.number("t0"));
   if (y < table)
     throw BadInput("initial.y", to_text(y),
                    "starts below the table (z(t0) = " + to_text(table) + " m)");
-  const BouncingBall system(p);
-  return run_system(system, BouncingBall::State{y, scene.number("initial.y_dot")},
-                    BouncingBall::Mode::free, scene, request, 2.0 * std::numbers::pi / p.omega,
-                    mode_name);
+  return {y, scene.number("initial.y_dot")};
+}
+
+RunOutput run(const Scene& scene, const RunRequest& request) {
+  const BouncingBall system = make_system(scene);
+  return run_system(system, initial_state(scene, system), BouncingBall::Mode::free, scene,
+                    request, 2.0 * std::numbers::pi / system.parameters().omega, mode_name);
+}
+
+SectionResult section(const Scene& scene, const SectionRequest& request) {
+  const BouncingBall system = make_system(scene);
+  const double t0 = scene.number("t0");
+  // a continued state starts at t0: below the table (which moved with the
+  // parameters) or riding on it, it starts on the table with its velocity
+  auto admissible = [&system, t0](BouncingBall::State& x, BouncingBall::Mode& mode) {
+    if (x[0] < system.table_position(t0) || mode == BouncingBall::Mode::stuck) {
+      x = {system.table_position(t0), system.table_velocity(t0)};
+      mode = BouncingBall::Mode::free;
+    }
+  };
+  // a continued run does not start from the scene's initial state (which a
+  // swept table amplitude may have put below the table)
+  const BouncingBall::State x0 = request.start ? BouncingBall::State{} : initial_state(scene, system);
+  return run_section(system, x0, BouncingBall::Mode::free, scene, request,
+                     system.parameters().omega, admissible);
+}
+
+PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request) {
+  const BouncingBall system = make_system(scene);
+  return run_periodic(system, initial_state(scene, system), BouncingBall::Mode::free, scene,
+                      request, system.parameters().omega);
 }
 
 }  // namespace
 
 const OscillatorEntry& bouncing_ball_entry() {
-  static const OscillatorEntry entry{&schema(), &run};
+  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit};
   return entry;
 }
 

@@ -24,6 +24,7 @@
 #include "contact/newton_impact.hpp"
 #include "core/event_log.hpp"
 #include "core/hybrid_system.hpp"
+#include "core/has_jacobian.hpp"
 
 namespace impactlab {
 
@@ -140,6 +141,51 @@ class LinearImpact {
     x[1] = decay * ((omega_d_ * c2 - p_.zeta * c1) * c - (omega_d_ * c1 + p_.zeta * c2) * s) + vp;
   }
 
+  // --- linearisation (core/has_jacobian.hpp), on (x, ẋ) ---
+
+  // The flow of every mode is affine in the initial state (linear ODE, or a
+  // state that does not change), so the exact flow also gives its Jacobian.
+  static constexpr bool affine_flow = true;
+
+  // free: ∂(ẋ, ẍ)/∂(x, ẋ) = [[0, 1], [−1, −2ζ]]; stuck: zero
+  void jacobian(Mode mode, const State&, double, TangentMatrix& j) const {
+    if (mode == Mode::stuck) {
+      j = {};
+      return;
+    }
+    j = {{{0.0, 1.0}, {-1.0, -2.0 * p_.zeta}}};
+  }
+
+  // free: the gap σ − x; stuck: the push depends on t alone
+  [[nodiscard]] TangentVector witness_gradient(Mode mode, std::size_t, const State&,
+                                               double) const {
+    if (mode == Mode::stuck) return {0.0, 0.0};
+    return {-1.0, 0.0};
+  }
+
+  // the stuck mode pins the mass to the stop at rest
+  [[nodiscard]] bool pinned(Mode mode) const { return mode == Mode::stuck; }
+
+  // An impact sets x⁺ = σ, ẋ⁺ = −r ẋ⁻: ∂g/∂x = [[0, 0], [0, −r]], no explicit
+  // time dependence. A grazing touch leaves the state alone. An accumulation
+  // (rest on the stop) and a release (at a time set by the forcing) collapse
+  // nearby states into one.
+  [[nodiscard]] ResetJacobian reset_jacobian(Mode mode, std::size_t, CrossingKind crossing,
+                                             const State&, double t,
+                                             const Transition<State, Mode>& after) const {
+    ResetJacobian reset;
+    if (crossing == CrossingKind::grazing) {
+      reset.state = {{{1.0, 0.0}, {0.0, 1.0}}};
+      return reset;
+    }
+    if (mode == Mode::stuck || after.mode == Mode::stuck || after.time > t) {
+      reset.collapses = true;
+      return reset;
+    }
+    reset.state = {{{0.0, 0.0}, {0.0, -p_.r}}};
+    return reset;
+  }
+
  private:
   static double response_denominator(const LinearImpactParameters& p) {
     const double detuning = 1.0 - p.omega * p.omega;
@@ -185,6 +231,7 @@ class LinearImpact {
 };
 
 static_assert(HybridSystem<LinearImpact>);
+static_assert(HasJacobian<LinearImpact>);
 static_assert(HasExactFlow<LinearImpact>);
 
 }  // namespace impactlab

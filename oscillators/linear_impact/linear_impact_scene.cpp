@@ -1,6 +1,8 @@
 // The linear impact oscillator's scene schema and runner.
 #include <numbers>
 
+#include "analysis/run_periodic.hpp"
+#include "analysis/run_section.hpp"
 #include "io/bad_input.hpp"
 #include "io/oscillator_registry.hpp"
 #include "io/run_system.hpp"
@@ -42,7 +44,8 @@ std::string_view mode_name(LinearImpact::Mode mode) {
   return mode == LinearImpact::Mode::free ? "free" : "stuck";
 }
 
-RunOutput run(const Scene& scene, const RunRequest& request) {
+// The system a scene describes (checks that need several keys at once throw BadInput).
+LinearImpact make_system(const Scene& scene) {
   LinearImpactParameters p;
   p.zeta = scene.number("zeta");
   p.A = scene.number("A");
@@ -54,19 +57,51 @@ RunOutput run(const Scene& scene, const RunRequest& request) {
     throw BadInput("zeta", to_text(p.zeta),
                    "method = exact needs an underdamped, non-resonant oscillator (zeta < 1, and "
                    "omega != 1 when zeta = 0)");
+  return LinearImpact(p);
+}
+
+LinearImpact::State initial_state(const Scene& scene, const LinearImpact& system) {
   const double x = scene.number("initial.x");
-  if (x > p.sigma)
-    throw BadInput("initial.x", to_text(x), "starts beyond the stop sigma = " + to_text(p.sigma));
-  const LinearImpact system(p);
-  return run_system(system, LinearImpact::State{x, scene.number("initial.x_dot")},
-                    LinearImpact::Mode::free, scene, request,
-                    2.0 * std::numbers::pi / p.omega, mode_name);
+  if (x > system.parameters().sigma)
+    throw BadInput("initial.x", to_text(x),
+                   "starts beyond the stop sigma = " + to_text(system.parameters().sigma));
+  return {x, scene.number("initial.x_dot")};
+}
+
+RunOutput run(const Scene& scene, const RunRequest& request) {
+  const LinearImpact system = make_system(scene);
+  const double omega = system.parameters().omega;
+  return run_system(system, initial_state(scene, system), LinearImpact::Mode::free, scene, request,
+                    2.0 * std::numbers::pi / omega, mode_name);
+}
+
+SectionResult section(const Scene& scene, const SectionRequest& request) {
+  const LinearImpact system = make_system(scene);
+  const double sigma = system.parameters().sigma;
+  // a continued state beyond a moved stop starts on it
+  auto admissible = [sigma](LinearImpact::State& x, LinearImpact::Mode& mode) {
+    if (x[0] > sigma || mode == LinearImpact::Mode::stuck) {
+      x = {sigma, 0.0};
+      mode = LinearImpact::Mode::free;
+    }
+  };
+  // a continued run does not start from the scene's initial state (which a
+  // swept sigma may have left beyond the stop)
+  const LinearImpact::State x0 = request.start ? LinearImpact::State{} : initial_state(scene, system);
+  return run_section(system, x0, LinearImpact::Mode::free, scene, request,
+                     system.parameters().omega, admissible);
+}
+
+PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request) {
+  const LinearImpact system = make_system(scene);
+  return run_periodic(system, initial_state(scene, system), LinearImpact::Mode::free, scene,
+                      request, system.parameters().omega);
 }
 
 }  // namespace
 
 const OscillatorEntry& linear_impact_entry() {
-  static const OscillatorEntry entry{&schema(), &run};
+  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit};
   return entry;
 }
 

@@ -35,6 +35,7 @@
 #include "core/fast_trig.hpp"
 #include "core/hybrid_system.hpp"
 #include "oscillators/pendulum_walls/sliding_impact.hpp"
+#include "core/has_jacobian.hpp"
 
 namespace impactlab {
 
@@ -162,6 +163,63 @@ class BasicPendulumWalls {
     const int wall = mode == Mode::contact_right ? 1 : -1;
     if (k == 0) return release(mode, wall, x, t, log);
     return slip_reversal(mode, wall, x, t, log);
+  }
+
+  // --- linearisation (core/has_jacobian.hpp), on (θ, θ̇); W_f is bookkeeping ---
+  // Model N only: Model P's release restores a rate stored at the impact
+  // (θ̇_release, outside the tangent space), so its contact phases do not
+  // collapse nearby states; without these members its Lyapunov exponents and
+  // Floquet multipliers are reported as not available.
+
+  // free: ∂(θ̇, θ̈)/∂(θ, θ̇) = [[0, 1], [−g_e(t) cos θ / l, −d / (m l²)]];
+  // contact: zero (θ ≡ ±θ0, θ̇ = 0)
+  void jacobian(Mode mode, const State& x, double t, TangentMatrix& j) const
+    requires(!is_paper_model)
+  {
+    if (mode != Mode::free) {
+      j = {};
+      return;
+    }
+    j = {{{0.0, 1.0},
+          {-effective_gravity(t) * std::cos(x[0]) / p_.l, -p_.d / (p_.m * p_.l * p_.l)}}};
+  }
+
+  // free: the angular gaps θ0 ∓ θ; contact: the witnesses depend on t alone
+  [[nodiscard]] TangentVector witness_gradient(Mode mode, std::size_t k, const State&,
+                                               double) const
+    requires(!is_paper_model)
+  {
+    if (mode != Mode::free) return {0.0, 0.0};
+    return {k == 0 ? -1.0 : 1.0, 0.0};
+  }
+
+  // the contact modes pin the bob to a wall at rest
+  [[nodiscard]] bool pinned(Mode mode) const
+    requires(!is_paper_model)
+  {
+    return mode != Mode::free;
+  }
+
+  // An impact sets θ⁺ = ±θ0, θ̇⁺ = −e_n θ̇⁻: ∂g/∂x = [[0, 0], [0, −e_n]], no
+  // explicit time dependence. A grazing touch leaves the state alone. Entering
+  // contact (an accumulation), a release (where g_e vanishes, a time set by the
+  // forcing) and a slip reversal collapse nearby states into one.
+  [[nodiscard]] ResetJacobian reset_jacobian(Mode mode, std::size_t, CrossingKind crossing,
+                                             const State&, double t,
+                                             const Transition<State, Mode>& after) const
+    requires(!is_paper_model)
+  {
+    ResetJacobian reset;
+    if (crossing == CrossingKind::grazing || after.stop) {
+      reset.state = {{{1.0, 0.0}, {0.0, 1.0}}};
+      return reset;
+    }
+    if (mode != Mode::free || after.mode != Mode::free || after.time > t) {
+      reset.collapses = true;
+      return reset;
+    }
+    reset.state = {{{0.0, 0.0}, {0.0, -p_.e_n}}};
+    return reset;
   }
 
  private:
@@ -325,5 +383,7 @@ using PaperPendulumWalls = BasicPendulumWalls<PendulumModel::paper>;
 
 static_assert(HybridSystem<PendulumWalls>);
 static_assert(HybridSystem<PaperPendulumWalls>);
+static_assert(HasJacobian<PendulumWalls>);
+static_assert(!HasJacobian<PaperPendulumWalls>);
 
 }  // namespace impactlab

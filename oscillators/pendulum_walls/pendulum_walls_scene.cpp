@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <numbers>
 
+#include "analysis/run_periodic.hpp"
+#include "analysis/run_section.hpp"
 #include "io/bad_input.hpp"
 #include "io/oscillator_registry.hpp"
 #include "io/run_system.hpp"
@@ -67,7 +69,14 @@ std::string_view mode_name(PendulumMode mode) {
   return "unknown";
 }
 
+// Checks that hold for every model of the pendulum.
+void check_model_scene(const Scene& scene) {
+  if (scene.text("integrator.method") == "exact")
+    throw BadInput("integrator.method", "exact", "the pendulum has no closed-form flow");
+}
+
 PendulumWallsParameters parameters(const Scene& scene) {
+  check_model_scene(scene);
   PendulumWallsParameters p;
   p.m = scene.number("m");
   p.l = scene.number("l");
@@ -84,12 +93,8 @@ PendulumWallsParameters parameters(const Scene& scene) {
   return p;
 }
 
-template <PendulumModel model>
-RunOutput run_model(const Scene& scene, const RunRequest& request) {
-  using System = BasicPendulumWalls<model>;
-  const PendulumWallsParameters p = parameters(scene);
-  const System system(p);
-
+template <class System>
+typename System::State initial_state(const Scene& scene, const System& system) {
   const double theta = scene.number("initial.theta");
   if (std::fabs(theta) > system.wall_angle())
     throw BadInput("initial.theta", to_text(theta),
@@ -98,6 +103,66 @@ RunOutput run_model(const Scene& scene, const RunRequest& request) {
   typename System::State x0{};
   x0[0] = theta;
   x0[1] = scene.number("initial.theta_dot");
+  return x0;
+}
+
+// The rigid-body model runs through its own scene code and has no section
+// hook yet.
+void reject_rigid_analysis(const Scene& scene) {
+  if (scene.text("model") == "rigid")
+    throw BadInput("model", "rigid",
+                   "sections, sweeps and periodic orbits take newton or paper in this version");
+}
+
+template <class System>
+SectionResult section_model(const Scene& scene, const SectionRequest& request) {
+  const System system(parameters(scene));
+  const double theta0 = system.wall_angle();
+  // a continued state beyond a moved wall, or resting on a wall, starts on
+  // the wall at rest in free flight (the event at t0 decides contact again);
+  // the friction work (and Model P's pending release rate) restart from zero
+  // at each parameter value
+  auto admissible = [theta0](typename System::State& x, PendulumMode& mode) {
+    if (mode != PendulumMode::free) {
+      x[0] = mode == PendulumMode::contact_right ? theta0 : -theta0;
+      x[1] = 0.0;
+    }
+    if (std::fabs(x[0]) > theta0) x[0] = std::copysign(theta0, x[0]);
+    for (std::size_t i = 2; i < x.size(); ++i) x[i] = 0.0;
+    mode = PendulumMode::free;
+  };
+  // a continued run does not start from the scene's initial state (which a
+  // swept b may have put inside a wall)
+  const typename System::State x0 =
+      request.start ? typename System::State{} : initial_state(scene, system);
+  return run_section(system, x0, PendulumMode::free, scene, request, system.parameters().omega,
+                     admissible);
+}
+
+SectionResult section(const Scene& scene, const SectionRequest& request) {
+  reject_rigid_analysis(scene);
+  if (scene.text("model") == "paper") return section_model<PaperPendulumWalls>(scene, request);
+  return section_model<PendulumWalls>(scene, request);
+}
+
+PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request) {
+  reject_rigid_analysis(scene);
+  if (scene.text("model") == "paper") {
+    const PaperPendulumWalls system(parameters(scene));
+    return run_periodic(system, initial_state(scene, system), PendulumMode::free, scene, request,
+                        system.parameters().omega);
+  }
+  const PendulumWalls system(parameters(scene));
+  return run_periodic(system, initial_state(scene, system), PendulumMode::free, scene, request,
+                      system.parameters().omega);
+}
+
+template <PendulumModel model>
+RunOutput run_model(const Scene& scene, const RunRequest& request) {
+  using System = BasicPendulumWalls<model>;
+  const System system(parameters(scene));
+  const PendulumWallsParameters& p = system.parameters();
+  const typename System::State x0 = initial_state(scene, system);
   const double period = 2.0 * std::numbers::pi / p.omega;
 
   RunOutput output = run_system(system, x0, PendulumMode::free, scene, request, period, mode_name);
@@ -128,8 +193,6 @@ RunOutput run_model(const Scene& scene, const RunRequest& request) {
 RunOutput run(const Scene& scene, const RunRequest& request) {
   const std::string& model = scene.text("model");
   if (model == "rigid") return run_rigid_pendulum(scene, request);
-  if (scene.text("integrator.method") == "exact")
-    throw BadInput("integrator.method", "exact", "the pendulum has no closed-form flow");
   if (model == "paper") return run_model<PendulumModel::paper>(scene, request);
   return run_model<PendulumModel::newton>(scene, request);
 }
@@ -137,7 +200,7 @@ RunOutput run(const Scene& scene, const RunRequest& request) {
 }  // namespace
 
 const OscillatorEntry& pendulum_walls_entry() {
-  static const OscillatorEntry entry{&schema(), &run};
+  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit};
   return entry;
 }
 

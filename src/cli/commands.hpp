@@ -11,5 +11,9 @@ Command add_scenes_command(CLI::App& app);
 Command add_simulate_command(CLI::App& app);
 Command add_reproduce_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
+Command add_poincare_command(CLI::App& app);
+Command add_sweep_command(CLI::App& app);
+Command add_periodic_command(CLI::App& app);
+Command add_spectrum_command(CLI::App& app);
 
 }  // namespace impactlab::cli

@@ -25,6 +25,10 @@ int main(int argc, char** argv) {
       add_reproduce_command(app),
       add_compare_command(app),
       add_bench_command(app),
+      add_poincare_command(app),
+      add_sweep_command(app),
+      add_periodic_command(app),
+      add_spectrum_command(app),
   };
 
   const std::vector<std::string> command_line(argv, argv + argc);

@@ -86,10 +86,10 @@ OdeintFehlberg78<State>::OdeintFehlberg78(const StepperSettings& settings)
       controlled_(typename Controlled::error_checker_type(settings.atol, settings.rtol),
                   typename Controlled::step_adjuster_type(settings.max_step)) {}
 
-// the constructor for the one-degree-of-freedom states, {q, q̇}, {θ, θ̇, W_f}
-// and Model P's {θ, θ̇, W_f, θ̇_release}, and the rigid pendulum's
-// {θ, θ̇, φ, φ̇, W_f}, is compiled in odeint_fehlberg78.cpp only (the rest
-// stays inline)
+// the constructor for the states of the oscillators, {q, q̇}, {θ, θ̇, W_f},
+// Model P's {θ, θ̇, W_f, θ̇_release}, the rigid pendulum's {θ, θ̇, φ, φ̇, W_f},
+// and the variational states (6 and 7 components, analysis/variational.hpp),
+// is compiled in odeint_fehlberg78.cpp only (the rest stays inline)
 extern template OdeintFehlberg78<std::array<double, 2>>::OdeintFehlberg78(
     const StepperSettings&);
 extern template OdeintFehlberg78<std::array<double, 3>>::OdeintFehlberg78(
@@ -97,6 +97,10 @@ extern template OdeintFehlberg78<std::array<double, 3>>::OdeintFehlberg78(
 extern template OdeintFehlberg78<std::array<double, 4>>::OdeintFehlberg78(
     const StepperSettings&);
 extern template OdeintFehlberg78<std::array<double, 5>>::OdeintFehlberg78(
+    const StepperSettings&);
+extern template OdeintFehlberg78<std::array<double, 6>>::OdeintFehlberg78(
+    const StepperSettings&);
+extern template OdeintFehlberg78<std::array<double, 7>>::OdeintFehlberg78(
     const StepperSettings&);
 
 }  // namespace impactlab

@@ -10,11 +10,24 @@
 
 namespace impactlab {
 
+// analysis/section.hpp, analysis/periodic.hpp
+struct SectionRequest;
+struct SectionResult;
+struct PeriodicRequest;
+struct PeriodicResult;
+
 struct OscillatorEntry {
   const SceneSchema* schema;
   // builds the system from a validated scene (further checks that need several
   // keys at once throw BadInput) and runs it
   RunOutput (*run)(const Scene& scene, const RunRequest& request);
+  // the same system onto a Poincaré section (transient, section points, final
+  // state for continuation, counts, optional Lyapunov exponent): the analysis
+  // layer's entry point (analysis/run_section.hpp)
+  SectionResult (*section)(const Scene& scene, const SectionRequest& request) = nullptr;
+  // Newton shooting for a period-n orbit and its Floquet multipliers
+  // (analysis/run_periodic.hpp)
+  PeriodicResult (*periodic_orbit)(const Scene& scene, const PeriodicRequest& request) = nullptr;
 };
 
 std::span<const OscillatorEntry> oscillators();

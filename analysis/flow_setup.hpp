@@ -1,0 +1,41 @@
+// How the analysis layer integrates a scene's system: the scene's own
+// integrator method and tolerances (integrator.method, integrator.rtol,
+// integrator.atol), turned into the settings the event loop takes, exactly as
+// `impactlab simulate` does (io/run_system.hpp).
+#pragma once
+
+#include <string>
+
+#include "core/hybrid_system.hpp"
+#include "core/simulator.hpp"
+#include "integrate/stepper_settings.hpp"
+
+namespace impactlab {
+
+struct Scene;
+
+struct FlowSetup {
+  std::string method = "dopri5";  // integrator.method
+  double rtol = 1e-10;            // integrator.rtol
+  double atol = 1e-12;            // integrator.atol (state units)
+};
+
+// The scene's integrator keys.
+FlowSetup flow_setup(const Scene& scene);
+
+template <HybridSystem System>
+StepperSettings stepper_settings(const System& system, const FlowSetup& setup) {
+  StepperSettings settings;
+  settings.rtol = setup.rtol;
+  settings.atol = setup.atol;
+  settings.max_step = system.max_step();
+  return settings;
+}
+
+inline LoopOptions loop_options(const FlowSetup& setup) {
+  LoopOptions options;
+  options.location.grazing_tolerance = setup.atol;
+  return options;
+}
+
+}  // namespace impactlab

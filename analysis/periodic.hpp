@@ -1,0 +1,39 @@
+// A periodic orbit located from a scene: the type-erased request and result of
+// OscillatorEntry::periodic_orbit (analysis/run_periodic.hpp does the work for
+// a concrete system with Jacobians).
+#pragma once
+
+#include <array>
+#include <complex>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/has_jacobian.hpp"
+
+namespace impactlab {
+
+struct PeriodicRequest {
+  int period = 1;                 // n: the orbit's period in forcing periods
+  double phase = 0.0;             // rad: the stroboscopic section ωt ≡ phase (mod 2π)
+  double transient_periods = 100; // periods run from the scene's initial state first
+  int max_iterations = 30;        // Newton iterations
+  double tolerance = 1e-11;       // relative residual |Pⁿ(x) − x| / (1 + |x|)
+};
+
+struct PeriodicResult {
+  bool available = false;  // false: the oscillator/model has no Jacobians (see note)
+  std::string note;
+  std::vector<double> state;      // the orbit's point on the section (whole state)
+  int mode = 0;
+  double t_section = 0.0;         // the section time the point belongs to
+  double orbit_period = 0.0;      // nT
+  TangentMatrix monodromy{};
+  std::array<std::complex<double>, 2> multipliers{};
+  bool converged = false;
+  int iterations = 0;
+  double residual = std::numeric_limits<double>::quiet_NaN();
+  std::string termination = "completed";
+};
+
+}  // namespace impactlab

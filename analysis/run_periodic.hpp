@@ -1,0 +1,60 @@
+// Newton shooting from a scene, for OscillatorEntry::periodic_orbit: run a
+// transient to the stroboscopic section, then locate the period-n orbit with
+// the saltation-corrected monodromy (analysis/floquet.hpp).
+#pragma once
+
+#include <cmath>
+#include <numbers>
+
+#include "analysis/floquet.hpp"
+#include "analysis/periodic.hpp"
+#include "core/simulator.hpp"
+#include "integrate/stepper_dispatch.hpp"
+#include "io/scene.hpp"
+
+namespace impactlab {
+
+template <HybridSystem System>
+PeriodicResult run_periodic(const System& system, const typename System::State& x0,
+                            typename System::Mode mode0, const Scene& scene,
+                            const PeriodicRequest& request, double omega) {
+  PeriodicResult result;
+  if constexpr (!HasJacobian<System>) {
+    result.note = "this oscillator/model has no Jacobians";
+    return result;
+  } else {
+    result.available = true;
+    const FlowSetup setup = flow_setup(scene);
+    const double period = 2.0 * std::numbers::pi / omega;
+    const double t0 = scene.number("t0");
+    // the first section time at or after the transient
+    const double after = t0 + request.transient_periods * period;
+    const double k = std::ceil((omega * after - request.phase) / (2.0 * std::numbers::pi) - 1e-9);
+    result.t_section = (request.phase + 2.0 * std::numbers::pi * k) / omega;
+    result.orbit_period = request.period * period;
+    EventLog log(false);
+    const auto transient =
+        with_stepper<System>(setup.method, stepper_settings(system, setup), [&](auto& stepper) {
+          return simulate(system, stepper, x0, mode0, t0, result.t_section, loop_options(setup),
+                          log);
+        });
+    if (transient.termination != Termination::completed) {
+      result.termination = std::string(to_string(transient.termination));
+      return result;
+    }
+    const auto orbit = locate_periodic_orbit(system, setup, transient.state, transient.mode,
+                                             result.t_section, result.orbit_period,
+                                             request.max_iterations, request.tolerance);
+    result.state.assign(orbit.state.begin(), orbit.state.end());
+    result.mode = static_cast<int>(orbit.mode);
+    result.monodromy = orbit.monodromy;
+    result.multipliers = orbit.multipliers;
+    result.converged = orbit.converged;
+    result.iterations = orbit.iterations;
+    result.residual = orbit.residual;
+    result.termination = std::string(to_string(orbit.termination));
+    return result;
+  }
+}
+
+}  // namespace impactlab

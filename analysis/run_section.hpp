@@ -1,0 +1,203 @@
+// One run of a concrete system onto a Poincaré section: discard a transient
+// (forcing periods, or impacts), record the section points, count impacts and
+// contact phases in the record window, optionally the largest Lyapunov
+// exponent, and return the final state for continuation. Each oscillator's
+// scene file instantiates it once for OscillatorEntry::section.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <string>
+#include <tuple>
+
+#include "analysis/crossing_section.hpp"
+#include "analysis/floquet.hpp"
+#include "analysis/flow_setup.hpp"
+#include "analysis/section.hpp"
+#include "core/has_jacobian.hpp"
+#include "core/simulator.hpp"
+#include "integrate/stepper_dispatch.hpp"
+#include "io/scene.hpp"
+
+namespace impactlab {
+
+namespace detail {
+
+// Observes the state at the stroboscopic times t_k = (phase + 2πk)/ω.
+class StrobeObserver {
+ public:
+  StrobeObserver(double omega, double phase, double from, std::uint64_t count,
+                 std::vector<SectionPoint>& points)
+      : omega_(omega), phase_(phase), count_(count), points_(points) {
+    // first k with t_k >= from (to round-off)
+    first_ = std::ceil((omega * from - phase) / (2.0 * std::numbers::pi) - 1e-9);
+  }
+  [[nodiscard]] double next_time() const {
+    if (taken_ >= count_) return INFINITY;
+    return (phase_ + 2.0 * std::numbers::pi * (first_ + static_cast<double>(taken_))) / omega_;
+  }
+  template <class State, class Mode>
+  void observe(double t, const State& x, Mode) {
+    points_.push_back({t, x[0], x[1], 0});
+    ++taken_;
+  }
+  [[nodiscard]] double last_time() const {
+    return (phase_ + 2.0 * std::numbers::pi * (first_ + static_cast<double>(count_) - 1.0)) /
+           omega_;
+  }
+
+ private:
+  double omega_, phase_, first_;
+  std::uint64_t count_, taken_ = 0;
+  std::vector<SectionPoint>& points_;
+};
+
+template <class Result>
+std::string termination_text(const Result& run) {
+  return std::string(to_string(run.termination));
+}
+
+}  // namespace detail
+
+// x0, mode0: the scene's initial state; omega: the forcing frequency (rad per
+// time unit); admissible(State&, Mode&): moves a continued state into the
+// current parameters' admissible set (walls may have moved).
+template <HybridSystem System, class Admissible>
+SectionResult run_section(const System& system, const typename System::State& x0,
+                          typename System::Mode mode0, const Scene& scene,
+                          const SectionRequest& request, double omega, Admissible admissible) {
+  using State = typename System::State;
+  using Mode = typename System::Mode;
+  SectionResult result;
+  result.omega = omega;
+  result.forcing_period = 2.0 * std::numbers::pi / omega;
+  const double period = result.forcing_period;
+  const FlowSetup setup = flow_setup(scene);
+  const LoopOptions options = loop_options(setup);
+
+  State x = x0;
+  Mode mode = mode0;
+  if (request.start && request.start->state.size() == std::tuple_size_v<State>) {
+    std::copy(request.start->state.begin(), request.start->state.end(), x.begin());
+    mode = static_cast<Mode>(request.start->mode);
+    admissible(x, mode);
+  }
+  double t = scene.number("t0");
+  const double t0 = t;
+
+  return with_stepper<System>(setup.method, stepper_settings(system, setup), [&](auto& stepper) {
+    // one stretch of the run, from (t, x, mode) to t_end; false when it stopped early
+    auto advance = [&](double t_end, EventLog& log, auto&& observer) {
+      const auto run = simulate(system, stepper, x, mode, t, t_end, options, log, observer);
+      result.steps += run.counters.steps;
+      result.rhs_evaluations += run.counters.rhs_evaluations;
+      x = run.state;
+      mode = run.mode;
+      t = run.t;
+      if (run.termination == Termination::completed) return true;
+      result.termination = detail::termination_text(run);
+      return false;
+    };
+    const auto max_periods = static_cast<std::uint64_t>(request.max_periods);
+
+    // transient: whole periods, or periods until enough impacts
+    EventLog transient_log(false);
+    if (request.transient_impacts == 0) {
+      if (request.transient_periods > 0.0 &&
+          !advance(t0 + request.transient_periods * period, transient_log, NoObserver{}))
+        return result;
+    } else {
+      for (std::uint64_t k = 1; transient_log.count(EventKind::impact) < request.transient_impacts;
+           ++k) {
+        if (k > max_periods) {
+          result.termination = "transient_impacts_not_reached";
+          return result;
+        }
+        if (!advance(t0 + static_cast<double>(k) * period, transient_log, NoObserver{}))
+          return result;
+      }
+    }
+    result.record_start = t;
+    const State x_record = x;
+    const Mode mode_record = mode;
+
+    // record
+    EventLog record_log(request.section.kind == SectionKind::impact);
+    if (request.section.kind == SectionKind::strobe) {
+      detail::StrobeObserver observer(omega, request.section.phase, t, request.points,
+                                      result.points);
+      const double end = std::max(t + static_cast<double>(request.points) * period,
+                                  observer.last_time());
+      if (!advance(end, record_log, observer)) return result;
+    } else if (request.section.kind != SectionKind::impact) {
+      // a user-given section: the system with one more witness, in whole periods
+      const CrossingSection<System> crossing(system, request.section, result.points);
+      const std::uint64_t chunk = std::max<std::uint64_t>(request.points, 1);
+      for (std::uint64_t periods = 0; result.points.size() < request.points; periods += chunk) {
+        if (periods >= max_periods) {
+          result.termination = "crossings_not_reached";
+          break;
+        }
+        const auto run = with_stepper<CrossingSection<System>>(
+            setup.method, stepper_settings(system, setup), [&](auto& crossing_stepper) {
+              return simulate(crossing, crossing_stepper, x, mode, t,
+                              t + static_cast<double>(chunk) * period, options, record_log);
+            });
+        result.steps += run.counters.steps;
+        result.rhs_evaluations += run.counters.rhs_evaluations;
+        x = run.state;
+        mode = run.mode;
+        t = run.t;
+        if (run.termination != Termination::completed) {
+          result.termination = detail::termination_text(run);
+          break;
+        }
+      }
+      if (result.points.size() > request.points) result.points.resize(request.points);
+    } else {
+      const std::uint64_t chunk = std::max<std::uint64_t>(request.points, 1);
+      for (std::uint64_t periods = 0; result.points.size() < request.points; periods += chunk) {
+        if (periods >= max_periods) {
+          result.termination = "impacts_not_reached";
+          break;
+        }
+        if (!advance(t + static_cast<double>(chunk) * period, record_log, NoObserver{})) break;
+        for (const auto& event : record_log.records())
+          if (event.kind == EventKind::impact && result.points.size() < request.points &&
+              (request.section.wall == 0 || event.wall == request.section.wall) &&
+              (result.points.empty() || event.t > result.points.back().t))
+            result.points.push_back({event.t, event.q, event.qdot_before, event.wall});
+      }
+    }
+    // whole periods, up to the round-off of the time sums
+    result.periods_recorded = (t - result.record_start) / period;
+    if (std::fabs(result.periods_recorded - std::round(result.periods_recorded)) < 1e-6)
+      result.periods_recorded = std::round(result.periods_recorded);
+    result.impacts = record_log.count(EventKind::impact);
+    result.contact_phases =
+        std::max(record_log.count(EventKind::contact_start), record_log.count(EventKind::contact_end));
+    if (result.termination == "completed")
+      result.final_state = ContinuationState{std::vector<double>(x.begin(), x.end()),
+                                             static_cast<int>(mode)};
+
+    // the largest Lyapunov exponent over the record window, from its start
+    if (request.lyapunov) {
+      if constexpr (HasJacobian<System>) {
+        const int periods = std::max(1, static_cast<int>(std::lround(result.periods_recorded)));
+        const LyapunovResult lyapunov = largest_lyapunov_exponent(
+            system, setup, x_record, mode_record, result.record_start, period, periods,
+            request.lyapunov_alignment_periods);
+        result.lyapunov = lyapunov.exponent;
+        if (lyapunov.termination != Termination::completed)
+          result.lyapunov_note = "the tangent run stopped early";
+      } else {
+        result.lyapunov_note = "this oscillator/model has no Jacobians";
+      }
+    }
+    return result;
+  });
+}
+
+}  // namespace impactlab

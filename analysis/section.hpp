@@ -1,0 +1,78 @@
+// Poincaré sections: which section, what one point on it records, and what
+// one run onto a section is asked for and gives back. These types are
+// independent of the oscillator, so that commands and sweeps reach every
+// oscillator through one type-erased entry (OscillatorEntry::section,
+// analysis/run_section.hpp does the work for a concrete system).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace impactlab {
+
+enum class SectionKind {
+  strobe,  // stroboscopic: the state where the forcing phase ωt (mod 2π) equals `phase`
+  impact,  // the impact map: the state just before each impact with `wall`
+  q_crossing,     // a user-given section: q = level, crossed in `direction`
+  qdot_crossing,  // a user-given section: q̇ = level, crossed in `direction`
+};
+
+struct SectionSpec {
+  SectionKind kind = SectionKind::strobe;
+  double phase = 0.0;  // rad in [0, 2π): the forcing phase of a stroboscopic section
+  int wall = 0;        // impact map: +1 / -1, or 0 for every wall
+  double level = 0.0;  // user-given section: the value of q or q̇
+  int direction = 1;   // user-given section: +1 increasing, −1 decreasing, 0 both
+};
+
+// Parses `strobe[:PHASE]`, `impact[:WALL]` (WALL: +1, -1, 1, or 0 for any),
+// `q=LEVEL[:up|down|both]` or `qdot=LEVEL[:up|down|both]` (default up);
+// BadInput (key `key`) otherwise.
+SectionSpec parse_section(std::string_view text, std::string_view key);
+std::string to_string(const SectionSpec& section);
+
+// One point on a section.
+struct SectionPoint {
+  double t = 0.0;     // time (s, or the scene's time unit)
+  double q = 0.0;     // main coordinate (θ, x or y)
+  double qdot = 0.0;  // its rate (before the impact, for the impact map)
+  int wall = 0;       // impact map: the wall hit; 0 for a stroboscopic point
+};
+
+// The state a run ends in, to continue from at the next parameter value.
+struct ContinuationState {
+  std::vector<double> state;  // the system's whole state
+  int mode = 0;               // the system's mode, as its enum's integer value
+};
+
+struct SectionRequest {
+  SectionSpec section;
+  double transient_periods = 100.0;    // forcing periods discarded first
+  std::uint64_t transient_impacts = 0; // when > 0: discard this many impacts instead
+  std::uint64_t points = 50;           // strobe: periods recorded; impact: impacts recorded
+  bool lyapunov = false;               // also the largest Lyapunov exponent
+  int lyapunov_alignment_periods = 10; // periods a tangent vector turns before averaging
+  double max_periods = 1e5;            // cap on a transient or record counted in impacts
+  std::optional<ContinuationState> start;  // instead of the scene's initial state
+};
+
+struct SectionResult {
+  std::vector<SectionPoint> points;
+  std::optional<ContinuationState> final_state;  // none when the run stopped early
+  std::string termination = "completed";  // completed, stopped_by_model, no_progress
+  double omega = 0.0;              // forcing frequency (rad per time unit)
+  double forcing_period = 0.0;     // 2π/ω
+  double record_start = 0.0;       // time the recording began
+  double periods_recorded = 0.0;   // forcing periods in the record window
+  std::uint64_t impacts = 0;       // impacts in the record window
+  std::uint64_t contact_phases = 0;  // contact phases begun or ended in the record window
+  std::uint64_t steps = 0, rhs_evaluations = 0;  // over the whole run
+  double lyapunov = std::numeric_limits<double>::quiet_NaN();  // largest exponent (1/time)
+  std::string lyapunov_note;       // why it is NaN, where it is
+};
+
+}  // namespace impactlab

@@ -1,0 +1,98 @@
+// Parameter sweeps: 1D bifurcation sweeps that follow the attractor (each
+// value starts from the previous value's final state), up, down or both, and
+// 2D sweeps whose points are classified (period of the section map, impacts
+// per period, contact phases, largest Lyapunov exponent).
+//
+// The work is cut into tasks whose definition does not depend on the number
+// of threads or processes: a task is one continuation run (1D: one direction
+// of one chunk of the range; 2D: one row, the first parameter increasing with
+// the second fixed). Tasks run in any order on any thread or MPI rank and
+// give the same records, so serial, threaded and MPI sweeps write identical
+// files.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "analysis/section.hpp"
+#include "io/scene.hpp"
+
+namespace impactlab {
+
+// One swept parameter: `count` values from `from` to `to`, both included.
+struct SweepAxis {
+  std::string name;
+  double from = 0.0, to = 0.0;
+  int count = 1;
+  [[nodiscard]] double value(int index) const;
+};
+
+// Parses NAME=FROM:TO:N; BadInput (key `option`) if malformed.
+SweepAxis parse_axis(std::string_view text, std::string_view option);
+
+enum class SweepDirection { up, down, both };
+SweepDirection parse_direction(std::string_view text, std::string_view option);
+std::string_view to_string(SweepDirection direction);
+
+struct SweepPlan {
+  std::vector<SweepAxis> axes;  // one (bifurcation sweep) or two (classification map)
+  SweepDirection direction = SweepDirection::up;  // 1D only
+  int chunks = 1;               // 1D: continuation runs per direction, each from the scene's start
+  SectionRequest section;       // transient, points, section, Lyapunov
+  double period_tolerance = 1e-6;  // relative distance under which section points repeat
+  int max_period = 16;             // longest period looked for (section-map iterations)
+};
+
+// Checks the plan against the scene: the axes name numeric keys of the
+// scene's oscillator and every swept value is admissible. Throws BadInput.
+void validate_plan(const SweepPlan& plan, const Scene& scene);
+
+// One continuation run: grid points (i along axis 1, j along axis 2) in order.
+struct SweepTask {
+  int id = 0;
+  int direction = 1;  // +1 up, −1 down (1D); +1 in 2D
+  std::vector<std::array<int, 2>> points;
+};
+
+std::vector<SweepTask> sweep_tasks(const SweepPlan& plan);
+
+// The classification of one point from its section points and counts.
+struct Classification {
+  int period = 0;                   // smallest p with x_{k+p} ≈ x_k; 0: none up to max_period
+  double impacts_per_period = 0.0;  // impacts per forcing period in the record window
+  bool contact = false;             // a contact (sticking/sliding) phase in the record window
+};
+
+Classification classify(const SectionResult& result, const SweepPlan& plan);
+
+// Everything a sweep keeps of one point (also one line of a checkpoint).
+struct SweepRecord {
+  int task = 0, position = 0;  // which task, which point of it
+  std::array<int, 2> index{};  // grid indices
+  int direction = 1;
+  SectionResult result;
+  Classification classification;
+};
+
+std::string to_json_line(const SweepRecord& record);
+// nullopt for a line that does not parse (a line cut short by a kill)
+std::optional<SweepRecord> from_json_line(std::string_view line);
+
+// The scene at one grid point. Throws BadInput for an inadmissible value.
+Scene scene_at(const Scene& base, const SweepPlan& plan, const std::array<int, 2>& index);
+
+// Runs one task. `done(position)` returns a finished record to reuse (resume)
+// or nullptr; `on_record` receives each new record; `keep_going()` false stops
+// the task before its next new point. Returns the task's records in order.
+std::vector<SweepRecord> run_sweep_task(
+    const Scene& base, const SweepPlan& plan, const SweepTask& task,
+    const std::function<const SweepRecord*(int position)>& done,
+    const std::function<void(const SweepRecord&)>& on_record,
+    const std::function<bool()>& keep_going);
+
+}  // namespace impactlab

@@ -1,0 +1,148 @@
+// `impactlab periodic`: a period-n orbit located by Newton shooting on the
+// stroboscopic map with the saltation-corrected monodromy matrix, and its
+// Floquet multipliers; writes periodic.json. n is given, or detected from the
+// stroboscopic points after the transient (--period auto, the default).
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "analysis/periodic.hpp"
+#include "analysis/sweep.hpp"
+#include "cli/command.hpp"
+#include "cli/commands.hpp"
+#include "cli/section_options.hpp"
+#include "io/bad_input.hpp"
+#include "io/oscillator_registry.hpp"
+#include "io/output.hpp"
+
+namespace impactlab::cli {
+
+namespace {
+
+struct PeriodicOptions {
+  SceneOptions scene;
+  std::string period = "auto";  // n, or auto: the period of the stroboscopic points
+  double phase = 0.0;
+  double transient = 100.0;
+  int max_iterations = 30;
+  double tolerance = 1e-11;
+};
+
+nlohmann::json complex_record(std::complex<double> z) {
+  return {{"re", z.real()}, {"im", z.imag()}, {"abs", std::abs(z)}};
+}
+
+int run_periodic(const PeriodicOptions& options, const std::vector<std::string>& command_line) {
+  const Scene scene = options.scene.load();
+  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
+  if (!entry.periodic_orbit)
+    throw BadInput("oscillator", scene.oscillator, "has no periodic-orbit entry");
+  PeriodicRequest request;
+  std::string period_source = "given";
+  if (options.period == "auto") {
+    // the period of 64 stroboscopic points after the transient (1 if none is found)
+    SectionRequest probe;
+    probe.section.phase = options.phase;
+    probe.transient_periods = options.transient;
+    probe.points = 64;
+    SweepPlan plan;
+    plan.max_period = 32;
+    const SectionResult points = run_section_for(scene, probe);
+    const int detected = classify(points, plan).period;
+    request.period = detected > 0 ? detected : 1;
+    period_source = detected > 0 ? "detected from 64 stroboscopic points"
+                                 : "none detected in 64 stroboscopic points: 1 tried";
+  } else {
+    char* end = nullptr;
+    const long n = std::strtol(options.period.c_str(), &end, 10);
+    if (end == options.period.c_str() || *end != '\0' || n < 1 || n > 1000)
+      throw BadInput("--period", options.period, "expected auto or a whole number from 1 to 1000");
+    request.period = static_cast<int>(n);
+  }
+  request.phase = options.phase;
+  request.transient_periods = options.transient;
+  request.max_iterations = options.max_iterations;
+  request.tolerance = options.tolerance;
+  const auto directory = options.scene.output_directory();
+  prepare_output_directory(directory);
+  const auto start = std::chrono::steady_clock::now();
+  const PeriodicResult result = entry.periodic_orbit(scene, request);
+  const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!result.available) throw BadInput("oscillator", scene.oscillator, result.note);
+
+  const auto& m = result.monodromy;
+  nlohmann::json document = {
+      {"impactlab_version", IMPACTLAB_VERSION},
+      {"command", command_line},
+      {"created_utc", utc_now()},
+      {"scene", scene_record(scene)},
+      {"request",
+       {{"period", request.period},
+        {"period_source", period_source},
+        {"phase_rad", request.phase},
+        {"transient_periods", request.transient_periods},
+        {"max_iterations", request.max_iterations},
+        {"tolerance", request.tolerance}}},
+      {"converged", result.converged},
+      {"iterations", result.iterations},
+      {"residual", result.residual},
+      {"termination", result.termination},
+      {"t_section", result.t_section},
+      {"orbit_period", result.orbit_period},
+      {"state", result.state},
+      {"mode", result.mode},
+      {"monodromy", {{m[0][0], m[0][1]}, {m[1][0], m[1][1]}}},
+      {"floquet_multipliers",
+       {complex_record(result.multipliers[0]), complex_record(result.multipliers[1])}},
+      {"wall_time_s", wall_time},
+  };
+  AtomicFile file(directory / "periodic.json");
+  write_json(file, document);
+  file.commit();
+  if (!options.scene.quiet)
+    std::cout << fmt::format(
+        "{}: period-{} orbit {} after {} iterations (residual {:.3g}); multipliers {:.9g}{:+.9g}i, "
+        "{:.9g}{:+.9g}i\nwrote {}\n",
+        scene.name, request.period, result.converged ? "converged" : "NOT converged",
+        result.iterations, result.residual, result.multipliers[0].real(),
+        result.multipliers[0].imag(), result.multipliers[1].real(), result.multipliers[1].imag(),
+        (directory / "periodic.json").string());
+  return result.converged ? exit_done : exit_stopped_early;
+}
+
+}  // namespace
+
+Command add_periodic_command(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "periodic", "locate a period-n orbit (Newton shooting) and its Floquet multipliers");
+  auto options = std::make_shared<PeriodicOptions>();
+  command->add_option("scene", options->scene.scene, "built-in scene name or path")
+      ->capture_default_str();
+  command->add_option("--set", options->scene.assignments, "KEY=VALUE, repeatable");
+  command->add_option("--out", options->scene.out, "output directory (default out/<scene>)");
+  command->add_flag("--quiet", options->scene.quiet, "print nothing but errors");
+  command->add_option("--period", options->period,
+                      "n: the orbit's period in forcing periods, or auto (the period of the "
+                      "stroboscopic points after the transient)")
+      ->capture_default_str();
+  command->add_option("--phase", options->phase, "section phase omega t mod 2 pi (rad)")
+      ->check(CLI::Range(0.0, 6.283185307179586))
+      ->capture_default_str();
+  command->add_option("--transient", options->transient, "forcing periods run first")
+      ->check(CLI::Range(0.0, 1e9))
+      ->capture_default_str();
+  command->add_option("--max-iterations", options->max_iterations, "Newton iterations")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  command->add_option("--tolerance", options->tolerance, "relative residual")
+      ->check(positive_number())
+      ->capture_default_str();
+  return {command, [options](const std::vector<std::string>& command_line) {
+            return run_periodic(*options, command_line);
+          }};
+}
+
+}  // namespace impactlab::cli
