@@ -18,7 +18,11 @@ namespace {
 std::string model_label(std::string_view model) {
   if (model == "paper") return "Model P";
   if (model == "newton") return "Model N";
-  if (model == "rigid") return "rigid body";
+  if (model.starts_with("rigid")) {
+    std::string settings(model.substr(std::min(model.size(), std::size_t{6})));
+    std::replace(settings.begin(), settings.end(), ':', ',');
+    return settings.empty() ? "rigid body" : fmt::format("rigid body ({})", settings);
+  }
   return std::string(model);
 }
 
@@ -153,25 +157,25 @@ std::string markdown_report(const Jin2003Results& results, const Jin2003Settings
        "tolerance. The toolkit gives the ranges of grid values where some steady-state impact "
        "has |r| ≤ δ, for three δ:");
   line();
-  std::string header = "| quantity | paper |";
+  std::string header = "| quantity | model |";
   std::string rule = "|---|---|";
-  for (const auto& model : settings.models)
-    for (double tolerance : report_tolerances()) {
-      header += fmt::format(" {}, δ = {} m/s |", model_label(model), tolerance);
-      rule += "---|";
-    }
-  line(header);
-  line(rule);
+  for (double tolerance : report_tolerances()) {
+    header += fmt::format(" δ = {} m/s |", tolerance);
+    rule += "---|";
+  }
+  line(header + " paper |");
+  line(rule + "---|");
   for (const ResidualPanel* panel : {&results.fig4a, &results.fig4b}) {
     const bool over_omega = panel->parameter == "omega";
-    std::string row = fmt::format(
-        "| {} ({}) at {} = {} {} | {} |", over_omega ? "ω" : "V0", panel->unit,
-        over_omega ? "V0" : "ω", panel->fixed_value, over_omega ? "m/s" : "rad/s",
-        format_ranges(over_omega ? paper.omega : paper.V0));
-    for (const auto& model : settings.models)
+    const std::string quantity =
+        fmt::format("{} ({}) at {} = {} {}", over_omega ? "ω" : "V0", panel->unit,
+                    over_omega ? "V0" : "ω", panel->fixed_value, over_omega ? "m/s" : "rad/s");
+    for (const auto& model : settings.models) {
+      std::string row = fmt::format("| {} | {} |", quantity, model_label(model));
       for (double tolerance : report_tolerances())
         row += fmt::format(" {} |", format_ranges(sliding_ranges(*panel, model, tolerance)));
-    line(row);
+      line(row + fmt::format(" {} |", format_ranges(over_omega ? paper.omega : paper.V0)));
+    }
   }
   line();
   line(fmt::format("Grids: ω from {} to {} rad/s in {} values; V0 from {} to {} m/s in {} values.",
@@ -267,7 +271,10 @@ std::string markdown_report(const Jin2003Results& results, const Jin2003Settings
        "tangential velocity: the bob comes to rest on a wall only when a chatter of impacts "
        "accumulates while g − V0 ω cos ωt < 0, and then leaves with zero velocity at the same "
        "release condition; the chatter dissipates the energy Model P gives back. The two "
-       "motions part at the first sliding impact (the table counts both in the same window).");
+       "motions part at the first sliding impact (the table counts both in the same window). "
+       "The rigid-body model's ball on a free bearing (docs/rigidbody.md) keeps Model N's "
+       "instantaneous impacts; friction impulses there change the ball's spin, so its "
+       "tangential restitution comes from the mechanics instead of from e_y.");
   line();
   line("## Files");
   line();

@@ -27,7 +27,7 @@ std::vector<double> linear_grid(double from, double to, int points) {
 
 Scene with_values(const Scene& scene, std::string_view model, double V0, double omega) {
   Scene changed = scene;
-  apply_override(changed, fmt::format("model={}", model));
+  apply_model(changed, model);
   apply_override(changed, fmt::format("V0={:.17g}", V0));
   apply_override(changed, fmt::format("omega={:.17g}", omega));
   return changed;
@@ -175,6 +175,18 @@ SlipStatistics slip_statistics(const std::string& model, const std::vector<Event
 }
 
 }  // namespace
+
+void apply_model(Scene& scene, std::string_view model_spec) {
+  std::size_t start = 0;
+  bool first = true;
+  while (start <= model_spec.size()) {
+    const std::size_t end = std::min(model_spec.find(':', start), model_spec.size());
+    const std::string_view part = model_spec.substr(start, end - start);
+    apply_override(scene, first ? fmt::format("model={}", part) : std::string(part));
+    first = false;
+    start = end + 1;
+  }
+}
 
 Jin2003Results reproduce_jin2003(const Scene& scene, const Jin2003Settings& settings) {
   const auto start = std::chrono::steady_clock::now();

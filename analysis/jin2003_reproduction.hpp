@@ -23,7 +23,9 @@
 namespace impactlab {
 
 struct Jin2003Settings {
-  std::vector<std::string> models = {"paper", "newton"};
+  // model specifications: a model name, then scene settings of its own after
+  // colons ("rigid:radius=0.01:spin=free"); see apply_model()
+  std::vector<std::string> models = {"paper", "newton", "rigid:radius=0.01:spin=free"};
   // Fig. 4(a): ω grid (rad/s) at fixed V0 (m/s)
   double omega_from = 6.0, omega_to = 8.0;
   int omega_points = 201;
@@ -111,6 +113,10 @@ struct Jin2003Results {
 // per run. Parallel over parameter values; the result does not depend on the
 // thread count.
 Jin2003Results reproduce_jin2003(const Scene& scene, const Jin2003Settings& settings);
+
+// Sets a model specification on a scene: "NAME[:KEY=VALUE]...", the model
+// name and then scene keys for that model alone (BadInput names a bad one).
+void apply_model(Scene& scene, std::string_view model_spec);
 
 // A closed interval of grid values.
 struct ParameterRange {

@@ -22,6 +22,13 @@ MODEL_LABELS = {"paper": "Model P (the paper's sliding impact)",
 PAPER_RANGES = {"omega": [(6.6, 7.08)], "V0": [(1.5, 1.6), (3.971, 4.163)]}
 
 
+def model_label(model):
+    """A model specification ("rigid:radius=0.01:spin=free") as a title."""
+    name, *settings = model.split(":")
+    label = MODEL_LABELS.get(name, name)
+    return f"{label}, {', '.join(settings)}" if settings else label
+
+
 def read_rows(directory, name):
     """The rows of a CSV as a dict of columns (numbers as floats, NaN if empty)."""
     with open(os.path.join(directory, name), newline="") as handle:
@@ -74,7 +81,7 @@ def residual_figure(directory, figure):
             axis.axvspan(low, high, color="orange", alpha=0.2, lw=0)
         threshold = g / fixed_value
         axis.axvline(threshold, color="gray", ls=":", lw=1)
-        axis.set_title(MODEL_LABELS.get(model, model), fontsize=10)
+        axis.set_title(model_label(model), fontsize=10)
         unit = grid["unit"]
         symbol = "ω" if parameter == "omega" else "V0"
         axis.set_xlabel(f"{symbol} ({unit})")
@@ -107,8 +114,13 @@ def history_figure(directory, figure):
                   label="on a wall (slipping)")
         for wall in (b, -b):
             axis.axhline(wall, color="gray", ls="--", lw=0.8)
+        # a ball of radius r touches a wall with its centre at x = ±(b − r)
+        radius = dict(s.split("=") for s in model.split(":")[1:]).get("radius")
+        if radius is not None and float(radius) > 0.0:
+            for centre in (b - float(radius), float(radius) - b):
+                axis.axhline(centre, color="gray", ls=":", lw=0.8)
         axis.set_ylabel("x (m)")
-        axis.set_title(MODEL_LABELS.get(model, model), fontsize=10)
+        axis.set_title(model_label(model), fontsize=10)
         if on_wall.any():
             axis.legend(loc="upper right", fontsize=8, markerscale=4)
     axes[-1, 0].set_xlabel("t (s)")
