@@ -9,6 +9,7 @@
 #include "io/oscillator_registry.hpp"
 #include "io/run_system.hpp"
 #include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include "oscillators/pendulum_walls/pendulum_walls_parameters.hpp"
 #include "oscillators/pendulum_walls/rigid_pendulum_scene.hpp"
 
 namespace impactlab {
@@ -69,30 +70,6 @@ std::string_view mode_name(PendulumMode mode) {
   return "unknown";
 }
 
-// Checks that hold for every model of the pendulum.
-void check_model_scene(const Scene& scene) {
-  if (scene.text("integrator.method") == "exact")
-    throw BadInput("integrator.method", "exact", "the pendulum has no closed-form flow");
-}
-
-PendulumWallsParameters parameters(const Scene& scene) {
-  check_model_scene(scene);
-  PendulumWallsParameters p;
-  p.m = scene.number("m");
-  p.l = scene.number("l");
-  p.b = scene.number("b");
-  p.d = scene.number("d");
-  p.g = scene.number("g");
-  p.V0 = scene.number("V0");
-  p.omega = scene.number("omega");
-  p.e_n = scene.number("e_n");
-  p.e_t = scene.number("e_t");
-  p.mu = scene.number("mu");
-  p.accumulation_tol = scene.number("accumulation_tol");
-  if (!(p.b < p.l)) throw BadInput("b", to_text(p.b), "the walls must be closer than l (b < l)");
-  return p;
-}
-
 template <class System>
 typename System::State initial_state(const Scene& scene, const System& system) {
   const double theta = scene.number("initial.theta");
@@ -116,7 +93,7 @@ void reject_rigid_analysis(const Scene& scene) {
 
 template <class System>
 SectionResult section_model(const Scene& scene, const SectionRequest& request) {
-  const System system(parameters(scene));
+  const System system(pendulum_walls_parameters(scene));
   const double theta0 = system.wall_angle();
   // a continued state beyond a moved wall, or resting on a wall, starts on
   // the wall at rest in free flight (the event at t0 decides contact again);
@@ -148,11 +125,11 @@ SectionResult section(const Scene& scene, const SectionRequest& request) {
 PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request) {
   reject_rigid_analysis(scene);
   if (scene.text("model") == "paper") {
-    const PaperPendulumWalls system(parameters(scene));
+    const PaperPendulumWalls system(pendulum_walls_parameters(scene));
     return run_periodic(system, initial_state(scene, system), PendulumMode::free, scene, request,
                         system.parameters().omega);
   }
-  const PendulumWalls system(parameters(scene));
+  const PendulumWalls system(pendulum_walls_parameters(scene));
   return run_periodic(system, initial_state(scene, system), PendulumMode::free, scene, request,
                       system.parameters().omega);
 }
@@ -160,7 +137,7 @@ PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request
 template <PendulumModel model>
 RunOutput run_model(const Scene& scene, const RunRequest& request) {
   using System = BasicPendulumWalls<model>;
-  const System system(parameters(scene));
+  const System system(pendulum_walls_parameters(scene));
   const PendulumWallsParameters& p = system.parameters();
   const typename System::State x0 = initial_state(scene, system);
   const double period = 2.0 * std::numbers::pi / p.omega;
@@ -198,6 +175,25 @@ RunOutput run(const Scene& scene, const RunRequest& request) {
 }
 
 }  // namespace
+
+PendulumWallsParameters pendulum_walls_parameters(const Scene& scene) {
+  if (scene.text("integrator.method") == "exact")
+    throw BadInput("integrator.method", "exact", "the pendulum has no closed-form flow");
+  PendulumWallsParameters p;
+  p.m = scene.number("m");
+  p.l = scene.number("l");
+  p.b = scene.number("b");
+  p.d = scene.number("d");
+  p.g = scene.number("g");
+  p.V0 = scene.number("V0");
+  p.omega = scene.number("omega");
+  p.e_n = scene.number("e_n");
+  p.e_t = scene.number("e_t");
+  p.mu = scene.number("mu");
+  p.accumulation_tol = scene.number("accumulation_tol");
+  if (!(p.b < p.l)) throw BadInput("b", to_text(p.b), "the walls must be closer than l (b < l)");
+  return p;
+}
 
 const OscillatorEntry& pendulum_walls_entry() {
   static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit};

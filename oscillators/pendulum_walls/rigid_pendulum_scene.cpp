@@ -9,6 +9,7 @@
 
 #include "io/bad_input.hpp"
 #include "io/run_system.hpp"
+#include "oscillators/pendulum_walls/pendulum_walls_parameters.hpp"
 #include "oscillators/pendulum_walls/rigid_pendulum_walls.hpp"
 
 namespace impactlab {
@@ -38,24 +39,11 @@ double median(std::vector<double> values) {
 }  // namespace
 
 RunOutput run_rigid_pendulum(const Scene& scene, const RunRequest& request) {
-  if (scene.text("integrator.method") == "exact")
-    throw BadInput("integrator.method", "exact", "the pendulum has no closed-form flow");
   RigidPendulumParameters rp;
-  PendulumWallsParameters& p = rp.pendulum;
-  p.m = scene.number("m");
-  p.l = scene.number("l");
-  p.b = scene.number("b");
-  p.d = scene.number("d");
-  p.g = scene.number("g");
-  p.V0 = scene.number("V0");
-  p.omega = scene.number("omega");
-  p.e_n = scene.number("e_n");
-  p.e_t = scene.number("e_t");
-  p.mu = scene.number("mu");
-  p.accumulation_tol = scene.number("accumulation_tol");
+  rp.pendulum = pendulum_walls_parameters(scene);
+  const PendulumWallsParameters& p = rp.pendulum;
   rp.radius = scene.number("radius");
   rp.spin_free = scene.text("spin") == "free";
-  if (!(p.b < p.l)) throw BadInput("b", to_text(p.b), "the walls must be closer than l (b < l)");
   if (!(rp.radius < p.b))
     throw BadInput("radius", to_text(rp.radius), "the ball must fit between the walls (radius < b)");
   if (rp.spin_free && !(rp.radius > 0.0))
