@@ -128,6 +128,28 @@ TEST(Poincare, UserGivenSectionCrossesTheLevelInItsDirection) {
   }
 }
 
+// Model P through the section hook: the impact map of the right wall lies on
+// the wall (θ = asin(b/l)) with the bob moving in, and the Lyapunov exponent
+// is reported as not available (Model P has no Jacobians) rather than computed.
+TEST(Poincare, PaperModelImpactMapWithoutLyapunov) {
+  const auto out = scratch("paper");
+  const Outcome o = run("poincare jin2003 --set model=paper --set V0=4.163 --section impact:1 "
+                        "--transient-impacts 20 --points 6 --lyapunov --quiet --out " +
+                        out.string());
+  ASSERT_EQ(o.status, 0) << o.err;
+  const auto rows = lines(slurp(out / "poincare.csv"));
+  ASSERT_EQ(rows.size(), 7u);
+  const double theta0 = std::asin(0.05 / 0.7);
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const auto v = fields(rows[k]);
+    EXPECT_NEAR(v[2], theta0, 1e-12) << rows[k];
+    EXPECT_GT(v[3], 0.0) << rows[k];
+  }
+  const auto meta = nlohmann::json::parse(slurp(out / "meta.json"));
+  EXPECT_EQ(meta["scene"]["keys"]["model"]["value"], "paper");
+  EXPECT_EQ(meta["lyapunov"]["largest_exponent_per_time"], "nan");
+}
+
 TEST(Sweep, OneDimensionalColumnsAndBothDirections) {
   const auto out = scratch("columns");
   const Outcome o = run(sweep_1d + " --out " + out.string());
@@ -286,6 +308,8 @@ INSTANTIATE_TEST_SUITE_P(
                               "strobe:nan"},
                       BadCase{"poincare jin2003 --section q=0.01:sideways", "--section",
                               "q=0.01:sideways"},
-                      BadCase{"periodic jin2003 --period 0", "--period", "0"}));
+                      BadCase{"periodic jin2003 --period 0", "--period", "0"},
+                      BadCase{"sweep jin2003 --set model=rigid --param omega=6:7:3", "model",
+                              "rigid"}));
 
 }  // namespace
