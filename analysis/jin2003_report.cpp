@@ -63,6 +63,33 @@ double largest_tangential_speed(const ResidualPanel& panel, std::string_view mod
   return largest;
 }
 
+// The smallest tolerance δ (m/s) at which every grid value of `range` counts
+// as "sliding possible" for `model`: the largest, over those values, of the
+// smallest |r| of their steady-state impacts. Infinity where some value has
+// no residual (no steady state, or V0 ω < g).
+double tolerance_to_cover(const ResidualPanel& panel, std::string_view model,
+                          const ParameterRange& range) {
+  double needed = 0.0;
+  bool any = false;
+  for (const auto& summary : panel.summaries) {
+    if (summary.model != model || summary.parameter < range.from - 1e-12 ||
+        summary.parameter > range.to + 1e-12)
+      continue;
+    any = true;
+    if (std::isnan(summary.min_abs_residual)) return std::numeric_limits<double>::infinity();
+    needed = std::max(needed, summary.min_abs_residual);
+  }
+  return any ? needed : std::numeric_limits<double>::quiet_NaN();
+}
+
+double largest_abs_residual(const ResidualPanel& panel, std::string_view model) {
+  double largest = 0.0;
+  for (const auto& row : panel.rows)
+    if (row.model == model && !std::isnan(row.sliding_residual))
+      largest = std::max(largest, std::fabs(row.sliding_residual));
+  return largest;
+}
+
 void write_residual_csv(const ResidualPanel& panel, AtomicFile& file) {
   auto& out = file.stream();
   out << panel.parameter
@@ -221,10 +248,23 @@ std::string markdown_report(const Jin2003Results& results, const Jin2003Settings
   line(fmt::format(
       "* **First V0 range at ω = {} rad/s.** The paper gives 1.5–1.6 m/s. The toolkit's {} "
       "finds {} at δ = {} m/s and {} at δ = {} m/s. Sliding cannot start below "
-      "V0 = g / ω = {:.4f} m/s.",
+      "V0 = g / ω = {:.4f} m/s; the paper's range lies {:.3f}–{:.3f} m/s above that "
+      "threshold, where the toolkit's residual has already grown.",
       settings.omega_of_fig4b, model_label(first_model), format_ranges(exact_V0),
       report_tolerances().front(), format_ranges(loose_V0), report_tolerances().back(),
-      V0_threshold));
+      V0_threshold, paper.V0.front().from - V0_threshold, paper.V0.front().to - V0_threshold));
+  line(fmt::format(
+      "* **The tolerance the paper's ranges imply.** For every grid value inside a paper "
+      "range to count as sliding possible, the toolkit's {} needs δ = {:.3f} m/s for the "
+      "ω range {}, δ = {:.3f} m/s for the V0 range {}, and δ = {:.3f} m/s for the V0 range "
+      "{}, against a largest steady-state |r| of {:.3f} m/s over the whole of Fig. 4(b).",
+      model_label(first_model),
+      tolerance_to_cover(results.fig4a, first_model, paper.omega.front()),
+      format_ranges(paper.omega),
+      tolerance_to_cover(results.fig4b, first_model, paper.V0.front()),
+      format_ranges({paper.V0.front()}),
+      tolerance_to_cover(results.fig4b, first_model, paper.V0.back()),
+      format_ranges({paper.V0.back()}), largest_abs_residual(results.fig4b, first_model)));
   const ParameterRange second = paper.V0.back();
   const double needed = slip_end_velocity(second.from, settings.omega_of_fig4b, g) / std::fabs(e_t);
   const double found =
