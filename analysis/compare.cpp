@@ -293,9 +293,11 @@ std::string comparison_summary(const Comparison& comparison, const nlohmann::jso
               "whatever the friction, which only splits the impulse; the bob's tangential "
               "velocity after an impact is fixed by the kinematics.\n";
     } else if (run.model == "paper") {
-      text += "- `paper` (Model P): the tangential restitution e_t is imposed; an impact whose "
-              "normal and tangential laws cannot hold together lasts a finite time (a sliding "
-              "impact), which shifts the following impact times.\n";
+      text += "- `paper` (Model P): an impact whose normal law and the paper's tangential "
+              "restitution e_t cannot hold together (its Eq. 25) is a sliding impact: the bob "
+              "is held on the wall, sliding, until the normal force vanishes, and leaves with "
+              "θ̇ = −e_n θ̇⁻ (docs/model-card.md); the held time and the late rebound shift "
+              "the following impact times.\n";
     } else if (run.model == "rigid") {
       const double radius = run.scene.number("radius");
       const std::string spin = run.scene.text("spin");
