@@ -144,16 +144,10 @@ class BouncingBall {
   [[nodiscard]] ResetJacobian reset_jacobian(Mode mode, std::size_t, CrossingKind crossing,
                                              const State&, double t,
                                              const Transition<State, Mode>& after) const {
-    ResetJacobian reset;
-    if (crossing == CrossingKind::grazing) {
-      reset.state = {{{1.0, 0.0}, {0.0, 1.0}}};
-      return reset;
-    }
-    if (mode == Mode::stuck || after.mode == Mode::stuck || after.time > t) {
-      reset.collapses = true;
-      return reset;
-    }
-    reset.state = {{{0.0, 0.0}, {0.0, -p_.r}}};
+    if (crossing == CrossingKind::grazing) return identity_reset();
+    if (mode == Mode::stuck || after.mode == Mode::stuck || after.time > t)
+      return collapsed_reset();
+    ResetJacobian reset = restitution_reset(p_.r);
     reset.time = {table_velocity(t), (1.0 + p_.r) * table_acceleration(t)};
     return reset;
   }

@@ -209,17 +209,10 @@ class BasicPendulumWalls {
                                              const Transition<State, Mode>& after) const
     requires(!is_paper_model)
   {
-    ResetJacobian reset;
-    if (crossing == CrossingKind::grazing || after.stop) {
-      reset.state = {{{1.0, 0.0}, {0.0, 1.0}}};
-      return reset;
-    }
-    if (mode != Mode::free || after.mode != Mode::free || after.time > t) {
-      reset.collapses = true;
-      return reset;
-    }
-    reset.state = {{{0.0, 0.0}, {0.0, -p_.e_n}}};
-    return reset;
+    if (crossing == CrossingKind::grazing || after.stop) return identity_reset();
+    if (mode != Mode::free || after.mode != Mode::free || after.time > t)
+      return collapsed_reset();
+    return restitution_reset(p_.e_n);
   }
 
  private:

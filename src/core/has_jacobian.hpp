@@ -33,6 +33,27 @@ struct ResetJacobian {
   bool collapses = false;
 };
 
+// The resets every impact oscillator here is made of:
+// a grazing touch (or a run stopped at the event) leaves the state alone;
+inline ResetJacobian identity_reset() {
+  ResetJacobian reset;
+  reset.state = {{{1.0, 0.0}, {0.0, 1.0}}};
+  return reset;
+}
+// an accumulation or a release at a time set by the forcing merges nearby states;
+inline ResetJacobian collapsed_reset() {
+  ResetJacobian reset;
+  reset.collapses = true;
+  return reset;
+}
+// an impact that puts q on the constraint and sets q̇⁺ = −r q̇⁻ (+ terms in t
+// alone): ∂g/∂x = [[0, 0], [0, −r]].
+inline ResetJacobian restitution_reset(double restitution) {
+  ResetJacobian reset;
+  reset.state = {{{0.0, 0.0}, {0.0, -restitution}}};
+  return reset;
+}
+
 template <class S>
 concept HasJacobian = HybridSystem<S> &&
     requires(const S& system, typename S::Mode mode, std::size_t k, const typename S::State& x,
