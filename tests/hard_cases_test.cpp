@@ -47,9 +47,9 @@ namespace {
 constexpr double pi = std::numbers::pi;
 
 const std::vector<std::string> all_steppers = {"dopri5", "rkf78", "bulirsch_stoer", "rk8pd",
-                                               "exact"};
+                                               "taylor", "exact"};
 const std::vector<std::string> numerical_steppers = {"dopri5", "rkf78", "bulirsch_stoer",
-                                                     "rk8pd"};
+                                                     "rk8pd", "taylor"};
 
 template <class System>
 struct Run {

@@ -33,7 +33,8 @@ using Mode = PendulumWalls::Mode;
 constexpr double pi = std::numbers::pi;
 
 // steppers with a numerical flow (the pendulum has no closed-form flow)
-const std::vector<std::string> numerical_steppers = {"dopri5", "rkf78", "bulirsch_stoer", "rk8pd"};
+const std::vector<std::string> numerical_steppers = {"dopri5", "rkf78", "bulirsch_stoer", "rk8pd",
+                                                     "taylor"};
 
 // Jin, Hu & Bishop (2003): the parameter defaults, with the given V0
 PendulumWallsParameters jin2003(double V0) {
@@ -424,7 +425,8 @@ INSTANTIATE_TEST_SUITE_P(
     testing::Values(EnergyCase{"dopri5", 1e-10}, EnergyCase{"rkf78", 1e-10},
                     EnergyCase{"bulirsch_stoer", 1e-10}, EnergyCase{"rk8pd", 1e-10},
                     EnergyCase{"dopri5", 1e-12}, EnergyCase{"rkf78", 1e-12},
-                    EnergyCase{"bulirsch_stoer", 1e-12}, EnergyCase{"rk8pd", 1e-12}),
+                    EnergyCase{"bulirsch_stoer", 1e-12}, EnergyCase{"rk8pd", 1e-12},
+                    EnergyCase{"taylor", 1e-10}, EnergyCase{"taylor", 1e-12}),
     [](const testing::TestParamInfo<EnergyCase>& info) {
       return info.param.method + (info.param.rtol == 1e-10 ? "_rtol1e10" : "_rtol1e12");
     });

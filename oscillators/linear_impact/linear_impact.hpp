@@ -66,11 +66,15 @@ class LinearImpact {
   // ẍ of a mass at rest on the stop (x = σ, ẋ = 0): A cos ωt − σ. Positive
   // while the forcing pushes the mass into the stop; then its rate and the
   // rate of that.
-  [[nodiscard]] double stop_push(double t) const {
-    return p_.A * std::cos(p_.omega * t) - p_.sigma;
+  template <class Number>
+  [[nodiscard]] Number stop_push(const Number& t) const {
+    using std::cos;
+    return p_.A * cos(p_.omega * t) - p_.sigma;
   }
-  [[nodiscard]] double stop_push_rate(double t) const {
-    return -p_.A * p_.omega * std::sin(p_.omega * t);
+  template <class Number>
+  [[nodiscard]] Number stop_push_rate(const Number& t) const {
+    using std::sin;
+    return -p_.A * p_.omega * sin(p_.omega * t);
   }
   [[nodiscard]] double stop_push_curvature(double t) const {
     return -p_.A * p_.omega * p_.omega * std::cos(p_.omega * t);
@@ -82,14 +86,18 @@ class LinearImpact {
     return std::min(forcing_period, natural_period) / 16.0;
   }
 
-  void rhs(Mode mode, const State& x, State& dxdt, double t) const {
+  // written over a number type (double, or the Taylor stepper's series type)
+  template <class Number>
+  void rhs(Mode mode, const std::array<Number, 2>& x, std::array<Number, 2>& dxdt,
+           const Number& t) const {
     if (mode == Mode::stuck) {
       dxdt[0] = 0.0;
       dxdt[1] = 0.0;
       return;
     }
+    using std::cos;
     dxdt[0] = x[1];
-    dxdt[1] = p_.A * std::cos(p_.omega * t) - 2.0 * p_.zeta * x[1] - x[0];
+    dxdt[1] = p_.A * cos(p_.omega * t) - 2.0 * p_.zeta * x[1] - x[0];
   }
 
   [[nodiscard]] std::size_t witness_count(Mode) const { return 1; }
@@ -100,7 +108,10 @@ class LinearImpact {
 
   // free:  the gap σ − x to the stop (length), closing when it falls to zero
   // stuck: the push A cos ωt − σ into the stop; the mass leaves when it falls to zero
-  [[nodiscard]] WitnessSample witness(Mode mode, std::size_t, const State& x, double t) const {
+  template <class Number>
+  [[nodiscard]] BasicWitnessSample<Number> witness(Mode mode, std::size_t,
+                                                   const std::array<Number, 2>& x,
+                                                   const Number& t) const {
     if (mode == Mode::free) return {p_.sigma - x[0], -x[1]};
     return {stop_push(t), stop_push_rate(t)};
   }

@@ -1,0 +1,264 @@
+// The Taylor-series stepper (integrator.method = "taylor"): each step is the
+// Taylor polynomial of the solution at the step's start, its coefficients by
+// automatic differentiation of the system's own right-hand side
+// (integrate/taylor_series.hpp), so the polynomial is the dense output, as
+// accurate inside the step as at its end.
+//
+// Order and step (Jorba & Zou 2005; heyoka's choice): for a tolerance ε,
+// order p = ⌈−ln ε / 2⌉ + 1, and the step h = min over j ∈ {p−1, p} of
+// (s / ‖x_j‖∞)^{1/j} / e² · exp(−0.7 / (p − 1)), with s = max(‖x_0‖∞, atol/rtol)
+// (relative error where the state is large, absolute where it is small),
+// ε = rtol. The last two coefficients estimate the radius of convergence;
+// the step stays a fixed fraction inside it, so the truncation error is
+// about ε · s whatever the order.
+//
+// Events (locate_first_event): the witness functions of the mode are
+// recorded on the same tape, so each has its Taylor polynomial over the step.
+// A step whose witness polynomial g (oriented so that its trigger is a fall
+// through zero) satisfies g_0 − Σ_{j≥1} |g_j| h^j > the grazing tolerance
+// cannot hold an event and is skipped at the cost of one sum. In the others,
+// the critical points of g are isolated rigorously (integrate/
+// polynomial_roots.hpp); on each monotone piece a crossing is bracketed by
+// the sign of g at its ends and refined by TOMS 748 on the polynomial; a
+// minimum within the grazing tolerance is a grazing. No sampling and no
+// re-taken step: the event loop needs no max_step cap for this stepper.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+#include "core/hybrid_system.hpp"
+#include "integrate/event_location.hpp"
+#include "integrate/polynomial_roots.hpp"
+#include "integrate/stepper_settings.hpp"
+#include "integrate/taylor_series.hpp"
+
+namespace impactlab {
+
+template <class System>
+using SeriesState = std::array<TaylorVariable, std::tuple_size_v<typename System::State>>;
+
+// A system whose right-hand side and witnesses are written over a number
+// type, so that TaylorVariable runs through them.
+template <class S>
+concept HasSeriesRhs = HybridSystem<S> && requires(const S& system, typename S::Mode mode,
+                                                   const SeriesState<S>& x, SeriesState<S>& dxdt,
+                                                   const TaylorVariable& t, std::size_t k) {
+  { system.rhs(mode, x, dxdt, t) };
+  { system.witness(mode, k, x, t).value } -> std::convertible_to<TaylorVariable>;
+};
+
+// the order for a tolerance: ⌈−ln ε / 2⌉ + 1, within the tape's capacity
+inline int taylor_order(double tolerance) {
+  const double order = std::ceil(-std::log(tolerance) / 2.0) + 1.0;
+  return static_cast<int>(std::clamp(order, 2.0, static_cast<double>(TaylorTape::max_order)));
+}
+
+template <HasSeriesRhs System>
+class TaylorStepper {
+ public:
+  using State = typename System::State;
+  using Mode = typename System::Mode;
+  static constexpr const char* name = "taylor";
+  static constexpr bool has_cheap_scan = false;
+  static constexpr bool has_polish = true;  // state_at is the step's own polynomial
+  static constexpr std::size_t dimension = std::tuple_size_v<State>;
+  static constexpr std::size_t max_modes = 8;
+
+  explicit TaylorStepper(const StepperSettings& settings)
+      : settings_(settings),
+        order_(taylor_order(settings.rtol)),
+        scale_floor_(settings.atol / settings.rtol) {
+    if (!(settings.rtol > 0.0) || !(settings.atol > 0.0))
+      throw std::invalid_argument("taylor: rtol and atol must be positive");
+  }
+
+  [[nodiscard]] int order() const { return order_; }
+
+  template <class Rhs>
+  void initialize(const Rhs& rhs, const State& x, double t, double /*dt*/) {
+    x_ = x;
+    t_ = t;
+    bind(rhs);
+  }
+
+  // One step from (t_, x_): the Taylor polynomial, the step from its last
+  // two coefficients, never past t_limit.
+  template <class Rhs>
+  void do_step(const Rhs& rhs, double t_limit) {
+    bind(rhs);
+    x_old_ = x_;
+    t_old_ = t_;
+    tape_->evaluate(x_old_.data(), t_old_, order_, coefficients_);
+    *rhs.evaluations += static_cast<std::uint64_t>(order_ + 1);
+    if (tape_->signs_need_slope(coefficients_)) {
+      tape_->evaluate(x_old_.data(), t_old_, order_, coefficients_, true);
+      *rhs.evaluations += static_cast<std::uint64_t>(order_ + 1);
+    }
+    double scale = scale_floor_;
+    for (std::size_t i = 0; i < dimension; ++i) scale = std::max(scale, std::fabs(x_old_[i]));
+    double radius = std::numeric_limits<double>::infinity();
+    for (int j = order_ - 1; j <= order_; ++j) {
+      double norm = 0.0;
+      for (std::size_t i = 0; i < dimension; ++i)
+        norm = std::max(norm, std::fabs(TaylorTape::row(coefficients_, static_cast<int>(i))[j]));
+      if (norm > 0.0) radius = std::min(radius, std::pow(scale / norm, 1.0 / j));
+    }
+    const double safety = std::exp(-0.7 / (order_ - 1)) / (std::numbers::e * std::numbers::e);
+    double h = radius * safety;
+    if (!std::isfinite(h)) h = t_limit - t_old_;  // a polynomial solution: exact at any step
+    if (!(h > 0.0)) throw std::runtime_error("taylor: step size underflow");
+    t_ = t_old_ + h >= t_limit ? t_limit : t_old_ + h;
+    step_ = t_ - t_old_;
+    evaluate_state(step_, x_);
+  }
+
+  template <class Rhs>
+  void state_at(const Rhs&, double t, State& x) const {
+    if (t == t_) {
+      x = x_;
+      return;
+    }
+    evaluate_state(t - t_old_, x);
+  }
+  template <class Rhs>
+  void polish_state(const Rhs& rhs, double t, State& x) const { state_at(rhs, t, x); }
+  template <class Rhs>
+  void scan_state(const Rhs& rhs, double t, State& x) const { state_at(rhs, t, x); }
+
+  [[nodiscard]] double previous_time() const { return t_old_; }
+  [[nodiscard]] double current_time() const { return t_; }
+  [[nodiscard]] const State& current_state() const { return x_; }
+  [[nodiscard]] const State& previous_state() const { return x_old_; }
+  [[nodiscard]] double suggested_step() const { return step_; }
+
+  // The earliest event of the last step's mode in [ta, tb] ⊂ the last step,
+  // on the witnesses' Taylor polynomials (see the header comment). Same
+  // contract as integrate/event_location.hpp's locate_first_event.
+  [[nodiscard]] LocatedEvent locate_first_event(const System& system, Mode mode, double ta,
+                                                double tb, const EventLocationOptions& options,
+                                                std::size_t just_grazed) const {
+    LocatedEvent best;
+    const double h_end = tb - t_old_;
+    const double h_start = ta - t_old_;
+    const double tolerance = options.grazing_tolerance;
+    for (std::size_t k = 0; k < system.witness_count(mode); ++k) {
+      const double* w = TaylorTape::row(coefficients_, tape_->witness_node(static_cast<int>(k)));
+      const TriggerDirection direction = system.trigger_direction(mode, k);
+      // orientation: the trigger is a fall through zero; an `either` witness
+      // is oriented so that its starting side (or the side it leaves zero
+      // to) is the armed one
+      const double start_side = std::fabs(w[0]) <= tolerance ? w[1] : w[0];
+      const double s = direction == TriggerDirection::rising   ? -1.0
+                       : direction == TriggerDirection::either ? (start_side >= 0.0 ? 1.0 : -1.0)
+                                                               : 1.0;
+      std::array<double, TaylorTape::max_order + 1> g{};
+      for (int j = 0; j <= order_; ++j) g[j] = s * w[j];
+      const double h_limit = best.found ? best.t - t_old_ : h_end;
+      const LocatedEvent candidate =
+          first_event(g, h_start, h_limit, tolerance, direction != TriggerDirection::either,
+                      k == just_grazed, k);
+      if (candidate.found && (!best.found || candidate.t < best.t)) best = candidate;
+    }
+    return best;
+  }
+
+ private:
+  template <class Rhs>
+  void bind(const Rhs& rhs) {
+    const auto index = static_cast<std::size_t>(rhs.mode);
+    if (index >= max_modes) throw std::length_error("taylor: more modes than the stepper holds");
+    TaylorTape& tape = tapes_[index];
+    if (!tape.recorded()) record(*rhs.system, rhs.mode, tape);
+    tape_ = &tape;
+  }
+
+  static void record(const System& system, Mode mode, TaylorTape& tape) {
+    TaylorVariable t;
+    const SeriesState<System> x = tape.begin<dimension>(t);
+    SeriesState<System> dxdt;
+    system.rhs(mode, x, dxdt, t);
+    tape.set_derivatives(dxdt);
+    for (std::size_t k = 0; k < system.witness_count(mode); ++k)
+      tape.add_witness(system.witness(mode, k, x, t).value);
+    tape.finish();
+  }
+
+  // the polynomial at h (s past the step's start), newest coefficients last
+  // by Horner's scheme
+  void evaluate_state(double h, State& x) const {
+    for (std::size_t i = 0; i < dimension; ++i) {
+      const double* c = TaylorTape::row(coefficients_, static_cast<int>(i));
+      double sum = c[order_];
+      for (int j = order_ - 1; j >= 0; --j) sum = sum * h + c[j];
+      x[i] = sum;
+    }
+  }
+
+  // The first event of the oriented witness polynomial g on [lo, hi] (h
+  // past the step's start): a fall through zero from the armed side, or a
+  // minimum within the grazing tolerance; `one_sided`: a violation (below
+  // −tolerance without a crossing) is unresolved.
+  LocatedEvent first_event(const std::array<double, TaylorTape::max_order + 1>& g, double lo,
+                           double hi, double tolerance, bool one_sided, bool just_grazed,
+                           std::size_t k) const {
+    if (!(hi > lo)) return {};
+    // exclusion: g stays above the tolerance over the whole step
+    if (lo == 0.0 && g[0] > tolerance) {
+      double reach = 0.0, power = 1.0;
+      for (int j = 1; j <= order_; ++j) {
+        power *= hi;
+        reach += std::fabs(g[j]) * power;
+      }
+      if (g[0] - reach > tolerance) return {};
+    }
+    const PolynomialRoots<TaylorTape::max_order> poly(g.data(), order_, std::fabs(t_old_));
+    auto at = [&](double h) { return t_old_ + h; };
+    const auto critical = poly.sign_changes(1, lo, hi);
+    const double g_lo = poly.value(0, lo);
+    const bool leaving_zero = std::fabs(g_lo) <= tolerance && poly.value(1, lo) > 0.0;
+    double u = lo;
+    for (int i = 0; i <= critical.count; ++i) {
+      const double v = i < critical.count ? critical.points[i] : hi;
+      const double gu = poly.value(0, u), gv = poly.value(0, v);
+      const bool falling = poly.value(1, 0.5 * (u + v)) < 0.0;
+      const bool armed = gu > 0.0 || (u == lo && leaving_zero);
+      const bool interior_minimum = falling && v < hi;
+      if (!armed) {
+        if (one_sided && (gu < -tolerance || gv < -tolerance))
+          return {true, at(u), k, CrossingKind::unresolved};
+      } else if (falling && !(u == lo && just_grazed && gv > -tolerance)) {
+        if (gv <= 0.0) {
+          // a dip below zero by less than the tolerance to a minimum inside
+          // the step touches the wall: a grazing, as in event_location.hpp
+          if (interior_minimum && gv > -tolerance && one_sided)
+            return {true, at(v), k, CrossingKind::grazing};
+          return {true, std::min(at(poly.root(0, u, v, true)), t_old_ + hi), k,
+                  CrossingKind::crossing};
+        }
+        if (interior_minimum && gv <= tolerance && one_sided)
+          return {true, at(v), k, CrossingKind::grazing};
+      }
+      u = v;
+    }
+    return {};
+  }
+
+  StepperSettings settings_;
+  int order_;
+  double scale_floor_;  // atol / rtol (state units)
+  std::array<TaylorTape, max_modes> tapes_{};
+  const TaylorTape* tape_ = nullptr;
+  TaylorTape::Coefficients coefficients_{};
+  State x_{}, x_old_{};
+  double t_ = 0.0, t_old_ = 0.0, step_ = 0.0;  // s
+};
+
+}  // namespace impactlab
