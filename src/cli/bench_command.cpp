@@ -227,7 +227,7 @@ int run_bench(const BenchOptions& options, const std::vector<std::string>& comma
         has_closed_form(result.scene)
             ? closed_form_reference(result.scene, t_reference, plan.max_reference_impacts)
             : integrated_reference(result.scene, t_reference, plan.max_reference_impacts,
-                                   {"rk8pd", "bulirsch_stoer"}, 1e-10);
+                                   {"taylor_quad", "rk8pd"}, 1e-10);
     if (result.reference.impacts.empty())
       throw std::runtime_error("bench: case " + bench_case.name + " has no trusted reference impact");
     results.push_back(std::move(result));

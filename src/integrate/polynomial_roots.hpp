@@ -23,24 +23,25 @@
 namespace impactlab {
 
 // up to `capacity` sorted points in an interval
-template <int capacity>
+template <int capacity, class Real = double>
 struct PointList {
-  std::array<double, capacity> points{};
+  std::array<Real, capacity> points{};
   int count = 0;
-  void push(double v) {
+  void push(const Real& v) {
     if (count < capacity) points[count++] = v;
   }
 };
 
-template <int max_degree>
+template <int max_degree, class Real = double>
 class PolynomialRoots {
  public:
   static constexpr int capacity = max_degree + 2;
-  using Points = PointList<capacity>;
+  using Points = PointList<capacity, Real>;
 
   // p: coefficients c_0..c_degree of P(h) = Σ c_j h^j; t_scale: the size of
   // the absolute time at h (s), for the root's stopping tolerance
-  PolynomialRoots(const double* p, int degree, double t_scale) : degree_(degree), t_scale_(t_scale) {
+  PolynomialRoots(const Real* p, int degree, const Real& t_scale)
+      : degree_(degree), t_scale_(t_scale) {
     // derivative m's coefficients: d_m[j] = c_{j+m} (j+m)! / j!
     for (int j = 0; j <= degree; ++j) derivative_[0][j] = p[j];
     for (int m = 1; m <= degree; ++m)
@@ -49,39 +50,40 @@ class PolynomialRoots {
   }
 
   // P⁽ᵐ⁾(h)
-  [[nodiscard]] double value(int m, double h) const {
-    if (m > degree_) return 0.0;
-    double sum = 0.0;
+  [[nodiscard]] Real value(int m, const Real& h) const {
+    if (m > degree_) return Real(0);
+    Real sum = 0;
     for (int j = degree_ - m; j >= 0; --j) sum = sum * h + derivative_[m][j];
     return sum;
   }
 
   // The sign changes of P⁽ᵐ⁾ in (lo, hi), in increasing order.
-  [[nodiscard]] Points sign_changes(int m, double lo, double hi) const {
+  [[nodiscard]] Points sign_changes(int m, const Real& lo, const Real& hi) const {
+    using std::fabs;
     Points out;
     if (m >= degree_ || !(hi > lo)) return out;  // a constant has none
     const int n = degree_ - m;
     // re-expansion at the centre by repeated synthetic division
-    const double centre = 0.5 * (lo + hi), radius = 0.5 * (hi - lo);
-    std::array<double, max_degree + 1> e{};
+    const Real centre = (lo + hi) / 2, radius = (hi - lo) / 2;
+    std::array<Real, max_degree + 1> e{};
     for (int j = 0; j <= n; ++j) e[j] = derivative_[m][j];
     for (int i = 0; i < n; ++i)
       for (int j = n - 1; j >= i; --j) e[j] += centre * e[j + 1];
-    double value_bound = 0.0, slope_bound = 0.0, power = 1.0;
+    Real value_bound = 0, slope_bound = 0, power = 1;
     for (int j = 1; j <= n; ++j) {
-      if (j >= 2) slope_bound += j * std::fabs(e[j]) * power;  // power = r^{j−1}
+      if (j >= 2) slope_bound += j * fabs(e[j]) * power;  // power = r^{j−1}
       power *= radius;
-      value_bound += std::fabs(e[j]) * power;
+      value_bound += fabs(e[j]) * power;
     }
-    if (std::fabs(e[0]) > value_bound) return out;
-    if (std::fabs(e[1]) > slope_bound) {
+    if (fabs(e[0]) > value_bound) return out;
+    if (fabs(e[1]) > slope_bound) {
       add_root_if_sign_change(m, lo, hi, out);
       return out;
     }
     const Points inner = sign_changes(m + 1, lo, hi);
-    double left = lo;
+    Real left = lo;
     for (int i = 0; i <= inner.count; ++i) {
-      const double right = i < inner.count ? inner.points[i] : hi;
+      const Real right = i < inner.count ? inner.points[i] : hi;
       add_root_if_sign_change(m, left, right, out);
       left = right;
     }
@@ -91,31 +93,31 @@ class PolynomialRoots {
   // The root of P⁽ᵐ⁾ in [lo, hi] where its end values differ in sign, to a
   // few ulps of the absolute time; the end on `side`'s sign (the bracket end
   // where P⁽ᵐ⁾ has the sign of P⁽ᵐ⁾(hi)) when `towards_hi`.
-  [[nodiscard]] double root(int m, double lo, double hi, bool towards_hi) const {
-    const double f_lo = value(m, lo), f_hi = value(m, hi);
-    if (f_hi == 0.0) return hi;
-    if (f_lo == 0.0) return lo;
-    auto f = [&](double h) { return value(m, h); };
-    const double scale = t_scale_;
-    auto tolerance = [scale](double a, double b) {
-      return std::fabs(b - a) <=
-             4.0 * std::numeric_limits<double>::epsilon() * (scale + std::fabs(b));
+  [[nodiscard]] Real root(int m, const Real& lo, const Real& hi, bool towards_hi) const {
+    using std::fabs;
+    const Real f_lo = value(m, lo), f_hi = value(m, hi);
+    if (f_hi == 0) return hi;
+    if (f_lo == 0) return lo;
+    auto f = [&](const Real& h) { return value(m, h); };
+    const Real scale = t_scale_;
+    auto tolerance = [scale](const Real& a, const Real& b) {
+      return fabs(b - a) <= 4 * std::numeric_limits<Real>::epsilon() * (scale + fabs(b));
     };
     std::uintmax_t iterations = 100;
     const auto bracket = boost::math::tools::toms748_solve(f, lo, hi, f_lo, f_hi, tolerance, iterations);
-    if (!towards_hi) return 0.5 * (bracket.first + bracket.second);
-    return (f(bracket.second) > 0.0) == (f_hi > 0.0) ? bracket.second : bracket.first;
+    if (!towards_hi) return (bracket.first + bracket.second) / 2;
+    return (f(bracket.second) > 0) == (f_hi > 0) ? bracket.second : bracket.first;
   }
 
  private:
-  void add_root_if_sign_change(int m, double lo, double hi, Points& out) const {
-    const double f_lo = value(m, lo), f_hi = value(m, hi);
-    if ((f_lo < 0.0 && f_hi > 0.0) || (f_lo > 0.0 && f_hi < 0.0)) out.push(root(m, lo, hi, false));
+  void add_root_if_sign_change(int m, const Real& lo, const Real& hi, Points& out) const {
+    const Real f_lo = value(m, lo), f_hi = value(m, hi);
+    if ((f_lo < 0 && f_hi > 0) || (f_lo > 0 && f_hi < 0)) out.push(root(m, lo, hi, false));
   }
 
-  std::array<std::array<double, max_degree + 1>, max_degree + 1> derivative_{};
+  std::array<std::array<Real, max_degree + 1>, max_degree + 1> derivative_{};
   int degree_;
-  double t_scale_;
+  Real t_scale_;
 };
 
 }  // namespace impactlab

@@ -80,8 +80,11 @@ class TaylorTape {
   static constexpr int max_witness_count = 8;
 
   // coefficient storage of one tape, node-major: node n's coefficient k is
-  // at n * (max_order + 1) + k
-  using Coefficients = std::array<double, max_nodes*(max_order + 1)>;
+  // at n * (max_order + 1) + k; Real is double, or an extended-precision
+  // type for references (Boost.Multiprecision)
+  template <class Real = double>
+  using CoefficientsOf = std::array<Real, max_nodes*(max_order + 1)>;
+  using Coefficients = CoefficientsOf<double>;
 
   [[nodiscard]] bool recorded() const { return recorded_; }
   [[nodiscard]] int node_count() const { return node_count_; }
@@ -170,25 +173,28 @@ class TaylorTape {
   // round-off of a zero (|a0| <= 1e-9 s · |a1|) takes the sign of a1, the
   // side the argument moves to, from the coefficients of the previous
   // evaluation at the same point (see signs_need_slope).
-  void evaluate(const double* x0, double t0, int order, Coefficients& c,
+  template <class Real>
+  void evaluate(const Real* x0, const Real& t0, int order, CoefficientsOf<Real>& c,
                 bool signs_from_slope = false) const {
+    using std::cos;
+    using std::sin;
     constexpr int stride = max_order + 1;
     for (int i = 0; i < dimension_; ++i) c[i * stride] = x0[i];
     for (int k = 0; k <= order; ++k) {
       for (int n = dimension_; n < node_count_; ++n) {
         const TaylorNode& node = nodes_[n];
         if (!node.live) continue;
-        double* out = &c[n * stride];
-        const double* a = node.a >= 0 ? &c[node.a * stride] : nullptr;
-        const double* b = node.b >= 0 ? &c[node.b * stride] : nullptr;
+        Real* out = &c[n * stride];
+        const Real* a = node.a >= 0 ? &c[node.a * stride] : nullptr;
+        const Real* b = node.b >= 0 ? &c[node.b * stride] : nullptr;
         switch (node.op) {
           case TaylorOp::state:
             break;
           case TaylorOp::constant:
-            out[k] = k == 0 ? node.c : 0.0;
+            out[k] = k == 0 ? Real(node.c) : Real(0);
             break;
           case TaylorOp::time:
-            out[k] = k == 0 ? t0 : k == 1 ? 1.0 : 0.0;
+            out[k] = k == 0 ? t0 : k == 1 ? Real(1) : Real(0);
             break;
           case TaylorOp::add:
             out[k] = a[k] + b[k];
@@ -197,14 +203,14 @@ class TaylorTape {
             out[k] = a[k] - b[k];
             break;
           case TaylorOp::add_constant:
-            out[k] = k == 0 ? a[k] + node.c : a[k];
+            out[k] = k == 0 ? Real(a[k] + node.c) : a[k];
             break;
           case TaylorOp::scale:
             out[k] = node.c * a[k];
             break;
           case TaylorOp::multiply: {
             const int da = nodes_[node.a].degree, db = nodes_[node.b].degree;
-            double sum = 0.0;
+            Real sum = 0;
             for (int j = std::max(0, k - db); j <= std::min(k, da); ++j) sum += a[j] * b[k - j];
             out[k] = sum;
             break;
@@ -212,21 +218,21 @@ class TaylorTape {
           case TaylorOp::divide: {
             // q = a / b: b0 q_k = a_k − Σ_{j=1..k} b_j q_{k−j}
             const int db = nodes_[node.b].degree;
-            double sum = a[k];
+            Real sum = a[k];
             for (int j = 1; j <= std::min(k, db); ++j) sum -= b[j] * out[k - j];
             out[k] = sum / b[0];
             break;
           }
           case TaylorOp::sin: {
             // s' = c a', c' = −s a': k s_k = Σ j a_j c_{k−j}, k c_k = −Σ j a_j s_{k−j}
-            double* cos_out = &c[node.b * stride];
+            Real* cos_out = &c[node.b * stride];
             if (k == 0) {
-              out[0] = std::sin(a[0]);
-              cos_out[0] = std::cos(a[0]);
+              out[0] = sin(a[0]);
+              cos_out[0] = cos(a[0]);
               break;
             }
             const int da = nodes_[node.a].degree;
-            double s_sum = 0.0, c_sum = 0.0;
+            Real s_sum = 0, c_sum = 0;
             for (int j = 1; j <= std::min(k, da); ++j) {
               s_sum += j * a[j] * cos_out[k - j];
               c_sum += j * a[j] * out[k - j];
@@ -239,7 +245,7 @@ class TaylorTape {
             break;  // computed with its sin node, which comes first
           case TaylorOp::sign:
             if (k > 0)
-              out[k] = 0.0;
+              out[k] = 0;
             else
               out[0] = signs_from_slope && near_zero(a) ? sign_of(a[1]) : sign_of(a[0]);
             break;
@@ -254,26 +260,33 @@ class TaylorTape {
   // Whether a sign node of the last evaluation sits at a zero of its argument
   // that the argument is leaving for the other side (just after a slip
   // reversal): evaluate again with signs_from_slope.
-  [[nodiscard]] bool signs_need_slope(const Coefficients& c) const {
+  template <class Real>
+  [[nodiscard]] bool signs_need_slope(const CoefficientsOf<Real>& c) const {
     for (int n = dimension_; n < node_count_; ++n) {
       const TaylorNode& node = nodes_[n];
       if (!node.live || node.op != TaylorOp::sign) continue;
-      const double* a = row(c, node.a);
+      const Real* a = row(c, node.a);
       if (near_zero(a) && sign_of(a[1]) != sign_of(a[0])) return true;
     }
     return false;
   }
 
   // the coefficients of state component i and of witness j
-  [[nodiscard]] static const double* row(const Coefficients& c, int node) {
+  template <class Real>
+  [[nodiscard]] static const Real* row(const CoefficientsOf<Real>& c, int node) {
     return &c[node * (max_order + 1)];
   }
   [[nodiscard]] int witness_node(int j) const { return witness_[j]; }
 
  private:
-  static double sign_of(double v) { return v > 0.0 ? 1.0 : v < 0.0 ? -1.0 : 0.0; }
+  template <class Real>
+  static Real sign_of(const Real& v) { return v > 0 ? Real(1) : v < 0 ? Real(-1) : Real(0); }
   // a zero of the argument within 1e-9 s of t0 (its coefficients a0, a1)
-  static bool near_zero(const double* a) { return std::fabs(a[0]) <= 1e-9 * std::fabs(a[1]); }
+  template <class Real>
+  static bool near_zero(const Real* a) {
+    using std::fabs;
+    return fabs(a[0]) <= 1e-9 * fabs(a[1]);
+  }
 
   std::array<TaylorNode, max_nodes> nodes_{};
   std::array<int, max_dimension> derivative_{};

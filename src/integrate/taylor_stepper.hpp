@@ -61,11 +61,16 @@ inline int taylor_order(double tolerance) {
   return static_cast<int>(std::clamp(order, 2.0, static_cast<double>(TaylorTape::max_order)));
 }
 
-template <HasSeriesRhs System>
+// Real: the arithmetic of the series, the step's state and time (double; or
+// an extended-precision type for a reference run, integrator.method =
+// "taylor_quad": the loop still sees doubles, at events and step ends, while
+// the steps between events continue from the stepper's own Real state).
+template <HasSeriesRhs System, class Real = double>
 class TaylorStepper {
  public:
   using State = typename System::State;
   using Mode = typename System::Mode;
+  using RealState = std::array<Real, std::tuple_size_v<State>>;
   static constexpr const char* name = "taylor";
   static constexpr bool has_cheap_scan = false;
   static constexpr bool has_polish = true;  // state_at is the step's own polynomial
@@ -84,8 +89,10 @@ class TaylorStepper {
 
   template <class Rhs>
   void initialize(const Rhs& rhs, const State& x, double t, double /*dt*/) {
-    x_ = x;
+    for (std::size_t i = 0; i < dimension; ++i) x_[i] = x[i];
     t_ = t;
+    x_double_ = x;
+    t_double_ = t;
     bind(rhs);
   }
 
@@ -96,6 +103,8 @@ class TaylorStepper {
     bind(rhs);
     x_old_ = x_;
     t_old_ = t_;
+    x_old_double_ = x_double_;
+    t_old_double_ = t_double_;
     tape_->evaluate(x_old_.data(), t_old_, order_, coefficients_);
     *rhs.evaluations += static_cast<std::uint64_t>(order_ + 1);
     if (tape_->signs_need_slope(coefficients_)) {
@@ -103,41 +112,53 @@ class TaylorStepper {
       *rhs.evaluations += static_cast<std::uint64_t>(order_ + 1);
     }
     double scale = scale_floor_;
-    for (std::size_t i = 0; i < dimension; ++i) scale = std::max(scale, std::fabs(x_old_[i]));
+    for (std::size_t i = 0; i < dimension; ++i)
+      scale = std::max(scale, std::fabs(static_cast<double>(x_old_[i])));
     double radius = std::numeric_limits<double>::infinity();
     for (int j = order_ - 1; j <= order_; ++j) {
       double norm = 0.0;
       for (std::size_t i = 0; i < dimension; ++i)
-        norm = std::max(norm, std::fabs(TaylorTape::row(coefficients_, static_cast<int>(i))[j]));
+        norm = std::max(norm, std::fabs(static_cast<double>(
+                                  TaylorTape::row(coefficients_, static_cast<int>(i))[j])));
       if (norm > 0.0) radius = std::min(radius, std::pow(scale / norm, 1.0 / j));
     }
     const double safety = std::exp(-0.7 / (order_ - 1)) / (std::numbers::e * std::numbers::e);
     double h = radius * safety;
-    if (!std::isfinite(h)) h = t_limit - t_old_;  // a polynomial solution: exact at any step
+    const double room = t_limit - t_old_double_;
+    if (!std::isfinite(h)) h = room;  // a polynomial solution: exact at any step
     if (!(h > 0.0)) throw std::runtime_error("taylor: step size underflow");
-    t_ = t_old_ + h >= t_limit ? t_limit : t_old_ + h;
+    if (h >= room) {
+      t_double_ = t_limit;
+      t_ = t_limit;
+    } else {
+      t_ = t_old_ + Real(h);
+      t_double_ = static_cast<double>(t_);
+    }
     step_ = t_ - t_old_;
     evaluate_state(step_, x_);
+    for (std::size_t i = 0; i < dimension; ++i) x_double_[i] = static_cast<double>(x_[i]);
   }
 
   template <class Rhs>
   void state_at(const Rhs&, double t, State& x) const {
-    if (t == t_) {
-      x = x_;
+    if (t == t_double_) {
+      x = x_double_;
       return;
     }
-    evaluate_state(t - t_old_, x);
+    RealState xr;
+    evaluate_state(Real(t) - t_old_, xr);
+    for (std::size_t i = 0; i < dimension; ++i) x[i] = static_cast<double>(xr[i]);
   }
   template <class Rhs>
   void polish_state(const Rhs& rhs, double t, State& x) const { state_at(rhs, t, x); }
   template <class Rhs>
   void scan_state(const Rhs& rhs, double t, State& x) const { state_at(rhs, t, x); }
 
-  [[nodiscard]] double previous_time() const { return t_old_; }
-  [[nodiscard]] double current_time() const { return t_; }
-  [[nodiscard]] const State& current_state() const { return x_; }
-  [[nodiscard]] const State& previous_state() const { return x_old_; }
-  [[nodiscard]] double suggested_step() const { return step_; }
+  [[nodiscard]] double previous_time() const { return t_old_double_; }
+  [[nodiscard]] double current_time() const { return t_double_; }
+  [[nodiscard]] const State& current_state() const { return x_double_; }
+  [[nodiscard]] const State& previous_state() const { return x_old_double_; }
+  [[nodiscard]] double suggested_step() const { return static_cast<double>(step_); }
 
   // The earliest event of the last step's mode in [ta, tb] ⊂ the last step,
   // on the witnesses' Taylor polynomials (see the header comment). Same
@@ -145,23 +166,24 @@ class TaylorStepper {
   [[nodiscard]] LocatedEvent locate_first_event(const System& system, Mode mode, double ta,
                                                 double tb, const EventLocationOptions& options,
                                                 std::size_t just_grazed) const {
+    using std::fabs;
     LocatedEvent best;
-    const double h_end = tb - t_old_;
-    const double h_start = ta - t_old_;
+    const Real h_end = tb == t_double_ ? step_ : Real(tb) - t_old_;
+    const Real h_start = ta == t_old_double_ ? Real(0) : Real(ta) - t_old_;
     const double tolerance = options.grazing_tolerance;
     for (std::size_t k = 0; k < system.witness_count(mode); ++k) {
-      const double* w = TaylorTape::row(coefficients_, tape_->witness_node(static_cast<int>(k)));
+      const Real* w = TaylorTape::row(coefficients_, tape_->witness_node(static_cast<int>(k)));
       const TriggerDirection direction = system.trigger_direction(mode, k);
       // orientation: the trigger is a fall through zero; an `either` witness
       // is oriented so that its starting side (or the side it leaves zero
       // to) is the armed one
-      const double start_side = std::fabs(w[0]) <= tolerance ? w[1] : w[0];
+      const Real start_side = fabs(w[0]) <= tolerance ? w[1] : w[0];
       const double s = direction == TriggerDirection::rising   ? -1.0
-                       : direction == TriggerDirection::either ? (start_side >= 0.0 ? 1.0 : -1.0)
+                       : direction == TriggerDirection::either ? (start_side >= 0 ? 1.0 : -1.0)
                                                                : 1.0;
-      std::array<double, TaylorTape::max_order + 1> g{};
+      std::array<Real, TaylorTape::max_order + 1> g{};
       for (int j = 0; j <= order_; ++j) g[j] = s * w[j];
-      const double h_limit = best.found ? best.t - t_old_ : h_end;
+      const Real h_limit = best.found ? Real(best.t) - t_old_ : h_end;
       const LocatedEvent candidate =
           first_event(g, h_start, h_limit, tolerance, direction != TriggerDirection::either,
                       k == just_grazed, k);
@@ -193,10 +215,10 @@ class TaylorStepper {
 
   // the polynomial at h (s past the step's start), newest coefficients last
   // by Horner's scheme
-  void evaluate_state(double h, State& x) const {
+  void evaluate_state(const Real& h, RealState& x) const {
     for (std::size_t i = 0; i < dimension; ++i) {
-      const double* c = TaylorTape::row(coefficients_, static_cast<int>(i));
-      double sum = c[order_];
+      const Real* c = TaylorTape::row(coefficients_, static_cast<int>(i));
+      Real sum = c[order_];
       for (int j = order_ - 1; j >= 0; --j) sum = sum * h + c[j];
       x[i] = sum;
     }
@@ -206,30 +228,31 @@ class TaylorStepper {
   // past the step's start): a fall through zero from the armed side, or a
   // minimum within the grazing tolerance; `one_sided`: a violation (below
   // −tolerance without a crossing) is unresolved.
-  LocatedEvent first_event(const std::array<double, TaylorTape::max_order + 1>& g, double lo,
-                           double hi, double tolerance, bool one_sided, bool just_grazed,
+  LocatedEvent first_event(const std::array<Real, TaylorTape::max_order + 1>& g, const Real& lo,
+                           const Real& hi, double tolerance, bool one_sided, bool just_grazed,
                            std::size_t k) const {
+    using std::fabs;
     if (!(hi > lo)) return {};
     // exclusion: g stays above the tolerance over the whole step
-    if (lo == 0.0 && g[0] > tolerance) {
-      double reach = 0.0, power = 1.0;
+    if (lo == 0 && g[0] > tolerance) {
+      Real reach = 0, power = 1;
       for (int j = 1; j <= order_; ++j) {
         power *= hi;
-        reach += std::fabs(g[j]) * power;
+        reach += fabs(g[j]) * power;
       }
       if (g[0] - reach > tolerance) return {};
     }
-    const PolynomialRoots<TaylorTape::max_order> poly(g.data(), order_, std::fabs(t_old_));
-    auto at = [&](double h) { return t_old_ + h; };
+    const PolynomialRoots<TaylorTape::max_order, Real> poly(g.data(), order_, fabs(t_old_));
+    auto at = [&](const Real& h) { return static_cast<double>(t_old_ + h); };
     const auto critical = poly.sign_changes(1, lo, hi);
-    const double g_lo = poly.value(0, lo);
-    const bool leaving_zero = std::fabs(g_lo) <= tolerance && poly.value(1, lo) > 0.0;
-    double u = lo;
+    const Real g_lo = poly.value(0, lo);
+    const bool leaving_zero = fabs(g_lo) <= tolerance && poly.value(1, lo) > 0;
+    Real u = lo;
     for (int i = 0; i <= critical.count; ++i) {
-      const double v = i < critical.count ? critical.points[i] : hi;
-      const double gu = poly.value(0, u), gv = poly.value(0, v);
-      const bool falling = poly.value(1, 0.5 * (u + v)) < 0.0;
-      const bool armed = gu > 0.0 || (u == lo && leaving_zero);
+      const Real v = i < critical.count ? critical.points[i] : hi;
+      const Real gu = poly.value(0, u), gv = poly.value(0, v);
+      const bool falling = poly.value(1, (u + v) / 2) < 0;
+      const bool armed = gu > 0 || (u == lo && leaving_zero);
       const bool interior_minimum = falling && v < hi;
       if (!armed) {
         if (one_sided && (gu < -tolerance || gv < -tolerance))
@@ -240,7 +263,7 @@ class TaylorStepper {
           // the step touches the wall: a grazing, as in event_location.hpp
           if (interior_minimum && gv > -tolerance && one_sided)
             return {true, at(v), k, CrossingKind::grazing};
-          return {true, std::min(at(poly.root(0, u, v, true)), t_old_ + hi), k,
+          return {true, std::min(at(poly.root(0, u, v, true)), at(hi)), k,
                   CrossingKind::crossing};
         }
         if (interior_minimum && gv <= tolerance && one_sided)
@@ -256,9 +279,11 @@ class TaylorStepper {
   double scale_floor_;  // atol / rtol (state units)
   std::array<TaylorTape, max_modes> tapes_{};
   const TaylorTape* tape_ = nullptr;
-  TaylorTape::Coefficients coefficients_{};
-  State x_{}, x_old_{};
-  double t_ = 0.0, t_old_ = 0.0, step_ = 0.0;  // s
+  TaylorTape::CoefficientsOf<Real> coefficients_{};
+  RealState x_{}, x_old_{};             // the step's end and start
+  Real t_ = 0, t_old_ = 0, step_ = 0;   // s
+  State x_double_{}, x_old_double_{};   // the same, rounded, as the loop sees them
+  double t_double_ = 0.0, t_old_double_ = 0.0;
 };
 
 }  // namespace impactlab
