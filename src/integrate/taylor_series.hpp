@@ -136,6 +136,11 @@ class TaylorTape {
           node.op == TaylorOp::sin || node.op == TaylorOp::cos)
         nodes_[node.b].live = true;
     }
+    // the nodes evaluated per order, in recording order (operands first); a
+    // cos node is computed with its sin node
+    sweep_count_ = 0;
+    for (int n = dimension_; n < node_count_; ++n)
+      if (nodes_[n].live && nodes_[n].op != TaylorOp::cos) sweep_[sweep_count_++] = n;
     recorded_ = true;
   }
 
@@ -181,9 +186,9 @@ class TaylorTape {
     constexpr int stride = max_order + 1;
     for (int i = 0; i < dimension_; ++i) c[i * stride] = x0[i];
     for (int k = 0; k <= order; ++k) {
-      for (int n = dimension_; n < node_count_; ++n) {
+      for (int i = 0; i < sweep_count_; ++i) {
+        const int n = sweep_[i];
         const TaylorNode& node = nodes_[n];
-        if (!node.live) continue;
         Real* out = &c[n * stride];
         const Real* a = node.a >= 0 ? &c[node.a * stride] : nullptr;
         const Real* b = node.b >= 0 ? &c[node.b * stride] : nullptr;
@@ -291,6 +296,8 @@ class TaylorTape {
   std::array<TaylorNode, max_nodes> nodes_{};
   std::array<int, max_dimension> derivative_{};
   std::array<int, max_witness_count> witness_{};
+  std::array<int, max_nodes> sweep_{};  // live nodes, evaluation order
+  int sweep_count_ = 0;
   int node_count_ = 0;
   int dimension_ = 0;
   int witness_count_ = 0;
