@@ -111,16 +111,33 @@ class TaylorStepper {
       tape_->evaluate(x_old_.data(), t_old_, order_, coefficients_, true);
       *rhs.evaluations += static_cast<std::uint64_t>(order_ + 1);
     }
+    // the radius of convergence from the state's last two coefficients, and
+    // from each witness's (a witness may be a function of t alone, such as
+    // a moving table, over a state whose series ends: a free fall)
     double scale = scale_floor_;
     for (std::size_t i = 0; i < dimension; ++i)
       scale = std::max(scale, std::fabs(static_cast<double>(x_old_[i])));
     double radius = std::numeric_limits<double>::infinity();
+    auto limit_radius = [&](const Real* c, double row_scale) {
+      for (int j = order_ - 1; j <= order_; ++j) {
+        const double norm = std::fabs(static_cast<double>(c[j]));
+        if (norm > 0.0) radius = std::min(radius, std::pow(row_scale / norm, 1.0 / j));
+      }
+    };
     for (int j = order_ - 1; j <= order_; ++j) {
       double norm = 0.0;
       for (std::size_t i = 0; i < dimension; ++i)
         norm = std::max(norm, std::fabs(static_cast<double>(
                                   TaylorTape::row(coefficients_, static_cast<int>(i))[j])));
       if (norm > 0.0) radius = std::min(radius, std::pow(scale / norm, 1.0 / j));
+    }
+    for (int k = 0; k < tape_->witness_count(); ++k) {
+      const Real* w = TaylorTape::row(coefficients_, tape_->witness_node(k));
+      // (the state's scale, or the witness's own size where larger: a
+      // witness whose higher coefficients are the state's, such as a gap,
+      // does not shorten the step)
+      limit_radius(w, std::max({scale, std::fabs(static_cast<double>(w[0])),
+                                std::fabs(static_cast<double>(w[1]))}));
     }
     const double safety = std::exp(-0.7 / (order_ - 1)) / (std::numbers::e * std::numbers::e);
     double h = radius * safety;
