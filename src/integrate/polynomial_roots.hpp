@@ -115,7 +115,9 @@ class PolynomialRoots {
     if ((f_lo < 0 && f_hi > 0) || (f_lo > 0 && f_hi < 0)) out.push(root(m, lo, hi, false));
   }
 
-  std::array<std::array<Real, max_degree + 1>, max_degree + 1> derivative_{};
+  // filled up to the degree in the constructor (no zero-initialisation: it
+  // runs once per witness in every step that the exclusion test keeps)
+  std::array<std::array<Real, max_degree + 1>, max_degree + 1> derivative_;
   int degree_;
   Real t_scale_;
 };

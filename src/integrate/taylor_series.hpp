@@ -56,8 +56,7 @@ enum class TaylorOp : std::uint8_t {
   subtract,      // a − b
   multiply,      // a · b
   divide,        // a / b
-  add_constant,  // a + c
-  scale,         // c · a
+  affine,        // c1 · a + c (scalings and shifts of a node fold into one)
   sin,           // sin a, paired with the cos node b (computed together)
   cos,           // cos a, paired with the sin node b
   sign,          // the sign of a just after t0 (constant over a step)
@@ -66,9 +65,10 @@ enum class TaylorOp : std::uint8_t {
 struct TaylorNode {
   TaylorOp op = TaylorOp::constant;
   int a = -1, b = -1;  // operand nodes
-  double c = 0.0;      // the constant of constant, add_constant, scale
+  double c = 0.0;      // the constant of constant; the shift of affine
   int degree = 0;      // degree in h when the node is a polynomial in h, else unbounded
   bool live = false;   // reaches a derivative or a witness
+  double c1 = 1.0;     // the factor of affine
 };
 
 class TaylorTape {
@@ -207,11 +207,8 @@ class TaylorTape {
           case TaylorOp::subtract:
             out[k] = a[k] - b[k];
             break;
-          case TaylorOp::add_constant:
-            out[k] = k == 0 ? Real(a[k] + node.c) : a[k];
-            break;
-          case TaylorOp::scale:
-            out[k] = node.c * a[k];
+          case TaylorOp::affine:
+            out[k] = k == 0 ? Real(node.c1 * a[0] + node.c) : Real(node.c1 * a[k]);
             break;
           case TaylorOp::multiply: {
             const int da = nodes_[node.a].degree, db = nodes_[node.b].degree;
@@ -321,17 +318,33 @@ inline int degree_of(const TaylorVariable& v) {
   return v.is_constant() ? 0 : v.tape()->node(v.node()).degree;
 }
 
+// factor · v + shift, folded into v's own affine node where v is one
+inline TaylorVariable affine(const TaylorVariable& v, double factor, double shift) {
+  TaylorTape* tape = v.tape();
+  const TaylorNode& node = tape->node(v.node());
+  int a = v.node();
+  double c1 = factor, c0 = shift;
+  if (node.op == TaylorOp::affine) {
+    a = node.a;
+    c1 = factor * node.c1;
+    c0 = factor * node.c + shift;
+  }
+  if (c1 == 1.0 && c0 == 0.0) return {tape, a};
+  TaylorNode folded{TaylorOp::affine, a, -1, c0, tape->node(a).degree};
+  folded.c1 = c1;
+  return {tape, tape->push(folded)};
+}
+
 }  // namespace detail
 
-// --- arithmetic: constants fold, a constant operand becomes add_constant or scale ---
+// --- arithmetic: constants fold, a constant operand makes an affine node ---
 
 inline TaylorVariable operator+(const TaylorVariable& a, const TaylorVariable& b) {
   if (a.is_constant() && b.is_constant()) return a.constant() + b.constant();
   if (a.is_constant() || b.is_constant()) {
     const TaylorVariable& v = a.is_constant() ? b : a;
     const double c = a.is_constant() ? a.constant() : b.constant();
-    if (c == 0.0) return v;
-    return {v.tape(), v.tape()->push({TaylorOp::add_constant, v.node(), -1, c, detail::degree_of(v)})};
+    return detail::affine(v, 1.0, c);
   }
   return detail::binary(TaylorOp::add, a, b, std::max(detail::degree_of(a), detail::degree_of(b)));
 }
@@ -341,8 +354,7 @@ inline TaylorVariable operator*(const TaylorVariable& a, const TaylorVariable& b
   if (a.is_constant() || b.is_constant()) {
     const TaylorVariable& v = a.is_constant() ? b : a;
     const double c = a.is_constant() ? a.constant() : b.constant();
-    if (c == 1.0) return v;
-    return {v.tape(), v.tape()->push({TaylorOp::scale, v.node(), -1, c, detail::degree_of(v)})};
+    return detail::affine(v, c, 0.0);
   }
   return detail::binary(TaylorOp::multiply, a, b, detail::degree_of(a) + detail::degree_of(b));
 }

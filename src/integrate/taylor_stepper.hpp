@@ -4,13 +4,18 @@
 // (integrate/taylor_series.hpp), so the polynomial is the dense output, as
 // accurate inside the step as at its end.
 //
-// Order and step (Jorba & Zou 2005; heyoka's choice): for a tolerance ε,
-// order p = ⌈−ln ε / 2⌉ + 1, and the step h = min over j ∈ {p−1, p} of
-// (s / ‖x_j‖∞)^{1/j} / e² · exp(−0.7 / (p − 1)), with s = max(‖x_0‖∞, atol/rtol)
-// (relative error where the state is large, absolute where it is small),
-// ε = rtol. The last two coefficients estimate the radius of convergence;
-// the step stays a fixed fraction inside it, so the truncation error is
-// about ε · s whatever the order.
+// Order and step (after Jorba & Zou 2005 and heyoka): the last two
+// coefficients estimate the radius of convergence,
+// ρ = min over j ∈ {p−1, p} of (s / ‖x_j‖∞)^{1/j}, with s = max(‖x_0‖∞, atol/rtol)
+// (relative error where the state is large, absolute where it is small), and
+// the step is the fixed fraction h = ρ · e^{−1.3} · exp(−0.7 / (p − 1)) of it;
+// the order p = ⌈−ln ε / 1.3⌉ (ε = rtol) makes the truncation error,
+// about (h/ρ)^p s, of order ε s. Jorba & Zou's and heyoka's fraction is e^{−2}
+// with p = ⌈−ln ε / 2⌉ + 1, optimal when the series' O(p²) work is the whole
+// cost of a step; here each step also costs its restart and event tests,
+// and on the pendulum (jin2003, V0 = 1.5) e^{−2} took 16 steps per forcing
+// period with errors 100× below the tolerance, e^{−1.3} takes 8 at about the
+// tolerance (docs/performance.md). The witnesses' coefficients bound ρ too.
 //
 // Events (locate_first_event): the witness functions of the mode are
 // recorded on the same tape, so each has its Taylor polynomial over the step.
@@ -29,7 +34,6 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -55,9 +59,12 @@ concept HasSeriesRhs = HybridSystem<S> && requires(const S& system, typename S::
   { system.witness(mode, k, x, t).value } -> std::convertible_to<TaylorVariable>;
 };
 
-// the order for a tolerance: ⌈−ln ε / 2⌉ + 1, within the tape's capacity
+// the fraction of the radius of convergence a step takes: e^{−step_exponent}
+inline constexpr double taylor_step_exponent = 1.3;
+
+// the order for a tolerance: ⌈−ln ε / 1.3⌉, within the tape's capacity
 inline int taylor_order(double tolerance) {
-  const double order = std::ceil(-std::log(tolerance) / 2.0) + 1.0;
+  const double order = std::ceil(-std::log(tolerance) / taylor_step_exponent);
   return static_cast<int>(std::clamp(order, 2.0, static_cast<double>(TaylorTape::max_order)));
 }
 
@@ -139,7 +146,7 @@ class TaylorStepper {
       limit_radius(w, std::max({scale, std::fabs(static_cast<double>(w[0])),
                                 std::fabs(static_cast<double>(w[1]))}));
     }
-    const double safety = std::exp(-0.7 / (order_ - 1)) / (std::numbers::e * std::numbers::e);
+    const double safety = std::exp(-taylor_step_exponent - 0.7 / (order_ - 1));
     double h = radius * safety;
     const double room = t_limit - t_old_double_;
     if (!std::isfinite(h)) h = room;  // a polynomial solution: exact at any step
@@ -198,7 +205,7 @@ class TaylorStepper {
       const double s = direction == TriggerDirection::rising   ? -1.0
                        : direction == TriggerDirection::either ? (start_side >= 0 ? 1.0 : -1.0)
                                                                : 1.0;
-      std::array<Real, TaylorTape::max_order + 1> g{};
+      std::array<Real, TaylorTape::max_order + 1> g;  // filled up to the order
       for (int j = 0; j <= order_; ++j) g[j] = s * w[j];
       const Real h_limit = best.found ? Real(best.t) - t_old_ : h_end;
       const LocatedEvent candidate =
