@@ -7,7 +7,10 @@
 // 2000 periods, event log counting only), steps and evaluations per impact.
 // Side by side in one process, so a loaded machine slows both alike.
 //
-//   build/benchmarks/taylor_work_precision [repetitions]
+//   build/benchmarks/taylor_work_precision [repetitions [reference.txt]]
+//
+// reference.txt, if named: the reference impact times, one per line (%.17g),
+// for errors of other tools (the SciPy loop) against the same reference.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -72,6 +75,12 @@ int main(int argc, char** argv) {
   quad_settings.max_step = system.max_step();
   TaylorStepper<PendulumWalls, boost::multiprecision::cpp_bin_float_quad> quad(quad_settings);
   const Run reference = run(quad, system, t_reference, 1e-20, true);
+  if (argc > 2) {
+    if (std::FILE* file = std::fopen(argv[2], "w")) {
+      for (const double t : reference.impact_times) std::fprintf(file, "%.17g\n", t);
+      std::fclose(file);
+    }
+  }
   std::printf("reference: taylor in cpp_bin_float_quad at 1e-20 (order %d), %zu impacts, %.1f s CPU\n",
               quad.order(), reference.impact_times.size(), reference.cpu_seconds);
   std::printf("%-7s %7s %5s %10s %9s %14s %12s %11s\n", "method", "rtol", "order", "time_error",
