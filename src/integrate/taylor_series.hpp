@@ -82,8 +82,10 @@ class TaylorTape {
   // coefficient storage of one tape, node-major: node n's coefficient k is
   // at n * (max_order + 1) + k; Real is double, or an extended-precision
   // type for references (Boost.Multiprecision)
+  // (rows max_nodes.. hold j · a_j of each sin node's argument a: scratch
+  // shared by the sin and cos recurrences)
   template <class Real = double>
-  using CoefficientsOf = std::array<Real, max_nodes*(max_order + 1)>;
+  using CoefficientsOf = std::array<Real, 2 * max_nodes * (max_order + 1)>;
   using Coefficients = CoefficientsOf<double>;
 
   [[nodiscard]] bool recorded() const { return recorded_; }
@@ -228,16 +230,18 @@ class TaylorTape {
           case TaylorOp::sin: {
             // s' = c a', c' = −s a': k s_k = Σ j a_j c_{k−j}, k c_k = −Σ j a_j s_{k−j}
             Real* cos_out = &c[node.b * stride];
+            Real* ja = &c[(max_nodes + n) * stride];  // j · a_j
             if (k == 0) {
               out[0] = sin(a[0]);
               cos_out[0] = cos(a[0]);
               break;
             }
+            ja[k] = k * a[k];
             const int da = nodes_[node.a].degree;
             Real s_sum = 0, c_sum = 0;
             for (int j = 1; j <= std::min(k, da); ++j) {
-              s_sum += j * a[j] * cos_out[k - j];
-              c_sum += j * a[j] * out[k - j];
+              s_sum += ja[j] * cos_out[k - j];
+              c_sum += ja[j] * out[k - j];
             }
             out[k] = s_sum / k;
             cos_out[k] = -c_sum / k;

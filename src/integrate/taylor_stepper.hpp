@@ -124,28 +124,25 @@ class TaylorStepper {
     double scale = scale_floor_;
     for (std::size_t i = 0; i < dimension; ++i)
       scale = std::max(scale, std::fabs(static_cast<double>(x_old_[i])));
-    double radius = std::numeric_limits<double>::infinity();
-    auto limit_radius = [&](const Real* c, double row_scale) {
-      for (int j = order_ - 1; j <= order_; ++j) {
-        const double norm = std::fabs(static_cast<double>(c[j]));
-        if (norm > 0.0) radius = std::min(radius, std::pow(row_scale / norm, 1.0 / j));
-      }
+    // ρ = min_j min_rows (s_row / |c_j|)^{1/j} = min_j (max_rows |c_j| / s_row)^{−1/j}
+    std::array<double, 2> ratio = {0.0, 0.0};  // orders p − 1 and p
+    auto bound_by = [&](const Real* c, double row_scale) {
+      for (int j = 0; j < 2; ++j)
+        ratio[j] = std::max(ratio[j], std::fabs(static_cast<double>(c[order_ - 1 + j])) / row_scale);
     };
-    for (int j = order_ - 1; j <= order_; ++j) {
-      double norm = 0.0;
-      for (std::size_t i = 0; i < dimension; ++i)
-        norm = std::max(norm, std::fabs(static_cast<double>(
-                                  TaylorTape::row(coefficients_, static_cast<int>(i))[j])));
-      if (norm > 0.0) radius = std::min(radius, std::pow(scale / norm, 1.0 / j));
-    }
+    for (std::size_t i = 0; i < dimension; ++i)
+      bound_by(TaylorTape::row(coefficients_, static_cast<int>(i)), scale);
     for (int k = 0; k < tape_->witness_count(); ++k) {
       const Real* w = TaylorTape::row(coefficients_, tape_->witness_node(k));
       // (the state's scale, or the witness's own size where larger: a
       // witness whose higher coefficients are the state's, such as a gap,
       // does not shorten the step)
-      limit_radius(w, std::max({scale, std::fabs(static_cast<double>(w[0])),
-                                std::fabs(static_cast<double>(w[1]))}));
+      bound_by(w, std::max({scale, std::fabs(static_cast<double>(w[0])),
+                            std::fabs(static_cast<double>(w[1]))}));
     }
+    double radius = std::numeric_limits<double>::infinity();
+    for (int j = 0; j < 2; ++j)
+      if (ratio[j] > 0.0) radius = std::min(radius, std::pow(ratio[j], -1.0 / (order_ - 1 + j)));
     const double safety = std::exp(-taylor_step_exponent - 0.7 / (order_ - 1));
     double h = radius * safety;
     const double room = t_limit - t_old_double_;
@@ -257,14 +254,17 @@ class TaylorStepper {
                            std::size_t k) const {
     using std::fabs;
     if (!(hi > lo)) return {};
-    // exclusion: g stays above the tolerance over the whole step
+    // exclusion: g stays above the tolerance over the whole step, by
+    // g(h) >= min(g0, g0 + g1 H) − Σ_{j≥2} |g_j| H^j (the linear part is
+    // monotone: its minimum is at an end)
     if (lo == 0 && g[0] > tolerance) {
-      Real reach = 0, power = 1;
-      for (int j = 1; j <= order_; ++j) {
+      Real reach = 0, power = hi;
+      for (int j = 2; j <= order_; ++j) {
         power *= hi;
         reach += fabs(g[j]) * power;
       }
-      if (g[0] - reach > tolerance) return {};
+      const Real linear_end = g[0] + g[1] * hi;
+      if ((linear_end < g[0] ? linear_end : g[0]) - reach > tolerance) return {};
     }
     const PolynomialRoots<TaylorTape::max_order, Real> poly(g.data(), order_, fabs(t_old_));
     auto at = [&](const Real& h) { return static_cast<double>(t_old_ + h); };
