@@ -2,7 +2,7 @@
 // periodic case (Model N, V0 = 1.5 m/s, θ(0) = 0, θ̇(0) = 0.1 rad/s), with
 // impact-time errors measured against the extended-precision reference
 // (the Taylor stepper in cpp_bin_float_quad at 1e-20,
-// analysis/work_precision.hpp's extended_precision_reference) over 200
+// api/work_precision.hpp's extended_precision_reference) over 200
 // forcing periods, and CPU time per impact (this thread, median of 5 runs of
 // 2000 periods, event log counting only), steps and evaluations per impact.
 // Side by side in one process, so a loaded machine slows both alike.

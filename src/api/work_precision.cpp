@@ -1,4 +1,4 @@
-#include "analysis/work_precision.hpp"
+#include "api/work_precision.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -7,13 +7,14 @@
 
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
+#include "api/bindings/pendulum_walls_parameters.hpp"
+#include "api/oscillator_registry.hpp"
+#include "api/scene_loading.hpp"
 #include "core/simulator.hpp"
 #include "integrate/taylor_stepper.hpp"
-#include "io/oscillator_registry.hpp"
 #include "oscillators/bouncing_ball/bouncing_ball.hpp"
 #include "oscillators/linear_impact/linear_impact.hpp"
 #include "oscillators/pendulum_walls/pendulum_walls.hpp"
-#include "oscillators/pendulum_walls/pendulum_walls_parameters.hpp"
 
 namespace impactlab {
 
