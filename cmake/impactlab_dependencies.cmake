@@ -6,6 +6,7 @@
 #
 #   impactlab_dependency(TARGET <imported target> PACKAGE <find_package arguments>...)
 #   impactlab_dependency(TARGET <imported target> PKG_CONFIG <prefix> <module>)
+#   impactlab_dependency(LIBRARIES <system libraries>...)   (nothing to find: ${CMAKE_DL_LIBS})
 #
 # IMPACTLAB_LINK_TARGETS collects the targets, in order, for target_link_libraries.
 include(CMakeFindDependencyMacro)
@@ -15,7 +16,7 @@ set(IMPACTLAB_LINK_TARGETS)
 # A macro, not a function: find_dependency's return() must leave this file
 # (and so the package configuration) when a dependency is missing.
 macro(impactlab_dependency)
-  cmake_parse_arguments(_impactlab_dependency "" "TARGET" "PACKAGE;PKG_CONFIG" ${ARGN})
+  cmake_parse_arguments(_impactlab_dependency "" "TARGET" "PACKAGE;PKG_CONFIG;LIBRARIES" ${ARGN})
   if(_impactlab_dependency_PKG_CONFIG)
     list(GET _impactlab_dependency_PKG_CONFIG 0 _impactlab_dependency_prefix)
     list(GET _impactlab_dependency_PKG_CONFIG 1 _impactlab_dependency_module)
@@ -34,12 +35,13 @@ macro(impactlab_dependency)
       pkg_check_modules(${_impactlab_dependency_prefix} REQUIRED IMPORTED_TARGET
                         ${_impactlab_dependency_module})
     endif()
-  elseif(IMPACTLAB_FINDING_INSTALLED_PACKAGE)
+  elseif(_impactlab_dependency_PACKAGE AND IMPACTLAB_FINDING_INSTALLED_PACKAGE)
     find_dependency(${_impactlab_dependency_PACKAGE})
-  else()
+  elseif(_impactlab_dependency_PACKAGE)
     find_package(${_impactlab_dependency_PACKAGE} REQUIRED)
   endif()
-  list(APPEND IMPACTLAB_LINK_TARGETS ${_impactlab_dependency_TARGET})
+  list(APPEND IMPACTLAB_LINK_TARGETS ${_impactlab_dependency_TARGET}
+       ${_impactlab_dependency_LIBRARIES})
 endmacro()
 
 impactlab_dependency(TARGET Eigen3::Eigen PACKAGE Eigen3 3.3 NO_MODULE)
