@@ -220,7 +220,7 @@ class Driver {
       // the end of the range: land on p = to exactly
       const double remaining = (request_.to - last.y[2]) * direction;
       if (remaining <= 1e-12 * (1.0 + std::fabs(request_.to))) return finish();
-      if ((last.y[2] - request_.from) * direction < -1e-9 * (1.0 + std::fabs(request_.from)))
+      if ((last.y[2] - request_.from) * direction < -1e-3 * std::fabs(request_.to - request_.from))
         return stop("left_range", "the branch turned back past the start of the range");
       const double toward_end = tau[2] * direction;
       if (toward_end > 0.0 && h * toward_end >= remaining) {
