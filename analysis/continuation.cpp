@@ -43,6 +43,7 @@ struct Node {
   Vec3 tangent = Vec3::Zero();  // unit, pointing along the run
   OrbitEvaluation orbit;        // detailed evaluation at y
   int iterations = 0;
+  double step = 0.0;            // the arclength from the previous node
 };
 
 struct Correction {
@@ -64,11 +65,19 @@ class Driver {
     h_initial_ = request.initial_step > 0.0 ? request.initial_step : scale / 100.0;
     h_min_ = request.min_step > 0.0 ? request.min_step : scale * 1e-7;
     h_max_ = request.max_step > 0.0 ? request.max_step : scale / 50.0;
+    // the branch runs in (q, q̇, p / scale): the range is one unit of arclength
+    scale_ = scale;
+    h_initial_ /= scale;
+    h_min_ /= scale;
+    h_max_ /= scale;
+    from_ = request.from / scale;
+    to_ = request.to / scale;
+    phase_ = problem.phase;
   }
 
   ContinuationResult run_from_start() {
-    Correction start = correct(point(request_.start, request_.from), Vec3(0.0, 0.0, 1.0),
-                               point(request_.start, request_.from), {}, nullptr);
+    Correction start = correct(point(request_.start, from_), Vec3(0.0, 0.0, 1.0),
+                               point(request_.start, from_), {}, nullptr);
     if (!start.converged) {
       result_.stop_reason = "start_not_converged";
       result_.stop_detail = "Newton at the start parameter did not converge";
@@ -80,7 +89,7 @@ class Driver {
 
   ContinuationResult run_from(const OrbitPoint& x, double p, const std::array<double, 3>& d) {
     const Vec3 direction(d[0], d[1], d[2]);
-    const Vec3 y0 = point(x, p);
+    const Vec3 y0 = point(x, p / scale_);
     const double offset = std::max(h_initial_ * 0.1, 1e-3 * (1.0 + std::hypot(x[0], x[1])));
     const Vec3 predicted = y0 + offset * direction.normalized();
     Correction start = correct(predicted, direction.normalized(), predicted, {}, nullptr);
@@ -98,7 +107,7 @@ class Driver {
 
   OrbitEvaluation evaluate(const Vec3& y, bool detailed, const ContactWindow& window) {
     ++result_.map_evaluations;
-    return problem_.evaluate(state_of(y), y[2], detailed, window);
+    return problem_.evaluate(state_of(y), y[2] * scale_, phase_, detailed, window);
   }
 
   double parameter_step(double p) const {
@@ -108,7 +117,7 @@ class Driver {
 
   // ∂F/∂p ≈ (Pⁿ(x; p + h) − Pⁿ(x; p − h)) / 2h (F = Pⁿ − x, x held)
   std::optional<Eigen::Vector2d> parameter_derivative(const Vec3& y, const ContactWindow& window) {
-    const double h = parameter_step(y[2]);
+    const double h = parameter_step(y[2] * scale_) / scale_;
     const OrbitEvaluation up = evaluate(Vec3(y[0], y[1], y[2] + h), false, window);
     const OrbitEvaluation down = evaluate(Vec3(y[0], y[1], y[2] - h), false, window);
     if (!up.completed || !down.completed) return std::nullopt;
@@ -177,8 +186,9 @@ class Driver {
 
   BranchPoint branch_point(const Node& node, double step) const {
     BranchPoint b;
-    b.parameter = node.y[2];
-    b.state = state_of(node.y);
+    b.parameter = node.y[2] * scale_;
+    b.state = reported_state(node.y);
+    b.phase = problem_.phase;
     b.impacts = node.orbit.impacts;
     b.contact_phases = node.orbit.contact_phases;
     b.multipliers = multipliers_of(node.orbit.monodromy);
@@ -197,12 +207,67 @@ class Driver {
     node.y = c.y;
     node.tangent = *tangent;
     node.iterations = c.iterations;
+    node.step = step;
     node.orbit = evaluate(c.y, true, {});
     if (!node.orbit.completed) return false;
     if (!nodes_.empty()) detect(nodes_.back(), node, step);
+    move_section_off_events(node);
     nodes_.push_back(node);
     result_.branch.push_back(branch_point(node, step));
     return true;
+  }
+
+  // The fraction of the span between the section and the nearest event.
+  static double clearance(const OrbitEvaluation& orbit, double shift_time) {
+    double nearest = 0.5;
+    for (double t : orbit.event_times) {
+      double u = std::fmod(t - shift_time, orbit.span);
+      if (u < 0.0) u += orbit.span;
+      nearest = std::min({nearest, u / orbit.span, 1.0 - u / orbit.span});
+    }
+    return nearest;
+  }
+
+  // Where an event comes within 2 % of the span of the section (the
+  // stroboscopic map jumps when an impact crosses it), the branch moves on to
+  // the section phase, among 16, farthest from every event; the node is
+  // carried there and corrected again. States are still reported on the
+  // requested section.
+  void move_section_off_events(Node& node) {
+    if (node.orbit.span <= 0.0 || clearance(node.orbit, 0.0) > 0.02) return;
+    const double p = node.y[2] * scale_;
+    double best_phase = phase_, best_clearance = clearance(node.orbit, 0.0);
+    for (int j = 1; j < 16; ++j) {
+      const double shift = 2.0 * std::numbers::pi * j / 16.0;
+      const double value = clearance(node.orbit, shift / node.orbit.omega);
+      if (value > best_clearance) {
+        best_clearance = value;
+        best_phase = std::remainder(phase_ + shift, 2.0 * std::numbers::pi);
+      }
+    }
+    if (best_phase == phase_) return;
+    const auto moved = problem_.transport(state_of(node.y), p, phase_, best_phase);
+    if (!moved) return;
+    const double old_phase = phase_;
+    phase_ = best_phase;
+    const Vec3 y(( *moved)[0], (*moved)[1], node.y[2]);
+    Correction c = correct(y, Vec3(0.0, 0.0, 1.0), y, {}, nullptr);
+    const auto tangent = c.converged ? tangent_at(c, Vec3(0.0, 0.0, node.tangent[2])) : std::nullopt;
+    OrbitEvaluation orbit = c.converged ? evaluate(c.y, true, {}) : OrbitEvaluation{};
+    if (!tangent || !orbit.completed) {
+      phase_ = old_phase;
+      return;
+    }
+    node.y = c.y;
+    node.tangent = *tangent;
+    node.orbit = orbit;
+  }
+
+  // the state on the requested section
+  OrbitPoint reported_state(const Vec3& y) const {
+    if (phase_ == problem_.phase) return state_of(y);
+    const auto moved = problem_.transport(state_of(y), y[2] * scale_, phase_, problem_.phase);
+    return moved ? *moved : state_of(y);
   }
 
   ContinuationResult run(Correction& start, const Vec3& along) {
@@ -213,20 +278,20 @@ class Driver {
     }
     signature_ = nodes_.back().orbit.signature;
     double h = h_initial_;
-    const double direction = request_.to >= request_.from ? 1.0 : -1.0;
+    const double direction = to_ >= from_ ? 1.0 : -1.0;
     while (static_cast<int>(nodes_.size()) < request_.max_points) {
       const Node& last = nodes_.back();
       const Vec3 tau = last.tangent;
       // the end of the range: land on p = to exactly
-      const double remaining = (request_.to - last.y[2]) * direction;
-      if (remaining <= 1e-12 * (1.0 + std::fabs(request_.to))) return finish();
-      if ((last.y[2] - request_.from) * direction < -1e-3 * std::fabs(request_.to - request_.from))
+      const double remaining = (to_ - last.y[2]) * direction;
+      if (remaining <= 1e-12 * (1.0 + std::fabs(to_))) return finish();
+      if ((last.y[2] - from_) * direction < -1e-3 * std::fabs(to_ - from_))
         return stop("left_range", "the branch turned back past the start of the range");
       const double toward_end = tau[2] * direction;
       if (toward_end > 0.0 && h * toward_end >= remaining) {
         const double h_end = remaining / toward_end;
         Vec3 predicted = last.y + h_end * tau;
-        predicted[2] = request_.to;
+        predicted[2] = to_;
         Correction c = correct(predicted, Vec3(0.0, 0.0, 1.0), predicted, {}, &signature_);
         if (c.converged && accept(c, tau, h_end)) return finish();
         if (c.signature_changed && end_at_signature_change(h_end)) return finish();
@@ -285,10 +350,10 @@ class Driver {
     if (a.orbit.contact_phases != b.orbit.contact_phases) {
       BifurcationPoint point;
       point.type = b.orbit.contact_phases > a.orbit.contact_phases ? "contact_onset" : "contact_end";
-      point.parameter = 0.5 * (a.y[2] + b.y[2]);
-      point.state = state_of(b.y);
+      point.parameter = 0.5 * (a.y[2] + b.y[2]) * scale_;
+      point.state = reported_state(b.y);
       point.multipliers = multipliers_of(b.orbit.monodromy);
-      point.error_estimate = 0.5 * std::fabs(b.y[2] - a.y[2]);
+      point.error_estimate = 0.5 * std::fabs(b.y[2] - a.y[2]) * scale_;
       point.note = "detected between two branch points";
       result_.points.push_back(point);
     }
@@ -311,8 +376,8 @@ class Driver {
     };
     if (!request_.locate) {
       point.note = "detected (location off)";
-      point.error_estimate = std::fabs(step * a.tangent[2]);
-      point.parameter = a.y[2] + 0.5 * step * a.tangent[2];
+      point.error_estimate = std::fabs(step * a.tangent[2]) * scale_;
+      point.parameter = (a.y[2] + 0.5 * step * a.tangent[2]) * scale_;
       return point;
     }
     try {
@@ -321,15 +386,14 @@ class Driver {
           on_branch, 0.0, step, fa, fb, boost::math::tools::eps_tolerance<double>(42), iterations);
       const double s = 0.5 * (bracket.first + bracket.second);
       on_branch(s);
-      point.parameter = last->y[2];
-      point.state = state_of(last->y);
+      point.parameter = last->y[2] * scale_;
+      point.state = reported_state(last->y);
       point.multipliers = multipliers_of(last->orbit.monodromy);
-      point.error_estimate = std::fabs(a.tangent[2]) * (bracket.second - bracket.first) +
-                             request_.tolerance * (1.0 + std::fabs(point.parameter));
+      point.error_estimate = std::fabs(a.tangent[2]) * (bracket.second - bracket.first) * scale_;
       point.located = true;
     } catch (const std::exception&) {
-      point.parameter = a.y[2] + 0.5 * step * a.tangent[2];
-      point.error_estimate = std::fabs(step * a.tangent[2]);
+      point.parameter = (a.y[2] + 0.5 * step * a.tangent[2]) * scale_;
+      point.error_estimate = std::fabs(step * a.tangent[2]) * scale_;
       point.note = "detected; the corrector failed while locating it";
     }
     return point;
@@ -348,10 +412,19 @@ class Driver {
       const char* kind;
     };
     std::vector<Candidate> candidates;
-    if (last.orbit.min_flight_gap_witness >= 0)
+    // a candidate whose gap or speed, extrapolated linearly from the last two
+    // points, vanishes within a few failed steps
+    auto vanishing = [&](double OrbitEvaluation::*value) {
+      const double now = last.orbit.*value;
+      if (nodes_.size() < 2) return true;
+      const double before = nodes_[nodes_.size() - 2].orbit.*value;
+      if (!(before > now)) return false;
+      return now / (before - now) * last.step < 4.0 * h;
+    };
+    if (last.orbit.min_flight_gap_witness >= 0 && vanishing(&OrbitEvaluation::min_flight_gap))
       candidates.push_back({last.orbit.min_flight_gap_witness, last.orbit.min_flight_gap_time,
                             "a flight extremum touches the wall"});
-    if (last.orbit.slowest_impact_witness >= 0)
+    if (last.orbit.slowest_impact_witness >= 0 && vanishing(&OrbitEvaluation::min_impact_speed))
       candidates.push_back({last.orbit.slowest_impact_witness, last.orbit.slowest_impact_time,
                             "an impact velocity goes to zero"});
     // the candidate whose extrapolated gap or speed vanishes soonest first
@@ -360,7 +433,7 @@ class Driver {
     for (const Candidate& candidate : candidates) {
       auto solved = solve_grazing(last, candidate.witness, candidate.time, h);
       if (!solved) continue;
-      const double s = last.tangent.dot(Vec3(solved->state[0], solved->state[1], solved->parameter) - last.y);
+      const double s = last.tangent.dot(solved_point - last.y);
       if (s < -0.05 * h || s > 1.5 * h || s >= best_s) continue;
       solved->note = candidate.kind;
       best = solved;
@@ -385,7 +458,7 @@ class Driver {
       const Vec3 y(z[0], z[1], z[2]);
       OrbitEvaluation e = evaluate(y, false, window);
       if (!e.completed) return std::nullopt;
-      const GapSample gap = problem_.gap_at(state_of(y), z[2], window, z[3]);
+      const GapSample gap = problem_.gap_at(state_of(y), z[2] * scale_, phase_, window, z[3]);
       if (!gap.completed) return std::nullopt;
       if (orbit) *orbit = e;
       return Vec4(e.image[0] - z[0], e.image[1] - z[1], gap.value, gap.rate);
@@ -399,17 +472,19 @@ class Driver {
       const auto r = residual_of(z, &orbit);
       if (!r) return std::nullopt;
       const double size = 1.0 + std::hypot(z[0], z[1]);
-      if (r->norm() <= request_.tolerance * size && iteration > 0) {
+      if (r->norm() <= request_.tolerance * size && iteration > 0 &&
+          std::fabs(last_parameter_step) <= 1e-11 * (1.0 + std::fabs(z[2]))) {
         BifurcationPoint point;
         point.type = "grazing";
-        point.parameter = z[2];
-        point.state = {z[0], z[1]};
+        point.parameter = z[2] * scale_;
+        point.state = reported_state(Vec3(z[0], z[1], z[2]));
         point.multipliers = multipliers_of(orbit.monodromy);
-        point.error_estimate = std::max(std::fabs(last_parameter_step),
-                                        request_.tolerance * (1.0 + std::fabs(z[2])));
+        point.error_estimate = std::max(std::fabs(last_parameter_step) * scale_,
+                                        request_.tolerance * (1.0 + std::fabs(z[2] * scale_)));
         point.graze_time = z[3];
         point.graze_witness = witness;
         point.located = true;
+        solved_point = Vec3(z[0], z[1], z[2]);
         return point;
       }
       Eigen::Matrix4d jacobian;
@@ -434,6 +509,10 @@ class Driver {
   const ContinuationProblem& problem_;
   const ContinuationRequest& request_;
   double h_initial_, h_min_, h_max_;
+  double scale_ = 1.0;        // the parameter's unit of arclength (the range)
+  double from_ = 0.0, to_ = 1.0;  // the range in that unit
+  double phase_ = 0.0;        // rad: the section the branch is computed on (moved off impacts)
+  Vec3 solved_point = Vec3::Zero();  // the last grazing solution, in branch units
   std::vector<Node> nodes_;
   std::string signature_;
   ContinuationResult result_;

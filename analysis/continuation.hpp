@@ -30,6 +30,7 @@
 #include <complex>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,9 @@ struct OrbitEvaluation {
   // the time since the section (s) and witness of the impact of smallest speed
   double slowest_impact_time = std::numeric_limits<double>::quiet_NaN();
   int slowest_impact_witness = -1;
+  std::vector<double> event_times;  // every event, time since the section (s)
+  double span = 0.0;                // nT (s)
+  double omega = 0.0;               // forcing frequency (rad/s)
 };
 
 // A witness (wall gap) and its rate along the orbit at a time since the section.
@@ -72,18 +76,25 @@ struct GapSample {
   double rate = 0.0;   // its time derivative along the flow
 };
 
+// The section is ωt ≡ phase (mod 2π); the driver may move it off an impact
+// that comes too close to it (where the stroboscopic map jumps) and reports
+// every state on the requested `phase`.
 struct ContinuationProblem {
   // Pⁿ(x; p) and what the orbit does on the way; `detailed` also samples the
   // flight gaps (a few times dearer)
-  std::function<OrbitEvaluation(const OrbitPoint& x, double p, bool detailed,
+  std::function<OrbitEvaluation(const OrbitPoint& x, double p, double phase, bool detailed,
                                 const ContactWindow& suppressed)>
       evaluate;
   // the gap of `suppressed.witness` at time t since the section along the
   // orbit from x at p, with that wall's contacts in the window suppressed
-  std::function<GapSample(const OrbitPoint& x, double p, const ContactWindow& suppressed,
-                          double t)>
+  std::function<GapSample(const OrbitPoint& x, double p, double phase,
+                          const ContactWindow& suppressed, double t)>
       gap_at;
-  double forcing_period_at_p = 0.0;  // unused by the driver; for reports
+  // the state reached from x on section `from` at the next section `to`
+  std::function<std::optional<OrbitPoint>(const OrbitPoint& x, double p, double from, double to)>
+      transport;
+  double phase = 0.0;                // rad: the requested section
+  double forcing_period_at_p = 0.0;  // nT at the start (s): the scale of the grazing window
 };
 
 struct ContinuationRequest {
@@ -110,6 +121,7 @@ struct BranchPoint {
   double min_flight_gap = 0.0;
   int newton_iterations = 0;
   double step = 0.0;     // arclength step that reached it
+  double phase = 0.0;    // rad: the section of `state`
 };
 
 // A located bifurcation point.

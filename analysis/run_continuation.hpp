@@ -156,12 +156,13 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
 
   ContinuationProblem problem;
   problem.forcing_period_at_p = period * 2.0 * std::numbers::pi / forcing_omega_at_start;
-  problem.evaluate = [shared](const OrbitPoint& x, double p, bool detailed,
+  problem.phase = phase;
+  problem.evaluate = [shared](const OrbitPoint& x, double p, double section_phase, bool detailed,
                               const ContactWindow& suppressed) {
     OrbitEvaluation result;
     const System system = shared->make_system(p);
     const double omega = system.parameters().omega;
-    const double t0 = shared->phase / omega;
+    const double t0 = section_phase / omega;
     const double span = shared->period * 2.0 * std::numbers::pi / omega;
     CrossingTrace trace;
     ContactWindow window = suppressed;
@@ -187,7 +188,10 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
     result.completed = std::isfinite(state[0]) && std::isfinite(state[1]);
     result.image = {state[0], state[1]};
     result.monodromy = Tangent::fundamental_matrix(run.state);
+    result.span = span;
+    result.omega = omega;
     for (const EventRecord& event : log.records()) {
+      result.event_times.push_back(event.t - t0);
       const std::string wall = event.wall > 0 ? "+" + std::to_string(event.wall)
                                               : std::to_string(event.wall);
       if (event.kind == EventKind::impact) {
@@ -231,11 +235,11 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
     }
     return result;
   };
-  problem.gap_at = [shared](const OrbitPoint& x, double p, const ContactWindow& suppressed,
-                            double t) {
+  problem.gap_at = [shared](const OrbitPoint& x, double p, double section_phase,
+                            const ContactWindow& suppressed, double t) {
     GapSample sample;
     const System system = shared->make_system(p);
-    const double t0 = shared->phase / system.parameters().omega;
+    const double t0 = section_phase / system.parameters().omega;
     ContactWindow window = suppressed;
     window.from += t0;
     window.to += t0;
@@ -258,6 +262,25 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
     sample.value = h.value;
     sample.rate = h.rate;
     return sample;
+  };
+  problem.transport = [shared](const OrbitPoint& x, double p, double from,
+                               double to) -> std::optional<OrbitPoint> {
+    const System system = shared->make_system(p);
+    const double omega = system.parameters().omega;
+    const double shift = std::remainder(to - from, 2.0 * std::numbers::pi);
+    const double t0 = from / omega;
+    const double t1 = t0 + (shift < 0.0 ? shift + 2.0 * std::numbers::pi : shift) / omega;
+    typename System::State x0{};
+    x0[0] = x[0];
+    x0[1] = x[1];
+    EventLog log(false);
+    const auto run = with_stepper<System>(
+        shared->setup.method, stepper_settings(system, shared->setup), [&](auto& stepper) {
+          return simulate(system, stepper, x0, shared->flight_mode, t0, t1,
+                          loop_options(shared->setup), log);
+        });
+    if (run.termination != Termination::completed) return std::nullopt;
+    return OrbitPoint{run.state[0], run.state[1]};
   };
   return problem;
 }
@@ -323,7 +346,7 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
       // the monodromy of the n-fold map at the point, for the −1 eigenvector
       const ContinuationProblem problem = problem_for(period);
       const OrbitEvaluation at = problem.evaluate(doubling_point.state, doubling_point.parameter,
-                                                  false, {});
+                                                  job.phase, false, {});
       const OrbitPoint v = eigenvector_for(at.monodromy, -1.0);
       period *= 2;
       ContinuationRequest doubled = request;

@@ -207,7 +207,7 @@ TEST(Continuation, LinearImpactPeriodOneBranchUpToSeven) {
     EXPECT_TRUE(doublings[k].located);
     EXPECT_NEAR(doublings[k].parameter, expected[k], 1e-9 * expected[k]) << k;
     EXPECT_LT(doublings[k].error_estimate, 1e-9 * expected[k]);
-    EXPECT_NEAR(doublings[k].multipliers[1].real(), -1.0, 1e-7);
+    EXPECT_NEAR(doublings[k].multipliers[0].real(), -1.0, 1e-7);  // |−1| > |det M|
   }
   EXPECT_TRUE(points_of_type(branch, "fold").empty());
 
@@ -248,19 +248,31 @@ TEST(Continuation, LinearImpactBranchEndsAtTheGrazingWhereItIsBorn) {
   EXPECT_NEAR(doublings[1].parameter, period_doubling(o, 1.02, 1.05), 1e-9);
 }
 
-TEST(Continuation, LinearImpactSecondParameterSet) {
+// σ = 0.2: the impact speed of the period-1 orbit falls to zero as ω rises,
+// where the orbit becomes the free harmonic response whose amplitude
+// A/√((1 − ω²)² + (2ζω)²) just reaches the stop: the second kind of grazing.
+TEST(Continuation, LinearImpactSecondParameterSetEndsWhereTheImpactSpeedVanishes) {
   ImpactOscillator o;
   o.sigma = 0.2;  // the scene's default stop
-  o.zeta = 0.05;
   const Scene scene = linear_impact_scene(o);
   // from the scene's own transient (no start given)
   const auto job = continue_scene(scene, "omega", 2.0, 2.5);
   const auto& branch = job.branches.at(0).result;
-  EXPECT_EQ(branch.stop_reason, "end_of_range") << branch.stop_detail;
+  EXPECT_EQ(branch.stop_reason, "signature_change") << branch.stop_detail;
   const auto doublings = points_of_type(branch, "period_doubling");
   ASSERT_EQ(doublings.size(), 1u);
   const double expected = period_doubling(o, 2.24, 2.29);
   EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
+  const auto grazings = points_of_type(branch, "grazing");
+  ASSERT_EQ(grazings.size(), 1u);
+  const double omega_graze = solve(
+      [&](double w) {
+        const double detuning = 1.0 - w * w;
+        return detuning * detuning + 4.0 * o.zeta * o.zeta * w * w - (o.A / o.sigma) * (o.A / o.sigma);
+      },
+      2.3, 2.6);
+  EXPECT_NEAR(grazings[0].parameter, omega_graze, 1e-9 * omega_graze);
+  EXPECT_EQ(grazings[0].note, "an impact velocity goes to zero");
 }
 
 // The bouncing ball's period-doubling amplitude from Γ_pd.
@@ -271,9 +283,20 @@ double bouncing_ball_period_doubling_amplitude(double g, double omega, double r)
   return gamma * g / (omega * omega);
 }
 
+// The period-1 orbit on the section t ≡ 0 (mod T): take-off at the phase φ
+// with speed gT/2 from the table's height A sin φ.
+std::array<double, 2> bouncing_ball_start(double g, double omega, double r, double A) {
+  const double period = two_pi / omega;
+  const double gamma = A * omega * omega / g;
+  const double phase = std::acos(std::numbers::pi * (1.0 - r) / (gamma * (1.0 + r)));
+  const double flight = period - phase / omega, speed = g * period / 2.0;
+  return {A * std::sin(phase) + speed * flight - 0.5 * g * flight * flight, speed - g * flight};
+}
+
 TEST(Continuation, BouncingBallPeriodDoublingMatchesTheClosedForm) {
   const Scene scene = impactlab::load_scene("bouncing_ball");  // g 9.81, ω 30, r 0.8
-  const auto job = continue_scene(scene, "A", 0.0112, 0.0125);
+  const auto job = continue_scene(scene, "A", 0.0112, 0.0125, 0,
+                                  bouncing_ball_start(9.81, 30.0, 0.8, 0.0112));
   const auto& branch = job.branches.at(0).result;
   const auto doublings = points_of_type(branch, "period_doubling");
   ASSERT_EQ(doublings.size(), 1u) << branch.stop_reason << " " << branch.stop_detail;
@@ -283,7 +306,8 @@ TEST(Continuation, BouncingBallPeriodDoublingMatchesTheClosedForm) {
 
 TEST(Continuation, BouncingBallCascadeThroughTwoDoublings) {
   const Scene scene = impactlab::load_scene("bouncing_ball");
-  const auto job = continue_scene(scene, "A", 0.0112, 0.0135, 2);
+  const auto job = continue_scene(scene, "A", 0.0112, 0.0135, 2,
+                                  bouncing_ball_start(9.81, 30.0, 0.8, 0.0112));
   ASSERT_EQ(job.branches.size(), 3u);
   EXPECT_EQ(job.branches[1].period, 2);
   EXPECT_EQ(job.branches[2].period, 4);

@@ -33,6 +33,7 @@ struct ContinueOptions {
   double transient = 100.0;
   int max_points = 5000;
   double tolerance = 1e-10;
+  double max_step = 0.0;  // arclength; 0: 1/50 of the range
   bool plot = false;
   std::string with_sweep;  // a sweep's bifurcation.csv drawn under the branch
 };
@@ -74,10 +75,6 @@ ParameterRange parse_range(const std::string& text, const Scene& scene) {
     validate(probe, schema);
   }
   return range;
-}
-
-nlohmann::json multipliers_record(const std::array<std::complex<double>, 2>& m) {
-  return {{{"re", m[0].real()}, {"im", m[0].imag()}}, {{"re", m[1].real()}, {"im", m[1].imag()}}};
 }
 
 void write_branch_csv(AtomicFile& file, const std::string& name,
@@ -146,6 +143,8 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
   }
   job.numerics.max_points = options.max_points;
   job.numerics.tolerance = options.tolerance;
+  job.numerics.max_step = options.max_step;
+  if (options.max_step > 0.0) job.numerics.initial_step = options.max_step;
 
   const auto directory = options.scene.output_directory();
   const auto started = std::chrono::steady_clock::now();
@@ -187,6 +186,7 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
         {"transient_periods", options.transient},
         {"switch", options.switch_doubling},
         {"tolerance", options.tolerance},
+        {"max_step", options.max_step},
         {"start", options.start}}},
       {"method",
        "pseudo-arclength continuation of the fixed point of the n-fold stroboscopic map; "
@@ -270,6 +270,10 @@ Command add_continue_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--tolerance", options->tolerance, "Newton residual |P^n(x) - x| / (1 + |x|)")
       ->check(positive_number())
+      ->capture_default_str();
+  command->add_option("--max-step", options->max_step,
+                      "largest arclength step in (q, qdot, parameter) (default: 1/50 of the range)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   command->add_flag("--plot", options->plot,
                     "draw continuation.png (scripts/plot_continuation.py): stable solid, "
