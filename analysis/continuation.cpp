@@ -307,8 +307,20 @@ class Driver {
         ok = turned && turned->dot(tau) > std::cos(30.0 * std::numbers::pi / 180.0);
       }
       if (ok && accept(c, tau, h)) {
+        // a gap or impact speed about to vanish: end at the grazing point
+        // before Newton meets the square-root singularity
+        if (grazing_ahead(h) && end_at_signature_change(h)) return finish();
+        // a corrector that only creeps (steps below 1e-5 of the range for
+        // 100 points: an orbit so unstable that the integrator's noise in Pⁿ
+        // exceeds the tolerance): a grazing point within reach, or a stop
+        stalled_ = h < 1e-5 ? stalled_ + 1 : 0;
+        if (stalled_ >= 100) {
+          if (end_at_signature_change(h_max_)) return finish();
+          return stop("branch_point", "stalled: steps below 1e-5 of the range for 100 points");
+        }
         if (c.iterations <= 3) h = std::min(1.5 * h, h_max_);
-        else if (c.iterations >= 7) h *= 0.7;
+        else if (c.iterations <= 6) h = std::min(1.1 * h, h_max_);
+        else h *= 0.7;
         continue;
       }
       if ((c.signature_changed || !c.converged) && end_at_signature_change(h)) return finish();
@@ -345,7 +357,11 @@ class Driver {
         const auto ma = multipliers_of(a.orbit.monodromy), mb = multipliers_of(b.orbit.monodromy);
         if (ma[0].imag() == 0.0 && mb[0].imag() == 0.0) continue;
       }
-      result_.points.push_back(locate(test.type, test.function, a, step, fa, fb));
+      BifurcationPoint point = locate(test.type, test.function, a, step, fa, fb);
+      // a multiplier through +1 where the branch does not turn back in p: a
+      // branch point (a symmetry-breaking pitchfork or a transcritical point)
+      if (point.type == "fold" && a.tangent[2] * b.tangent[2] > 0.0) point.type = "branch_point";
+      result_.points.push_back(point);
     }
     if (a.orbit.contact_phases != b.orbit.contact_phases) {
       BifurcationPoint point;
@@ -400,6 +416,17 @@ class Driver {
   }
 
   // --- grazing: the end of the branch where the impact signature changes ---
+
+  bool grazing_ahead(double h) const {
+    const Node& last = nodes_.back();
+    if (nodes_.size() < 2) return false;
+    const Node& before = nodes_[nodes_.size() - 2];
+    auto vanishing = [&](double now, double earlier) {
+      return std::isfinite(now) && earlier > now && now / (earlier - now) * last.step < h;
+    };
+    return vanishing(last.orbit.min_flight_gap, before.orbit.min_flight_gap) ||
+           vanishing(last.orbit.min_impact_speed, before.orbit.min_impact_speed);
+  }
 
   // After a failed step of length h from the last point: solve the grazing
   // system for each candidate (the lowest flight gap, the slowest impact);
@@ -511,6 +538,7 @@ class Driver {
   double h_initial_, h_min_, h_max_;
   double scale_ = 1.0;        // the parameter's unit of arclength (the range)
   double from_ = 0.0, to_ = 1.0;  // the range in that unit
+  int stalled_ = 0;           // consecutive points reached by tiny steps
   double phase_ = 0.0;        // rad: the section the branch is computed on (moved off impacts)
   Vec3 solved_point = Vec3::Zero();  // the last grazing solution, in branch units
   std::vector<Node> nodes_;
