@@ -26,7 +26,8 @@
 #include "analysis/continuation.hpp"
 #include "analysis/periodic.hpp"
 #include "analysis/section.hpp"
-#include "io/oscillator_registry.hpp"
+#include "api/scene_jobs.hpp"
+#include "api/scene_loading.hpp"
 #include "io/scene.hpp"
 
 namespace {
@@ -170,7 +171,7 @@ ContinuationJobResult continue_scene(const Scene& scene, const std::string& key,
     job.has_start = true;
     job.start = *start;
   }
-  return impactlab::oscillator_entry(scene.oscillator).continuation(scene, job);
+  return impactlab::continue_orbit(scene, job);
 }
 
 std::vector<BifurcationPoint> points_of_type(const impactlab::ContinuationResult& result,
@@ -326,7 +327,6 @@ TEST(Continuation, StableBranchPointsAgreeWithTheSweepSectionAndPeriodic) {
   Scene scene = linear_impact_scene(o);
   const auto job = continue_scene(scene, "omega", 2.0, 2.5);
   const auto& branch = job.branches.at(0).result;
-  const auto& entry = impactlab::oscillator_entry("linear_impact");
   int compared = 0;
   for (std::size_t k = 0; k < branch.branch.size(); k += 4) {
     const auto& point = branch.branch[k];
@@ -335,12 +335,12 @@ TEST(Continuation, StableBranchPointsAgreeWithTheSweepSectionAndPeriodic) {
     impactlab::SectionRequest request;  // strobe at phase 0 after 100 periods, as sweep does
     request.transient_periods = 600;
     request.points = 4;
-    const auto section = entry.section(scene, request);
+    const auto section = impactlab::poincare(scene, request);
     ASSERT_FALSE(section.points.empty());
     EXPECT_NEAR(section.points.back().q, point.state[0], 1e-8) << point.parameter;
     EXPECT_NEAR(section.points.back().qdot, point.state[1], 1e-8) << point.parameter;
     impactlab::PeriodicRequest periodic;
-    const auto orbit = entry.periodic_orbit(scene, periodic);
+    const auto orbit = impactlab::periodic(scene, periodic);
     ASSERT_TRUE(orbit.converged);
     EXPECT_NEAR(orbit.state[0], point.state[0], 1e-9);
     EXPECT_NEAR(orbit.state[1], point.state[1], 1e-9);

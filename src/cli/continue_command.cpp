@@ -12,11 +12,12 @@
 
 #include "analysis/continuation.hpp"
 #include "analysis/section.hpp"
+#include "api/scene_jobs.hpp"
+#include "api/scene_loading.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
 #include "cli/section_options.hpp"
 #include "io/bad_input.hpp"
-#include "io/oscillator_registry.hpp"
 #include "io/output.hpp"
 
 namespace impactlab::cli {
@@ -45,7 +46,8 @@ struct ParameterRange {
   double from = 0.0, to = 0.0;
 };
 
-ParameterRange parse_range(const std::string& text, const Scene& scene) {
+// NAME=FROM:TO (the key and its range are checked by the scene API)
+ParameterRange parse_range(const std::string& text) {
   const auto bad = [&](const std::string& why) { return BadInput("--param", text, why); };
   const auto equals = text.find('=');
   const auto colon = text.find(':', equals == std::string::npos ? 0 : equals);
@@ -61,19 +63,6 @@ ParameterRange parse_range(const std::string& text, const Scene& scene) {
   const bool to_ok = !to.empty() && *end == '\0' && std::isfinite(range.to);
   if (!from_ok || !to_ok) throw bad("FROM and TO must be finite numbers");
   if (range.from == range.to) throw bad("FROM and TO must differ");
-  const SceneSchema& schema = *oscillator_entry(scene.oscillator).schema;
-  const auto spec = std::find_if(schema.keys.begin(), schema.keys.end(),
-                                 [&](const KeySpec& k) { return k.key == range.name; });
-  if (spec == schema.keys.end() || spec->is_text || range.name.starts_with("initial.") ||
-      range.name.starts_with("integrator.") || range.name == "t0")
-    throw BadInput("--param", range.name,
-                   fmt::format("not a numeric parameter of oscillator {}", schema.oscillator));
-  // both ends admissible (BadInput names the key and value otherwise)
-  Scene probe = scene;
-  for (double value : {range.from, range.to}) {
-    probe.values[range.name] = value;
-    validate(probe, schema);
-  }
   return range;
 }
 
@@ -115,10 +104,7 @@ void write_points_csv(AtomicFile& file, const std::string& name,
 
 int run_continue(const ContinueOptions& options, const std::vector<std::string>& command_line) {
   const Scene scene = options.scene.load();
-  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
-  if (!entry.continuation)
-    throw BadInput("oscillator", scene.oscillator, "has no continuation entry");
-  const ParameterRange range = parse_range(options.param, scene);
+  const ParameterRange range = parse_range(options.param);
   const SectionSpec section = parse_section(options.section, "--section");
   if (section.kind != SectionKind::strobe)
     throw BadInput("--section", options.section,
@@ -148,15 +134,9 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
 
   const auto directory = options.scene.output_directory();
   const auto started = std::chrono::steady_clock::now();
-  const ContinuationJobResult result = entry.continuation(scene, job);
+  const ContinuationJobResult result = continue_orbit(scene, job);
   const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  if (!result.available) throw BadInput("oscillator", scene.oscillator, result.note);
-  if (result.branches.empty() || result.branches[0].result.stop_reason == "start_not_converged")
-    throw BadInput("--param", options.param,
-                   fmt::format("no period-{} orbit converged at {} = {} (try --period, --start "
-                               "or --transient)",
-                               options.period, range.name, range.from));
 
   prepare_output_directory(directory);
   AtomicFile branch_file(directory / "branch.csv");
@@ -218,7 +198,7 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
 
   if (options.plot || !options.with_sweep.empty()) {
     std::vector<std::string> names = {range.name,
-                                      std::string(entry.schema->main_coordinate)};
+                                      std::string(scene_schema(scene).main_coordinate)};
     if (!options.with_sweep.empty()) names.push_back(options.with_sweep);
     plot_with_python("continuation", directory / "branch.csv", directory / "continuation.png",
                      names);
