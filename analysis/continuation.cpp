@@ -325,6 +325,10 @@ class Driver {
       }
       if ((c.signature_changed || !c.converged) && end_at_signature_change(h)) return finish();
       h *= 0.5;
+      if (h < h_min_ && c.signature_changed)
+        return stop("signature_change", "the impact signature changes from '" + signature_ +
+                                            "' to '" + c.orbit.signature +
+                                            "'; no grazing point located");
       if (h < h_min_)
         return stop("branch_point", "step below the smallest: the corrector cannot pass this point");
     }
