@@ -15,6 +15,8 @@ struct SectionRequest;
 struct SectionResult;
 struct PeriodicRequest;
 struct PeriodicResult;
+struct ContinuationJob;  // analysis/continuation.hpp
+struct ContinuationJobResult;
 
 struct OscillatorEntry {
   const SceneSchema* schema;
@@ -28,6 +30,9 @@ struct OscillatorEntry {
   // Newton shooting for a period-n orbit and its Floquet multipliers
   // (analysis/run_periodic.hpp)
   PeriodicResult (*periodic_orbit)(const Scene& scene, const PeriodicRequest& request) = nullptr;
+  // pseudo-arclength continuation of a period-n orbit in one scene key, its
+  // bifurcations and grazing points (analysis/run_continuation.hpp)
+  ContinuationJobResult (*continuation)(const Scene& scene, const ContinuationJob& job) = nullptr;
 };
 
 std::span<const OscillatorEntry> oscillators();

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "analysis/run_continuation.hpp"
 #include "analysis/run_periodic.hpp"
 #include "analysis/run_section.hpp"
 #include "api/oscillator_registry.hpp"
@@ -94,10 +95,16 @@ PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request
                       request, system.parameters().omega);
 }
 
+ContinuationJobResult continuation(const Scene& scene, const ContinuationJob& job) {
+  const BouncingBall system = make_system(scene);
+  const BouncingBall::State x0 = job.has_start ? BouncingBall::State{} : initial_state(scene, system);
+  return run_continuation<BouncingBall>(&make_system, BouncingBall::Mode::free, x0, scene, job);
+}
+
 }  // namespace
 
 const OscillatorEntry& bouncing_ball_entry() {
-  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit};
+  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit, &continuation};
   return entry;
 }
 

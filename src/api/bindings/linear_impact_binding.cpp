@@ -1,6 +1,7 @@
 // The linear impact oscillator's scene schema and runner.
 #include <numbers>
 
+#include "analysis/run_continuation.hpp"
 #include "analysis/run_periodic.hpp"
 #include "analysis/run_section.hpp"
 #include "api/oscillator_registry.hpp"
@@ -98,10 +99,16 @@ PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request
                       request, system.parameters().omega);
 }
 
+ContinuationJobResult continuation(const Scene& scene, const ContinuationJob& job) {
+  const LinearImpact system = make_system(scene);
+  const LinearImpact::State x0 = job.has_start ? LinearImpact::State{} : initial_state(scene, system);
+  return run_continuation<LinearImpact>(&make_system, LinearImpact::Mode::free, x0, scene, job);
+}
+
 }  // namespace
 
 const OscillatorEntry& linear_impact_entry() {
-  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit};
+  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit, &continuation};
   return entry;
 }
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <numbers>
 
+#include "analysis/run_continuation.hpp"
 #include "analysis/run_periodic.hpp"
 #include "analysis/run_section.hpp"
 #include "api/bindings/pendulum_walls_parameters.hpp"
@@ -134,6 +135,21 @@ PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request
                       system.parameters().omega);
 }
 
+template <class System>
+ContinuationJobResult continuation_model(const Scene& scene, const ContinuationJob& job) {
+  const System system(pendulum_walls_parameters(scene));
+  const typename System::State x0 =
+      job.has_start ? typename System::State{} : initial_state(scene, system);
+  auto system_at = [](const Scene& at) { return System(pendulum_walls_parameters(at)); };
+  return run_continuation<System>(system_at, PendulumMode::free, x0, scene, job);
+}
+
+ContinuationJobResult continuation(const Scene& scene, const ContinuationJob& job) {
+  reject_rigid_analysis(scene);
+  if (scene.text("model") == "paper") return continuation_model<PaperPendulumWalls>(scene, job);
+  return continuation_model<PendulumWalls>(scene, job);
+}
+
 template <PendulumModel model>
 RunOutput run_model(const Scene& scene, const RunRequest& request) {
   using System = BasicPendulumWalls<model>;
@@ -196,7 +212,7 @@ PendulumWallsParameters pendulum_walls_parameters(const Scene& scene) {
 }
 
 const OscillatorEntry& pendulum_walls_entry() {
-  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit};
+  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit, &continuation};
   return entry;
 }
 
