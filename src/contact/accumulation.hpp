@@ -30,9 +30,12 @@
 // by default the integrator's rtol), with the first-order term small
 // (|T − T0| <= 0.1 T0, inside the asymptotic regime); or, whatever E, when
 // the chatter is below what the event loop can resolve: the next flight's
-// apex u²/(2a) within the integrator's accuracy on the gap. Otherwise the
-// next impact is simulated and the test repeated with its smaller u: E falls
-// like u³, so a few impacts reach any tolerance.
+// apex u²/(2a) within the integrator's accuracy on the gap; or when the next
+// impact could not be timed better than E anyway: its time is known to the
+// round-off of the gap over its speed, ρ/u (ρ a few ulps of the wall's
+// coordinate), and crawling on would add that error instead of removing E.
+// Otherwise the next impact is simulated and the test repeated with its
+// smaller u: E falls like u³, so a few impacts reach any tolerance.
 #pragma once
 
 #include <cmath>
@@ -56,6 +59,8 @@ struct AccumulationTolerance {
   // apex height of a flight (in the units of u times time) at or below which
   // the event loop cannot resolve the chatter any more: the estimate is taken
   double unresolved_apex = 1e-14;
+  // ρ, the round-off of the gap where it is computed (units of u times time)
+  double gap_roundoff = 1e-17;
 };
 
 struct AccumulationEstimate {
@@ -89,7 +94,8 @@ inline std::optional<AccumulationEstimate> accept_accumulation(const ChatterProb
   const double t0 = 2.0 * u / (a * (1.0 - probe.restitution));
   const bool asymptotic = std::fabs(estimate->remaining - t0) <= 0.1 * t0;
   const bool accurate = asymptotic && estimate->error_bound <= tol.time;
-  const bool unresolvable = u * u / (2.0 * a) <= tol.unresolved_apex;
+  const bool unresolvable = u * u / (2.0 * a) <= tol.unresolved_apex ||
+                            estimate->error_bound * u <= tol.gap_roundoff;
   if (accurate || unresolvable) return estimate;
   return std::nullopt;
 }

@@ -142,7 +142,9 @@ AccumulationTolerance accumulation_tolerance(const Scene& scene, double time_sca
   const double relative = scene.number("accumulation_tol");
   return {.time = (relative > 0.0 ? relative : rtol) * time_scale,
           .unresolved_apex =
-              (atol + rtol * std::fabs(wall_coordinate)) * normal_per_coordinate};
+              (atol + rtol * std::fabs(wall_coordinate)) * normal_per_coordinate,
+          .gap_roundoff = 4.0 * std::numeric_limits<double>::epsilon() *
+                          std::fabs(wall_coordinate) * normal_per_coordinate};
 }
 
 double accumulation_time_tolerance(const Scene& scene) {

@@ -60,7 +60,8 @@ KeySpec accumulation_tolerance_key();
 // chatter counts as unresolvable once a flight's apex is within the
 // integrator's accuracy on the gap, (atol + rtol |wall_coordinate|) ×
 // normal_per_coordinate (the normal gap per unit of the coordinate: m/rad
-// for the pendulum's angle, 1 where the coordinate is the gap's own).
+// for the pendulum's angle, 1 where the coordinate is the gap's own), and
+// the gap's round-off is 4 ulps of the wall coordinate.
 AccumulationTolerance accumulation_tolerance(const Scene& scene, double time_scale,
                                              double wall_coordinate,
                                              double normal_per_coordinate = 1.0);
