@@ -17,7 +17,8 @@
 #include <gtest/gtest.h>
 
 #include "contact/accumulation.hpp"
-#include "io/oscillator_registry.hpp"
+#include "api/oscillator_registry.hpp"
+#include "api/scene_loading.hpp"
 #include "io/scene.hpp"
 
 namespace impactlab {
