@@ -34,7 +34,7 @@ struct BouncingBallParameters {
   double A = 0.0112;     // table amplitude (m), >= 0
   double omega = 30.0;   // table angular frequency (rad/s), > 0
   double r = 0.8;        // coefficient of restitution, [0, 1]
-  double accumulation_tol = 1e-3;  // accepted relative error of an accumulation estimate
+  AccumulationTolerance accumulation{};  // what an accumulation estimate is held to
 };
 
 class BouncingBall {
@@ -192,20 +192,22 @@ class BouncingBall {
 
     // chattering: is the table pushing the ball back, and is the accumulation
     // estimate good? (with g + z̈ <= 0 the table pulls away: the ball is free)
-    const auto remaining = time_to_accumulation(
+    const auto estimate = accept_accumulation(
         {std::fabs(impact.qdot_after), table_push(t), table_push_rate(t), p_.r,
          table_push_curvature(t)},
-        p_.accumulation_tol, 1.0 / p_.omega);
-    if (!remaining) return {after, Mode::free, t, false};
-    return enter_stuck(t + *remaining, log);
+        p_.accumulation);
+    if (!estimate) return {after, Mode::free, t, false};
+    return enter_stuck(t + estimate->remaining, estimate->error_bound, log);
   }
 
   // At the accumulation point the ball rides on the table if the table pushes
   // it; otherwise it leaves the table with the table's velocity. The records
   // carry the ball's state there, which is the table's (q = z, q̇ = ż).
-  Transition<State, Mode> enter_stuck(double t, EventLog& log) const {
+  Transition<State, Mode> enter_stuck(double t, double time_error, EventLog& log) const {
     const State riding = on_table(t);
-    log.record({t, EventKind::accumulation, wall, riding[0], riding[1], riding[1]});
+    EventRecord accumulation{t, EventKind::accumulation, wall, riding[0], riding[1], riding[1]};
+    accumulation.accumulation_error = time_error;
+    log.record(accumulation);
     if (!(table_push(t) > 0.0)) return {riding, Mode::free, t, false};
     log.record({t, EventKind::contact_start, wall, riding[0], riding[1], riding[1]});
     return {riding, Mode::stuck, t, false};

@@ -36,7 +36,7 @@ struct LinearImpactParameters {
   double omega = 2.0;    // forcing frequency ω over the natural frequency (dimensionless), > 0
   double sigma = 0.2;    // position of the stop σ (length); the mass moves in x <= σ
   double r = 0.8;        // coefficient of restitution, [0, 1]
-  double accumulation_tol = 1e-3;  // accepted relative error of an accumulation estimate
+  AccumulationTolerance accumulation{};  // what an accumulation estimate is held to
 };
 
 class LinearImpact {
@@ -212,18 +212,21 @@ class LinearImpact {
     const State after{p_.sigma, impact.qdot_after};
 
     // chattering: is the stop attracting, and is the accumulation estimate good?
-    const auto remaining =
-        time_to_accumulation({std::fabs(impact.qdot_after), stop_push(t), stop_push_rate(t), p_.r,
-                              stop_push_curvature(t)},
-                             p_.accumulation_tol, 1.0 / p_.omega);
-    if (!remaining) return {after, Mode::free, t, false};
-    return enter_stuck(t + *remaining, log);
+    // on the gap σ − x: damping 2ζ, stiffness 1 (the spring)
+    const auto estimate =
+        accept_accumulation({std::fabs(impact.qdot_after), stop_push(t), stop_push_rate(t), p_.r,
+                             stop_push_curvature(t), 2.0 * p_.zeta, 1.0},
+                            p_.accumulation);
+    if (!estimate) return {after, Mode::free, t, false};
+    return enter_stuck(t + estimate->remaining, estimate->error_bound, log);
   }
 
   // At the accumulation point the mass rests on the stop if the forcing
   // pushes it there; otherwise it leaves the stop with zero velocity.
-  Transition<State, Mode> enter_stuck(double t, EventLog& log) const {
-    log.record({t, EventKind::accumulation, wall, p_.sigma, 0.0, 0.0});
+  Transition<State, Mode> enter_stuck(double t, double time_error, EventLog& log) const {
+    EventRecord accumulation{t, EventKind::accumulation, wall, p_.sigma, 0.0, 0.0};
+    accumulation.accumulation_error = time_error;
+    log.record(accumulation);
     if (!(stop_push(t) > 0.0)) return {on_stop(), Mode::free, t, false};
     log.record({t, EventKind::contact_start, wall, p_.sigma, 0.0, 0.0});
     return {on_stop(), Mode::stuck, t, false};

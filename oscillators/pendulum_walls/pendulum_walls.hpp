@@ -51,7 +51,7 @@ struct PendulumWallsParameters {
   double e_n = 0.3;     // normal restitution, [0, 1]
   double e_t = -0.1;    // tangential restitution of the paper's Model P, [-1, 0]
   double mu = 0.6;      // Coulomb friction coefficient, >= 0
-  double accumulation_tol = 1e-3;  // accepted relative error of an accumulation estimate
+  AccumulationTolerance accumulation{};  // what an accumulation estimate is held to
 };
 
 enum class PendulumModel { newton, paper };
@@ -304,12 +304,15 @@ class BasicPendulumWalls {
     const double approach = -effective_gravity(t) * sin0_ * cos0_;
     const double approach_rate = -effective_gravity_rate(t) * sin0_ * cos0_;
     const double approach_curvature = -effective_gravity_curvature(t) * sin0_ * cos0_;
-    const auto remaining = time_to_accumulation(
+    // damping d/(m l²) (1/s); the gap's stiffness g_e cos θ0 / l (1/s²)
+    const double damping = p_.d / (p_.m * p_.l * p_.l);
+    const double gap_stiffness = effective_gravity(t) * cos0_ / p_.l;
+    const auto estimate = accept_accumulation(
         {p_.l * cos0_ * std::fabs(impact.qdot_after), approach, approach_rate, p_.e_n,
-         approach_curvature},
-        p_.accumulation_tol, 1.0 / p_.omega);
-    if (!remaining) return {after, Mode::free, t, false};
-    return enter_contact(wall, x[2], t + *remaining, log);
+         approach_curvature, damping, gap_stiffness},
+        p_.accumulation);
+    if (!estimate) return {after, Mode::free, t, false};
+    return enter_contact(wall, x[2], t + estimate->remaining, estimate->error_bound, log);
   }
 
   // Model P: the bob stays on the wall, sliding with the pivot, its normal
@@ -342,9 +345,11 @@ class BasicPendulumWalls {
   }
 
   Transition<State, Mode> enter_contact(int wall, double friction_work, double t,
-                                        EventLog& log) const {
+                                        double time_error, EventLog& log) const {
     const State resting = on_wall(wall, friction_work);
-    log.record({t, EventKind::accumulation, wall, resting[0], 0.0, 0.0});
+    EventRecord accumulation{t, EventKind::accumulation, wall, resting[0], 0.0, 0.0};
+    accumulation.accumulation_error = time_error;
+    log.record(accumulation);
     const double slip = pivot_velocity(t);
     // at zero slip the slip about to start decides the friction direction
     const double s = slip != 0.0 ? sign(slip) : sign(std::cos(p_.omega * t));

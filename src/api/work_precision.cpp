@@ -81,7 +81,7 @@ ReferenceImpacts closed_form_reference(const Scene& scene, double t_end, std::si
     p.omega = scene.number("omega");
     p.sigma = scene.number("sigma");
     p.r = scene.number("r");
-    p.accumulation_tol = scene.number("accumulation_tol");
+    p.accumulation = accumulation_tolerance(scene, 1.0 / p.omega, p.sigma);
     const LinearImpact system(p);
     reference.impacts = closed_form_impacts(
         system, LinearImpact::State{scene.number("initial.x"), scene.number("initial.x_dot")},
@@ -92,7 +92,7 @@ ReferenceImpacts closed_form_reference(const Scene& scene, double t_end, std::si
     p.A = scene.number("A");
     p.omega = scene.number("omega");
     p.r = scene.number("r");
-    p.accumulation_tol = scene.number("accumulation_tol");
+    p.accumulation = accumulation_tolerance(scene, 1.0 / p.omega, p.A);
     const BouncingBall system(p);
     reference.impacts = closed_form_impacts(
         system, BouncingBall::State{scene.number("initial.y"), scene.number("initial.y_dot")},

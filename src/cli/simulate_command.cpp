@@ -21,23 +21,25 @@ int run_simulate(const SceneOptions& options, const std::vector<std::string>& co
   RunRequest request = options.request();
   request.sample_step = sample_step;
   const auto directory = options.output_directory();
-  prepare_output_directory(directory);
+  // the run's files, committed together at the end; the rows stream into
+  // them as the run goes (memory does not grow with the run's length)
+  RunFiles files(directory);
+  std::vector<std::string> names = {"events.csv", "meta.json"};
+  EventsCsvWriter events(files.add("events.csv"));
+  request.keep_events = false;
+  request.event_sink = &events;
+  std::optional<TrajectoryCsvWriter> trajectory;
+  if (sample_step > 0.0) {
+    trajectory.emplace(files.add("trajectory.csv"));
+    request.sample_sink = &*trajectory;
+    names.push_back("trajectory.csv");
+  }
 
   ProgressBar progress(!options.quiet);
   request.progress = [&progress](double fraction) { progress.update(fraction); };
   const RunOutput output = simulate(scene, request);
 
   const SceneSchema& schema = scene_schema(scene);
-  std::vector<std::string> files = {"events.csv", "meta.json"};
-  AtomicFile events(directory / "events.csv");
-  write_events_csv(events, output.events);
-  std::optional<AtomicFile> trajectory;
-  if (sample_step > 0.0) {
-    trajectory.emplace(directory / "trajectory.csv");
-    write_trajectory_csv(*trajectory, output.samples);
-    files.push_back("trajectory.csv");
-  }
-
   nlohmann::json meta = {
       {"impactlab_version", IMPACTLAB_VERSION},
       {"command", command_line},
@@ -60,7 +62,11 @@ int run_simulate(const SceneOptions& options, const std::vector<std::string>& co
         {"contact_phases", output.contact_phases},
         {"accumulations", output.accumulations},
         {"grazings", output.grazings},
-        {"events", output.events.size()}}},
+        {"events", output.event_count}}},
+      {"accumulation",
+       {{"largest_time_error_s", output.largest_accumulation_error},
+        {"time_tolerance_s", accumulation_time_tolerance(scene)},
+        {"note", "error bound of each accumulation time: events.csv accumulation_error"}}},
       {"wall_time_s", output.wall_time},
       {"derived", output.derived},
       {"columns",
@@ -80,19 +86,18 @@ int run_simulate(const SceneOptions& options, const std::vector<std::string>& co
            "m/s, pendulum Model P impacts: the paper's Eq. 26 residual (0: instantaneous)"},
           {"sliding_residual",
            "m/s, pendulum Model P impacts: the paper's Eqs. 21-22 residual (Fig. 4)"},
-          {"tangential_velocity_after", "m/s, just after an impact (rigid model)"}}},
+          {"tangential_velocity_after", "m/s, just after an impact (rigid model)"},
+          {"accumulation_error",
+           "s, accumulations: bound on the error of the accumulation time "
+           "(contact/accumulation.hpp)"}}},
         {"trajectory.csv", {{"t", "s"}, {"q", std::string(schema.main_coordinate)},
                             {"qdot", "d" + std::string(schema.main_coordinate) + "/dt"},
                             {"mode", "mode of the hybrid system"}}}}},
-      {"files", files},
+      {"files", names},
   };
-  AtomicFile meta_file(directory / "meta.json");
-  write_json(meta_file, meta);
-
-  // all files complete: put them in place, meta.json last
-  events.commit();
-  if (trajectory) trajectory->commit();
-  meta_file.commit();
+  write_json(files.add("meta.json"), meta);
+  // all files complete: put them in place together, meta.json last
+  files.commit();
 
   const bool stopped = output.termination != "completed";
   if (!options.quiet) {
@@ -103,7 +108,7 @@ int run_simulate(const SceneOptions& options, const std::vector<std::string>& co
         output.steps, output.wall_time, (directory / "meta.json").string());
   }
   if (stopped) {
-    const EventRecord* last = output.events.empty() ? nullptr : &output.events.back();
+    const EventRecord* last = output.last_event ? &*output.last_event : nullptr;
     std::cerr << fmt::format("impactlab: run stopped early ({}) at t = {} s{}\n",
                              output.termination, output.t_final,
                              last ? fmt::format(", last event {} on wall {} at q = {}",

@@ -66,7 +66,7 @@ std::map<RecordKey, SweepRecord> read_checkpoints(const std::filesystem::path& d
 
 std::string csv_bool(bool value) { return value ? "1" : "0"; }
 
-void write_outputs(const std::filesystem::path& directory, const SweepPlan& plan,
+void write_outputs(RunFiles& run_files, const SweepPlan& plan,
                    const std::vector<SweepTask>& tasks,
                    const std::map<RecordKey, SweepRecord>& records, std::vector<std::string>& files) {
   auto summary_fields = [](const SweepRecord& r) {
@@ -77,8 +77,8 @@ void write_outputs(const std::filesystem::path& directory, const SweepPlan& plan
   };
   if (plan.axes.size() == 1) {
     const SweepAxis& axis = plan.axes[0];
-    AtomicFile bifurcation(directory / "bifurcation.csv");
-    AtomicFile summary(directory / "summary.csv");
+    AtomicFile& bifurcation = run_files.add("bifurcation.csv");
+    AtomicFile& summary = run_files.add("summary.csv");
     bifurcation.stream() << axis.name << ",k,t,q,qdot,wall,direction\n";
     summary.stream() << axis.name
                      << ",direction,period,impacts_per_period,contact,lyapunov,termination,"
@@ -107,12 +107,10 @@ void write_outputs(const std::filesystem::path& directory, const SweepPlan& plan
       else
         for (auto it = by_index.rbegin(); it != by_index.rend(); ++it) write(*it->second);
     }
-    bifurcation.commit();
-    summary.commit();
     files = {"bifurcation.csv", "summary.csv"};
     return;
   }
-  AtomicFile classes(directory / "classes.csv");
+  AtomicFile& classes = run_files.add("classes.csv");
   classes.stream() << plan.axes[0].name << ',' << plan.axes[1].name
                    << ",period,impacts_per_period,contact,lyapunov,termination\n";
   for (const auto& task : tasks)
@@ -122,7 +120,6 @@ void write_outputs(const std::filesystem::path& directory, const SweepPlan& plan
                        << number(plan.axes[1].value(r.index[1])) << ',' << summary_fields(r)
                        << '\n';
     }
-  classes.commit();
   files = {"classes.csv"};
 }
 
@@ -265,7 +262,7 @@ std::map<RecordKey, SweepRecord> parse_records(const std::vector<std::string>& t
   return all;
 }
 
-void write_meta(const std::filesystem::path& directory, const nlohmann::json& definition,
+void write_meta(RunFiles& run_files, const nlohmann::json& definition,
                 const Scene& scene, const SceneSchema& schema,
                 const std::map<RecordKey, SweepRecord>& all, nlohmann::json run,
                 const std::vector<std::string>& command_line, std::vector<std::string> files) {
@@ -306,9 +303,7 @@ void write_meta(const std::filesystem::path& directory, const nlohmann::json& de
         {"points", "section points recorded"}}},
       {"files", files},
   };
-  AtomicFile meta_file(directory / "meta.json");
-  write_json(meta_file, meta);
-  meta_file.commit();
+  write_json(run_files.add("meta.json"), meta);
 }
 
 int run_sweep(const SweepOptions& options, const std::vector<std::string>& command_line) {
@@ -316,7 +311,8 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
   const SweepTarget target = sweep_target(scene);
   const SweepPlan plan = plan_from(options, scene, *target.schema);
   const auto directory = options.section.scene.output_directory();
-  prepare_output_directory(directory);
+  // the sweep's data files and meta.json, committed together by rank 0
+  RunFiles run_files(directory);
   // MPI starts once the input is known to be good: bad input exits with
   // status 2 on every rank alike, before any rank waits for another
   MpiSession mpi;
@@ -358,14 +354,15 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
   }
 
   std::vector<std::string> files;
-  write_outputs(directory, plan, tasks, all, files);
-  write_meta(directory, definition, scene, *target.schema, all,
+  write_outputs(run_files, plan, tasks, all, files);
+  write_meta(run_files, definition, scene, *target.schema, all,
              {{"threads", options.threads},
               {"mpi_ranks", mpi.size()},
               {"tasks", tasks.size()},
               {"points_reused_from_checkpoint", done.size()},
               {"wall_time_s", wall_time}},
              command_line, files);
+  run_files.commit();
   // the sweep is complete: its checkpoints (of any rank count) are spent
   for (const auto& file : std::filesystem::directory_iterator(directory)) {
     const std::string name = file.path().filename().string();

@@ -52,7 +52,7 @@ BouncingBall make_system(const Scene& scene) {
   p.A = scene.number("A");
   p.omega = scene.number("omega");
   p.r = scene.number("r");
-  p.accumulation_tol = scene.number("accumulation_tol");
+  p.accumulation = accumulation_tolerance(scene, 1.0 / p.omega, p.A);
   return BouncingBall(p);
 }
 

@@ -53,7 +53,7 @@ LinearImpact make_system(const Scene& scene) {
   p.omega = scene.number("omega");
   p.sigma = scene.number("sigma");
   p.r = scene.number("r");
-  p.accumulation_tol = scene.number("accumulation_tol");
+  p.accumulation = accumulation_tolerance(scene, 1.0 / p.omega, p.sigma);
   if (scene.text("integrator.method") == "exact" && !LinearImpact::has_exact_flow(p))
     throw BadInput("zeta", to_text(p.zeta),
                    "method = exact needs an underdamped, non-resonant oscillator (zeta < 1, and "

@@ -206,8 +206,10 @@ PendulumWallsParameters pendulum_walls_parameters(const Scene& scene) {
   p.e_n = scene.number("e_n");
   p.e_t = scene.number("e_t");
   p.mu = scene.number("mu");
-  p.accumulation_tol = scene.number("accumulation_tol");
   if (!(p.b < p.l)) throw BadInput("b", to_text(p.b), "the walls must be closer than l (b < l)");
+  // the normal gap per radian at the wall is l cos θ0
+  p.accumulation = accumulation_tolerance(scene, 1.0 / p.omega, std::asin(p.b / p.l),
+                                          std::sqrt(p.l * p.l - p.b * p.b));
   return p;
 }
 
