@@ -8,6 +8,7 @@
 #include <complex>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -122,48 +123,6 @@ TEST(ModelFile, LinearImpactChatterAndStickingMatchTheBuiltIn) {
   expect_same_events(expected, actual, 1e-12);
 }
 
-// From rest at y = 0.05 the ball's first periods are a transient that
-// amplifies round-off (GiNaC orders sums differently from the hand-written
-// code): both runs start where the built-in one is after 20 periods.
-TEST(ModelFile, BouncingBallGivesTheBuiltInEventsWithChatterAndRiding) {
-  const auto model = compiled("bouncing_ball_model.toml");
-  for (const double r : {0.8, 0.3}) {
-    BouncingBallParameters p;
-    p.r = r;
-    const ModelSystem<2> from_file(model, values(*model, {{"r", r}}), 1e-3);
-    const BouncingBall built_in{p};
-    const double period = 2 * std::numbers::pi / p.omega;
-    StepperSettings settings;
-    settings.max_step = built_in.max_step();
-    EventLog transient_log(false);
-    const auto transient = with_stepper<BouncingBall>("dopri5", settings, [&](auto& stepper) {
-      return simulate(built_in, stepper, BouncingBall::State{0.05, 0.0}, BouncingBall::Mode::free,
-                      0.0, 20 * period, LoopOptions{}, transient_log);
-    });
-    auto events_from = [&](const auto& system, auto mode) {
-      StepperSettings s = settings;
-      LoopOptions options;
-      options.location.grazing_tolerance = s.atol;
-      EventLog log;
-      const auto run = with_stepper<std::decay_t<decltype(system)>>("dopri5", s, [&](auto& stepper) {
-        return simulate(system, stepper, transient.state, mode, transient.t, transient.t + 40 * period,
-                        options, log);
-      });
-      EXPECT_EQ(run.termination, Termination::completed);
-      return log.records();
-    };
-    const bool riding = transient.mode == BouncingBall::Mode::stuck;
-    const auto expected = events_from(built_in, transient.mode);
-    const auto actual =
-        events_from(from_file, riding ? ModelSystem<2>::stuck_mode(0) : ModelSystem<2>::free_mode);
-    EXPECT_GT(count(expected, EventKind::impact), 30u);
-    if (r < 0.5) {
-      EXPECT_GT(count(expected, EventKind::contact_start), 5u);
-    }
-    expect_same_events(expected, actual, 1e-12);
-  }
-}
-
 template <class System>
 PeriodicOrbit<typename System::State, typename System::Mode> orbit_of(
     const System& system, typename System::State x0, typename System::Mode mode, double omega) {
@@ -197,6 +156,27 @@ TEST(ModelFile, FloquetMultipliersMatchTheBuiltIns) {
     ASSERT_TRUE(expected.converged && actual.converged);
     for (int i = 0; i < 2; ++i)
       EXPECT_LE(std::abs(expected.multipliers[i] - actual.multipliers[i]), 1e-10);
+  }
+}
+
+// Chatter and riding (r = 0.8 and 0.3, from rest): the same sequence of events. In a
+// chatter each impact at relative speed u is located to δh/u (δh ≈ 1e-18 m,
+// the round-off of the gap y − z), and the error grows along the sequence up
+// to the accumulation point; the two codes round differently (GiNaC orders
+// sums its own way), so the times agree to 1e-9 s here, not 1e-12.
+TEST(ModelFile, BouncingBallChatterAndRidingGiveTheBuiltInSequence) {
+  const auto model = compiled("bouncing_ball_model.toml");
+  for (const double r : {0.8, 0.3}) {
+    BouncingBallParameters p;
+    p.r = r;
+    const BouncingBall built_in{p};
+    const ModelSystem<2> from_file(model, values(*model, {{"r", r}}), 1e-3);
+    const double t_end = 40 * 2 * std::numbers::pi / p.omega;
+    const auto expected = run_events(built_in, {0.05, 0.0}, BouncingBall::Mode::free, t_end);
+    const auto actual = run_events(from_file, {0.05, 0.0}, ModelSystem<2>::free_mode, t_end);
+    EXPECT_GT(count(expected, EventKind::contact_start), 20u);
+    EXPECT_GT(count(expected, EventKind::contact_end), 20u);
+    expect_same_events(expected, actual, 1e-9);
   }
 }
 

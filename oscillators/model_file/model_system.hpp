@@ -177,13 +177,18 @@ class ModelSystem {
     log.record({t, EventKind::impact, wall.side, x[0], x[1], after[1]});
     if (!wall.has_sticking) return {after, free_mode, t, false};
 
-    // chattering: is the wall pushing back, and is the accumulation estimate good?
+    // chattering: is the wall pushing back, and is the accumulation estimate
+    // good? The separation speed is r |ḣ⁻| (Newton's law), not ḣ evaluated
+    // after the impact: that difference of nearly equal velocities would lose
+    // digits in a chatter, where the speeds are small.
     double gap[2], push[3];
-    model_->gap[k](after.data(), t, p_.data(), gap);
+    model_->gap[k](x.data(), t, p_.data(), gap);
     const State resting = sticking_state(k, after, t);
     model_->stick_force[k](resting.data(), t, p_.data(), push);
-    const auto remaining = time_to_accumulation({std::fabs(gap[1]), push[0], push[1], reset[N], push[2]},
-                                                accumulation_tol_, 1.0 / omega_);
+    const double restitution = reset[N];
+    const auto remaining =
+        time_to_accumulation({restitution * std::fabs(gap[1]), push[0], push[1], restitution, push[2]},
+                             accumulation_tol_, 1.0 / omega_);
     if (!remaining) return {after, free_mode, t, false};
     return enter_stuck(k, after, t + *remaining, log);
   }
