@@ -169,7 +169,15 @@ Scene load_scene(std::string_view name_or_path) {
   const std::string text = read_scene_text(name_or_path);
   std::map<std::string, SceneValue> values;
   try {
-    flatten(toml::parse(text, std::string(name_or_path)), "", values);
+    toml::table document = toml::parse(text, std::string(name_or_path));
+    // a [model] section defines the scene's oscillator (oscillators/model_file/)
+    if (document.contains("model")) {
+      values["oscillator"] = register_model_section(std::string(name_or_path), text);
+      document.erase("model");
+      if (document.contains("oscillator"))
+        throw BadInput("oscillator", "(given)", "a scene with a [model] section defines its own oscillator");
+    }
+    flatten(document, "", values);
   } catch (const toml::parse_error& error) {
     throw BadInput("scene", std::string(name_or_path),
                    fmt::format("malformed TOML at line {}: {}", error.source().begin.line,
