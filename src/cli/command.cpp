@@ -7,7 +7,8 @@
 
 #include <unistd.h>
 
-#include "io/oscillator_registry.hpp"
+#include "api/scene_jobs.hpp"
+#include "api/scene_loading.hpp"
 
 namespace impactlab::cli {
 
@@ -101,7 +102,7 @@ std::string utc_now() {
 }
 
 nlohmann::json scene_record(const Scene& scene) {
-  const SceneSchema& schema = *oscillator_entry(scene.oscillator).schema;
+  const SceneSchema& schema = scene_schema(scene);
   nlohmann::json parameters = nlohmann::json::object();
   for (const auto& spec : schema.keys) {
     const auto& value = scene.values.at(std::string(spec.key));
