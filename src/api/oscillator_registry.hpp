@@ -61,9 +61,11 @@ const RuntimeOscillator& register_runtime_oscillator(std::unique_ptr<RuntimeOsci
 // The runtime oscillator of that name, or nullptr. Thread-safe.
 const RuntimeOscillator* runtime_oscillator(std::string_view name);
 
-// The oscillator a scene file's [model] section defines (built, compiled or
-// found in the cache, and registered on first use): its name. Defined with
-// the model binding; bad models throw BadInput (FILE:LINE:COL: message).
-std::string register_model_section(const std::string& path, const std::string& scene_text);
+// Where `name_or_path` is a scene file with a [model] section: builds its
+// oscillator (compiled, or found in the cache) and registers it under
+// model_oscillator_name(path), once per program. Bad models throw BadInput
+// (FILE:LINE:COL: message). Defined with the model binding
+// (api/bindings/model_file_binding.cpp).
+void register_model_scene(std::string_view name_or_path);
 
 }  // namespace impactlab

@@ -2,7 +2,10 @@
 // a schema built at run time from the model's parameters (defaults, units,
 // ranges: the scene keys and --set keys) and states (initial.<state>), and the
 // run, section and periodic-orbit hooks for 2 or 4 states.
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -11,8 +14,8 @@
 #include "analysis/run_periodic.hpp"
 #include "analysis/run_section.hpp"
 #include "io/bad_input.hpp"
-#include "io/oscillator_registry.hpp"
-#include "io/run_system.hpp"
+#include "api/oscillator_registry.hpp"
+#include "api/run_system.hpp"
 #include "oscillators/model_file/compiled_model.hpp"
 #include "oscillators/model_file/model_system.hpp"
 
@@ -120,12 +123,22 @@ void build_schema(RuntimeOscillator& oscillator, const CompiledModel& model) {
 
 }  // namespace
 
-std::string register_model_section(const std::string& path, const std::string& scene_text) {
-  const std::string name = "model:" + path;
-  if (runtime_oscillator(name)) return name;
-  toml::table document = toml::parse(scene_text, path);
+void register_model_scene(std::string_view name_or_path) {
+  const std::string path(name_or_path);
+  const std::string name = model_oscillator_name(path);
+  std::error_code ignored;
+  if (runtime_oscillator(name) || !std::filesystem::is_regular_file(path, ignored)) return;
+  std::stringstream text;
+  text << std::ifstream(path).rdbuf();
+  toml::table document;
+  try {
+    document = toml::parse(text.str(), path);
+  } catch (const toml::parse_error&) {
+    return;  // read_scene reports it
+  }
   const toml::node* model_table = document.get("model");
-  if (!model_table || !model_table->is_table())
+  if (!model_table) return;
+  if (!model_table->is_table())
     throw BadInput("model", "(not a table)", "expected a [model] section");
   const ModelDefinition definition = read_model_definition(*model_table->as_table(), path);
   std::shared_ptr<const CompiledModel> model =
@@ -139,7 +152,7 @@ std::string register_model_section(const std::string& path, const std::string& s
   build_schema(*oscillator, *model);
   oscillator->entry = {&oscillator->schema, &run, &section, &periodic_orbit};
   oscillator->data = model;
-  return register_runtime_oscillator(std::move(oscillator)).name;
+  register_runtime_oscillator(std::move(oscillator));
 }
 
 }  // namespace impactlab
