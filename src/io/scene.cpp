@@ -185,11 +185,22 @@ void validate(const Scene& scene, const SceneSchema& schema) {
   }
 }
 
+std::string model_oscillator_name(std::string_view path) { return "model:" + std::string(path); }
+
 Scene read_scene(std::string_view name_or_path, const SchemaLookup& schema_of) {
   const std::string text = read_scene_text(name_or_path);
   std::map<std::string, SceneValue> values;
   try {
-    flatten(toml::parse(text, std::string(name_or_path)), "", values);
+    toml::table document = toml::parse(text, std::string(name_or_path));
+    // a [model] section defines the scene's oscillator (oscillators/model_file/;
+    // the scene API registers it under model_oscillator_name before the read)
+    if (document.contains("model")) {
+      values["oscillator"] = model_oscillator_name(name_or_path);
+      document.erase("model");
+      if (document.contains("oscillator"))
+        throw BadInput("oscillator", "(given)", "a scene with a [model] section defines its own oscillator");
+    }
+    flatten(document, "", values);
   } catch (const toml::parse_error& error) {
     throw BadInput("scene", std::string(name_or_path),
                    fmt::format("malformed TOML at line {}: {}", error.source().begin.line,

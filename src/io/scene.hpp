@@ -75,8 +75,11 @@ double accumulation_time_tolerance(const Scene& scene);
 // (api/scene_loading.hpp), so that reading a scene knows no oscillator.
 using SchemaLookup = std::function<const SceneSchema&(std::string_view oscillator)>;
 
+// The name of the oscillator a scene file's [model] section defines.
+std::string model_oscillator_name(std::string_view path);
+
 // Reads a built-in scene by name or a scene file by path, fills defaults from
-// the schema of the oscillator it names, and validates every key and value.
+// the schema of the oscillator it names (or its [model] section defines), and validates every key and value.
 // Throws BadInput.
 Scene read_scene(std::string_view name_or_path, const SchemaLookup& schema_of);
 
