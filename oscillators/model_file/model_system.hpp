@@ -46,11 +46,13 @@ class ModelSystem {
   static constexpr std::size_t max_witnesses = 6;
   static constexpr Mode free_mode{0};
 
-  // parameters: values in the model's order; accumulation_tol: the accepted
-  // relative error of an accumulation estimate
+  // parameters: values in the model's order; accumulation: what an
+  // accumulation estimate is held to, with the gap's resolution per unit of
+  // the wall coordinate (contact/accumulation.hpp; its apex and round-off
+  // terms are scaled by the wall coordinate at each impact)
   ModelSystem(std::shared_ptr<const CompiledModel> model, std::vector<double> parameters,
-              double accumulation_tol)
-      : model_(std::move(model)), p_(std::move(parameters)), accumulation_tol_(accumulation_tol) {
+              AccumulationTolerance accumulation = {})
+      : model_(std::move(model)), p_(std::move(parameters)), accumulation_(accumulation) {
     if (model_->states.size() != N || p_.size() != model_->parameters.size())
       throw std::invalid_argument("ModelSystem: state or parameter count does not match the model");
     double scalars[2];
@@ -186,20 +188,26 @@ class ModelSystem {
     const State resting = sticking_state(k, after, t);
     model_->stick_force[k](resting.data(), t, p_.data(), push);
     const double restitution = reset[N];
-    const auto remaining =
-        time_to_accumulation({restitution * std::fabs(gap[1]), push[0], push[1], restitution, push[2]},
-                             accumulation_tol_, 1.0 / omega_);
-    if (!remaining) return {after, free_mode, t, false};
-    return enter_stuck(k, after, t + *remaining, log);
+    // the gap's resolution where this wall is: scaled by its coordinate
+    AccumulationTolerance tolerance = accumulation_;
+    const double wall_coordinate = std::max(1.0, std::fabs(after[0]));
+    tolerance.unresolved_apex *= wall_coordinate;
+    tolerance.gap_roundoff *= wall_coordinate;
+    const auto estimate = accept_accumulation(
+        {restitution * std::fabs(gap[1]), push[0], push[1], restitution, push[2]}, tolerance);
+    if (!estimate) return {after, free_mode, t, false};
+    return enter_stuck(k, after, t + estimate->remaining, estimate->error_bound, log);
   }
 
   // At the accumulation point the state rests on the wall if the push holds it
   // there; otherwise it leaves from the sticking state.
   Transition<State, Mode> enter_stuck(std::size_t k, const State& after, double t,
-                                      EventLog& log) const {
+                                      double time_error, EventLog& log) const {
     const int side = model_->walls[k].side;
     const State resting = sticking_state(k, after, t);
-    log.record({t, EventKind::accumulation, side, resting[0], resting[1], resting[1]});
+    EventRecord accumulation{t, EventKind::accumulation, side, resting[0], resting[1], resting[1]};
+    accumulation.accumulation_error = time_error;
+    log.record(accumulation);
     double push[3];
     model_->stick_force[k](resting.data(), t, p_.data(), push);
     if (!(push[0] > 0.0)) return {resting, free_mode, t, false};
@@ -209,7 +217,7 @@ class ModelSystem {
 
   std::shared_ptr<const CompiledModel> model_;
   std::vector<double> p_;  // parameter values, in the model's order
-  double accumulation_tol_;
+  AccumulationTolerance accumulation_;
   double omega_ = 1.0;     // forcing frequency (rad per time unit)
   double max_step_ = 0.1;  // largest integrator step (time)
 };

@@ -194,7 +194,7 @@ Scene read_scene(std::string_view name_or_path, const SchemaLookup& schema_of) {
     toml::table document = toml::parse(text, std::string(name_or_path));
     // a [model] section defines the scene's oscillator (oscillators/model_file/;
     // the scene API registers it under model_oscillator_name before the read)
-    if (document.contains("model")) {
+    if (document["model"].is_table()) {
       values["oscillator"] = model_oscillator_name(name_or_path);
       document.erase("model");
       if (document.contains("oscillator"))
