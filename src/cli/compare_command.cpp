@@ -14,6 +14,7 @@
 #include "api/scene_loading.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
+#include "cli/run_program.hpp"
 #include "io/bad_input.hpp"
 #include "io/output.hpp"
 
@@ -125,9 +126,11 @@ int run_compare(const SceneOptions& options, const std::string& model_list,
 
   // the picture, drawn from the committed data: its failure costs the picture
   // only; where it is drawn, compare.json is rewritten (atomically) to list it
-  const std::string plot = fmt::format("/usr/bin/python3 '{}/plot_compare.py' '{}' >/dev/null 2>&1",
-                                       IMPACTLAB_SCRIPTS_DIR, directory.string());
-  if (std::system(plot.c_str()) == 0) {
+  // an argument vector, never shell text: the directory is data
+  const std::vector<std::string> plot = {
+      "/usr/bin/python3", std::string(IMPACTLAB_SCRIPTS_DIR) + "/plot_compare.py",
+      directory.string()};
+  if (run_program(plot, ProgramOutput::discard) == 0) {
     files.insert(files.end() - 1, "compare.png");
     meta["files"] = files;
     AtomicFile listed(directory / "compare.json");
