@@ -14,10 +14,7 @@ RunOutput simulate(const Scene& scene, const RunRequest& request) {
 }
 
 SectionResult poincare(const Scene& scene, const SectionRequest& request) {
-  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
-  if (!entry.section)
-    throw BadInput("oscillator", scene.oscillator, "has no Poincare-section entry");
-  return entry.section(scene, request);
+  return sweep_target(scene).section(scene, request);
 }
 
 PeriodicResult periodic(const Scene& scene, const PeriodicRequest& request) {
