@@ -4,7 +4,6 @@
 // matplotlib can draw it, compare.png; all atomically, compare.json last.
 // Every model runs before anything is written, so a model the scene rejects
 // (exit 2) leaves no output.
-#include <cstdlib>
 #include <iostream>
 
 #include <fmt/format.h>
@@ -12,6 +11,7 @@
 #include "analysis/compare.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
+#include "cli/run_program.hpp"
 #include "io/bad_input.hpp"
 #include "io/oscillator_registry.hpp"
 #include "io/output.hpp"
@@ -83,9 +83,10 @@ int run_compare(const SceneOptions& options, const std::string& model_list,
   // the picture: its failure costs the picture only
   std::vector<std::string> files = {"compare_impacts.csv", "compare_contacts.csv",
                                     "compare_section.csv", "summary.md"};
-  const std::string plot = fmt::format("/usr/bin/python3 '{}/plot_compare.py' '{}' >/dev/null 2>&1",
-                                       IMPACTLAB_SCRIPTS_DIR, directory.string());
-  if (std::system(plot.c_str()) == 0) {
+  const std::vector<std::string> plot = {"/usr/bin/python3",
+                                         std::string(IMPACTLAB_SCRIPTS_DIR) + "/plot_compare.py",
+                                         directory.string()};
+  if (run_program(plot, ProgramOutput::discard) == 0) {
     files.push_back("compare.png");
   } else {
     std::cerr << "impactlab: warning: compare.png not drawn (" << IMPACTLAB_SCRIPTS_DIR

@@ -1,7 +1,6 @@
 // `impactlab reproduce jin2003`: the paper's Fig. 4 under each impact model,
 // data, sidecars, REPORT.md and PNGs in one directory
 // (analysis/jin2003_reproduction.hpp, analysis/jin2003_report.hpp).
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <thread>
@@ -12,6 +11,7 @@
 #include "analysis/jin2003_reproduction.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
+#include "cli/run_program.hpp"
 #include "io/bad_input.hpp"
 #include "io/output.hpp"
 
@@ -41,9 +41,8 @@ void draw_plots(const std::filesystem::path& directory, bool quiet) {
               << script.string() << " not found); the data are complete\n";
     return;
   }
-  const std::string command = fmt::format("'{}' '{}' '{}'{}", python.string(), script.string(),
-                                          directory.string(), quiet ? " > /dev/null" : "");
-  if (std::system(command.c_str()) != 0)
+  if (run_program({python.string(), script.string(), directory.string()},
+                  quiet ? ProgramOutput::discard_stdout : ProgramOutput::inherit) != 0)
     std::cerr << "impactlab: warning: the plot script failed; the data are complete\n";
 }
 
