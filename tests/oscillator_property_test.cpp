@@ -82,7 +82,9 @@ void check_run(const RunOutput& output, const std::string& context, Gap wall_gap
                                 std::isfinite(event.qdot_before) && std::isfinite(event.qdot_after);
     EXPECT_TRUE(numbers_finite || !finite_run) << context << " event at t = " << event.t;
     if (!numbers_finite) continue;
-    if (check_walls) EXPECT_GE(wall_gap(event.t, event.q), -1e-9) << context << " t = " << event.t;
+    if (check_walls) {
+      EXPECT_GE(wall_gap(event.t, event.q), -1e-9) << context << " t = " << event.t;
+    }
     if (event.kind == EventKind::impact) {
       ++tally.impacts;
       const double wall = wall_velocity(event.t);
@@ -93,8 +95,9 @@ void check_run(const RunOutput& output, const std::string& context, Gap wall_gap
   }
   for (const auto& sample : output.samples) {
     EXPECT_TRUE(std::isfinite(sample.q) && std::isfinite(sample.qdot)) << context;
-    if (check_walls && std::isfinite(sample.q))
+    if (check_walls && std::isfinite(sample.q)) {
       EXPECT_GE(wall_gap(sample.t, sample.q), -1e-9) << context << " sample t = " << sample.t;
+    }
   }
 }
 

@@ -110,6 +110,9 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
         result.iterations, result.residual, result.multipliers[0].real(),
         result.multipliers[0].imag(), result.multipliers[1].real(), result.multipliers[1].imag(),
         (directory / "periodic.json").string());
+  if (result.termination != "completed")
+    std::cerr << fmt::format("impactlab: run stopped early ({}) at the section time {} s\n",
+                             result.termination, result.t_section);
   return result.converged ? exit_done : exit_stopped_early;
 }
 

@@ -214,8 +214,11 @@ RunResult<typename System::State, typename System::Mode> simulate(
 
   constexpr std::size_t no_witness = static_cast<std::size_t>(-1);
   std::size_t just_grazed = no_witness;  // witness whose grazing was the last event
+  // time is frozen where a hundredth of the system's longest step is lost in
+  // t's spacing, even for a span that itself rounded to nothing (t0 = 1e17 s
+  // plus five forcing periods is t0 again)
+  if (t + 0.01 * system.max_step() == t) return finish(Termination::frozen_time);
   const double first_step = std::min(0.01 * system.max_step(), t_end - t0);
-  if (t < t_end && t + first_step == t) return finish(Termination::frozen_time);
   stepper.initialize(rhs, x, t, first_step);
   while (t < t_end) {
     if (result.counters.steps >= options.step_budget) return finish(Termination::step_budget);
