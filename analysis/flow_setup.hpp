@@ -1,7 +1,7 @@
 // How the analysis layer integrates a scene's system: the scene's own
 // integrator method and tolerances (integrator.method, integrator.rtol,
 // integrator.atol), turned into the settings the event loop takes, exactly as
-// `impactlab simulate` does (io/run_system.hpp).
+// `impactlab simulate` does (api/run_system.hpp).
 #pragma once
 
 #include <cstdint>

@@ -8,7 +8,6 @@
 #include <nlohmann/json.hpp>
 
 #include "io/bad_input.hpp"
-#include "io/oscillator_registry.hpp"
 
 namespace impactlab {
 
@@ -72,16 +71,16 @@ std::string_view to_string(SweepDirection direction) {
   return "up";
 }
 
-Scene scene_at(const Scene& base, const SweepPlan& plan, const std::array<int, 2>& index) {
+Scene scene_at(const Scene& base, const SceneSchema& schema, const SweepPlan& plan,
+               const std::array<int, 2>& index) {
   Scene scene = base;
   for (std::size_t a = 0; a < plan.axes.size(); ++a)
     scene.values[plan.axes[a].name] = plan.axes[a].value(index[a]);
-  validate(scene, *oscillator_entry(scene.oscillator).schema);
+  validate(scene, schema);
   return scene;
 }
 
-void validate_plan(const SweepPlan& plan, const Scene& scene) {
-  const SceneSchema& schema = *oscillator_entry(scene.oscillator).schema;
+void validate_plan(const SweepPlan& plan, const Scene& scene, const SceneSchema& schema) {
   if (plan.axes.empty() || plan.axes.size() > 2)
     throw BadInput("--param", std::to_string(plan.axes.size()), "give one or two --param");
   if (plan.axes.size() == 2 && plan.axes[0].name == plan.axes[1].name)
@@ -231,7 +230,7 @@ std::optional<SweepRecord> from_json_line(std::string_view text) {
 }
 
 std::vector<SweepRecord> run_sweep_task(
-    const Scene& base, const SweepPlan& plan, const SweepTask& task,
+    const Scene& base, const SweepTarget& target, const SweepPlan& plan, const SweepTask& task,
     const std::function<const SweepRecord*(int position)>& done,
     const std::function<void(const SweepRecord&)>& on_record,
     const std::function<bool()>& keep_going) {
@@ -245,7 +244,7 @@ std::vector<SweepRecord> run_sweep_task(
       continue;
     }
     if (!keep_going()) break;
-    const Scene scene = scene_at(base, plan, task.points[position]);
+    const Scene scene = scene_at(base, *target.schema, plan, task.points[position]);
     SectionRequest request = plan.section;
     request.start = previous;
     SweepRecord record;
@@ -253,7 +252,7 @@ std::vector<SweepRecord> run_sweep_task(
     record.position = pos;
     record.index = task.points[position];
     record.direction = task.direction;
-    record.result = oscillator_entry(scene.oscillator).section(scene, request);
+    record.result = target.section(scene, request);
     record.classification = classify(record.result, plan);
     previous = record.result.final_state;
     on_record(record);

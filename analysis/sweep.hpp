@@ -48,9 +48,17 @@ struct SweepPlan {
   int max_period = 16;             // longest period looked for (section-map iterations)
 };
 
+// What a sweep needs of the scene's oscillator: its schema (to validate each
+// swept value) and its Poincaré-section run. The scene API supplies it
+// (api/scene_jobs.hpp, sweep_target).
+struct SweepTarget {
+  const SceneSchema* schema = nullptr;
+  SectionResult (*section)(const Scene& scene, const SectionRequest& request) = nullptr;
+};
+
 // Checks the plan against the scene: the axes name numeric keys of the
 // scene's oscillator and every swept value is admissible. Throws BadInput.
-void validate_plan(const SweepPlan& plan, const Scene& scene);
+void validate_plan(const SweepPlan& plan, const Scene& scene, const SceneSchema& schema);
 
 // One continuation run: grid points (i along axis 1, j along axis 2) in order.
 struct SweepTask {
@@ -84,13 +92,14 @@ std::string to_json_line(const SweepRecord& record);
 std::optional<SweepRecord> from_json_line(std::string_view line);
 
 // The scene at one grid point. Throws BadInput for an inadmissible value.
-Scene scene_at(const Scene& base, const SweepPlan& plan, const std::array<int, 2>& index);
+Scene scene_at(const Scene& base, const SceneSchema& schema, const SweepPlan& plan,
+               const std::array<int, 2>& index);
 
 // Runs one task. `done(position)` returns a finished record to reuse (resume)
 // or nullptr; `on_record` receives each new record; `keep_going()` false stops
 // the task before its next new point. Returns the task's records in order.
 std::vector<SweepRecord> run_sweep_task(
-    const Scene& base, const SweepPlan& plan, const SweepTask& task,
+    const Scene& base, const SweepTarget& target, const SweepPlan& plan, const SweepTask& task,
     const std::function<const SweepRecord*(int position)>& done,
     const std::function<void(const SweepRecord&)>& on_record,
     const std::function<bool()>& keep_going);

@@ -25,6 +25,8 @@
 
 #include "analysis/floquet.hpp"
 #include "analysis/sweep.hpp"
+#include "api/scene_jobs.hpp"
+#include "api/scene_loading.hpp"
 #include "io/scene.hpp"
 #include "oscillators/bouncing_ball/bouncing_ball.hpp"
 #include "oscillators/linear_impact/linear_impact.hpp"
@@ -225,11 +227,12 @@ TEST(Floquet, PeriodDoublingOfTheLinearImpactOscillator) {
   plan.axes = {{"omega", omega_closed - 9.5 * step, omega_closed + 9.5 * step, 20}};
   plan.section.transient_periods = 1500;
   plan.section.points = 32;
-  impactlab::validate_plan(plan, scene);
+  const impactlab::SweepTarget target = impactlab::sweep_target(scene);
+  impactlab::validate_plan(plan, scene, *target.schema);
   const auto tasks = impactlab::sweep_tasks(plan);
   ASSERT_EQ(tasks.size(), 1u);
   const auto records = impactlab::run_sweep_task(
-      scene, plan, tasks[0], [](int) { return nullptr; }, [](const auto&) {}, [] { return true; });
+      scene, target, plan, tasks[0], [](int) { return nullptr; }, [](const auto&) {}, [] { return true; });
   ASSERT_EQ(records.size(), 20u);
   double last_period_one = -INFINITY, first_period_two = INFINITY;
   for (const auto& record : records) {

@@ -21,7 +21,7 @@
 #include <boost/math/tools/roots.hpp>
 #include <gtest/gtest.h>
 
-#include "analysis/work_precision.hpp"
+#include "api/work_precision.hpp"
 #include "core/simulator.hpp"
 #include "integrate/stepper_dispatch.hpp"
 #include "oscillators/bouncing_ball/bouncing_ball.hpp"
@@ -229,7 +229,7 @@ INSTANTIATE_TEST_SUITE_P(AllSteppers, BouncingBallAgainstClosedForm,
                          ::testing::ValuesIn(impactlab::stepper_names),
                          [](const auto& info) { return std::string(info.param); });
 
-// The bench's closed-form reference (analysis/work_precision.hpp: the
+// The bench's closed-form reference (api/work_precision.hpp: the
 // oscillator's exact_flow with a root search of its own) against the
 // independent flights above, impact by impact.
 TEST(WorkPrecisionReference, ClosedFormImpactsMatchIndependentFlights) {

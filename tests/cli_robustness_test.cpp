@@ -151,6 +151,10 @@ INSTANTIATE_TEST_SUITE_P(
                   "limits.max_steps"},
         BadOption{"pendulum_d_1e200", {"simulate", "jin2003", "--set", "d=1e200"},
                   "limits.max_steps"},
+        BadOption{"poincare_transient_huge", {"poincare", "jin2003", "--transient", "1e9"},
+                  "--transient"},
+        BadOption{"periodic_omega_tiny", {"periodic", "linear_impact", "--set", "omega=1e-308"},
+                  "omega"},
         BadOption{"poincare_omega_tiny",
                   {"poincare", "linear_impact", "--set", "omega=1e-308"}, "omega"}),
     [](const auto& info) { return info.param.name; });

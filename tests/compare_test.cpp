@@ -1,4 +1,4 @@
-// `impactlab compare` and its library part (analysis/compare.hpp):
+// `impactlab compare` and its library part (api/compare.hpp):
 // * the agreement numbers on hand-made impact sequences (where they agree,
 //   where they separate), the model list parser;
 // * the program on jin2003 with newton,rigid: complete outputs, and, since
@@ -20,7 +20,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "analysis/compare.hpp"
+#include "api/compare.hpp"
 #include "io/bad_input.hpp"
 
 namespace impactlab {

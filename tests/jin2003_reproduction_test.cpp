@@ -1,4 +1,4 @@
-// Tests of `impactlab reproduce jin2003` (analysis/jin2003_reproduction.hpp):
+// Tests of `impactlab reproduce jin2003` (api/jin2003_reproduction.hpp):
 // * the ranges in report.json and REPORT.md are re-derived here from the
 //   CSVs, by code written in this file (a CSV reader, the residual's formula
 //   and the range rule), for a quick run and for the committed report in

@@ -18,12 +18,13 @@
 #include <string>
 #include <vector>
 
+#include "api/oscillator_registry.hpp"
+#include "api/scene_loading.hpp"
 #include "core/event_log.hpp"
+#include "io/bad_input.hpp"
+#include "io/scene.hpp"
 #include "oscillators/pendulum_walls/rigid_pendulum_walls.hpp"
 #include "rigidbody/contact_phase.hpp"
-#include "io/bad_input.hpp"
-#include "io/oscillator_registry.hpp"
-#include "io/scene.hpp"
 
 namespace impactlab {
 namespace {

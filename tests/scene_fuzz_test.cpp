@@ -30,7 +30,8 @@
 #include "io/bad_input.hpp"
 #include "io/builtin_scenes.hpp"
 #include "io/message_text.hpp"
-#include "io/oscillator_registry.hpp"
+#include "api/oscillator_registry.hpp"
+#include "api/scene_loading.hpp"
 #include "io/scene.hpp"
 #include "run_binary.hpp"
 

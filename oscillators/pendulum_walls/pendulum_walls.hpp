@@ -113,7 +113,7 @@ class BasicPendulumWalls {
     const double natural_period = 2.0 * std::numbers::pi * std::sqrt(p_.l / p_.g);
     // the damping's relaxation time m l²/d (s): an explicit stepper cannot step
     // much past it, so that an overdamped scene (m = 1e-12 kg, d = 1e12) is
-    // sized by it up front (io/run_system.hpp) instead of crawling
+    // sized by it up front (api/run_system.hpp) instead of crawling
     const double damping_period = 2.0 * std::numbers::pi * p_.m * p_.l * p_.l / p_.d;
     return std::min({forcing_period, natural_period, damping_period}) / 16.0;
   }

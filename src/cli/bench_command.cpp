@@ -13,7 +13,8 @@
 
 #include <fmt/format.h>
 
-#include "analysis/work_precision.hpp"
+#include "api/scene_loading.hpp"
+#include "api/work_precision.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
 #include "cli/run_program.hpp"

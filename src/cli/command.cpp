@@ -10,8 +10,9 @@
 
 #include <fmt/format.h>
 
+#include "api/scene_jobs.hpp"
+#include "api/scene_loading.hpp"
 #include "io/message_text.hpp"
-#include "io/oscillator_registry.hpp"
 
 namespace impactlab::cli {
 
@@ -139,7 +140,7 @@ std::string utc_now() {
 }
 
 nlohmann::json scene_record(const Scene& scene) {
-  const SceneSchema& schema = *oscillator_entry(scene.oscillator).schema;
+  const SceneSchema& schema = scene_schema(scene);
   nlohmann::json parameters = nlohmann::json::object();
   for (const auto& spec : schema.keys) {
     const auto& value = scene.values.at(std::string(spec.key));

@@ -8,12 +8,13 @@
 
 #include <fmt/format.h>
 
-#include "analysis/compare.hpp"
+#include "api/compare.hpp"
+#include "api/scene_jobs.hpp"
+#include "api/scene_loading.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
 #include "cli/run_program.hpp"
 #include "io/bad_input.hpp"
-#include "io/oscillator_registry.hpp"
 #include "io/output.hpp"
 
 namespace impactlab::cli {
@@ -34,7 +35,7 @@ std::vector<std::string> models_to_run(const Scene& scene, const std::string& li
       tiny.periods = 0.0;
       tiny.t_end = probe.number("t0") + 1e-9;
       tiny.keep_events = false;
-      oscillator_entry(probe.oscillator).run(probe, tiny);
+      simulate(probe, tiny);
       accepted.push_back(model);
     } catch (const BadInput& bad) {
       if (!quiet) std::cerr << "impactlab: compare: skipping " << bad.what() << '\n';

@@ -10,11 +10,11 @@
 
 #include "analysis/periodic.hpp"
 #include "analysis/sweep.hpp"
+#include "api/scene_jobs.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
 #include "cli/section_options.hpp"
 #include "io/bad_input.hpp"
-#include "io/oscillator_registry.hpp"
 #include "io/output.hpp"
 
 namespace impactlab::cli {
@@ -36,9 +36,6 @@ nlohmann::json complex_record(std::complex<double> z) {
 
 int run_periodic(const PeriodicOptions& options, const std::vector<std::string>& command_line) {
   const Scene scene = options.scene.load();
-  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
-  if (!entry.periodic_orbit)
-    throw BadInput("oscillator", scene.oscillator, "has no periodic-orbit entry");
   PeriodicRequest request;
   std::string period_source = "given";
   if (options.period == "auto") {
@@ -49,7 +46,7 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
     probe.points = 64;
     SweepPlan plan;
     plan.max_period = 32;
-    const SectionResult points = run_section_for(scene, probe);
+    const SectionResult points = poincare(scene, probe);
     const int detected = classify(points, plan).period;
     request.period = detected > 0 ? detected : 1;
     period_source = detected > 0 ? "detected from 64 stroboscopic points"
@@ -68,7 +65,7 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
   const auto directory = options.scene.output_directory();
   prepare_output_directory(directory);
   const auto start = std::chrono::steady_clock::now();
-  const PeriodicResult result = entry.periodic_orbit(scene, request);
+  const PeriodicResult result = periodic(scene, request);
   const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!result.available) throw BadInput("oscillator", scene.oscillator, result.note);

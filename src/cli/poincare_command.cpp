@@ -7,10 +7,11 @@
 
 #include <fmt/format.h>
 
+#include "api/scene_jobs.hpp"
+#include "api/scene_loading.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
 #include "cli/section_options.hpp"
-#include "io/oscillator_registry.hpp"
 #include "io/output.hpp"
 
 namespace impactlab::cli {
@@ -28,11 +29,11 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
   prepare_output_directory(directory);
 
   const auto start = std::chrono::steady_clock::now();
-  const SectionResult result = run_section_for(scene, request);
+  const SectionResult result = poincare(scene, request);
   const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  const SceneSchema& schema = *oscillator_entry(scene.oscillator).schema;
+  const SceneSchema& schema = scene_schema(scene);
   const std::string q_name(schema.main_coordinate);
   const bool impact_map = request.section.kind == SectionKind::impact;
   const bool user_section = request.section.kind != SectionKind::impact &&

@@ -1,14 +1,15 @@
 // `impactlab reproduce jin2003`: the paper's Fig. 4 under each impact model,
 // data, sidecars, REPORT.md and PNGs in one directory
-// (analysis/jin2003_reproduction.hpp, analysis/jin2003_report.hpp).
+// (api/jin2003_reproduction.hpp, api/jin2003_report.hpp).
 #include <filesystem>
 #include <iostream>
 #include <thread>
 
 #include <fmt/format.h>
 
-#include "analysis/jin2003_report.hpp"
-#include "analysis/jin2003_reproduction.hpp"
+#include "api/jin2003_report.hpp"
+#include "api/jin2003_reproduction.hpp"
+#include "api/scene_loading.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
 #include "cli/run_program.hpp"

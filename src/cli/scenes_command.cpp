@@ -4,10 +4,11 @@
 
 #include <fmt/format.h>
 
+#include "api/scene_jobs.hpp"
+#include "api/scene_loading.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
 #include "io/builtin_scenes.hpp"
-#include "io/oscillator_registry.hpp"
 
 namespace impactlab::cli {
 
@@ -23,7 +24,7 @@ int run_scenes(const std::string& name) {
     return exit_done;
   }
   const Scene scene = load_scene(name);
-  const SceneSchema& schema = *oscillator_entry(scene.oscillator).schema;
+  const SceneSchema& schema = scene_schema(scene);
   std::cout << fmt::format("{} ({}): key = value [unit] range: help\n", name, scene.oscillator);
   for (const auto& spec : schema.keys) {
     const std::string value = to_text(scene.values.at(std::string(spec.key)));

@@ -4,9 +4,9 @@
 
 #include <fmt/format.h>
 
+#include "api/scene_jobs.hpp"
 #include "cli/run_program.hpp"
 #include "io/bad_input.hpp"
-#include "io/oscillator_registry.hpp"
 
 namespace impactlab::cli {
 
@@ -49,13 +49,6 @@ nlohmann::json SectionOptions::record() const {
           {"transient_periods", transient_impacts > 0 ? 0.0 : transient},
           {"transient_impacts", transient_impacts},
           {"points", points}};
-}
-
-SectionResult run_section_for(const Scene& scene, const SectionRequest& request) {
-  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
-  if (!entry.section)
-    throw BadInput("oscillator", scene.oscillator, "has no Poincare-section entry");
-  return entry.section(scene, request);
 }
 
 bool plot_with_python(const std::string& kind, const std::filesystem::path& csv,

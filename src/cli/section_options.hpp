@@ -32,9 +32,6 @@ struct SectionOptions {
   [[nodiscard]] nlohmann::json record() const;
 };
 
-// The oscillator's section entry; BadInput when the scene's oscillator/model has none.
-SectionResult run_section_for(const Scene& scene, const SectionRequest& request);
-
 // Runs scripts/plot_sweep.py with /usr/bin/python3 to write `png` from
 // `csv`; prints a warning and returns false where python3, matplotlib or the
 // script is missing (the data files stay).

@@ -5,9 +5,10 @@
 
 #include <fmt/format.h>
 
+#include "api/scene_jobs.hpp"
+#include "api/scene_loading.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
-#include "io/oscillator_registry.hpp"
 #include "io/output.hpp"
 
 namespace impactlab::cli {
@@ -24,9 +25,9 @@ int run_simulate(const SceneOptions& options, const std::vector<std::string>& co
 
   ProgressBar progress(!options.quiet);
   request.progress = [&progress](double fraction) { progress.update(fraction); };
-  const RunOutput output = oscillator_entry(scene.oscillator).run(scene, request);
+  const RunOutput output = simulate(scene, request);
 
-  const SceneSchema& schema = *oscillator_entry(scene.oscillator).schema;
+  const SceneSchema& schema = scene_schema(scene);
   std::vector<std::string> files = {"events.csv", "meta.json"};
   AtomicFile events(directory / "events.csv");
   write_events_csv(events, output.events);

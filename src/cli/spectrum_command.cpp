@@ -9,9 +9,10 @@
 #include <fmt/format.h>
 
 #include "analysis/spectrum.hpp"
+#include "api/scene_jobs.hpp"
+#include "api/scene_loading.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
-#include "io/oscillator_registry.hpp"
 #include "io/output.hpp"
 
 namespace impactlab::cli {
@@ -27,7 +28,6 @@ struct SpectrumOptions {
 
 int run_spectrum(const SpectrumOptions& options, const std::vector<std::string>& command_line) {
   const Scene scene = options.scene.load();
-  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
   const double omega = scene.number("omega");
   const double period = 2.0 * std::numbers::pi / omega;
   RunRequest request;
@@ -38,7 +38,7 @@ int run_spectrum(const SpectrumOptions& options, const std::vector<std::string>&
   prepare_output_directory(directory);
   ProgressBar progress(!options.scene.quiet);
   request.progress = [&progress](double fraction) { progress.update(fraction); };
-  const RunOutput output = entry.run(scene, request);
+  const RunOutput output = simulate(scene, request);
 
   // the samples of the last `periods` periods (the first index computed, not compared)
   const std::size_t wanted =
@@ -59,7 +59,7 @@ int run_spectrum(const SpectrumOptions& options, const std::vector<std::string>&
   for (const auto& line : lines)
     csv.stream() << fmt::format("{},{},{}\n", line.angular_frequency, line.amplitude,
                                 line.angular_frequency / omega);
-  const SceneSchema& schema = *entry.schema;
+  const SceneSchema& schema = scene_schema(scene);
   nlohmann::json meta = {
       {"impactlab_version", IMPACTLAB_VERSION},
       {"command", command_line},

@@ -16,12 +16,12 @@
 #include <omp.h>
 
 #include "analysis/sweep.hpp"
+#include "api/scene_jobs.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
 #include "cli/mpi_session.hpp"
 #include "cli/section_options.hpp"
 #include "io/bad_input.hpp"
-#include "io/oscillator_registry.hpp"
 #include "io/output.hpp"
 
 namespace impactlab::cli {
@@ -127,7 +127,7 @@ void write_outputs(const std::filesystem::path& directory, const SweepPlan& plan
 }
 
 // The plan the options describe, validated against the scene (BadInput).
-SweepPlan plan_from(const SweepOptions& options, const Scene& scene) {
+SweepPlan plan_from(const SweepOptions& options, const Scene& scene, const SceneSchema& schema) {
   SweepPlan plan;
   for (const auto& text : options.params) plan.axes.push_back(parse_axis(text, "--param"));
   plan.direction = parse_direction(options.direction, "--direction");
@@ -137,7 +137,7 @@ SweepPlan plan_from(const SweepOptions& options, const Scene& scene) {
   plan.max_period = options.max_period;
   // Lyapunov: on by default for 2D maps, off for 1D sweeps
   plan.section.lyapunov = options.lyapunov || (plan.axes.size() == 2 && !options.no_lyapunov);
-  validate_plan(plan, scene);
+  validate_plan(plan, scene, schema);
   if (plan.axes.size() == 2 && plan.direction != SweepDirection::up)
     throw BadInput("--direction", options.direction,
                    "a 2D sweep follows the first parameter upwards only");
@@ -194,7 +194,7 @@ struct RankWork {
 
 // Runs this rank's tasks on `threads` threads: finished points are taken from
 // `done`, new ones appended to the checkpoint as they finish.
-RankWork run_rank_tasks(const Scene& scene, const SweepPlan& plan,
+RankWork run_rank_tasks(const Scene& scene, const SweepTarget& target, const SweepPlan& plan,
                         const std::vector<const SweepTask*>& tasks,
                         const std::map<RecordKey, SweepRecord>& done, std::ofstream& checkpoint,
                         const SweepOptions& options, bool show_progress) {
@@ -217,7 +217,7 @@ RankWork run_rank_tasks(const Scene& scene, const SweepPlan& plan,
     try {
       const SweepTask& task = *tasks[m];
       work.records[m] = run_sweep_task(
-          scene, plan, task,
+          scene, target, plan, task,
           [&](int position) -> const SweepRecord* {
             const auto it = done.find({task.id, position});
             if (it == done.end()) return nullptr;
@@ -313,17 +313,15 @@ void write_meta(const std::filesystem::path& directory, const nlohmann::json& de
 
 int run_sweep(const SweepOptions& options, const std::vector<std::string>& command_line) {
   const Scene scene = options.section.scene.load();
-  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
-  if (!entry.section)
-    throw BadInput("oscillator", scene.oscillator, "has no Poincare-section entry");
-  const SweepPlan plan = plan_from(options, scene);
+  const SweepTarget target = sweep_target(scene);
+  const SweepPlan plan = plan_from(options, scene, *target.schema);
   const auto directory = options.section.scene.output_directory();
   prepare_output_directory(directory);
   // MPI starts once the input is known to be good: bad input exits with
   // status 2 on every rank alike, before any rank waits for another
   MpiSession mpi;
 
-  const nlohmann::json definition = sweep_definition(options, plan, scene, *entry.schema);
+  const nlohmann::json definition = sweep_definition(options, plan, scene, *target.schema);
   const std::string header = nlohmann::json{{"impactlab_sweep_checkpoint", definition}}.dump();
   std::map<RecordKey, SweepRecord> done;
   if (options.resume) done = read_checkpoints(directory, header);
@@ -339,7 +337,7 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
     if (task.id % mpi.size() == mpi.rank()) mine.push_back(&task);
   }
   const auto start = std::chrono::steady_clock::now();
-  const RankWork work = run_rank_tasks(scene, plan, mine, done, checkpoint, options,
+  const RankWork work = run_rank_tasks(scene, target, plan, mine, done, checkpoint, options,
                                        !options.section.scene.quiet && mpi.rank() == 0);
   const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -361,7 +359,7 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
 
   std::vector<std::string> files;
   write_outputs(directory, plan, tasks, all, files);
-  write_meta(directory, definition, scene, *entry.schema, all,
+  write_meta(directory, definition, scene, *target.schema, all,
              {{"threads", options.threads},
               {"mpi_ranks", mpi.size()},
               {"tasks", tasks.size()},
@@ -375,7 +373,7 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
       std::filesystem::remove(file.path());
   }
 
-  const std::string q_name(entry.schema->main_coordinate);
+  const std::string q_name(target.schema->main_coordinate);
   if (options.section.plot) {
     if (plan.axes.size() == 1)
       plot_with_python("bifurcation", directory / "bifurcation.csv",

@@ -9,10 +9,9 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "integrate/stepper_dispatch.hpp"
 #include "io/bad_input.hpp"
 #include "io/builtin_scenes.hpp"
-#include "io/oscillator_registry.hpp"
-#include "integrate/stepper_dispatch.hpp"
 
 namespace impactlab {
 
@@ -174,7 +173,7 @@ void validate(const Scene& scene, const SceneSchema& schema) {
   }
 }
 
-Scene load_scene(std::string_view name_or_path) {
+Scene read_scene(std::string_view name_or_path, const SchemaLookup& schema_of) {
   const std::string text = read_scene_text(name_or_path);
   std::map<std::string, SceneValue> values;
   try {
@@ -189,7 +188,7 @@ Scene load_scene(std::string_view name_or_path) {
     throw BadInput("oscillator", "(missing)", "a scene must name its oscillator");
   const std::string oscillator_name = to_text(oscillator->second);
   values.erase(oscillator);
-  const SceneSchema& schema = *oscillator_entry(oscillator_name).schema;
+  const SceneSchema& schema = schema_of(oscillator_name);
 
   Scene scene{std::string(name_or_path), oscillator_name, std::move(values)};
   validate(scene, schema);
@@ -203,13 +202,12 @@ Scene load_scene(std::string_view name_or_path) {
   return scene;
 }
 
-void apply_override(Scene& scene, std::string_view assignment) {
+void set_scene_key(Scene& scene, const SceneSchema& schema, std::string_view assignment) {
   const auto equals = assignment.find('=');
   if (equals == std::string_view::npos || equals == 0)
     throw BadInput("--set", std::string(assignment), "expected KEY=VALUE");
   const std::string key(assignment.substr(0, equals));
   const std::string text(assignment.substr(equals + 1));
-  const SceneSchema& schema = *oscillator_entry(scene.oscillator).schema;
   const KeySpec* spec = find_key(schema, key);
   if (!spec)
     throw BadInput(key, text,

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <string_view>
@@ -59,12 +60,17 @@ std::vector<KeySpec> common_keys();
 // accumulate (src/contact/accumulation.hpp).
 KeySpec accumulation_tolerance_key();
 
+// The schema of an oscillator by name; the scene API's registry supplies it
+// (api/scene_loading.hpp), so that reading a scene knows no oscillator.
+using SchemaLookup = std::function<const SceneSchema&(std::string_view oscillator)>;
+
 // Reads a built-in scene by name or a scene file by path, fills defaults from
-// the schema, and validates every key and value. Throws BadInput.
-Scene load_scene(std::string_view name_or_path);
+// the schema of the oscillator it names, and validates every key and value.
+// Throws BadInput.
+Scene read_scene(std::string_view name_or_path, const SchemaLookup& schema_of);
 
 // Applies `KEY=VALUE` (repeatable --set) and validates again. Throws BadInput.
-void apply_override(Scene& scene, std::string_view assignment);
+void set_scene_key(Scene& scene, const SceneSchema& schema, std::string_view assignment);
 
 // Checks every value against the schema's ranges and choices. Throws BadInput.
 void validate(const Scene& scene, const SceneSchema& schema);

@@ -1,15 +1,15 @@
 // The pendulum between walls under the rigid-body model: builds
 // RigidPendulumWalls from a scene and runs it through the event loop.
-#include "oscillators/pendulum_walls/rigid_pendulum_scene.hpp"
+#include "api/bindings/rigid_pendulum_binding.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
 
+#include "api/bindings/pendulum_walls_parameters.hpp"
+#include "api/run_system.hpp"
 #include "io/bad_input.hpp"
-#include "io/run_system.hpp"
-#include "oscillators/pendulum_walls/pendulum_walls_parameters.hpp"
 #include "oscillators/pendulum_walls/rigid_pendulum_walls.hpp"
 
 namespace impactlab {

@@ -5,12 +5,12 @@
 
 #include "analysis/run_periodic.hpp"
 #include "analysis/run_section.hpp"
+#include "api/bindings/pendulum_walls_parameters.hpp"
+#include "api/bindings/rigid_pendulum_binding.hpp"
+#include "api/oscillator_registry.hpp"
+#include "api/run_system.hpp"
 #include "io/bad_input.hpp"
-#include "io/oscillator_registry.hpp"
-#include "io/run_system.hpp"
 #include "oscillators/pendulum_walls/pendulum_walls.hpp"
-#include "oscillators/pendulum_walls/pendulum_walls_parameters.hpp"
-#include "oscillators/pendulum_walls/rigid_pendulum_scene.hpp"
 
 namespace impactlab {
 

@@ -1,4 +1,4 @@
-#include "analysis/jin2003_reproduction.hpp"
+#include "api/jin2003_reproduction.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -10,7 +10,8 @@
 
 #include <fmt/format.h>
 
-#include "io/oscillator_registry.hpp"
+#include "api/oscillator_registry.hpp"
+#include "api/scene_loading.hpp"
 #include "oscillators/pendulum_walls/sliding_impact.hpp"
 
 namespace impactlab {

@@ -1,4 +1,4 @@
-#include "io/oscillator_registry.hpp"
+#include "api/oscillator_registry.hpp"
 
 #include <array>
 #include <string>
@@ -7,7 +7,7 @@
 
 namespace impactlab {
 
-// defined in oscillators/<name>/<name>_scene.cpp
+// defined in src/api/bindings/<name>_binding.cpp
 const OscillatorEntry& pendulum_walls_entry();
 const OscillatorEntry& linear_impact_entry();
 const OscillatorEntry& bouncing_ball_entry();

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "analysis/jin2003_reproduction.hpp"
+#include "api/jin2003_reproduction.hpp"
 
 namespace impactlab {
 

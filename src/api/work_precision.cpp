@@ -1,11 +1,12 @@
-#include "analysis/work_precision.hpp"
+#include "api/work_precision.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <ctime>
 #include <stdexcept>
 
-#include "io/oscillator_registry.hpp"
+#include "api/oscillator_registry.hpp"
+#include "api/scene_loading.hpp"
 #include "oscillators/bouncing_ball/bouncing_ball.hpp"
 #include "oscillators/linear_impact/linear_impact.hpp"
 

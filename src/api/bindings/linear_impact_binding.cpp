@@ -3,9 +3,9 @@
 
 #include "analysis/run_periodic.hpp"
 #include "analysis/run_section.hpp"
+#include "api/oscillator_registry.hpp"
+#include "api/run_system.hpp"
 #include "io/bad_input.hpp"
-#include "io/oscillator_registry.hpp"
-#include "io/run_system.hpp"
 #include "oscillators/linear_impact/linear_impact.hpp"
 
 namespace impactlab {

@@ -1,4 +1,4 @@
-#include "analysis/jin2003_report.hpp"
+#include "api/jin2003_report.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // The pendulum's physical parameters read from a scene, shared by every
-// model of the pendulum (pendulum_walls_scene.cpp, rigid_pendulum_scene.cpp).
+// model of the pendulum (pendulum_walls_binding.cpp, rigid_pendulum_binding.cpp).
 #pragma once
 
 #include "io/scene.hpp"

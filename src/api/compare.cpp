@@ -1,4 +1,4 @@
-#include "analysis/compare.hpp"
+#include "api/compare.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,9 @@
 
 #include <fmt/format.h>
 
+#include "api/oscillator_registry.hpp"
+#include "api/scene_loading.hpp"
 #include "io/bad_input.hpp"
-#include "io/oscillator_registry.hpp"
 
 namespace impactlab {
 

@@ -1,5 +1,5 @@
 // The oscillators the program knows: each one's scene schema and how to run
-// it. Each oscillator registers itself in oscillators/<name>/<name>_scene.cpp.
+// it. Each oscillator registers itself in src/api/bindings/<name>_binding.cpp.
 #pragma once
 
 #include <span>

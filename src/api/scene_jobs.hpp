@@ -1,0 +1,30 @@
+// The scene API's jobs: what a front end (the CLI, the Python module, a
+// user's program) asks of a loaded scene. Each looks up the scene's
+// oscillator in the registry and runs its binding, so every front end gets
+// the same validation, the same numbers and the same errors.
+#pragma once
+
+#include "analysis/periodic.hpp"
+#include "analysis/section.hpp"
+#include "analysis/sweep.hpp"
+#include "io/run_output.hpp"
+#include "io/scene.hpp"
+
+namespace impactlab {
+
+// One event-driven run of the scene (events, samples, counters).
+RunOutput simulate(const Scene& scene, const RunRequest& request);
+
+// The scene's orbit on a Poincaré section. BadInput (key `oscillator`) when
+// the scene's oscillator or model has no section binding.
+SectionResult poincare(const Scene& scene, const SectionRequest& request);
+
+// Newton shooting for a period-n orbit and its Floquet multipliers. BadInput
+// (key `oscillator`) when the scene's oscillator or model has none.
+PeriodicResult periodic(const Scene& scene, const PeriodicRequest& request);
+
+// What a sweep of the scene runs at each point: its schema and its section
+// binding. BadInput (key `oscillator`) when it has no section binding.
+SweepTarget sweep_target(const Scene& scene);
+
+}  // namespace impactlab
