@@ -17,6 +17,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -204,7 +206,21 @@ void expect_complete_outputs(const std::filesystem::path& out, const std::string
   }
   if (std::filesystem::exists(out / "events.csv")) {
     EXPECT_TRUE(std::filesystem::exists(out / "meta.json")) << context;
-    EXPECT_EQ(read_text(out / "events.csv").find("nan"), std::string::npos) << context;
+    // t, q, qdot_before, qdot_after of every row: present and finite (the
+    // writer leaves a NaN field empty)
+    const std::vector<std::string> rows = split_lines(read_text(out / "events.csv"));
+    for (std::size_t row = 1; row < rows.size(); ++row) {
+      std::vector<std::string> fields;
+      std::stringstream line(rows[row]);
+      for (std::string field; std::getline(line, field, ',');) fields.push_back(field);
+      ASSERT_GE(fields.size(), 6u) << context << ": " << rows[row];
+      for (const std::size_t column : {0u, 3u, 4u, 5u}) {
+        char* end = nullptr;
+        const double value = std::strtod(fields[column].c_str(), &end);
+        EXPECT_TRUE(!fields[column].empty() && *end == '\0' && std::isfinite(value))
+            << context << ": events.csv row " << row << ": " << rows[row];
+      }
+    }
   }
   if (std::filesystem::exists(out / "meta.json")) {
     EXPECT_TRUE(nlohmann::json::accept(read_text(out / "meta.json"))) << context;
