@@ -117,16 +117,33 @@ py::dtype event_dtype() {
 }
 
 py::array event_array(std::vector<EventRecord>&& events) {
+  // built once: the dtype is the same for every run (never freed, so that it
+  // outlives no interpreter)
+  static const auto* dtype = new py::dtype(event_dtype());
   auto* owner = new std::vector<EventRecord>(std::move(events));
   py::capsule base(owner,
                    [](void* pointer) { delete static_cast<std::vector<EventRecord>*>(pointer); });
-  return py::array(event_dtype(), {static_cast<py::ssize_t>(owner->size())}, {},
+  return py::array(*dtype, {static_cast<py::ssize_t>(owner->size())}, {},
                    owner->data(), base);
 }
 
 py::object json_to_python(const nlohmann::json& document) {
   return py::module_::import("json").attr("loads")(document.dump());
 }
+
+// What meta.json records of a run, made when Python asks for it (most calls
+// never do): the scene and the run's counters, without its events and samples.
+struct PendingRunRecord {
+  Scene scene;
+  RunOutput output;  // events and samples moved out
+  std::size_t events = 0;
+
+  [[nodiscard]] py::object meta() const {
+    nlohmann::json record = run_record(scene, output);
+    record["counts"]["events"] = events;
+    return json_to_python(record);
+  }
+};
 
 py::dict simulate_binding(const Scene& scene, double periods, double t_end, double sample_step,
                           py::object progress) {
@@ -143,7 +160,6 @@ py::dict simulate_binding(const Scene& scene, double periods, double t_end, doub
   RunOutput output = relay.run([&] { return simulate(scene, request); });
 
   py::dict result;
-  result["meta"] = json_to_python(run_record(scene, output));
   result["termination"] = output.termination;
   // samples: t, q, qdot as arrays, the mode names as a list
   std::vector<double> t, q, qdot;
@@ -158,7 +174,11 @@ py::dict simulate_binding(const Scene& scene, double periods, double t_end, doub
   result["samples_q"] = owning_array(std::move(q));
   result["samples_qdot"] = owning_array(std::move(qdot));
   result["samples_mode"] = modes;
+  const std::size_t event_count = output.events.size();
   result["events"] = event_array(std::move(output.events));
+  output.events.clear();
+  output.samples.clear();
+  result["record"] = PendingRunRecord{scene, std::move(output), event_count};
   return result;
 }
 
@@ -396,6 +416,8 @@ PYBIND11_MODULE(_impactlab, m) {
       PyErr_SetString(PyExc_ValueError, bad.what());
     }
   });
+
+  py::class_<PendingRunRecord>(m, "PendingRunRecord").def("meta", &PendingRunRecord::meta);
 
   py::class_<Scene>(m, "Scene")
       .def_readonly("name", &Scene::name)

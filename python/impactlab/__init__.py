@@ -59,6 +59,16 @@ class Result:
         return "{}({})".format(type(self).__name__, ", ".join(sorted(self.__dict__)))
 
 
+class RunResult(Result):
+    """simulate's result; `meta` (meta.json's content) is made on first use."""
+
+    @property
+    def meta(self):
+        if "_meta" not in self.__dict__:
+            self._meta = self._record.meta()
+        return self._meta
+
+
 def _assignment_text(key, value):
     """`value` as --set would spell it; ValueError for a type no key takes."""
     if isinstance(value, bool):
@@ -89,6 +99,8 @@ def scenes():
 def scene(name_or_scene="jin2003", **keys):
     """A scene with keys set: scene("jin2003", V0=4.163, omega=7)."""
     if isinstance(name_or_scene, Scene):
+        if not keys:
+            return name_or_scene  # the jobs do not change a scene
         loaded = name_or_scene.copy()
     elif isinstance(name_or_scene, str):
         loaded = _impactlab.load_scene(name_or_scene)
@@ -169,13 +181,12 @@ def simulate(scene_=None, *, periods=None, t_end=None, sample=None, progress=Non
     sample_step = 0.0 if sample is None else _number("sample", sample, positive=True)
     raw = _run(lambda callback: _impactlab.simulate(loaded, periods, t_end, sample_step, callback),
                progress, "simulate")
-    result = Result(
+    result = RunResult(
         scene=loaded,
         events=raw["events"].view(EventArray),
         trajectory=Result(t=raw["samples_t"], q=raw["samples_q"], qdot=raw["samples_qdot"],
                           mode=raw["samples_mode"]),
-        meta=raw["meta"],
-        termination=raw["termination"])
+        termination=raw["termination"], _record=raw["record"])
     _warn_if_stopped(result, "simulate")
     return result
 
