@@ -5,6 +5,7 @@
 // call the user's callback and to look for Ctrl-C, and a Python exception
 // there cancels the job and comes out of the call unchanged.
 #include <chrono>
+#include <numbers>
 #include <sstream>
 #include <exception>
 #include <memory>
@@ -24,7 +25,9 @@
 #include "api/scene_jobs.hpp"
 #include "api/scene_loading.hpp"
 #include "api/sweep_job.hpp"
+#include "api/work_precision.hpp"
 #include "io/bad_input.hpp"
+#include "integrate/stepper_dispatch.hpp"
 #include "io/builtin_scenes.hpp"
 
 namespace py = pybind11;
@@ -369,6 +372,76 @@ py::dict compare_binding(const Scene& scene, const std::string& models, double p
   return out;
 }
 
+// Work against precision on one scene (the CLI's `bench` does this for its
+// fixed cases): each method at each rtol (atol = atol_ratio rtol), errors
+// against bench_reference over reference_periods.
+py::dict bench_binding(const Scene& scene, std::vector<std::string> methods,
+                       const std::vector<double>& rtols, double atol_ratio, double periods,
+                       double reference_periods, std::size_t max_reference_impacts,
+                       int repetitions, py::object progress) {
+  if (methods.empty())
+    for (auto name : stepper_names)
+      if (name != "exact" || has_closed_form(scene)) methods.emplace_back(name);
+  for (const auto& method : methods) {
+    bool known = false;
+    for (auto name : stepper_names) known = known || name == method;
+    if (!known || (method == "exact" && !has_closed_form(scene)))
+      throw BadInput("methods", method, "not a stepper of this scene");
+  }
+  for (double rtol : rtols)
+    if (!(rtol > 0.0 && rtol < 1.0)) throw BadInput("rtols", std::to_string(rtol), "expected 0 < rtol < 1");
+  if (repetitions < 1) throw BadInput("repetitions", std::to_string(repetitions), "expected >= 1");
+  const double forcing_period = 2.0 * std::numbers::pi / scene.number("omega");
+  ProgressRelay relay(std::move(progress));
+  py::dict out;
+  std::vector<std::string> method_column;
+  std::vector<double> rtol_column, atol_column, seconds, wall_seconds, rhs, steps, time_error,
+      velocity_error;
+  std::vector<std::uint64_t> impacts, compared;
+  std::vector<std::string> termination;
+  const std::size_t total = methods.size() * rtols.size();
+  ReferenceImpacts reference;
+  relay.run([&] {
+    reference = bench_reference(scene, scene.number("t0") + reference_periods * forcing_period,
+                                max_reference_impacts);
+    std::size_t done = 0;
+    for (const auto& method : methods)
+      for (double rtol : rtols) {
+        const WorkPrecisionPoint point = measure_point(scene, method, rtol, atol_ratio * rtol,
+                                                       periods, repetitions, reference);
+        method_column.push_back(method);
+        rtol_column.push_back(point.rtol);
+        atol_column.push_back(point.atol);
+        impacts.push_back(point.impacts);
+        seconds.push_back(point.seconds_per_impact);
+        wall_seconds.push_back(point.wall_seconds_per_impact);
+        rhs.push_back(point.rhs_per_impact);
+        steps.push_back(point.steps_per_impact);
+        time_error.push_back(point.errors.time);
+        velocity_error.push_back(point.errors.velocity);
+        compared.push_back(point.errors.compared);
+        termination.push_back(point.termination);
+        relay(static_cast<double>(++done) / static_cast<double>(total));
+      }
+    return 0;
+  });
+  out["method"] = py::cast(method_column);
+  out["rtol"] = owning_array(std::move(rtol_column));
+  out["atol"] = owning_array(std::move(atol_column));
+  out["impacts"] = owning_array(std::move(impacts));
+  out["seconds_per_impact"] = owning_array(std::move(seconds));
+  out["wall_seconds_per_impact"] = owning_array(std::move(wall_seconds));
+  out["rhs_per_impact"] = owning_array(std::move(rhs));
+  out["steps_per_impact"] = owning_array(std::move(steps));
+  out["impact_time_error"] = owning_array(std::move(time_error));
+  out["impact_velocity_error"] = owning_array(std::move(velocity_error));
+  out["impacts_compared"] = owning_array(std::move(compared));
+  out["termination"] = py::cast(termination);
+  out["reference_method"] = reference.method;
+  out["reference_impacts"] = reference.impacts.size();
+  return out;
+}
+
 py::list scene_keys(const Scene& scene) {
   py::list keys;
   for (const auto& spec : scene_schema(scene).keys) {
@@ -441,6 +514,7 @@ PYBIND11_MODULE(_impactlab, m) {
   m.def("sweep", &sweep_binding);
   m.def("periodic", &periodic_binding);
   m.def("compare", &compare_binding);
+  m.def("bench", &bench_binding);
   m.def("event_kind_names", [] {
     std::vector<std::string> names;
     for (int kind = 0; kind <= static_cast<int>(EventKind::painleve); ++kind)

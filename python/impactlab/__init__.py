@@ -21,7 +21,7 @@ from . import _impactlab
 
 __all__ = [
     "Scene", "scenes", "scene", "simulate", "poincare", "sweep", "periodic", "compare",
-    "EventArray", "PhysicalDiagnosticWarning",
+    "bench", "EventArray", "PhysicalDiagnosticWarning",
 ]
 
 Scene = _impactlab.Scene
@@ -293,4 +293,25 @@ def compare(scene_=None, *, models="", periods=None, t_end=None, progress=None, 
                progress, "compare")
     for run in raw["runs"].values():
         run["events"] = run["events"].view(EventArray)
+    return Result(scene=loaded, **raw)
+
+
+def bench(scene_=None, *, methods=None, rtols=(1e-6, 1e-8, 1e-10), atol_ratio=1e-2, periods=50.0,
+          reference_periods=20.0, max_reference_impacts=20, repetitions=1, progress=None, **keys):
+    """Work against precision on one scene (what the CLI's `bench` measures on
+    its fixed cases): per method and rtol, CPU and wall seconds per impact,
+    right-hand sides and steps per impact, and the largest impact-time and
+    impact-velocity errors against the reference (the closed form where the
+    oscillator has one, else rk8pd and bulirsch_stoer at rtol 1e-14)."""
+    loaded = scene(scene_ if scene_ is not None else "jin2003", **keys)
+    if methods is not None and (isinstance(methods, str) or
+                                not all(isinstance(m, str) for m in methods)):
+        raise ValueError("methods = {!r}: expected a list of stepper names".format(methods))
+    rtol_list = [_number("rtols", r, positive=True) for r in rtols]
+    raw = _run(lambda callback: _impactlab.bench(
+        loaded, list(methods or []), rtol_list, _number("atol_ratio", atol_ratio, positive=True),
+        _number("periods", periods, positive=True),
+        _number("reference_periods", reference_periods, positive=True),
+        _whole("max_reference_impacts", max_reference_impacts, 1),
+        _whole("repetitions", repetitions, 1), callback), progress, "bench")
     return Result(scene=loaded, **raw)

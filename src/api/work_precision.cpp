@@ -236,4 +236,14 @@ std::vector<SpeedRatio> speed_ratios(const std::vector<WorkPrecisionPoint>& slow
   return ratios;
 }
 
+bool has_closed_form(const Scene& scene) {
+  return scene.oscillator == "linear_impact" || scene.oscillator == "bouncing_ball";
+}
+
+ReferenceImpacts bench_reference(const Scene& scene, double t_end, std::size_t max_impacts) {
+  return has_closed_form(scene)
+             ? closed_form_reference(scene, t_end, max_impacts)
+             : integrated_reference(scene, t_end, max_impacts, {"rk8pd", "bulirsch_stoer"}, 1e-10);
+}
+
 }  // namespace impactlab

@@ -161,6 +161,15 @@ ReferenceImpacts integrated_reference(const Scene& scene, double t_end, std::siz
                                       const std::vector<std::string>& methods,
                                       double trusted_time_spread);
 
+// Whether the scene's oscillator has a closed-form flow (the `exact` stepper
+// and closed_form_reference): linear_impact, bouncing_ball.
+bool has_closed_form(const Scene& scene);
+
+// The reference the bench measures errors against, from t0 to t_end: the
+// closed form where there is one, else the scene integrated with rk8pd and
+// bulirsch_stoer (impacts trusted where they agree within 1e-10).
+ReferenceImpacts bench_reference(const Scene& scene, double t_end, std::size_t max_impacts);
+
 // One stepper at one tolerance on one case.
 struct WorkPrecisionPoint {
   std::string tool = "impactlab";  // impactlab or scipy

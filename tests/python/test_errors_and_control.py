@@ -149,3 +149,13 @@ def test_scenes_lists_the_builtin_scenes():
     listed = impactlab.scenes()
     assert "jin2003" in [s["name"] for s in listed]
     assert all(s["oscillator"] for s in listed)
+
+
+def test_bench_error_falls_with_tolerance_against_the_closed_form():
+    result = impactlab.bench("linear_impact", methods=["rk8pd"], rtols=[1e-5, 1e-11], periods=20,
+                             reference_periods=10, max_reference_impacts=10)
+    assert result.reference_method == "closed_form"
+    assert list(result.impacts_compared) == [result.reference_impacts] * 2
+    assert result.impact_time_error[1] < result.impact_time_error[0]
+    with pytest.raises(ValueError, match="methods"):
+        impactlab.bench("jin2003", methods=["exact"])
