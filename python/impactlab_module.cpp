@@ -24,6 +24,7 @@
 #include "api/run_record.hpp"
 #include "api/scene_jobs.hpp"
 #include "api/scene_loading.hpp"
+#include "api/scene_record.hpp"
 #include "api/sweep_job.hpp"
 #include "api/work_precision.hpp"
 #include "io/bad_input.hpp"

@@ -6,6 +6,7 @@
 #include "analysis/sweep.hpp"
 #include "api/scene_jobs.hpp"
 #include "api/scene_loading.hpp"
+#include "api/scene_record.hpp"
 #include "io/bad_input.hpp"
 
 namespace impactlab {

@@ -1,6 +1,7 @@
 #include "api/run_record.hpp"
 
 #include "api/scene_loading.hpp"
+#include "api/scene_record.hpp"
 
 namespace impactlab {
 

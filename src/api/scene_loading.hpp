@@ -6,8 +6,6 @@
 
 #include <string_view>
 
-#include <nlohmann/json.hpp>
-
 #include "io/scene.hpp"
 
 namespace impactlab {
@@ -21,9 +19,5 @@ void apply_override(Scene& scene, std::string_view assignment);
 
 // The schema the scene follows.
 const SceneSchema& scene_schema(const Scene& scene);
-
-// The scene's source, oscillator and every key with its value and unit, as
-// every meta.json records it.
-nlohmann::json scene_record(const Scene& scene);
 
 }  // namespace impactlab

@@ -8,6 +8,7 @@
 #include <omp.h>
 
 #include "api/scene_loading.hpp"
+#include "api/scene_record.hpp"
 #include "io/bad_input.hpp"
 
 namespace impactlab {

@@ -9,6 +9,7 @@
 
 #include "api/scene_jobs.hpp"
 #include "api/scene_loading.hpp"
+#include "api/scene_record.hpp"
 
 namespace impactlab::cli {
 
@@ -101,5 +102,7 @@ std::string utc_now() {
   return text;
 }
 
+
+nlohmann::json scene_record(const Scene& scene) { return impactlab::scene_record(scene); }
 
 }  // namespace impactlab::cli

@@ -15,8 +15,6 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "api/scene_loading.hpp"
-
 #include "io/run_output.hpp"
 #include "io/scene.hpp"
 
@@ -76,5 +74,8 @@ class ProgressBar {
 
 // Current UTC time, ISO 8601 (for created_utc in meta files).
 std::string utc_now();
+
+// The scene's source, oscillator and every key with its value and unit.
+nlohmann::json scene_record(const Scene& scene);
 
 }  // namespace impactlab::cli
