@@ -25,7 +25,12 @@ class CrossingSection {
       : base_(base), section_(section), points_(&points) {}
 
   [[nodiscard]] double max_step() const { return base_.max_step(); }
-  void rhs(Mode mode, const State& x, State& dxdt, double t) const { base_.rhs(mode, x, dxdt, t); }
+  template <class Vector, class Number>
+    requires requires(const Base& base, Mode mode, const Vector& x, Vector& dxdt,
+                      const Number& t) { base.rhs(mode, x, dxdt, t); }
+  void rhs(Mode mode, const Vector& x, Vector& dxdt, const Number& t) const {
+    base_.rhs(mode, x, dxdt, t);
+  }
 
   [[nodiscard]] std::size_t witness_count(Mode mode) const {
     return base_.witness_count(mode) + 1;
@@ -37,9 +42,18 @@ class CrossingSection {
     return TriggerDirection::either;
   }
   // the added witness: x[component] − c, its rate from the vector field
-  [[nodiscard]] WitnessSample witness(Mode mode, std::size_t k, const State& x, double t) const {
+  // (over the base system's number types: a series type runs through it
+  // where it runs through the base)
+  template <class Vector, class Number>
+    requires requires(const Base& base, Mode mode, std::size_t k, const Vector& x, Vector& dxdt,
+                      const Number& t) {
+      base.rhs(mode, x, dxdt, t);
+      base.witness(mode, k, x, t);
+    }
+  [[nodiscard]] auto witness(Mode mode, std::size_t k, const Vector& x, const Number& t) const
+      -> BasicWitnessSample<Number> {
     if (k < base_.witness_count(mode)) return base_.witness(mode, k, x, t);
-    State dxdt;
+    Vector dxdt;
     base_.rhs(mode, x, dxdt, t);
     const std::size_t component = section_.kind == SectionKind::q_crossing ? 0 : 1;
     return {x[component] - section_.level, dxdt[component]};

@@ -169,6 +169,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
               (request.section.wall == 0 || event.wall == request.section.wall) &&
               (result.points.empty() || event.t > result.points.back().t))
             result.points.push_back({event.t, event.q, event.qdot_before, event.wall});
+        record_log.clear_records();
       }
     }
     // whole periods, up to the round-off of the time sums

@@ -52,3 +52,7 @@ impactlab_dependency(TARGET tomlplusplus::tomlplusplus PACKAGE tomlplusplus 3)
 impactlab_dependency(TARGET fmt::fmt PACKAGE fmt)
 impactlab_dependency(TARGET PkgConfig::FFTW3 PKG_CONFIG FFTW3 fftw3)
 impactlab_dependency(TARGET OpenMP::OpenMP_CXX PACKAGE OpenMP COMPONENTS CXX)
+# model sections of scene files: symbolic differentiation (oscillators/model_file/)
+impactlab_dependency(TARGET PkgConfig::GINAC PKG_CONFIG GINAC ginac)
+# and the compiled model loaded with dlopen
+impactlab_dependency(LIBRARIES ${CMAKE_DL_LIBS})

@@ -4,6 +4,7 @@
     plot_sweep.py bifurcation bifurcation.csv out.png PARAM QNAME
     plot_sweep.py classes     classes.csv     out.png PARAM1 PARAM2
     plot_sweep.py poincare    poincare.csv    out.png QNAME
+    plot_sweep.py continuation branch.csv     out.png PARAM QNAME [bifurcation.csv]
 
 bifurcation: the section's q against the parameter, up and down sweeps in two
 colours (hysteresis shows where they differ). classes: a colour map of the
@@ -88,6 +89,11 @@ def poincare(csv, png, q_name):
 
 def main(argv):
     kind, csv, png, *names = argv[1:]
+    if kind == "continuation":  # scripts/plot_continuation.py
+        sys.path.insert(0, __import__("os").path.dirname(__file__))
+        import plot_continuation
+        plot_continuation.main([argv[0], csv, png, *names])
+        return
     {"bifurcation": bifurcation, "classes": classes, "poincare": poincare}[kind](csv, png, *names)
 
 

@@ -158,6 +158,21 @@ TEST(CompareCommand, RejectedModelExitsTwoAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(out / "compare.json"));
 }
 
+// A path is data, never shell text: an --out that would close a quoted
+// shell word and run `touch` must reach the plot script whole (issue 13).
+TEST(CompareCommand, HostileOutDirectoryIsNotShellText) {
+  const auto base = scratch("hostile");
+  std::filesystem::create_directories(base);
+  const auto marker = base / "INJECTED";
+  const std::string hostile = (base / ("d';touch " + marker.string() + ";'")).string();
+  // double quotes for the test's own shell: the single quotes reach impactlab
+  const Outcome outcome =
+      run("compare jin2003 --models newton --periods 2 --quiet --out \"" + hostile + "\"");
+  EXPECT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(hostile) / "compare.json"));
+  EXPECT_FALSE(std::filesystem::exists(marker)) << "the plot command ran shell text";
+}
+
 TEST(CompareCommand, MalformedModelListExitsTwo) {
   const Outcome outcome = run("compare jin2003 --models newton,,rigid --periods 2 --quiet --out " +
                               scratch("list").string());

@@ -30,7 +30,8 @@ namespace impactlab {
 namespace {
 
 constexpr double pi = std::numbers::pi;
-const std::vector<std::string> numerical_steppers = {"dopri5", "rkf78", "bulirsch_stoer", "rk8pd"};
+const std::vector<std::string> numerical_steppers = {"dopri5", "rkf78", "bulirsch_stoer", "rk8pd",
+                                                     "taylor"};
 
 // b / l = 1/14 in the paper's scene: tan θ0 = 1/√195
 constexpr double tan_theta0_by_hand = 0.07161148740394328805;

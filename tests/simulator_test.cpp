@@ -243,7 +243,9 @@ class ZenoBall {
   static constexpr double gravity = 9.81;       // m/s²
   static constexpr double restitution = 0.5;
 
-  void rhs(Mode, const State& x, State& dxdt, double) const {
+  template <class Number>
+  void rhs(Mode, const std::array<Number, 2>& x, std::array<Number, 2>& dxdt,
+           const Number&) const {
     dxdt[0] = x[1];
     dxdt[1] = -gravity;
   }
@@ -251,8 +253,9 @@ class ZenoBall {
   [[nodiscard]] impactlab::TriggerDirection trigger_direction(Mode, std::size_t) const {
     return impactlab::TriggerDirection::falling;
   }
-  [[nodiscard]] impactlab::WitnessSample witness(Mode, std::size_t, const State& x,
-                                                 double) const {
+  template <class Number>
+  [[nodiscard]] impactlab::BasicWitnessSample<Number> witness(
+      Mode, std::size_t, const std::array<Number, 2>& x, const Number&) const {
     return {x[0], x[1]};
   }
   impactlab::Transition<State, Mode> on_event(Mode, std::size_t, impactlab::CrossingKind,

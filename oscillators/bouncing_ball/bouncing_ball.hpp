@@ -34,7 +34,7 @@ struct BouncingBallParameters {
   double A = 0.0112;     // table amplitude (m), >= 0
   double omega = 30.0;   // table angular frequency (rad/s), > 0
   double r = 0.8;        // coefficient of restitution, [0, 1]
-  double accumulation_tol = 1e-3;  // accepted relative error of an accumulation estimate
+  AccumulationTolerance accumulation{};  // what an accumulation estimate is held to
 };
 
 class BouncingBall {
@@ -52,20 +52,32 @@ class BouncingBall {
   [[nodiscard]] const BouncingBallParameters& parameters() const { return p_; }
 
   // table position (m), velocity (m/s) and acceleration (m/s²)
-  [[nodiscard]] double table_position(double t) const { return p_.A * std::sin(p_.omega * t); }
-  [[nodiscard]] double table_velocity(double t) const {
-    return p_.A * p_.omega * std::cos(p_.omega * t);
+  // (over a number type, like the right-hand side)
+  template <class Number>
+  [[nodiscard]] Number table_position(const Number& t) const {
+    using std::sin;
+    return p_.A * sin(p_.omega * t);
   }
-  [[nodiscard]] double table_acceleration(double t) const {
-    return -p_.A * p_.omega * p_.omega * std::sin(p_.omega * t);
+  template <class Number>
+  [[nodiscard]] Number table_velocity(const Number& t) const {
+    using std::cos;
+    return p_.A * p_.omega * cos(p_.omega * t);
+  }
+  template <class Number>
+  [[nodiscard]] Number table_acceleration(const Number& t) const {
+    using std::sin;
+    return -p_.A * p_.omega * p_.omega * sin(p_.omega * t);
   }
 
   // g + z̈ (m/s²): the table's push on a ball resting on it, per unit mass
   // (the normal force over the mass). Positive while the table presses the
   // ball; its rate (m/s³) is the second.
-  [[nodiscard]] double table_push(double t) const { return p_.g + table_acceleration(t); }
-  [[nodiscard]] double table_push_rate(double t) const {
-    return -p_.A * p_.omega * p_.omega * p_.omega * std::cos(p_.omega * t);
+  template <class Number>
+  [[nodiscard]] Number table_push(const Number& t) const { return p_.g + table_acceleration(t); }
+  template <class Number>
+  [[nodiscard]] Number table_push_rate(const Number& t) const {
+    using std::cos;
+    return -p_.A * p_.omega * p_.omega * p_.omega * cos(p_.omega * t);
   }
   [[nodiscard]] double table_push_curvature(double t) const {
     return p_.A * p_.omega * p_.omega * p_.omega * p_.omega * std::sin(p_.omega * t);
@@ -73,9 +85,12 @@ class BouncingBall {
 
   [[nodiscard]] double max_step() const { return 2.0 * std::numbers::pi / p_.omega / 16.0; }
 
-  void rhs(Mode mode, const State& x, State& dxdt, double t) const {
+  // written over a number type (double, or the Taylor stepper's series type)
+  template <class Number>
+  void rhs(Mode mode, const std::array<Number, 2>& x, std::array<Number, 2>& dxdt,
+           const Number& t) const {
     dxdt[0] = x[1];
-    dxdt[1] = mode == Mode::free ? -p_.g : table_acceleration(t);
+    dxdt[1] = mode == Mode::free ? Number(-p_.g) : table_acceleration(t);
   }
 
   [[nodiscard]] std::size_t witness_count(Mode) const { return 1; }
@@ -86,7 +101,10 @@ class BouncingBall {
 
   // free:  the gap y − z (m), closing when it falls to zero
   // stuck: the push g + z̈ (m/s²); the ball leaves when it falls to zero
-  [[nodiscard]] WitnessSample witness(Mode mode, std::size_t, const State& x, double t) const {
+  template <class Number>
+  [[nodiscard]] BasicWitnessSample<Number> witness(Mode mode, std::size_t,
+                                                   const std::array<Number, 2>& x,
+                                                   const Number& t) const {
     if (mode == Mode::free) return {x[0] - table_position(t), x[1] - table_velocity(t)};
     return {table_push(t), table_push_rate(t)};
   }
@@ -174,20 +192,22 @@ class BouncingBall {
 
     // chattering: is the table pushing the ball back, and is the accumulation
     // estimate good? (with g + z̈ <= 0 the table pulls away: the ball is free)
-    const auto remaining = time_to_accumulation(
+    const auto estimate = accept_accumulation(
         {std::fabs(impact.qdot_after), table_push(t), table_push_rate(t), p_.r,
          table_push_curvature(t)},
-        p_.accumulation_tol, 1.0 / p_.omega);
-    if (!remaining) return {after, Mode::free, t, false};
-    return enter_stuck(t + *remaining, log);
+        p_.accumulation);
+    if (!estimate) return {after, Mode::free, t, false};
+    return enter_stuck(t + estimate->remaining, estimate->error_bound, log);
   }
 
   // At the accumulation point the ball rides on the table if the table pushes
   // it; otherwise it leaves the table with the table's velocity. The records
   // carry the ball's state there, which is the table's (q = z, q̇ = ż).
-  Transition<State, Mode> enter_stuck(double t, EventLog& log) const {
+  Transition<State, Mode> enter_stuck(double t, double time_error, EventLog& log) const {
     const State riding = on_table(t);
-    log.record({t, EventKind::accumulation, wall, riding[0], riding[1], riding[1]});
+    EventRecord accumulation{t, EventKind::accumulation, wall, riding[0], riding[1], riding[1]};
+    accumulation.accumulation_error = time_error;
+    log.record(accumulation);
     if (!(table_push(t) > 0.0)) return {riding, Mode::free, t, false};
     log.record({t, EventKind::contact_start, wall, riding[0], riding[1], riding[1]});
     return {riding, Mode::stuck, t, false};

@@ -36,7 +36,7 @@ struct LinearImpactParameters {
   double omega = 2.0;    // forcing frequency ω over the natural frequency (dimensionless), > 0
   double sigma = 0.2;    // position of the stop σ (length); the mass moves in x <= σ
   double r = 0.8;        // coefficient of restitution, [0, 1]
-  double accumulation_tol = 1e-3;  // accepted relative error of an accumulation estimate
+  AccumulationTolerance accumulation{};  // what an accumulation estimate is held to
 };
 
 class LinearImpact {
@@ -66,11 +66,15 @@ class LinearImpact {
   // ẍ of a mass at rest on the stop (x = σ, ẋ = 0): A cos ωt − σ. Positive
   // while the forcing pushes the mass into the stop; then its rate and the
   // rate of that.
-  [[nodiscard]] double stop_push(double t) const {
-    return p_.A * std::cos(p_.omega * t) - p_.sigma;
+  template <class Number>
+  [[nodiscard]] Number stop_push(const Number& t) const {
+    using std::cos;
+    return p_.A * cos(p_.omega * t) - p_.sigma;
   }
-  [[nodiscard]] double stop_push_rate(double t) const {
-    return -p_.A * p_.omega * std::sin(p_.omega * t);
+  template <class Number>
+  [[nodiscard]] Number stop_push_rate(const Number& t) const {
+    using std::sin;
+    return -p_.A * p_.omega * sin(p_.omega * t);
   }
   [[nodiscard]] double stop_push_curvature(double t) const {
     return -p_.A * p_.omega * p_.omega * std::cos(p_.omega * t);
@@ -82,14 +86,18 @@ class LinearImpact {
     return std::min(forcing_period, natural_period) / 16.0;
   }
 
-  void rhs(Mode mode, const State& x, State& dxdt, double t) const {
+  // written over a number type (double, or the Taylor stepper's series type)
+  template <class Number>
+  void rhs(Mode mode, const std::array<Number, 2>& x, std::array<Number, 2>& dxdt,
+           const Number& t) const {
     if (mode == Mode::stuck) {
       dxdt[0] = 0.0;
       dxdt[1] = 0.0;
       return;
     }
+    using std::cos;
     dxdt[0] = x[1];
-    dxdt[1] = p_.A * std::cos(p_.omega * t) - 2.0 * p_.zeta * x[1] - x[0];
+    dxdt[1] = p_.A * cos(p_.omega * t) - 2.0 * p_.zeta * x[1] - x[0];
   }
 
   [[nodiscard]] std::size_t witness_count(Mode) const { return 1; }
@@ -100,7 +108,10 @@ class LinearImpact {
 
   // free:  the gap σ − x to the stop (length), closing when it falls to zero
   // stuck: the push A cos ωt − σ into the stop; the mass leaves when it falls to zero
-  [[nodiscard]] WitnessSample witness(Mode mode, std::size_t, const State& x, double t) const {
+  template <class Number>
+  [[nodiscard]] BasicWitnessSample<Number> witness(Mode mode, std::size_t,
+                                                   const std::array<Number, 2>& x,
+                                                   const Number& t) const {
     if (mode == Mode::free) return {p_.sigma - x[0], -x[1]};
     return {stop_push(t), stop_push_rate(t)};
   }
@@ -201,18 +212,21 @@ class LinearImpact {
     const State after{p_.sigma, impact.qdot_after};
 
     // chattering: is the stop attracting, and is the accumulation estimate good?
-    const auto remaining =
-        time_to_accumulation({std::fabs(impact.qdot_after), stop_push(t), stop_push_rate(t), p_.r,
-                              stop_push_curvature(t)},
-                             p_.accumulation_tol, 1.0 / p_.omega);
-    if (!remaining) return {after, Mode::free, t, false};
-    return enter_stuck(t + *remaining, log);
+    // on the gap σ − x: damping 2ζ, stiffness 1 (the spring)
+    const auto estimate =
+        accept_accumulation({std::fabs(impact.qdot_after), stop_push(t), stop_push_rate(t), p_.r,
+                             stop_push_curvature(t), 2.0 * p_.zeta, 1.0},
+                            p_.accumulation);
+    if (!estimate) return {after, Mode::free, t, false};
+    return enter_stuck(t + estimate->remaining, estimate->error_bound, log);
   }
 
   // At the accumulation point the mass rests on the stop if the forcing
   // pushes it there; otherwise it leaves the stop with zero velocity.
-  Transition<State, Mode> enter_stuck(double t, EventLog& log) const {
-    log.record({t, EventKind::accumulation, wall, p_.sigma, 0.0, 0.0});
+  Transition<State, Mode> enter_stuck(double t, double time_error, EventLog& log) const {
+    EventRecord accumulation{t, EventKind::accumulation, wall, p_.sigma, 0.0, 0.0};
+    accumulation.accumulation_error = time_error;
+    log.record(accumulation);
     if (!(stop_push(t) > 0.0)) return {on_stop(), Mode::free, t, false};
     log.record({t, EventKind::contact_start, wall, p_.sigma, 0.0, 0.0});
     return {on_stop(), Mode::stuck, t, false};

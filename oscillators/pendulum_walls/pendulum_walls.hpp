@@ -33,6 +33,7 @@
 #include "contact/painleve.hpp"
 #include "core/event_log.hpp"
 #include "core/fast_trig.hpp"
+#include "core/sign.hpp"
 #include "core/hybrid_system.hpp"
 #include "oscillators/pendulum_walls/sliding_impact.hpp"
 #include "core/has_jacobian.hpp"
@@ -50,7 +51,7 @@ struct PendulumWallsParameters {
   double e_n = 0.3;     // normal restitution, [0, 1]
   double e_t = -0.1;    // tangential restitution of the paper's Model P, [-1, 0]
   double mu = 0.6;      // Coulomb friction coefficient, >= 0
-  double accumulation_tol = 1e-3;  // accepted relative error of an accumulation estimate
+  AccumulationTolerance accumulation{};  // what an accumulation estimate is held to
 };
 
 enum class PendulumModel { newton, paper };
@@ -61,7 +62,8 @@ template <PendulumModel model>
 class BasicPendulumWalls {
  public:
   static constexpr bool is_paper_model = model == PendulumModel::paper;
-  using State = std::array<double, is_paper_model ? 4 : 3>;
+  static constexpr std::size_t state_size = is_paper_model ? 4 : 3;
+  using State = std::array<double, state_size>;
   using Mode = PendulumMode;
   static constexpr std::size_t max_witnesses = 2;
 
@@ -74,18 +76,28 @@ class BasicPendulumWalls {
   [[nodiscard]] const PendulumWallsParameters& parameters() const { return p_; }
   [[nodiscard]] double wall_angle() const { return theta0_; }
 
-  // effective gravity in the pivot's frame (m/s²) and its rate (m/s³)
-  [[nodiscard]] double effective_gravity(double t) const {
-    return p_.g - p_.V0 * p_.omega * std::cos(p_.omega * t);
+  // effective gravity in the pivot's frame (m/s²) and its rate (m/s³);
+  // like the right-hand side, written over a number type (a series type
+  // runs through them: integrate/taylor_series.hpp)
+  template <class Number>
+  [[nodiscard]] Number effective_gravity(const Number& t) const {
+    using std::cos;
+    return p_.g - p_.V0 * p_.omega * cos(p_.omega * t);
   }
-  [[nodiscard]] double effective_gravity_rate(double t) const {
-    return p_.V0 * p_.omega * p_.omega * std::sin(p_.omega * t);
+  template <class Number>
+  [[nodiscard]] Number effective_gravity_rate(const Number& t) const {
+    using std::sin;
+    return p_.V0 * p_.omega * p_.omega * sin(p_.omega * t);
   }
   [[nodiscard]] double effective_gravity_curvature(double t) const {
     return p_.V0 * p_.omega * p_.omega * p_.omega * std::cos(p_.omega * t);
   }
   // velocity of the pivot, and of a bob resting on a wall, along the wall (m/s)
-  [[nodiscard]] double pivot_velocity(double t) const { return p_.V0 * std::sin(p_.omega * t); }
+  template <class Number>
+  [[nodiscard]] Number pivot_velocity(const Number& t) const {
+    using std::sin;
+    return p_.V0 * sin(p_.omega * t);
+  }
 
   // bob's velocity along the wall, y down (m/s)
   [[nodiscard]] double tangential_velocity(const State& x, double t) const {
@@ -93,13 +105,15 @@ class BasicPendulumWalls {
   }
 
   // Painlevé denominator cos θ0 − s μ sin θ0 (dimensionless) for slip sign s.
-  [[nodiscard]] double friction_denominator(double slip_sign) const {
+  template <class Number>
+  [[nodiscard]] Number friction_denominator(const Number& slip_sign) const {
     return cos0_ - slip_sign * p_.mu * sin0_;
   }
 
   // λ_N (N) in a contact phase, same formula on both walls.
-  [[nodiscard]] double normal_force(double t, double slip_sign) const {
-    return -p_.m * effective_gravity(t) * sin0_ / friction_denominator(slip_sign);
+  template <class Number, class SlipSign>
+  [[nodiscard]] Number normal_force(const Number& t, const SlipSign& slip_sign) const {
+    return -p_.m * effective_gravity(t) * sin0_ / friction_denominator(Number(slip_sign));
   }
 
   // E = ½ m l² θ̇² + m g l (1 − cos θ) (J), the free pendulum's energy at V0 = 0
@@ -113,20 +127,26 @@ class BasicPendulumWalls {
     return std::min(forcing_period, natural_period) / 16.0;
   }
 
-  void rhs(Mode mode, const State& x, State& dxdt, double t) const {
+  // Written once over a number type: double for the Runge–Kutta steppers, a
+  // Taylor series type for the Taylor stepper (the unqualified calls find its
+  // own sin, cos, sign and fabs).
+  template <class Number>
+  void rhs(Mode mode, const std::array<Number, state_size>& x,
+           std::array<Number, state_size>& dxdt, const Number& t) const {
     if (mode == Mode::free) {
       // g_e(t) and sin θ by core/fast_trig.hpp: this is the hot loop
-      const double g_e = p_.g - p_.V0 * p_.omega * cos_phase(p_.omega * t);
+      const Number g_e = p_.g - p_.V0 * p_.omega * cos_phase(p_.omega * t);
       dxdt[0] = x[1];
       dxdt[1] = -(p_.d * x[1] + p_.m * p_.l * g_e * sin_angle(x[0])) / (p_.m * p_.l * p_.l);
       dxdt[2] = 0.0;
       if constexpr (is_paper_model) dxdt[3] = 0.0;
       return;
     }
-    const double slip = pivot_velocity(t);
+    using std::fabs;
+    const Number slip = pivot_velocity(t);
     dxdt[0] = 0.0;
     dxdt[1] = 0.0;
-    dxdt[2] = p_.mu * normal_force(t, sign(slip)) * std::fabs(slip);
+    dxdt[2] = p_.mu * normal_force(t, sign(slip)) * fabs(slip);
     if constexpr (is_paper_model) dxdt[3] = 0.0;
   }
 
@@ -147,14 +167,18 @@ class BasicPendulumWalls {
   //          force; every change of s is an event where D is checked), but no
   //          jump where the slip reverses;
   //          k = 1 tangential velocity (m/s), a slip reversal
-  [[nodiscard]] WitnessSample witness(Mode mode, std::size_t k, const State& x, double t) const {
+  template <class Number>
+  [[nodiscard]] BasicWitnessSample<Number> witness(Mode mode, std::size_t k,
+                                                   const std::array<Number, state_size>& x,
+                                                   const Number& t) const {
     if (mode == Mode::free) {
       const double side = k == 0 ? 1.0 : -1.0;
       return {theta0_ - side * x[0], -side * x[1]};
     }
     if (k == 0)
       return {normal_force(t, 0.0), -p_.m * effective_gravity_rate(t) * sin0_ / cos0_};
-    return {pivot_velocity(t), p_.V0 * p_.omega * std::cos(p_.omega * t)};
+    using std::cos;
+    return {pivot_velocity(t), p_.V0 * p_.omega * cos(p_.omega * t)};
   }
 
   Transition<State, Mode> on_event(Mode mode, std::size_t k, CrossingKind crossing,
@@ -216,7 +240,6 @@ class BasicPendulumWalls {
   }
 
  private:
-  static double sign(double v) { return v > 0.0 ? 1.0 : v < 0.0 ? -1.0 : 0.0; }
 
   static Mode contact_mode(int wall) { return wall > 0 ? Mode::contact_right : Mode::contact_left; }
 
@@ -281,12 +304,15 @@ class BasicPendulumWalls {
     const double approach = -effective_gravity(t) * sin0_ * cos0_;
     const double approach_rate = -effective_gravity_rate(t) * sin0_ * cos0_;
     const double approach_curvature = -effective_gravity_curvature(t) * sin0_ * cos0_;
-    const auto remaining = time_to_accumulation(
+    // damping d/(m l²) (1/s); the gap's stiffness g_e cos θ0 / l (1/s²)
+    const double damping = p_.d / (p_.m * p_.l * p_.l);
+    const double gap_stiffness = effective_gravity(t) * cos0_ / p_.l;
+    const auto estimate = accept_accumulation(
         {p_.l * cos0_ * std::fabs(impact.qdot_after), approach, approach_rate, p_.e_n,
-         approach_curvature},
-        p_.accumulation_tol, 1.0 / p_.omega);
-    if (!remaining) return {after, Mode::free, t, false};
-    return enter_contact(wall, x[2], t + *remaining, log);
+         approach_curvature, damping, gap_stiffness},
+        p_.accumulation);
+    if (!estimate) return {after, Mode::free, t, false};
+    return enter_contact(wall, x[2], t + estimate->remaining, estimate->error_bound, log);
   }
 
   // Model P: the bob stays on the wall, sliding with the pivot, its normal
@@ -319,9 +345,11 @@ class BasicPendulumWalls {
   }
 
   Transition<State, Mode> enter_contact(int wall, double friction_work, double t,
-                                        EventLog& log) const {
+                                        double time_error, EventLog& log) const {
     const State resting = on_wall(wall, friction_work);
-    log.record({t, EventKind::accumulation, wall, resting[0], 0.0, 0.0});
+    EventRecord accumulation{t, EventKind::accumulation, wall, resting[0], 0.0, 0.0};
+    accumulation.accumulation_error = time_error;
+    log.record(accumulation);
     const double slip = pivot_velocity(t);
     // at zero slip the slip about to start decides the friction direction
     const double s = slip != 0.0 ? sign(slip) : sign(std::cos(p_.omega * t));

@@ -305,12 +305,15 @@ class RigidPendulumWalls {
     const double approach = -effective_gravity(t) * sin0_ * cos0_ * share;
     const double approach_rate = -effective_gravity_rate(t) * sin0_ * cos0_ * share;
     const double approach_curvature = -effective_gravity_curvature(t) * sin0_ * cos0_ * share;
-    const auto remaining = time_to_accumulation(
+    // damping d / M_θ (1/s); the gap's stiffness m l g_e cos θ0 / M_θ (1/s²)
+    const double damping = p_.d / theta_inertia_;
+    const double gap_stiffness = p_.m * p_.l * effective_gravity(t) * cos0_ / theta_inertia_;
+    const auto estimate = accept_accumulation(
         {p_.l * cos0_ * std::fabs(impact.theta_dot), approach, approach_rate, p_.e_n,
-         approach_curvature},
-        p_.accumulation_tol, 1.0 / p_.omega);
-    if (!remaining) return {after, Mode::free, t, false};
-    return enter_contact(wall, after, t + *remaining, log);
+         approach_curvature, damping, gap_stiffness},
+        p_.accumulation);
+    if (!estimate) return {after, Mode::free, t, false};
+    return enter_contact(wall, after, t + estimate->remaining, estimate->error_bound, log);
   }
 
   // The contact problem at rest on wall w at time t: which contact mode, or
@@ -350,9 +353,11 @@ class RigidPendulumWalls {
   }
 
   Transition<State, Mode> enter_contact(int wall, const State& after, double t,
-                                        EventLog& log) const {
+                                        double time_error, EventLog& log) const {
     const State resting = on_wall(wall, after);
-    log.record({t, EventKind::accumulation, wall, resting[0], 0.0, 0.0});
+    EventRecord accumulation{t, EventKind::accumulation, wall, resting[0], 0.0, 0.0};
+    accumulation.accumulation_error = time_error;
+    log.record(accumulation);
     return settle(Mode::free, wall, resting, t, EventKind::contact_start, log);
   }
 

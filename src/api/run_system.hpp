@@ -35,7 +35,11 @@ class SamplingObserver {
   template <class State, class Mode>
   void observe(double t, const State& x, Mode mode) {
     if (t >= next_sample_) {
-      output_.samples.push_back({t, x[0], x[1], mode_name_(mode)});
+      const TrajectorySample sample{t, x[0], x[1], mode_name_(mode)};
+      if (request_.sample_sink)
+        request_.sample_sink->write(sample);
+      else
+        output_.samples.push_back(sample);
       ++sample_index_;
       next_sample_ = t0_ + static_cast<double>(sample_index_) * request_.sample_step;
     }
@@ -78,7 +82,7 @@ RunOutput run_system(const System& system, const typename System::State& x0,
   LoopOptions options;
   options.location.grazing_tolerance = settings.atol;
 
-  EventLog log(request.keep_events);
+  EventLog log(request.keep_events, request.event_sink);
   if (request.keep_events) log.reserve(1024);
   detail::SamplingObserver<ModeName> observer(output.t0, output.t_end, request, output, mode_name);
 
@@ -91,6 +95,9 @@ RunOutput run_system(const System& system, const typename System::State& x0,
   output.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   output.events = log.records();
+  output.event_count = log.total();
+  if (const EventRecord* last = log.last()) output.last_event = *last;
+  output.largest_accumulation_error = log.largest_accumulation_error();
   output.t_final = result.t;
   output.termination = std::string(to_string(result.termination));
   output.steps = result.counters.steps;

@@ -1,5 +1,9 @@
 #include "api/scene_jobs.hpp"
 
+#include <algorithm>
+
+#include <fmt/format.h>
+
 #include "api/oscillator_registry.hpp"
 #include "io/bad_input.hpp"
 
@@ -10,10 +14,7 @@ RunOutput simulate(const Scene& scene, const RunRequest& request) {
 }
 
 SectionResult poincare(const Scene& scene, const SectionRequest& request) {
-  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
-  if (!entry.section)
-    throw BadInput("oscillator", scene.oscillator, "has no Poincare-section entry");
-  return entry.section(scene, request);
+  return sweep_target(scene).section(scene, request);
 }
 
 PeriodicResult periodic(const Scene& scene, const PeriodicRequest& request) {
@@ -21,6 +22,33 @@ PeriodicResult periodic(const Scene& scene, const PeriodicRequest& request) {
   if (!entry.periodic_orbit)
     throw BadInput("oscillator", scene.oscillator, "has no periodic-orbit entry");
   return entry.periodic_orbit(scene, request);
+}
+
+ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& job) {
+  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
+  if (!entry.continuation)
+    throw BadInput("oscillator", scene.oscillator, "has no continuation entry");
+  const SceneSchema& schema = *entry.schema;
+  const auto spec = std::find_if(schema.keys.begin(), schema.keys.end(),
+                                 [&](const KeySpec& k) { return k.key == job.parameter; });
+  if (spec == schema.keys.end() || spec->is_text || job.parameter.starts_with("initial.") ||
+      job.parameter.starts_with("integrator.") || job.parameter == "t0")
+    throw BadInput("--param", job.parameter,
+                   fmt::format("not a numeric parameter of oscillator {}", schema.oscillator));
+  // both ends admissible (BadInput names the key and value otherwise)
+  Scene probe = scene;
+  for (double value : {job.from, job.to}) {
+    probe.values[job.parameter] = value;
+    validate(probe, schema);
+  }
+  ContinuationJobResult result = entry.continuation(scene, job);
+  if (!result.available) throw BadInput("oscillator", scene.oscillator, result.note);
+  if (result.branches.empty() || result.branches[0].result.stop_reason == "start_not_converged")
+    throw BadInput("--param", fmt::format("{}={}:{}", job.parameter, job.from, job.to),
+                   fmt::format("no period-{} orbit converged at {} = {} (try --period, --start "
+                               "or --transient)",
+                               job.period, job.parameter, job.from));
+  return result;
 }
 
 SweepTarget sweep_target(const Scene& scene) {

@@ -4,6 +4,7 @@
 // the same validation, the same numbers and the same errors.
 #pragma once
 
+#include "analysis/continuation.hpp"
 #include "analysis/periodic.hpp"
 #include "analysis/section.hpp"
 #include "analysis/sweep.hpp"
@@ -22,6 +23,14 @@ SectionResult poincare(const Scene& scene, const SectionRequest& request);
 // Newton shooting for a period-n orbit and its Floquet multipliers. BadInput
 // (key `oscillator`) when the scene's oscillator or model has none.
 PeriodicResult periodic(const Scene& scene, const PeriodicRequest& request);
+
+// Pseudo-arclength continuation of a period-n orbit in job.parameter from
+// job.from to job.to, its bifurcations and grazing points, and with
+// job.doublings the doubled orbits. BadInput when the key is not a numeric
+// parameter of the oscillator (key `--param`), an end of the range is out of
+// the key's range, the oscillator or model has no Jacobians (key
+// `oscillator`), or no orbit converges at the start (key `--param`).
+ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& job);
 
 // What a sweep of the scene runs at each point: its schema and its section
 // binding. BadInput (key `oscillator`) when it has no section binding.

@@ -13,6 +13,7 @@ const SceneSchema& registered_schema(std::string_view oscillator) {
 }  // namespace
 
 Scene load_scene(std::string_view name_or_path) {
+  register_model_scene(name_or_path);
   return read_scene(name_or_path, registered_schema);
 }
 

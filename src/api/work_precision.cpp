@@ -5,10 +5,16 @@
 #include <ctime>
 #include <stdexcept>
 
+#include <boost/multiprecision/cpp_bin_float.hpp>
+
+#include "api/bindings/pendulum_walls_parameters.hpp"
 #include "api/oscillator_registry.hpp"
 #include "api/scene_loading.hpp"
+#include "core/simulator.hpp"
+#include "integrate/taylor_stepper.hpp"
 #include "oscillators/bouncing_ball/bouncing_ball.hpp"
 #include "oscillators/linear_impact/linear_impact.hpp"
+#include "oscillators/pendulum_walls/pendulum_walls.hpp"
 
 namespace impactlab {
 
@@ -75,7 +81,7 @@ ReferenceImpacts closed_form_reference(const Scene& scene, double t_end, std::si
     p.omega = scene.number("omega");
     p.sigma = scene.number("sigma");
     p.r = scene.number("r");
-    p.accumulation_tol = scene.number("accumulation_tol");
+    p.accumulation = accumulation_tolerance(scene, 1.0 / p.omega, p.sigma);
     const LinearImpact system(p);
     reference.impacts = closed_form_impacts(
         system, LinearImpact::State{scene.number("initial.x"), scene.number("initial.x_dot")},
@@ -86,7 +92,7 @@ ReferenceImpacts closed_form_reference(const Scene& scene, double t_end, std::si
     p.A = scene.number("A");
     p.omega = scene.number("omega");
     p.r = scene.number("r");
-    p.accumulation_tol = scene.number("accumulation_tol");
+    p.accumulation = accumulation_tolerance(scene, 1.0 / p.omega, p.A);
     const BouncingBall system(p);
     reference.impacts = closed_form_impacts(
         system, BouncingBall::State{scene.number("initial.y"), scene.number("initial.y_dot")},
@@ -98,12 +104,40 @@ ReferenceImpacts closed_form_reference(const Scene& scene, double t_end, std::si
   return reference;
 }
 
+std::vector<ImpactSample> extended_precision_reference(const Scene& scene, double t_end,
+                                                       double tolerance) {
+  if (scene.oscillator != "pendulum_walls" || scene.text("model") != "newton")
+    throw std::invalid_argument("extended_precision_reference: pendulum_walls, model newton only");
+  using Quad = boost::multiprecision::cpp_bin_float_quad;
+  const PendulumWalls system(pendulum_walls_parameters(scene));
+  StepperSettings settings;
+  settings.rtol = tolerance;
+  settings.atol = tolerance;
+  settings.max_step = system.max_step();
+  LoopOptions options;
+  options.location.grazing_tolerance = tolerance;
+  EventLog log;
+  TaylorStepper<PendulumWalls, Quad> stepper(settings);
+  const PendulumWalls::State x0 = {scene.number("initial.theta"), scene.number("initial.theta_dot"),
+                                   0.0};
+  const auto result =
+      simulate(system, stepper, x0, PendulumMode::free, scene.number("t0"), t_end, options, log);
+  if (result.termination != Termination::completed)
+    throw std::runtime_error("extended_precision_reference: the run stopped: " +
+                             std::string(to_string(result.termination)));
+  return impacts_of(log.records());
+}
+
 ReferenceImpacts integrated_reference(const Scene& scene, double t_end, std::size_t max_impacts,
                                       const std::vector<std::string>& methods,
                                       double trusted_time_spread) {
   if (methods.empty()) throw std::invalid_argument("integrated_reference: no methods");
   std::vector<std::vector<ImpactSample>> runs;
   for (const auto& method : methods) {
+    if (method == "taylor_quad") {
+      runs.push_back(extended_precision_reference(scene, t_end));
+      continue;
+    }
     const Scene tight = with_tolerances(scene, method, 1e-14, 1e-16);
     RunRequest request;
     request.periods = 0.0;
@@ -241,9 +275,13 @@ bool has_closed_form(const Scene& scene) {
 }
 
 ReferenceImpacts bench_reference(const Scene& scene, double t_end, std::size_t max_impacts) {
-  return has_closed_form(scene)
-             ? closed_form_reference(scene, t_end, max_impacts)
-             : integrated_reference(scene, t_end, max_impacts, {"rk8pd", "bulirsch_stoer"}, 1e-10);
+  if (has_closed_form(scene)) return closed_form_reference(scene, t_end, max_impacts);
+  // the quad-precision Taylor run exists for the pendulum's Model N only
+  const bool quad = scene.oscillator == "pendulum_walls" && scene.text("model") == "newton";
+  return integrated_reference(scene, t_end, max_impacts,
+                              quad ? std::vector<std::string>{"taylor_quad", "rk8pd"}
+                                   : std::vector<std::string>{"rk8pd", "bulirsch_stoer"},
+                              1e-10);
 }
 
 }  // namespace impactlab

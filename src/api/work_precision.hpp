@@ -157,6 +157,7 @@ ReferenceImpacts closed_form_reference(const Scene& scene, double t_end, std::si
 // each of `methods` at rtol = 1e-14 (atol = 1e-16) from t0 to t_end; the
 // impacts of the first method, trimmed to the leading ones where every method
 // agrees within `trusted_time_spread` in time and the impact counts agree.
+// The method "taylor_quad" is extended_precision_reference (below).
 ReferenceImpacts integrated_reference(const Scene& scene, double t_end, std::size_t max_impacts,
                                       const std::vector<std::string>& methods,
                                       double trusted_time_spread);
@@ -166,9 +167,20 @@ ReferenceImpacts integrated_reference(const Scene& scene, double t_end, std::siz
 bool has_closed_form(const Scene& scene);
 
 // The reference the bench measures errors against, from t0 to t_end: the
-// closed form where there is one, else the scene integrated with rk8pd and
-// bulirsch_stoer (impacts trusted where they agree within 1e-10).
+// closed form where there is one, else the scene integrated at rtol 1e-14 by
+// two methods whose impacts are trusted where they agree within 1e-10: the
+// quad-precision Taylor stepper and rk8pd for the pendulum's Model N (the
+// CLI's bench cases), rk8pd and bulirsch_stoer otherwise.
 ReferenceImpacts bench_reference(const Scene& scene, double t_end, std::size_t max_impacts);
+
+// The impacts of a pendulum_walls scene (Model N) from t0 to t_end by the
+// Taylor stepper in 113-bit arithmetic (Boost.Multiprecision's
+// cpp_bin_float_quad) at rtol = atol = `tolerance` (1e-20: order 25): the
+// series, the steps and the event polynomials in quad precision; the state
+// is rounded to double only at events (the reset maps are the model's own),
+// so the impact times are exact to about the double spacing of t.
+std::vector<ImpactSample> extended_precision_reference(const Scene& scene, double t_end,
+                                                       double tolerance = 1e-20);
 
 // One stepper at one tolerance on one case.
 struct WorkPrecisionPoint {

@@ -18,6 +18,7 @@
 #include "api/work_precision.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
+#include "cli/run_program.hpp"
 #include "integrate/stepper_dispatch.hpp"
 #include "io/bad_input.hpp"
 #include "io/output.hpp"
@@ -145,13 +146,14 @@ void run_scipy(const BenchOptions& options, const BenchPlan& plan,
     spec_file << spec.dump();
   }
   const std::string script = std::string(IMPACTLAB_SOURCE_DIR) + "/scripts/scipy_event_loop.py";
-  const std::string command = fmt::format("'{}' '{}' '{}' '{}'", options.python, script,
-                                          spec_path.string(), result_path.string());
-  const int status = std::system(command.c_str());
+  // an argument vector, never shell text: paths are data
+  const std::vector<std::string> command = {options.python, script, spec_path.string(),
+                                            result_path.string()};
+  const int status = run_program(command);
   std::filesystem::remove(spec_path);
   if (status != 0) {
     std::filesystem::remove(result_path);
-    throw std::runtime_error("the SciPy event loop failed: " + command);
+    throw std::runtime_error("the SciPy event loop failed: " + describe_program(command));
   }
   nlohmann::json scipy_result;
   {
@@ -417,10 +419,9 @@ int run_bench(const BenchOptions& options, const std::vector<std::string>& comma
 
   if (options.plots) {
     const std::string script = std::string(IMPACTLAB_SOURCE_DIR) + "/scripts/plot_bench.py";
-    const std::string command =
-        fmt::format("'{}' '{}' '{}'", options.python, script, directory.string());
-    if (std::system(command.c_str()) != 0)
-      throw std::runtime_error("plotting failed: " + command);
+    const std::vector<std::string> command = {options.python, script, directory.string()};
+    if (run_program(command) != 0)
+      throw std::runtime_error("plotting failed: " + describe_program(command));
   }
 
   if (!options.quiet) {

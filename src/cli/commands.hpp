@@ -15,5 +15,6 @@ Command add_poincare_command(CLI::App& app);
 Command add_sweep_command(CLI::App& app);
 Command add_periodic_command(CLI::App& app);
 Command add_spectrum_command(CLI::App& app);
+Command add_continue_command(CLI::App& app);
 
 }  // namespace impactlab::cli

@@ -14,6 +14,7 @@
 #include "api/scene_loading.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
+#include "cli/run_program.hpp"
 #include "io/bad_input.hpp"
 #include "io/output.hpp"
 
@@ -49,33 +50,15 @@ int run_compare(const SceneOptions& options, const std::string& model_list,
     ++done;
   }
   const nlohmann::json numbers = comparison_numbers(comparison);
-  prepare_output_directory(directory);
+  // the data files, summary.md and compare.json, committed together
+  RunFiles run_files(directory);
+  write_impacts_csv(run_files.add("compare_impacts.csv").stream(), comparison);
+  write_contacts_csv(run_files.add("compare_contacts.csv").stream(), comparison);
+  write_section_csv(run_files.add("compare_section.csv").stream(), comparison);
+  run_files.add("summary.md").stream() << comparison_summary(comparison, numbers);
 
-  AtomicFile impacts(directory / "compare_impacts.csv");
-  write_impacts_csv(impacts.stream(), comparison);
-  AtomicFile contacts(directory / "compare_contacts.csv");
-  write_contacts_csv(contacts.stream(), comparison);
-  AtomicFile section(directory / "compare_section.csv");
-  write_section_csv(section.stream(), comparison);
-  AtomicFile summary(directory / "summary.md");
-  summary.stream() << comparison_summary(comparison, numbers);
-  impacts.commit();
-  contacts.commit();
-  section.commit();
-  summary.commit();
-
-  // the picture: its failure costs the picture only
   std::vector<std::string> files = {"compare_impacts.csv", "compare_contacts.csv",
-                                    "compare_section.csv", "summary.md"};
-  const std::string plot = fmt::format("/usr/bin/python3 '{}/plot_compare.py' '{}' >/dev/null 2>&1",
-                                       IMPACTLAB_SCRIPTS_DIR, directory.string());
-  if (std::system(plot.c_str()) == 0) {
-    files.push_back("compare.png");
-  } else {
-    std::cerr << "impactlab: warning: compare.png not drawn (" << IMPACTLAB_SCRIPTS_DIR
-              << "/plot_compare.py failed); the data are written\n";
-  }
-  files.push_back("compare.json");
+                                    "compare_section.csv", "summary.md", "compare.json"};
 
   nlohmann::json runs = nlohmann::json::object();
   for (const auto& run : comparison.runs)
@@ -96,7 +79,7 @@ int run_compare(const SceneOptions& options, const std::string& model_list,
                        {"derived", run.output.derived}};
   double wall_time = 0.0;
   for (const auto& run : comparison.runs) wall_time += run.output.wall_time;
-  const nlohmann::json meta = {
+  nlohmann::json meta = {
       {"impactlab_version", IMPACTLAB_VERSION},
       {"command", command_line},
       {"created_utc", utc_now()},
@@ -121,9 +104,25 @@ int run_compare(const SceneOptions& options, const std::string& model_list,
          {{"t", "s, t0 + k T"}, {"q_<model>", "rad"}, {"qdot_<model>", "rad/s"}}}}},
       {"files", files},
   };
-  AtomicFile meta_file(directory / "compare.json");
-  write_json(meta_file, meta);
-  meta_file.commit();
+  write_json(run_files.add("compare.json"), meta);
+  run_files.commit();
+
+  // the picture, drawn from the committed data: its failure costs the picture
+  // only; where it is drawn, compare.json is rewritten (atomically) to list it
+  // an argument vector, never shell text: the directory is data
+  const std::vector<std::string> plot = {
+      "/usr/bin/python3", std::string(IMPACTLAB_SCRIPTS_DIR) + "/plot_compare.py",
+      directory.string()};
+  if (run_program(plot, ProgramOutput::discard) == 0) {
+    files.insert(files.end() - 1, "compare.png");
+    meta["files"] = files;
+    AtomicFile listed(directory / "compare.json");
+    write_json(listed, meta);
+    listed.commit();
+  } else {
+    std::cerr << "impactlab: warning: compare.png not drawn (" << IMPACTLAB_SCRIPTS_DIR
+              << "/plot_compare.py failed); the data are written\n";
+  }
 
   if (!options.quiet) {
     for (const auto& run : comparison.runs)

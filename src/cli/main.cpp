@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
       add_sweep_command(app),
       add_periodic_command(app),
       add_spectrum_command(app),
+      add_continue_command(app),
   };
 
   const std::vector<std::string> command_line(argv, argv + argc);

@@ -26,7 +26,8 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
   SectionRequest request = options.request();
   request.lyapunov = lyapunov;
   const auto directory = options.scene.output_directory();
-  prepare_output_directory(directory);
+  // poincare.csv and meta.json, committed together (meta.json last)
+  RunFiles files(directory);
 
   const auto start = std::chrono::steady_clock::now();
   const SectionResult result = poincare(scene, request);
@@ -38,8 +39,7 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
   const bool impact_map = request.section.kind == SectionKind::impact;
   const bool user_section = request.section.kind != SectionKind::impact &&
                             request.section.kind != SectionKind::strobe;
-  AtomicFile csv(directory / "poincare.csv");
-  auto& out = csv.stream();
+  auto& out = files.add("poincare.csv").stream();
   out << (impact_map ? "k,t,q,qdot,wall,phase\n" : user_section ? "k,t,q,qdot,phase\n" : "k,t,q,qdot\n");
   for (std::size_t k = 0; k < result.points.size(); ++k) {
     const SectionPoint& p = result.points[k];
@@ -80,10 +80,8 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
     meta["lyapunov"] = {{"largest_exponent_per_time", fmt::format("{}", result.lyapunov)},
                         {"note", result.lyapunov_note}};
   }
-  AtomicFile meta_file(directory / "meta.json");
-  write_json(meta_file, meta);
-  csv.commit();
-  meta_file.commit();
+  write_json(files.add("meta.json"), meta);
+  files.commit();
 
   if (options.plot)
     plot_with_python("poincare", directory / "poincare.csv", directory / "poincare.png",

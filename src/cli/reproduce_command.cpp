@@ -13,6 +13,7 @@
 #include "api/scene_loading.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
+#include "cli/run_program.hpp"
 #include "io/bad_input.hpp"
 #include "io/output.hpp"
 
@@ -42,9 +43,9 @@ void draw_plots(const std::filesystem::path& directory, bool quiet) {
               << script.string() << " not found); the data are complete\n";
     return;
   }
-  const std::string command = fmt::format("'{}' '{}' '{}'{}", python.string(), script.string(),
-                                          directory.string(), quiet ? " > /dev/null" : "");
-  if (std::system(command.c_str()) != 0)
+  // an argument vector, never shell text: the directory is data
+  if (run_program({python.string(), script.string(), directory.string()},
+                  quiet ? ProgramOutput::discard_stdout : ProgramOutput::inherit) != 0)
     std::cerr << "impactlab: warning: the plot script failed; the data are complete\n";
 }
 

@@ -22,34 +22,32 @@ int run_simulate(const SceneOptions& options, const std::vector<std::string>& co
   RunRequest request = options.request();
   request.sample_step = sample_step;
   const auto directory = options.output_directory();
-  prepare_output_directory(directory);
+  // the run's files, committed together at the end; the rows stream into
+  // them as the run goes (memory does not grow with the run's length)
+  RunFiles files(directory);
+  std::vector<std::string> names = {"events.csv", "meta.json"};
+  EventsCsvWriter events(files.add("events.csv"));
+  request.keep_events = false;
+  request.event_sink = &events;
+  std::optional<TrajectoryCsvWriter> trajectory;
+  if (sample_step > 0.0) {
+    trajectory.emplace(files.add("trajectory.csv"));
+    request.sample_sink = &*trajectory;
+    names.push_back("trajectory.csv");
+  }
 
   ProgressBar progress(!options.quiet);
   request.progress = [&progress](double fraction) { progress.update(fraction); };
   const RunOutput output = simulate(scene, request);
 
-  std::vector<std::string> files = {"events.csv", "meta.json"};
-  AtomicFile events(directory / "events.csv");
-  write_events_csv(events, output.events);
-  std::optional<AtomicFile> trajectory;
-  if (sample_step > 0.0) {
-    trajectory.emplace(directory / "trajectory.csv");
-    write_trajectory_csv(*trajectory, output.samples);
-    files.push_back("trajectory.csv");
-  }
-
   // the run's record (api/run_record.hpp) with what only a file needs
   nlohmann::json meta = run_record(scene, output);
   meta["command"] = command_line;
   meta["created_utc"] = utc_now();
-  meta["files"] = files;
-  AtomicFile meta_file(directory / "meta.json");
-  write_json(meta_file, meta);
-
-  // all files complete: put them in place, meta.json last
-  events.commit();
-  if (trajectory) trajectory->commit();
-  meta_file.commit();
+  meta["files"] = names;
+  write_json(files.add("meta.json"), meta);
+  // all files complete: put them in place together, meta.json last
+  files.commit();
 
   const bool stopped = output.termination != "completed";
   if (!options.quiet) {
@@ -60,7 +58,7 @@ int run_simulate(const SceneOptions& options, const std::vector<std::string>& co
         output.steps, output.wall_time, (directory / "meta.json").string());
   }
   if (stopped) {
-    const EventRecord* last = output.events.empty() ? nullptr : &output.events.back();
+    const EventRecord* last = output.last_event ? &*output.last_event : nullptr;
     std::cerr << fmt::format("impactlab: run stopped early ({}) at t = {} s{}\n",
                              output.termination, output.t_final,
                              last ? fmt::format(", last event {} on wall {} at q = {}",

@@ -60,7 +60,7 @@ std::map<RecordKey, SweepRecord> read_checkpoints(const std::filesystem::path& d
   return done;
 }
 
-void write_outputs(const std::filesystem::path& directory, const SweepPlan& plan,
+void write_outputs(RunFiles& run_files, const SweepPlan& plan,
                    const SweepTable& table, std::vector<std::string>& files) {
   auto summary_fields = [&](std::size_t row) {
     return fmt::format("{},{},{},{},{}", table.period[row], number(table.impacts_per_period[row]),
@@ -69,8 +69,8 @@ void write_outputs(const std::filesystem::path& directory, const SweepPlan& plan
   auto direction_name = [](int direction) { return direction > 0 ? "up" : "down"; };
   if (plan.axes.size() == 1) {
     const SweepAxis& axis = plan.axes[0];
-    AtomicFile bifurcation(directory / "bifurcation.csv");
-    AtomicFile summary(directory / "summary.csv");
+    AtomicFile& bifurcation = run_files.add("bifurcation.csv");
+    AtomicFile& summary = run_files.add("summary.csv");
     bifurcation.stream() << axis.name << ",k,t,q,qdot,wall,direction\n";
     summary.stream() << axis.name
                      << ",direction,period,impacts_per_period,contact,lyapunov,termination,"
@@ -84,18 +84,15 @@ void write_outputs(const std::filesystem::path& directory, const SweepPlan& plan
     for (std::size_t row = 0; row < table.value.size(); ++row)
       summary.stream() << number(table.value[row]) << ',' << direction_name(table.direction[row])
                        << ',' << summary_fields(row) << ',' << table.points[row] << '\n';
-    bifurcation.commit();
-    summary.commit();
     files = {"bifurcation.csv", "summary.csv"};
     return;
   }
-  AtomicFile classes(directory / "classes.csv");
+  AtomicFile& classes = run_files.add("classes.csv");
   classes.stream() << plan.axes[0].name << ',' << plan.axes[1].name
                    << ",period,impacts_per_period,contact,lyapunov,termination\n";
   for (std::size_t row = 0; row < table.value.size(); ++row)
     classes.stream() << number(table.value[row]) << ',' << number(table.value2[row]) << ','
                      << summary_fields(row) << '\n';
-  classes.commit();
   files = {"classes.csv"};
 }
 
@@ -144,7 +141,7 @@ std::map<RecordKey, SweepRecord> parse_records(const std::vector<std::string>& t
   return all;
 }
 
-void write_meta(const std::filesystem::path& directory, const nlohmann::json& definition,
+void write_meta(RunFiles& run_files, const nlohmann::json& definition,
                 const Scene& scene, const SceneSchema& schema,
                 const std::map<RecordKey, SweepRecord>& all, nlohmann::json run,
                 const std::vector<std::string>& command_line, std::vector<std::string> files) {
@@ -185,9 +182,7 @@ void write_meta(const std::filesystem::path& directory, const nlohmann::json& de
         {"points", "section points recorded"}}},
       {"files", files},
   };
-  AtomicFile meta_file(directory / "meta.json");
-  write_json(meta_file, meta);
-  meta_file.commit();
+  write_json(run_files.add("meta.json"), meta);
 }
 
 int run_sweep_command(const SweepOptions& options, const std::vector<std::string>& command_line) {
@@ -195,7 +190,8 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   const SweepTarget target = sweep_target(scene);
   const SweepPlan plan = make_sweep_plan(sweep_spec(options), scene, *target.schema);
   const auto directory = options.section.scene.output_directory();
-  prepare_output_directory(directory);
+  // the sweep's data files and meta.json, committed together by rank 0
+  RunFiles run_files(directory);
   // MPI starts once the input is known to be good: bad input exits with
   // status 2 on every rank alike, before any rank waits for another
   MpiSession mpi;
@@ -246,14 +242,15 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   }
 
   std::vector<std::string> files;
-  write_outputs(directory, plan, sweep_table(plan, tasks, all), files);
-  write_meta(directory, definition, scene, *target.schema, all,
+  write_outputs(run_files, plan, sweep_table(plan, tasks, all), files);
+  write_meta(run_files, definition, scene, *target.schema, all,
              {{"threads", options.threads},
               {"mpi_ranks", mpi.size()},
               {"tasks", tasks.size()},
               {"points_reused_from_checkpoint", done.size()},
               {"wall_time_s", wall_time}},
              command_line, files);
+  run_files.commit();
   // the sweep is complete: its checkpoints (of any rank count) are spent
   for (const auto& file : std::filesystem::directory_iterator(directory)) {
     const std::string name = file.path().filename().string();

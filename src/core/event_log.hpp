@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/event_sink.hpp"
+
 namespace impactlab {
 
 enum class EventKind : std::uint8_t {
@@ -55,32 +57,56 @@ struct EventRecord {
   double instantaneous_residual = not_computed;
   double sliding_residual = not_computed;
   double tangential_velocity_after = not_computed;  // γ_T just after an impact (m/s)
+  // an accumulation: the bound on the error of its time (s), from
+  // contact/accumulation.hpp
+  double accumulation_error = not_computed;
 };
 
-// Counts every event and keeps the records unless told not to (a benchmark or
-// a long sweep may only need the counts). Reserve capacity up front to keep
-// the event loop free of allocations.
+// Counts every event, keeps the records unless told not to (a benchmark or a
+// long sweep may only need the counts), and hands each to an event sink when
+// one is given (a file written as the run goes). Reserve capacity up front to
+// keep the event loop free of allocations. Also keeps the largest error bound
+// of an accumulation time (s; 0 when none happened).
 class EventLog {
  public:
-  explicit EventLog(bool keep_records = true) : keep_records_(keep_records) {}
+  explicit EventLog(bool keep_records = true, EventSink* sink = nullptr)
+      : keep_records_(keep_records), sink_(sink) {}
 
   void reserve(std::size_t n) { records_.reserve(n); }
+  // forgets the records kept so far (the counts stay): a caller that reads
+  // them chunk by chunk keeps its memory bounded
+  void clear_records() { records_.clear(); }
 
   void record(const EventRecord& event) {
     ++counts_[static_cast<std::size_t>(event.kind)];
+    if (event.kind == EventKind::accumulation && event.accumulation_error > largest_accumulation_error_)
+      largest_accumulation_error_ = event.accumulation_error;
     if (keep_records_) records_.push_back(event);
+    if (sink_) sink_->write(event);
+    last_ = event;
   }
 
   [[nodiscard]] const std::vector<EventRecord>& records() const { return records_; }
   [[nodiscard]] std::uint64_t count(EventKind kind) const {
     return counts_[static_cast<std::size_t>(kind)];
   }
+  [[nodiscard]] std::uint64_t total() const {
+    std::uint64_t sum = 0;
+    for (const auto n : counts_) sum += n;
+    return sum;
+  }
+  // the last event recorded, if any
+  [[nodiscard]] const EventRecord* last() const { return total() > 0 ? &last_ : nullptr; }
+  [[nodiscard]] double largest_accumulation_error() const { return largest_accumulation_error_; }
 
  private:
   static constexpr std::size_t kind_count = 7;
   bool keep_records_;
+  EventSink* sink_;
   std::vector<EventRecord> records_;
   std::uint64_t counts_[kind_count] = {};
+  EventRecord last_{};
+  double largest_accumulation_error_ = 0.0;
 };
 
 }  // namespace impactlab

@@ -25,10 +25,14 @@ enum class TriggerDirection {
 // A witness function's value and its time derivative along the flow of the
 // current mode. The rate is what lets the event locator bracket extrema of the
 // witness inside one step, so that a grazing contact (a double root) is seen.
-struct WitnessSample {
-  double value = 0.0;
-  double rate = 0.0;
+// A system may write its witnesses over a number type (a Taylor series type
+// runs through them, integrate/taylor_series.hpp): BasicWitnessSample<Number>.
+template <class Number>
+struct BasicWitnessSample {
+  Number value{};
+  Number rate{};
 };
+using WitnessSample = BasicWitnessSample<double>;
 
 // How a witness reached zero.
 enum class CrossingKind {

@@ -188,10 +188,17 @@ RunResult<typename System::State, typename System::Mode> simulate(
     else
       state_at(tb, x_end);
 
-    const LocatedEvent event = locate_first_event(system, rhs.mode, ta, tb,
-                                                  stepper.previous_state(), x_end, state_at,
-                                                  scan_at, Stepper::has_cheap_scan, location,
-                                                  just_grazed);
+    // a stepper whose dense output is a polynomial locates events on it
+    // itself (integrate/taylor_stepper.hpp); the others are scanned
+    const LocatedEvent event = [&] {
+      if constexpr (requires { stepper.locate_first_event(system, rhs.mode, ta, tb, location,
+                                                          just_grazed); })
+        return stepper.locate_first_event(system, rhs.mode, ta, tb, location, just_grazed);
+      else
+        return locate_first_event(system, rhs.mode, ta, tb, stepper.previous_state(), x_end,
+                                  state_at, scan_at, Stepper::has_cheap_scan, location,
+                                  just_grazed);
+    }();
     just_grazed = no_witness;
     if (!event.found) {
       emit_observations(tb, state_at);

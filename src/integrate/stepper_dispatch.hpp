@@ -15,12 +15,13 @@
 #include "integrate/odeint_dopri5.hpp"
 #include "integrate/odeint_fehlberg78.hpp"
 #include "integrate/stepper_settings.hpp"
+#include "integrate/taylor_stepper.hpp"
 
 namespace impactlab {
 
 // every integrator.method value, in the order the docs list them
-inline constexpr std::array<std::string_view, 5> stepper_names = {
-    "dopri5", "rkf78", "bulirsch_stoer", "rk8pd", "exact"};
+inline constexpr std::array<std::string_view, 6> stepper_names = {
+    "dopri5", "rkf78", "bulirsch_stoer", "rk8pd", "taylor", "exact"};
 
 inline bool is_stepper_name(std::string_view name) {
   for (auto known : stepper_names)
@@ -29,7 +30,8 @@ inline bool is_stepper_name(std::string_view name) {
 }
 
 // Calls `body(stepper)` with a freshly constructed stepper of the named method
-// for `System`, and returns what it returns. `exact` needs HasExactFlow.
+// for `System`, and returns what it returns. `exact` needs HasExactFlow,
+// `taylor` HasSeriesRhs.
 template <HybridSystem System, class Body>
 decltype(auto) with_stepper(std::string_view method, const StepperSettings& settings, Body&& body) {
   using State = typename System::State;
@@ -48,6 +50,16 @@ decltype(auto) with_stepper(std::string_view method, const StepperSettings& sett
   if (method == "rk8pd") {
     GslRk8pd<State> stepper(settings);
     return body(stepper);
+  }
+  if (method == "taylor") {
+    if constexpr (HasSeriesRhs<System>) {
+      TaylorStepper<System> stepper(settings);
+      return body(stepper);
+    } else {
+      throw std::invalid_argument(
+          "integrator.method = taylor: this system's right-hand side is not written over a "
+          "number type (no Taylor series for it)");
+    }
   }
   if (method == "exact") {
     if constexpr (HasExactFlow<System>) {

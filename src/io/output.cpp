@@ -1,10 +1,10 @@
 #include "io/output.hpp"
 
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 #include <system_error>
 
-#include <fmt/format.h>
 #include <unistd.h>
 
 #include "io/bad_input.hpp"
@@ -26,11 +26,59 @@ AtomicFile::~AtomicFile() {
   std::filesystem::remove(temporary_, ignored);
 }
 
-void AtomicFile::commit() {
+void AtomicFile::finish() {
   stream_.flush();
   if (!stream_) throw std::runtime_error("writing " + temporary_.string() + " failed");
   stream_.close();
+  if (stream_.fail()) throw std::runtime_error("closing " + temporary_.string() + " failed");
+}
+
+void AtomicFile::publish() {
   std::filesystem::rename(temporary_, path_);
+  committed_ = true;
+}
+
+void AtomicFile::withdraw() {
+  if (!committed_) return;
+  std::error_code ignored;
+  std::filesystem::remove(path_, ignored);
+}
+
+void AtomicFile::commit() {
+  finish();
+  publish();
+}
+
+RunFiles::RunFiles(std::filesystem::path directory) : directory_(std::move(directory)) {
+  std::error_code error;
+  const bool existed = std::filesystem::exists(directory_, error);
+  prepare_output_directory(directory_);
+  created_directory_ = !existed;
+}
+
+RunFiles::~RunFiles() {
+  if (committed_) return;
+  files_.clear();  // removes the temporaries
+  std::error_code ignored;
+  if (created_directory_ && std::filesystem::is_empty(directory_, ignored))
+    std::filesystem::remove(directory_, ignored);
+}
+
+AtomicFile& RunFiles::add(const std::string& name) {
+  files_.push_back(std::make_unique<AtomicFile>(directory_ / name));
+  return *files_.back();
+}
+
+void RunFiles::commit() {
+  for (auto& file : files_) file->finish();
+  for (std::size_t i = 0; i < files_.size(); ++i) {
+    try {
+      files_[i]->publish();
+    } catch (...) {
+      for (std::size_t j = 0; j < i; ++j) files_[j]->withdraw();
+      throw;
+    }
+  }
   committed_ = true;
 }
 
@@ -48,28 +96,63 @@ std::string csv_field(double value) {
 
 namespace {
 
-std::string field(double value) { return csv_field(value); }
+// appends `value` with all its digits, or nothing for NaN (not computed)
+void append_field(fmt::memory_buffer& row, double value) {
+  if (!std::isnan(value)) fmt::format_to(std::back_inserter(row), "{:.17g}", value);
+}
 
 }  // namespace
 
-void write_events_csv(AtomicFile& file, std::span<const EventRecord> events) {
-  auto& out = file.stream();
-  out << "t,kind,wall,q,qdot_before,qdot_after,normal_impulse,tangential_velocity,normal_force,"
-         "friction_work,instantaneous_residual,sliding_residual,tangential_velocity_after\n";
-  for (const auto& e : events) {
-    out << field(e.t) << ',' << to_string(e.kind) << ',' << e.wall << ',' << field(e.q) << ','
-        << field(e.qdot_before) << ',' << field(e.qdot_after) << ',' << field(e.normal_impulse)
-        << ',' << field(e.tangential_velocity) << ',' << field(e.normal_force) << ','
-        << field(e.friction_work) << ',' << field(e.instantaneous_residual) << ','
-        << field(e.sliding_residual) << ',' << field(e.tangential_velocity_after) << '\n';
+EventsCsvWriter::EventsCsvWriter(AtomicFile& file) : out_(file.stream()) {
+  out_ << "t,kind,wall,q,qdot_before,qdot_after,normal_impulse,tangential_velocity,normal_force,"
+          "friction_work,instantaneous_residual,sliding_residual,tangential_velocity_after,"
+          "accumulation_error\n";
+}
+
+void EventsCsvWriter::write(const EventRecord& e) {
+  row_.clear();
+  auto comma = [this] { row_.push_back(','); };
+  append_field(row_, e.t);
+  comma();
+  const std::string_view kind = to_string(e.kind);
+  row_.append(kind.data(), kind.data() + kind.size());
+  fmt::format_to(std::back_inserter(row_), ",{},", e.wall);
+  for (double value : {e.q, e.qdot_before, e.qdot_after, e.normal_impulse, e.tangential_velocity,
+                       e.normal_force, e.friction_work, e.instantaneous_residual,
+                       e.sliding_residual, e.tangential_velocity_after}) {
+    append_field(row_, value);
+    comma();
   }
+  append_field(row_, e.accumulation_error);
+  row_.push_back('\n');
+  out_.write(row_.data(), static_cast<std::streamsize>(row_.size()));
+}
+
+TrajectoryCsvWriter::TrajectoryCsvWriter(AtomicFile& file) : out_(file.stream()) {
+  out_ << "t,q,qdot,mode\n";
+}
+
+void TrajectoryCsvWriter::write(const TrajectorySample& s) {
+  row_.clear();
+  append_field(row_, s.t);
+  row_.push_back(',');
+  append_field(row_, s.q);
+  row_.push_back(',');
+  append_field(row_, s.qdot);
+  row_.push_back(',');
+  row_.append(s.mode.data(), s.mode.data() + s.mode.size());
+  row_.push_back('\n');
+  out_.write(row_.data(), static_cast<std::streamsize>(row_.size()));
+}
+
+void write_events_csv(AtomicFile& file, std::span<const EventRecord> events) {
+  EventsCsvWriter writer(file);
+  for (const auto& e : events) writer.write(e);
 }
 
 void write_trajectory_csv(AtomicFile& file, std::span<const TrajectorySample> samples) {
-  auto& out = file.stream();
-  out << "t,q,qdot,mode\n";
-  for (const auto& s : samples)
-    out << field(s.t) << ',' << field(s.q) << ',' << field(s.qdot) << ',' << s.mode << '\n';
+  TrajectoryCsvWriter writer(file);
+  for (const auto& s : samples) writer.write(s);
 }
 
 void write_json(AtomicFile& file, const nlohmann::json& document) {

@@ -1,16 +1,21 @@
 // Output files: written under a temporary name and renamed into place only
 // when complete, so an interrupted run never leaves a truncated file that
-// looks finished.
+// looks finished. The files of one run are committed together (RunFiles):
+// if any of them fails, none appears.
 #pragma once
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "core/event_log.hpp"
+#include "core/event_sink.hpp"
 #include "io/run_output.hpp"
 
 namespace impactlab {
@@ -25,7 +30,16 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   std::ofstream& stream() { return stream_; }
-  void commit();  // flushes, checks, renames; throws std::runtime_error on failure
+  void commit();  // finish() then publish()
+
+  // the two halves of commit(), for RunFiles: flush, check and close the
+  // temporary (throws std::runtime_error on failure); rename it into place
+  // (throws std::filesystem::filesystem_error)
+  void finish();
+  void publish();
+  // removes the published file again (a run whose other files failed)
+  void withdraw();
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
 
  private:
   std::filesystem::path path_, temporary_;
@@ -33,15 +47,63 @@ class AtomicFile {
   bool committed_ = false;
 };
 
+// The files of one run in one output directory, committed together.
+// The directory is created if needed (BadInput, key --out, if it cannot).
+// commit() finishes every file first and renames them into place only when
+// all are complete, in the order they were added (meta.json last, so a
+// directory with meta.json holds a complete run); a rename that fails takes
+// back those already renamed. Without a commit (an exception, a stopped run
+// that writes nothing) every temporary is removed, and a directory this run
+// created is removed again when left empty: a failed run leaves nothing.
+class RunFiles {
+ public:
+  explicit RunFiles(std::filesystem::path directory);
+  ~RunFiles();
+  RunFiles(const RunFiles&) = delete;
+  RunFiles& operator=(const RunFiles&) = delete;
+
+  AtomicFile& add(const std::string& name);
+  void commit();
+  [[nodiscard]] const std::filesystem::path& directory() const { return directory_; }
+
+ private:
+  std::filesystem::path directory_;
+  bool created_directory_ = false;
+  bool committed_ = false;
+  std::vector<std::unique_ptr<AtomicFile>> files_;
+};
+
 // Creates the output directory; BadInput (key --out) if it cannot.
 void prepare_output_directory(const std::filesystem::path& directory);
 
-// events.csv: t,kind,wall,q,qdot_before,qdot_after, then normal_impulse,
-// tangential_velocity, normal_force, friction_work, tangential_velocity_after
-// (empty where not computed).
-void write_events_csv(AtomicFile& file, std::span<const EventRecord> events);
+// events.csv, written row by row as the events happen (an EventSink):
+// t,kind,wall,q,qdot_before,qdot_after, then normal_impulse,
+// tangential_velocity, normal_force, friction_work, instantaneous_residual,
+// sliding_residual, tangential_velocity_after, accumulation_error (empty
+// where not computed). Numbers with all their digits (round-trip).
+class EventsCsvWriter final : public EventSink {
+ public:
+  explicit EventsCsvWriter(AtomicFile& file);  // writes the header
+  void write(const EventRecord& event) override;
 
-// trajectory.csv: t,q,qdot,mode
+ private:
+  std::ofstream& out_;
+  fmt::memory_buffer row_;
+};
+
+// trajectory.csv (t,q,qdot,mode), written row by row (a SampleSink).
+class TrajectoryCsvWriter final : public SampleSink {
+ public:
+  explicit TrajectoryCsvWriter(AtomicFile& file);  // writes the header
+  void write(const TrajectorySample& sample) override;
+
+ private:
+  std::ofstream& out_;
+  fmt::memory_buffer row_;
+};
+
+// The same files from events and samples held in memory.
+void write_events_csv(AtomicFile& file, std::span<const EventRecord> events);
 void write_trajectory_csv(AtomicFile& file, std::span<const TrajectorySample> samples);
 
 void write_json(AtomicFile& file, const nlohmann::json& document);

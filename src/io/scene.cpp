@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -127,8 +128,28 @@ std::vector<KeySpec> common_keys() {
 
 KeySpec accumulation_tolerance_key() {
   return {.key = "accumulation_tol",
-          .help = "accepted error of an accumulation (chattering) estimate",
-          .default_number = 1e-3, .lower = 0.0, .upper = 0.5, .lower_open = true};
+          .help = "accepted error of an accumulation (chattering) time, relative to the time "
+                  "scale 1/omega; 0: the integrator's rtol",
+          .default_number = 0.0, .lower = 0.0, .upper = 0.5};
+}
+
+AccumulationTolerance accumulation_tolerance(const Scene& scene, double time_scale,
+                                             double wall_coordinate,
+                                             double normal_per_coordinate) {
+  const double rtol = scene.number("integrator.rtol");
+  const double atol = scene.number("integrator.atol");
+  const double relative = scene.number("accumulation_tol");
+  return {.time = (relative > 0.0 ? relative : rtol) * time_scale,
+          .unresolved_apex =
+              (atol + rtol * std::fabs(wall_coordinate)) * normal_per_coordinate,
+          .gap_roundoff = 4.0 * std::numeric_limits<double>::epsilon() *
+                          std::fabs(wall_coordinate) * normal_per_coordinate};
+}
+
+double accumulation_time_tolerance(const Scene& scene) {
+  if (!scene.values.contains("accumulation_tol") || !scene.values.contains("omega"))
+    return std::numeric_limits<double>::quiet_NaN();
+  return accumulation_tolerance(scene, 1.0 / scene.number("omega"), 0.0).time;
 }
 
 void validate(const Scene& scene, const SceneSchema& schema) {
@@ -164,11 +185,22 @@ void validate(const Scene& scene, const SceneSchema& schema) {
   }
 }
 
+std::string model_oscillator_name(std::string_view path) { return "model:" + std::string(path); }
+
 Scene read_scene(std::string_view name_or_path, const SchemaLookup& schema_of) {
   const std::string text = read_scene_text(name_or_path);
   std::map<std::string, SceneValue> values;
   try {
-    flatten(toml::parse(text, std::string(name_or_path)), "", values);
+    toml::table document = toml::parse(text, std::string(name_or_path));
+    // a [model] section defines the scene's oscillator (oscillators/model_file/;
+    // the scene API registers it under model_oscillator_name before the read)
+    if (document["model"].is_table()) {
+      values["oscillator"] = model_oscillator_name(name_or_path);
+      document.erase("model");
+      if (document.contains("oscillator"))
+        throw BadInput("oscillator", "(given)", "a scene with a [model] section defines its own oscillator");
+    }
+    flatten(document, "", values);
   } catch (const toml::parse_error& error) {
     throw BadInput("scene", std::string(name_or_path),
                    fmt::format("malformed TOML at line {}: {}", error.source().begin.line,

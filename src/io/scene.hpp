@@ -12,6 +12,8 @@
 #include <variant>
 #include <vector>
 
+#include "contact/accumulation.hpp"
+
 namespace impactlab {
 
 // One declared scene key. Numbers have a range; text has a list of choices.
@@ -52,12 +54,32 @@ std::vector<KeySpec> common_keys();
 // accumulate (src/contact/accumulation.hpp).
 KeySpec accumulation_tolerance_key();
 
+// What an accumulation estimate of a validated scene is held to
+// (contact/accumulation.hpp): the error of its time to accumulation_tol ×
+// time_scale (s), or, when accumulation_tol is 0 (its default), to
+// integrator.rtol × time_scale, the standard the impacts are held to. The
+// chatter counts as unresolvable once a flight's apex is within the
+// integrator's accuracy on the gap, (atol + rtol |wall_coordinate|) ×
+// normal_per_coordinate (the normal gap per unit of the coordinate: m/rad
+// for the pendulum's angle, 1 where the coordinate is the gap's own), and
+// the gap's round-off is 4 ulps of the wall coordinate.
+AccumulationTolerance accumulation_tolerance(const Scene& scene, double time_scale,
+                                             double wall_coordinate,
+                                             double normal_per_coordinate = 1.0);
+
+// The accepted error of an accumulation time (s) of a scene whose time scale
+// is 1/omega, for meta.json; NaN for a scene without accumulation_tol or omega.
+double accumulation_time_tolerance(const Scene& scene);
+
 // The schema of an oscillator by name; the scene API's registry supplies it
 // (api/scene_loading.hpp), so that reading a scene knows no oscillator.
 using SchemaLookup = std::function<const SceneSchema&(std::string_view oscillator)>;
 
+// The name of the oscillator a scene file's [model] section defines.
+std::string model_oscillator_name(std::string_view path);
+
 // Reads a built-in scene by name or a scene file by path, fills defaults from
-// the schema of the oscillator it names, and validates every key and value.
+// the schema of the oscillator it names (or its [model] section defines), and validates every key and value.
 // Throws BadInput.
 Scene read_scene(std::string_view name_or_path, const SchemaLookup& schema_of);
 

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "analysis/run_continuation.hpp"
 #include "analysis/run_periodic.hpp"
 #include "analysis/run_section.hpp"
 #include "api/oscillator_registry.hpp"
@@ -51,7 +52,7 @@ BouncingBall make_system(const Scene& scene) {
   p.A = scene.number("A");
   p.omega = scene.number("omega");
   p.r = scene.number("r");
-  p.accumulation_tol = scene.number("accumulation_tol");
+  p.accumulation = accumulation_tolerance(scene, 1.0 / p.omega, p.A);
   return BouncingBall(p);
 }
 
@@ -94,10 +95,16 @@ PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request
                       request, system.parameters().omega);
 }
 
+ContinuationJobResult continuation(const Scene& scene, const ContinuationJob& job) {
+  const BouncingBall system = make_system(scene);
+  const BouncingBall::State x0 = job.has_start ? BouncingBall::State{} : initial_state(scene, system);
+  return run_continuation<BouncingBall>(&make_system, BouncingBall::Mode::free, x0, scene, job);
+}
+
 }  // namespace
 
 const OscillatorEntry& bouncing_ball_entry() {
-  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit};
+  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit, &continuation};
   return entry;
 }
 

@@ -1,6 +1,7 @@
 // The linear impact oscillator's scene schema and runner.
 #include <numbers>
 
+#include "analysis/run_continuation.hpp"
 #include "analysis/run_periodic.hpp"
 #include "analysis/run_section.hpp"
 #include "api/oscillator_registry.hpp"
@@ -52,7 +53,7 @@ LinearImpact make_system(const Scene& scene) {
   p.omega = scene.number("omega");
   p.sigma = scene.number("sigma");
   p.r = scene.number("r");
-  p.accumulation_tol = scene.number("accumulation_tol");
+  p.accumulation = accumulation_tolerance(scene, 1.0 / p.omega, p.sigma);
   if (scene.text("integrator.method") == "exact" && !LinearImpact::has_exact_flow(p))
     throw BadInput("zeta", to_text(p.zeta),
                    "method = exact needs an underdamped, non-resonant oscillator (zeta < 1, and "
@@ -98,10 +99,16 @@ PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request
                       request, system.parameters().omega);
 }
 
+ContinuationJobResult continuation(const Scene& scene, const ContinuationJob& job) {
+  const LinearImpact system = make_system(scene);
+  const LinearImpact::State x0 = job.has_start ? LinearImpact::State{} : initial_state(scene, system);
+  return run_continuation<LinearImpact>(&make_system, LinearImpact::Mode::free, x0, scene, job);
+}
+
 }  // namespace
 
 const OscillatorEntry& linear_impact_entry() {
-  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit};
+  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit, &continuation};
   return entry;
 }
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <numbers>
 
+#include "analysis/run_continuation.hpp"
 #include "analysis/run_periodic.hpp"
 #include "analysis/run_section.hpp"
 #include "api/bindings/pendulum_walls_parameters.hpp"
@@ -134,6 +135,21 @@ PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request
                       system.parameters().omega);
 }
 
+template <class System>
+ContinuationJobResult continuation_model(const Scene& scene, const ContinuationJob& job) {
+  const System system(pendulum_walls_parameters(scene));
+  const typename System::State x0 =
+      job.has_start ? typename System::State{} : initial_state(scene, system);
+  auto system_at = [](const Scene& at) { return System(pendulum_walls_parameters(at)); };
+  return run_continuation<System>(system_at, PendulumMode::free, x0, scene, job);
+}
+
+ContinuationJobResult continuation(const Scene& scene, const ContinuationJob& job) {
+  reject_rigid_analysis(scene);
+  if (scene.text("model") == "paper") return continuation_model<PaperPendulumWalls>(scene, job);
+  return continuation_model<PendulumWalls>(scene, job);
+}
+
 template <PendulumModel model>
 RunOutput run_model(const Scene& scene, const RunRequest& request) {
   using System = BasicPendulumWalls<model>;
@@ -190,13 +206,15 @@ PendulumWallsParameters pendulum_walls_parameters(const Scene& scene) {
   p.e_n = scene.number("e_n");
   p.e_t = scene.number("e_t");
   p.mu = scene.number("mu");
-  p.accumulation_tol = scene.number("accumulation_tol");
   if (!(p.b < p.l)) throw BadInput("b", to_text(p.b), "the walls must be closer than l (b < l)");
+  // the normal gap per radian at the wall is l cos θ0
+  p.accumulation = accumulation_tolerance(scene, 1.0 / p.omega, std::asin(p.b / p.l),
+                                          std::sqrt(p.l * p.l - p.b * p.b));
   return p;
 }
 
 const OscillatorEntry& pendulum_walls_entry() {
-  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit};
+  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit, &continuation};
   return entry;
 }
 

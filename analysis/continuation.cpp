@@ -1,0 +1,577 @@
+#include "analysis/continuation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+
+#include <Eigen/Dense>
+#include <boost/math/tools/roots.hpp>
+
+namespace impactlab {
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;  // (q, q̇, p)
+
+double det_minus_identity(const TangentMatrix& m) {  // (1 − λ₁)(1 − λ₂)
+  return (m[0][0] - 1.0) * (m[1][1] - 1.0) - m[0][1] * m[1][0];
+}
+double det_plus_identity(const TangentMatrix& m) {  // (1 + λ₁)(1 + λ₂)
+  return (m[0][0] + 1.0) * (m[1][1] + 1.0) - m[0][1] * m[1][0];
+}
+double det_minus_one(const TangentMatrix& m) {  // λ₁λ₂ − 1
+  return m[0][0] * m[1][1] - m[0][1] * m[1][0] - 1.0;
+}
+
+std::array<std::complex<double>, 2> multipliers_of(const TangentMatrix& m) {
+  const double half_trace = 0.5 * (m[0][0] + m[1][1]);
+  const double determinant = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+  const std::complex<double> root =
+      std::sqrt(std::complex<double>(half_trace * half_trace - determinant));
+  std::complex<double> a = half_trace + root, b = half_trace - root;
+  if (std::abs(b) > std::abs(a)) std::swap(a, b);
+  return {a, b};
+}
+
+// A point on the branch, with what the next step needs.
+struct Node {
+  Vec3 y = Vec3::Zero();
+  Vec3 tangent = Vec3::Zero();  // unit, pointing along the run
+  OrbitEvaluation orbit;        // detailed evaluation at y
+  int iterations = 0;
+  double step = 0.0;            // the arclength from the previous node
+};
+
+struct Correction {
+  bool converged = false;
+  bool signature_changed = false;
+  Vec3 y = Vec3::Zero();
+  OrbitEvaluation orbit;
+  Eigen::Matrix<double, 2, 3> jacobian = Eigen::Matrix<double, 2, 3>::Zero();  // [M − I | F_p]
+  bool has_jacobian = false;
+  int iterations = 0;
+};
+
+class Driver {
+ public:
+  Driver(const ContinuationProblem& problem, const ContinuationRequest& request)
+      : problem_(problem), request_(request) {
+    const double range = std::fabs(request.to - request.from);
+    const double scale = range > 0.0 ? range : 1.0;
+    h_initial_ = request.initial_step > 0.0 ? request.initial_step : scale / 100.0;
+    h_min_ = request.min_step > 0.0 ? request.min_step : scale * 1e-7;
+    h_max_ = request.max_step > 0.0 ? request.max_step : scale / 50.0;
+    // the branch runs in (q, q̇, p / scale): the range is one unit of arclength
+    scale_ = scale;
+    h_initial_ /= scale;
+    h_min_ /= scale;
+    h_max_ /= scale;
+    from_ = request.from / scale;
+    to_ = request.to / scale;
+    phase_ = problem.phase;
+  }
+
+  ContinuationResult run_from_start() {
+    Correction start = correct(point(request_.start, from_), Vec3(0.0, 0.0, 1.0),
+                               point(request_.start, from_), {}, nullptr);
+    if (!start.converged) {
+      result_.stop_reason = "start_not_converged";
+      result_.stop_detail = "Newton at the start parameter did not converge";
+      return finish();
+    }
+    const double direction = request_.to >= request_.from ? 1.0 : -1.0;
+    return run(start, Vec3(0.0, 0.0, direction));
+  }
+
+  ContinuationResult run_from(const OrbitPoint& x, double p, const std::array<double, 3>& d) {
+    const Vec3 direction(d[0], d[1], d[2]);
+    const Vec3 y0 = point(x, p / scale_);
+    const double offset = std::max(h_initial_ * 0.1, 1e-3 * (1.0 + std::hypot(x[0], x[1])));
+    const Vec3 predicted = y0 + offset * direction.normalized();
+    Correction start = correct(predicted, direction.normalized(), predicted, {}, nullptr);
+    if (!start.converged) {
+      result_.stop_reason = "start_not_converged";
+      result_.stop_detail = "no orbit found off the switching point";
+      return finish();
+    }
+    return run(start, direction);
+  }
+
+ private:
+  static Vec3 point(const OrbitPoint& x, double p) { return Vec3(x[0], x[1], p); }
+  static OrbitPoint state_of(const Vec3& y) { return {y[0], y[1]}; }
+
+  OrbitEvaluation evaluate(const Vec3& y, bool detailed, const ContactWindow& window) {
+    ++result_.map_evaluations;
+    return problem_.evaluate(state_of(y), y[2] * scale_, phase_, detailed, window);
+  }
+
+  double parameter_step(double p) const {
+    return request_.parameter_difference > 0.0 ? request_.parameter_difference
+                                               : 1e-6 * (1.0 + std::fabs(p));
+  }
+
+  // ∂F/∂p ≈ (Pⁿ(x; p + h) − Pⁿ(x; p − h)) / 2h (F = Pⁿ − x, x held)
+  std::optional<Eigen::Vector2d> parameter_derivative(const Vec3& y, const ContactWindow& window) {
+    const double h = parameter_step(y[2] * scale_) / scale_;
+    const OrbitEvaluation up = evaluate(Vec3(y[0], y[1], y[2] + h), false, window);
+    const OrbitEvaluation down = evaluate(Vec3(y[0], y[1], y[2] - h), false, window);
+    if (!up.completed || !down.completed) return std::nullopt;
+    return Eigen::Vector2d((up.image[0] - down.image[0]) / (2.0 * h),
+                           (up.image[1] - down.image[1]) / (2.0 * h));
+  }
+
+  // Newton on F(y) = 0, τ·(y − y_pred) = 0 from y. A run that does not
+  // complete, or (with `signature`) an orbit whose impact signature differs,
+  // stops it.
+  Correction correct(Vec3 y, const Vec3& tau, const Vec3& y_pred, const ContactWindow& window,
+                     const std::string* signature) {
+    Correction c;
+    double last_step = INFINITY;
+    for (int iteration = 0;; ++iteration) {
+      c.orbit = evaluate(y, false, window);
+      c.y = y;
+      c.iterations = iteration;
+      if (!c.orbit.completed) return c;
+      if (signature && c.orbit.signature != *signature) {
+        c.signature_changed = true;
+        return c;
+      }
+      const Eigen::Vector2d residual(c.orbit.image[0] - y[0], c.orbit.image[1] - y[1]);
+      const double arc = tau.dot(y - y_pred);
+      const double size = 1.0 + std::hypot(y[0], y[1]);
+      const double norm = residual.norm();
+      if ((norm <= request_.tolerance * size ||
+           (last_step <= 1e-11 * (1.0 + y.norm()) && norm <= 100.0 * request_.tolerance * size)) &&
+          std::fabs(arc) <= 1e-9 * (1.0 + y.norm())) {
+        c.converged = true;
+        return c;
+      }
+      if (iteration == request_.max_newton_iterations) return c;
+      const auto fp = parameter_derivative(y, window);
+      if (!fp) return c;
+      const TangentMatrix& m = c.orbit.monodromy;
+      c.jacobian << m[0][0] - 1.0, m[0][1], (*fp)[0], m[1][0], m[1][1] - 1.0, (*fp)[1];
+      c.has_jacobian = true;
+      Eigen::Matrix3d system;
+      system.topRows<2>() = c.jacobian;
+      system.row(2) = tau.transpose();
+      const Vec3 step = system.fullPivLu().solve(-Vec3(residual[0], residual[1], arc));
+      if (!step.allFinite()) return c;
+      y += step;
+      last_step = step.norm();
+    }
+  }
+
+  // The branch's unit tangent at a corrected point, oriented along `along`.
+  std::optional<Vec3> tangent_at(Correction& c, const Vec3& along) {
+    if (!c.has_jacobian) {
+      const auto fp = parameter_derivative(c.y, {});
+      if (!fp) return std::nullopt;
+      const TangentMatrix& m = c.orbit.monodromy;
+      c.jacobian << m[0][0] - 1.0, m[0][1], (*fp)[0], m[1][0], m[1][1] - 1.0, (*fp)[1];
+      c.has_jacobian = true;
+    }
+    const Vec3 first = c.jacobian.row(0).transpose(), second = c.jacobian.row(1).transpose();
+    Vec3 t = first.cross(second);
+    if (!(t.norm() > 0.0) || !t.allFinite()) return std::nullopt;
+    t.normalize();
+    if (t.dot(along) < 0.0) t = -t;
+    return t;
+  }
+
+  BranchPoint branch_point(const Node& node, double step) const {
+    BranchPoint b;
+    b.parameter = node.y[2] * scale_;
+    b.state = reported_state(node.y);
+    b.phase = problem_.phase;
+    b.impacts = node.orbit.impacts;
+    b.contact_phases = node.orbit.contact_phases;
+    b.multipliers = multipliers_of(node.orbit.monodromy);
+    b.stable = std::abs(b.multipliers[0]) < 1.0 && std::abs(b.multipliers[1]) < 1.0;
+    b.min_impact_speed = node.orbit.min_impact_speed;
+    b.min_flight_gap = node.orbit.min_flight_gap;
+    b.newton_iterations = node.iterations;
+    b.step = step;
+    return b;
+  }
+
+  bool accept(Correction& c, const Vec3& along, double step) {
+    const auto tangent = tangent_at(c, along);
+    if (!tangent) return false;
+    Node node;
+    node.y = c.y;
+    node.tangent = *tangent;
+    node.iterations = c.iterations;
+    node.step = step;
+    node.orbit = evaluate(c.y, true, {});
+    if (!node.orbit.completed) return false;
+    if (!nodes_.empty()) detect(nodes_.back(), node, step);
+    move_section_off_events(node);
+    nodes_.push_back(node);
+    result_.branch.push_back(branch_point(node, step));
+    return true;
+  }
+
+  // The fraction of the span between the section and the nearest event.
+  static double clearance(const OrbitEvaluation& orbit, double shift_time) {
+    double nearest = 0.5;
+    for (double t : orbit.event_times) {
+      double u = std::fmod(t - shift_time, orbit.span);
+      if (u < 0.0) u += orbit.span;
+      nearest = std::min({nearest, u / orbit.span, 1.0 - u / orbit.span});
+    }
+    return nearest;
+  }
+
+  // Where an event comes within 2 % of the span of the section (the
+  // stroboscopic map jumps when an impact crosses it), the branch moves on to
+  // the section phase, among 16, farthest from every event; the node is
+  // carried there and corrected again. States are still reported on the
+  // requested section.
+  void move_section_off_events(Node& node) {
+    if (node.orbit.span <= 0.0 || clearance(node.orbit, 0.0) > 0.02) return;
+    const double p = node.y[2] * scale_;
+    double best_phase = phase_, best_clearance = clearance(node.orbit, 0.0);
+    for (int j = 1; j < 16; ++j) {
+      const double shift = 2.0 * std::numbers::pi * j / 16.0;
+      const double value = clearance(node.orbit, shift / node.orbit.omega);
+      if (value > best_clearance) {
+        best_clearance = value;
+        best_phase = std::remainder(phase_ + shift, 2.0 * std::numbers::pi);
+      }
+    }
+    if (best_phase == phase_) return;
+    const auto moved = problem_.transport(state_of(node.y), p, phase_, best_phase);
+    if (!moved) return;
+    const double old_phase = phase_;
+    phase_ = best_phase;
+    const Vec3 y(( *moved)[0], (*moved)[1], node.y[2]);
+    Correction c = correct(y, Vec3(0.0, 0.0, 1.0), y, {}, nullptr);
+    const auto tangent = c.converged ? tangent_at(c, Vec3(0.0, 0.0, node.tangent[2])) : std::nullopt;
+    OrbitEvaluation orbit = c.converged ? evaluate(c.y, true, {}) : OrbitEvaluation{};
+    if (!tangent || !orbit.completed) {
+      phase_ = old_phase;
+      return;
+    }
+    node.y = c.y;
+    node.tangent = *tangent;
+    node.orbit = orbit;
+  }
+
+  // the state on the requested section
+  OrbitPoint reported_state(const Vec3& y) const {
+    if (phase_ == problem_.phase) return state_of(y);
+    const auto moved = problem_.transport(state_of(y), y[2] * scale_, phase_, problem_.phase);
+    return moved ? *moved : state_of(y);
+  }
+
+  ContinuationResult run(Correction& start, const Vec3& along) {
+    if (!accept(start, along, 0.0)) {
+      result_.stop_reason = "start_not_converged";
+      result_.stop_detail = "no branch tangent at the start";
+      return finish();
+    }
+    signature_ = nodes_.back().orbit.signature;
+    double h = h_initial_;
+    const double direction = to_ >= from_ ? 1.0 : -1.0;
+    while (static_cast<int>(nodes_.size()) < request_.max_points) {
+      const Node& last = nodes_.back();
+      const Vec3 tau = last.tangent;
+      // the end of the range: land on p = to exactly
+      const double remaining = (to_ - last.y[2]) * direction;
+      if (remaining <= 1e-12 * (1.0 + std::fabs(to_))) return finish();
+      if ((last.y[2] - from_) * direction < -1e-3 * std::fabs(to_ - from_))
+        return stop("left_range", "the branch turned back past the start of the range");
+      const double toward_end = tau[2] * direction;
+      if (toward_end > 0.0 && h * toward_end >= remaining) {
+        const double h_end = remaining / toward_end;
+        Vec3 predicted = last.y + h_end * tau;
+        predicted[2] = to_;
+        Correction c = correct(predicted, Vec3(0.0, 0.0, 1.0), predicted, {}, &signature_);
+        if (c.converged && accept(c, tau, h_end)) return finish();
+        if (c.signature_changed && end_at_signature_change(h_end)) return finish();
+        h = 0.5 * std::min(h, h_end);
+        if (h < h_min_) return stop("branch_point", "the corrector fails before the end of the range");
+        continue;
+      }
+      const Vec3 predicted = last.y + h * tau;
+      Correction c = correct(predicted, tau, predicted, {}, &signature_);
+      bool ok = c.converged;
+      if (ok) {
+        const auto turned = tangent_at(c, tau);
+        ok = turned && turned->dot(tau) > std::cos(30.0 * std::numbers::pi / 180.0);
+      }
+      if (ok && accept(c, tau, h)) {
+        // a gap or impact speed about to vanish: end at the grazing point
+        // before Newton meets the square-root singularity
+        if (grazing_ahead(h) && end_at_signature_change(h)) return finish();
+        // a corrector that only creeps (steps below 1e-5 of the range for
+        // 100 points: an orbit so unstable that the integrator's noise in Pⁿ
+        // exceeds the tolerance): a grazing point within reach, or a stop
+        stalled_ = h < 1e-5 ? stalled_ + 1 : 0;
+        if (stalled_ >= 100) {
+          if (end_at_signature_change(h_max_)) return finish();
+          return stop("branch_point", "stalled: steps below 1e-5 of the range for 100 points");
+        }
+        if (c.iterations <= 3) h = std::min(1.5 * h, h_max_);
+        else if (c.iterations <= 6) h = std::min(1.1 * h, h_max_);
+        else h *= 0.7;
+        continue;
+      }
+      if ((c.signature_changed || !c.converged) && end_at_signature_change(h)) return finish();
+      h *= 0.5;
+      if (h < h_min_ && c.signature_changed)
+        return stop("signature_change", "the impact signature changes from '" + signature_ +
+                                            "' to '" + c.orbit.signature +
+                                            "'; no grazing point located");
+      if (h < h_min_)
+        return stop("branch_point", "step below the smallest: the corrector cannot pass this point");
+    }
+    return stop("max_points", "the branch reached the point limit");
+  }
+
+  ContinuationResult stop(const std::string& reason, const std::string& detail) {
+    result_.stop_reason = reason;
+    result_.stop_detail = detail;
+    return finish();
+  }
+
+  ContinuationResult finish() { return std::move(result_); }
+
+  // --- bifurcations between two consecutive points ---
+
+  void detect(const Node& a, const Node& b, double step) {
+    struct Test {
+      const char* type;
+      double (*function)(const TangentMatrix&);
+    };
+    static constexpr Test tests[] = {{"fold", &det_minus_identity},
+                                     {"period_doubling", &det_plus_identity},
+                                     {"neimark_sacker", &det_minus_one}};
+    for (const Test& test : tests) {
+      const double fa = test.function(a.orbit.monodromy), fb = test.function(b.orbit.monodromy);
+      if (!(fa * fb < 0.0)) continue;
+      if (std::string(test.type) == "neimark_sacker") {
+        // a complex pair on the unit circle, not a real pair with product 1
+        const auto ma = multipliers_of(a.orbit.monodromy), mb = multipliers_of(b.orbit.monodromy);
+        if (ma[0].imag() == 0.0 && mb[0].imag() == 0.0) continue;
+      }
+      BifurcationPoint point = locate(test.type, test.function, a, step, fa, fb);
+      // a multiplier through +1 where the branch does not turn back in p: a
+      // branch point (a symmetry-breaking pitchfork or a transcritical point)
+      if (point.type == "fold" && a.tangent[2] * b.tangent[2] > 0.0) point.type = "branch_point";
+      result_.points.push_back(point);
+    }
+    if (a.orbit.contact_phases != b.orbit.contact_phases) {
+      BifurcationPoint point;
+      point.type = b.orbit.contact_phases > a.orbit.contact_phases ? "contact_onset" : "contact_end";
+      point.parameter = 0.5 * (a.y[2] + b.y[2]) * scale_;
+      point.state = reported_state(b.y);
+      point.multipliers = multipliers_of(b.orbit.monodromy);
+      point.error_estimate = 0.5 * std::fabs(b.y[2] - a.y[2]) * scale_;
+      point.note = "detected between two branch points";
+      result_.points.push_back(point);
+    }
+  }
+
+  // The root of a test function on the arclength from node a, each trial
+  // point corrected onto the branch (TOMS 748).
+  BifurcationPoint locate(const char* type, double (*function)(const TangentMatrix&),
+                          const Node& a, double step, double fa, double fb) {
+    BifurcationPoint point;
+    point.type = type;
+    std::optional<Correction> last;
+    auto on_branch = [&](double s) -> double {
+      const Vec3 predicted = a.y + s * a.tangent;
+      Correction c = correct(predicted, a.tangent, predicted, {}, nullptr);
+      if (!c.converged) throw std::runtime_error("corrector failed");
+      const double value = function(c.orbit.monodromy);
+      last = std::move(c);
+      return value;
+    };
+    if (!request_.locate) {
+      point.note = "detected (location off)";
+      point.error_estimate = std::fabs(step * a.tangent[2]) * scale_;
+      point.parameter = (a.y[2] + 0.5 * step * a.tangent[2]) * scale_;
+      return point;
+    }
+    try {
+      std::uintmax_t iterations = 100;
+      const auto bracket = boost::math::tools::toms748_solve(
+          on_branch, 0.0, step, fa, fb, boost::math::tools::eps_tolerance<double>(42), iterations);
+      const double s = 0.5 * (bracket.first + bracket.second);
+      on_branch(s);
+      point.parameter = last->y[2] * scale_;
+      point.state = reported_state(last->y);
+      point.multipliers = multipliers_of(last->orbit.monodromy);
+      point.error_estimate = std::fabs(a.tangent[2]) * (bracket.second - bracket.first) * scale_;
+      point.located = true;
+    } catch (const std::exception&) {
+      point.parameter = (a.y[2] + 0.5 * step * a.tangent[2]) * scale_;
+      point.error_estimate = std::fabs(step * a.tangent[2]) * scale_;
+      point.note = "detected; the corrector failed while locating it";
+    }
+    return point;
+  }
+
+  // --- grazing: the end of the branch where the impact signature changes ---
+
+  bool grazing_ahead(double h) const {
+    const Node& last = nodes_.back();
+    if (nodes_.size() < 2) return false;
+    const Node& before = nodes_[nodes_.size() - 2];
+    auto vanishing = [&](double now, double earlier) {
+      return std::isfinite(now) && earlier > now && now / (earlier - now) * last.step < h;
+    };
+    return vanishing(last.orbit.min_flight_gap, before.orbit.min_flight_gap) ||
+           vanishing(last.orbit.min_impact_speed, before.orbit.min_impact_speed);
+  }
+
+  // After a failed step of length h from the last point: solve the grazing
+  // system for each candidate (the lowest flight gap, the slowest impact);
+  // a solution within reach ends the branch there.
+  bool end_at_signature_change(double h) {
+    const Node& last = nodes_.back();
+    struct Candidate {
+      int witness;
+      double time;
+      const char* kind;
+    };
+    std::vector<Candidate> candidates;
+    // a candidate whose gap or speed, extrapolated linearly from the last two
+    // points, vanishes within a few failed steps
+    auto vanishing = [&](double OrbitEvaluation::*value) {
+      const double now = last.orbit.*value;
+      if (nodes_.size() < 2) return true;
+      const double before = nodes_[nodes_.size() - 2].orbit.*value;
+      if (!(before > now)) return false;
+      return now / (before - now) * last.step < 4.0 * h;
+    };
+    if (last.orbit.min_flight_gap_witness >= 0 && vanishing(&OrbitEvaluation::min_flight_gap))
+      candidates.push_back({last.orbit.min_flight_gap_witness, last.orbit.min_flight_gap_time,
+                            "a flight extremum touches the wall"});
+    if (last.orbit.slowest_impact_witness >= 0 && vanishing(&OrbitEvaluation::min_impact_speed))
+      candidates.push_back({last.orbit.slowest_impact_witness, last.orbit.slowest_impact_time,
+                            "an impact velocity goes to zero"});
+    // the candidate whose extrapolated gap or speed vanishes soonest first
+    std::optional<BifurcationPoint> best;
+    double best_s = INFINITY;
+    for (const Candidate& candidate : candidates) {
+      auto solved = solve_grazing(last, candidate.witness, candidate.time, h);
+      if (!solved) continue;
+      const double s = last.tangent.dot(solved_point - last.y);
+      if (s < -0.05 * h || s > 1.5 * h || s >= best_s) continue;
+      solved->note = candidate.kind;
+      best = solved;
+      best_s = s;
+    }
+    if (!best) return false;
+    result_.points.push_back(*best);
+    result_.stop_reason = "signature_change";
+    result_.stop_detail = "grazing: " + best->note;
+    return true;
+  }
+
+  // Newton on (q, q̇, p, t_g): Pⁿ(x; p) = x with the wall's contacts near t_g
+  // suppressed, gap(t_g) = 0, gap rate(t_g) = 0; finite-difference Jacobian.
+  std::optional<BifurcationPoint> solve_grazing(const Node& last, int witness, double time,
+                                                double h) {
+    using Vec4 = Eigen::Vector4d;
+    const double span = problem_.forcing_period_at_p;
+    const double half_width = span > 0.0 ? 0.1 * span : 0.1;
+    const ContactWindow window{witness, time - half_width, time + half_width};
+    auto residual_of = [&](const Vec4& z, OrbitEvaluation* orbit) -> std::optional<Vec4> {
+      const Vec3 y(z[0], z[1], z[2]);
+      OrbitEvaluation e = evaluate(y, false, window);
+      if (!e.completed) return std::nullopt;
+      const GapSample gap = problem_.gap_at(state_of(y), z[2] * scale_, phase_, window, z[3]);
+      if (!gap.completed) return std::nullopt;
+      if (orbit) *orbit = e;
+      return Vec4(e.image[0] - z[0], e.image[1] - z[1], gap.value, gap.rate);
+    };
+    // the guess: the last point moved half the failed step along the branch
+    Vec4 z(last.y[0], last.y[1], last.y[2], time);
+    z.head<3>() += 0.5 * h * last.tangent;
+    double last_parameter_step = INFINITY;
+    for (int iteration = 0; iteration < 25; ++iteration) {
+      OrbitEvaluation orbit;
+      const auto r = residual_of(z, &orbit);
+      if (!r) return std::nullopt;
+      const double size = 1.0 + std::hypot(z[0], z[1]);
+      if (r->norm() <= request_.tolerance * size && iteration > 0 &&
+          std::fabs(last_parameter_step) <= 1e-11 * (1.0 + std::fabs(z[2]))) {
+        BifurcationPoint point;
+        point.type = "grazing";
+        point.parameter = z[2] * scale_;
+        point.state = reported_state(Vec3(z[0], z[1], z[2]));
+        point.multipliers = multipliers_of(orbit.monodromy);
+        point.error_estimate = std::max(std::fabs(last_parameter_step) * scale_,
+                                        request_.tolerance * (1.0 + std::fabs(z[2] * scale_)));
+        point.graze_time = z[3];
+        point.graze_witness = witness;
+        point.located = true;
+        solved_point = Vec3(z[0], z[1], z[2]);
+        return point;
+      }
+      Eigen::Matrix4d jacobian;
+      for (int j = 0; j < 4; ++j) {
+        const double dz = 1e-7 * (1.0 + std::fabs(z[j]));
+        Vec4 up = z, down = z;
+        up[j] += dz;
+        down[j] -= dz;
+        const auto ru = residual_of(up, nullptr), rd = residual_of(down, nullptr);
+        if (!ru || !rd) return std::nullopt;
+        jacobian.col(j) = (*ru - *rd) / (2.0 * dz);
+      }
+      const Vec4 step = jacobian.fullPivLu().solve(-*r);
+      if (!step.allFinite()) return std::nullopt;
+      z += step;
+      last_parameter_step = step[2];
+      if (std::fabs(z[3] - time) > half_width) return std::nullopt;  // left the window
+    }
+    return std::nullopt;
+  }
+
+  const ContinuationProblem& problem_;
+  const ContinuationRequest& request_;
+  double h_initial_, h_min_, h_max_;
+  double scale_ = 1.0;        // the parameter's unit of arclength (the range)
+  double from_ = 0.0, to_ = 1.0;  // the range in that unit
+  int stalled_ = 0;           // consecutive points reached by tiny steps
+  double phase_ = 0.0;        // rad: the section the branch is computed on (moved off impacts)
+  Vec3 solved_point = Vec3::Zero();  // the last grazing solution, in branch units
+  std::vector<Node> nodes_;
+  std::string signature_;
+  ContinuationResult result_;
+};
+
+}  // namespace
+
+ContinuationResult continue_branch(const ContinuationProblem& problem,
+                                   const ContinuationRequest& request) {
+  return Driver(problem, request).run_from_start();
+}
+
+ContinuationResult continue_branch_from(const ContinuationProblem& problem,
+                                        const ContinuationRequest& request,
+                                        const OrbitPoint& x, double p,
+                                        const std::array<double, 3>& direction) {
+  return Driver(problem, request).run_from(x, p, direction);
+}
+
+OrbitPoint eigenvector_for(const TangentMatrix& m, double multiplier) {
+  // (M − λI) v = 0: v ⟂ the larger row of M − λI
+  const double a = m[0][0] - multiplier, b = m[0][1];
+  const double c = m[1][0], d = m[1][1] - multiplier;
+  OrbitPoint v = std::hypot(a, b) >= std::hypot(c, d) ? OrbitPoint{-b, a} : OrbitPoint{-d, c};
+  const double norm = std::hypot(v[0], v[1]);
+  if (norm > 0.0) v = {v[0] / norm, v[1] / norm};
+  return v;
+}
+
+}  // namespace impactlab

@@ -1,0 +1,192 @@
+// Pseudo-arclength continuation of a period-n orbit, seen as a fixed point of
+// the n-fold stroboscopic map Pⁿ(x; p), with its bifurcations located on the
+// branch: fold (a multiplier through +1), period doubling (through −1),
+// Neimark–Sacker (a complex pair through the unit circle) and grazing (a wall
+// touched with zero normal velocity: an interior flight extremum reaching a
+// wall, or an impact velocity going to zero).
+//
+// The driver (continue_branch) knows no oscillator: it works on a
+// ContinuationProblem, the section map and its probes as functions of the
+// state on the section (q, q̇) and of one parameter p. The scene bindings
+// build one for a concrete system (analysis/run_continuation.hpp).
+//
+// Method (docs/analysis.md, "Continuation"):
+//  * unknowns y = (q, q̇, p); equations F(x, p) = Pⁿ(x; p) − x = 0 and the
+//    arclength condition τ·(y − y_pred) = 0; ∂F/∂x = M − I from the
+//    saltation-corrected monodromy M, ∂F/∂p by a central difference of Pⁿ in p;
+//  * Newton corrector; the step grows after easy corrections and is halved
+//    where Newton fails, where the tangent turns by more than 30°, or where
+//    the impact signature changes; the branch stops below the smallest step;
+//  * bifurcations are detected by sign changes of test functions between two
+//    points (det(M − I), det(M + I), det M − 1, the smallest flight gap, the
+//    smallest impact speed) and located by a root finder (TOMS 748) on the
+//    arclength between them, each trial point corrected onto the branch;
+//  * a grazing point is then solved as an extended system in (q, q̇, p, t_g):
+//    F = 0 with the wall's contacts near t_g suppressed (the virtual orbit
+//    that passes through the graze), gap(t_g) = 0, gap rate(t_g) = 0.
+#pragma once
+
+#include <array>
+#include <complex>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/has_jacobian.hpp"
+
+namespace impactlab {
+
+using OrbitPoint = std::array<double, 2>;  // (q, q̇) on the section
+
+// Contacts of one wall suppressed in a time window: the virtual orbit through
+// a grazing point. Times are measured from the section (s).
+struct ContactWindow {
+  int witness = -1;  // -1: none suppressed
+  double from = 0.0, to = 0.0;
+};
+
+// One evaluation of the n-fold section map.
+struct OrbitEvaluation {
+  bool completed = false;      // the run reached the section again
+  OrbitPoint image{};        // Pⁿ(x; p)
+  TangentMatrix monodromy{};   // ∂Pⁿ/∂x, saltation matrices included
+  int impacts = 0;             // impacts over the n periods
+  int contact_phases = 0;      // contact phases (sticking) over the n periods
+  std::string signature;       // the walls of the events in order ("+1 +1 -1", "+1 c+1": contact)
+  double min_impact_speed = std::numeric_limits<double>::infinity();  // min |q̇⁻| of the impacts
+  // the smallest local minimum of a wall gap in flight (not at an impact), from
+  // samples of the orbit; its time since the section (s) and its witness
+  double min_flight_gap = std::numeric_limits<double>::infinity();
+  double min_flight_gap_time = std::numeric_limits<double>::quiet_NaN();
+  int min_flight_gap_witness = -1;
+  // the time since the section (s) and witness of the impact of smallest speed
+  double slowest_impact_time = std::numeric_limits<double>::quiet_NaN();
+  int slowest_impact_witness = -1;
+  std::vector<double> event_times;  // every event, time since the section (s)
+  double span = 0.0;                // nT (s)
+  double omega = 0.0;               // forcing frequency (rad/s)
+};
+
+// A witness (wall gap) and its rate along the orbit at a time since the section.
+struct GapSample {
+  bool completed = false;
+  double value = 0.0;  // gap (the witness's unit: length or rad)
+  double rate = 0.0;   // its time derivative along the flow
+};
+
+// The section is ωt ≡ phase (mod 2π); the driver may move it off an impact
+// that comes too close to it (where the stroboscopic map jumps) and reports
+// every state on the requested `phase`.
+struct ContinuationProblem {
+  // Pⁿ(x; p) and what the orbit does on the way; `detailed` also samples the
+  // flight gaps (a few times dearer)
+  std::function<OrbitEvaluation(const OrbitPoint& x, double p, double phase, bool detailed,
+                                const ContactWindow& suppressed)>
+      evaluate;
+  // the gap of `suppressed.witness` at time t since the section along the
+  // orbit from x at p, with that wall's contacts in the window suppressed
+  std::function<GapSample(const OrbitPoint& x, double p, double phase,
+                          const ContactWindow& suppressed, double t)>
+      gap_at;
+  // the state reached from x on section `from` at the next section `to`
+  std::function<std::optional<OrbitPoint>(const OrbitPoint& x, double p, double from, double to)>
+      transport;
+  double phase = 0.0;                // rad: the requested section
+  double forcing_period_at_p = 0.0;  // nT at the start (s): the scale of the grazing window
+};
+
+struct ContinuationRequest {
+  double from = 0.0, to = 1.0;       // the parameter's range, run from `from` towards `to`
+  OrbitPoint start{};              // a point of the orbit at p = from (a guess; corrected)
+  double initial_step = 0.0;         // arclength (0: 1/100 of the range)
+  double min_step = 0.0;             // (0: 1e-7 of the range)
+  double max_step = 0.0;             // (0: 1/50 of the range)
+  int max_points = 5000;
+  int max_newton_iterations = 12;
+  double tolerance = 1e-11;          // |F| ≤ tolerance (1 + |x|)
+  double parameter_difference = 0.0; // h of ∂F/∂p ≈ (P(p+h) − P(p−h)) / 2h (0: 1e-6 (1 + |p|))
+  bool locate = true;                // locate the bifurcations detected
+};
+
+struct BranchPoint {
+  double parameter = 0.0;
+  OrbitPoint state{};
+  int impacts = 0;
+  int contact_phases = 0;
+  std::array<std::complex<double>, 2> multipliers{};  // largest modulus first
+  bool stable = false;  // both multipliers strictly inside the unit circle
+  double min_impact_speed = 0.0;
+  double min_flight_gap = 0.0;
+  int newton_iterations = 0;
+  double step = 0.0;     // arclength step that reached it
+  double phase = 0.0;    // rad: the section of `state`
+};
+
+// A located bifurcation point.
+struct BifurcationPoint {
+  std::string type;        // fold, period_doubling, neimark_sacker, grazing, impact_grazing, contact_onset, contact_end
+  double parameter = 0.0;
+  OrbitPoint state{};
+  std::array<std::complex<double>, 2> multipliers{};
+  double error_estimate = 0.0;  // bound on the parameter's error (the final bracket, or Newton's last step)
+  double graze_time = std::numeric_limits<double>::quiet_NaN();  // s since the section (grazing)
+  int graze_witness = -1;
+  bool located = false;    // false: detected between two points only
+  std::string note;
+};
+
+struct ContinuationResult {
+  std::vector<BranchPoint> branch;
+  std::vector<BifurcationPoint> points;
+  // end_of_range, branch_point (step below the smallest: a point the corrector
+  // cannot pass), signature_change (the impact signature changed: grazing or
+  // contact onset), max_points, start_not_converged, run_stopped
+  std::string stop_reason = "end_of_range";
+  std::string stop_detail;
+  int map_evaluations = 0;
+};
+
+// Corrects `request.start` onto the orbit at p = from (Newton at fixed p) and
+// continues the branch towards `to`.
+ContinuationResult continue_branch(const ContinuationProblem& problem,
+                                   const ContinuationRequest& request);
+
+// Starts a branch from a point (x, p) along a given direction (dx, dp) of
+// unit size instead of the branch's own tangent: the branch switch at a
+// period doubling (the doubled orbit leaves along the −1 eigenvector, dp = 0).
+ContinuationResult continue_branch_from(const ContinuationProblem& problem,
+                                        const ContinuationRequest& request,
+                                        const OrbitPoint& x, double p,
+                                        const std::array<double, 3>& direction);
+
+// A continuation from a scene (OscillatorEntry::continuation): the scene key
+// continued, the orbit, where the branch starts, and the cascade to follow.
+struct ContinuationJob {
+  std::string parameter;           // scene key (omega, A, V0, ...)
+  double from = 0.0, to = 1.0;     // its range, run from `from` towards `to`
+  int period = 1;                  // n: the orbit's period in forcing periods
+  double phase = 0.0;              // rad: the stroboscopic section ωt ≡ phase (mod 2π)
+  double transient_periods = 100;  // periods run from the scene's initial state for the start
+  bool has_start = false;          // start from `start` (q, q̇) instead of the transient's end
+  OrbitPoint start{};
+  int doublings = 0;               // period doublings to switch at (the cascade followed)
+  ContinuationRequest numerics;    // from, to and start are set from the fields above
+};
+
+struct ContinuedBranch {
+  int period = 1;  // forcing periods of the orbit on this branch
+  ContinuationResult result;
+};
+
+struct ContinuationJobResult {
+  bool available = false;  // false: the oscillator/model has no Jacobians (see note)
+  std::string note;
+  std::vector<ContinuedBranch> branches;  // the first, then each doubled one
+};
+
+// The eigenvector of M for the real multiplier nearest `multiplier`, unit length.
+OrbitPoint eigenvector_for(const TangentMatrix& monodromy, double multiplier);
+
+}  // namespace impactlab

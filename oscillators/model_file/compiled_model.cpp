@@ -1,0 +1,569 @@
+#include "oscillators/model_file/compiled_model.hpp"
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+#include <random>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <ginac/ginac.h>
+
+#include "oscillators/model_file/model_expression.hpp"
+
+namespace impactlab {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Expressions = std::vector<GiNaC::ex>;
+
+// ---------------------------------------------------------------------------
+// symbolic stage: every kernel's outputs as GiNaC expressions in x[i], t, p[j]
+
+// The symbols and the parsed expressions of one model.
+class SymbolicModel {
+ public:
+  explicit SymbolicModel(const ModelDefinition& model) : model_(model), time_("t") {
+    for (std::size_t i = 0; i < model.states.size(); ++i)
+      states_.emplace_back(fmt::format("x[{}]", i));
+    for (std::size_t j = 0; j < model.parameters.size(); ++j)
+      parameters_.emplace_back(fmt::format("p[{}]", j));
+  }
+
+  [[nodiscard]] std::size_t size() const { return states_.size(); }
+  [[nodiscard]] const GiNaC::realsymbol& state(std::size_t i) const { return states_[i]; }
+  [[nodiscard]] const GiNaC::realsymbol& time() const { return time_; }
+
+  GiNaC::ex parse(const ExpressionText& text) {
+    const NameResolver resolver = [this](std::string_view name, const SourcePosition& where) {
+      return resolve(name, where);
+    };
+    return parse_expression(text, resolver);
+  }
+
+  [[nodiscard]] std::size_t state_index(const std::string& name) const {
+    for (std::size_t i = 0; i < model_.states.size(); ++i)
+      if (model_.states[i] == name) return i;
+    return size();
+  }
+
+  // whether e depends on the state or the time at all
+  [[nodiscard]] bool varies(const GiNaC::ex& e) const {
+    if (e.has(time_)) return true;
+    for (const auto& x : states_)
+      if (e.has(x)) return true;
+    return false;
+  }
+
+  // d/dt of e along the vector field f (a list of N expressions)
+  [[nodiscard]] GiNaC::ex rate(const GiNaC::ex& e, const Expressions& f) const {
+    GiNaC::ex total = e.diff(time_);
+    for (std::size_t i = 0; i < size(); ++i) total += e.diff(states_[i]) * f[i];
+    return total;
+  }
+  [[nodiscard]] Expressions gradient(const GiNaC::ex& e) const {
+    Expressions g;
+    for (std::size_t i = 0; i < size(); ++i) g.push_back(e.diff(states_[i]));
+    return g;
+  }
+  [[nodiscard]] Expressions jacobian(const Expressions& f) const {
+    Expressions j;
+    for (const auto& fi : f)
+      for (std::size_t i = 0; i < size(); ++i) j.push_back(fi.diff(states_[i]));
+    return j;
+  }
+
+ private:
+  std::optional<GiNaC::ex> resolve(std::string_view name, const SourcePosition& where) {
+    if (name == "t") return GiNaC::ex(time_);
+    for (std::size_t i = 0; i < model_.states.size(); ++i)
+      if (model_.states[i] == name) return GiNaC::ex(states_[i]);
+    for (std::size_t j = 0; j < model_.parameters.size(); ++j)
+      if (model_.parameters[j].name == name) return GiNaC::ex(parameters_[j]);
+    for (const auto& [definition, text] : model_.definitions) {
+      if (definition != name) continue;
+      if (const auto done = definitions_.find(definition); done != definitions_.end())
+        return done->second;
+      if (!in_progress_.insert(definition).second)
+        throw ModelFileError(where, text.key,
+                             "circular definition: '" + definition + "' depends on itself");
+      const GiNaC::ex value = parse(text);
+      in_progress_.erase(definition);
+      definitions_.emplace(definition, value);
+      return value;
+    }
+    return std::nullopt;
+  }
+
+  const ModelDefinition& model_;
+  GiNaC::realsymbol time_;
+  std::vector<GiNaC::realsymbol> states_;
+  std::vector<GiNaC::realsymbol> parameters_;
+  std::map<std::string, GiNaC::ex> definitions_;
+  std::set<std::string> in_progress_;
+};
+
+// Where each kernel sits in the list of kernels.
+struct KernelLayout {
+  std::size_t free_rhs = 0, free_jacobian = 0, scalars = 0, written = 0;
+  std::vector<std::size_t> gap, gap_gradient, reset, reset_jacobian;
+  std::vector<std::size_t> stick_rhs, stick_jacobian, stick_state, stick_force, stick_force_gradient;
+};
+
+constexpr std::size_t no_kernel = static_cast<std::size_t>(-1);
+
+// The Newton reset along a velocity: ḣ⁺ = −r ḣ⁻ solved for v (one Newton step,
+// exact where ḣ is affine in v, as for any mechanical gap), and the position
+// put back on the wall, q⁺ = q − h/∂h/∂q (exact where h is affine in q).
+Expressions newton_reset(SymbolicModel& symbols, const ModelWall& wall, const GiNaC::ex& gap,
+                         const GiNaC::ex& gap_rate, const GiNaC::ex& restitution) {
+  Expressions after;
+  for (std::size_t i = 0; i < symbols.size(); ++i) after.emplace_back(symbols.state(i));
+  const std::size_t v = symbols.state_index(wall.reset.velocity);
+  const GiNaC::ex sensitivity = gap_rate.diff(symbols.state(v)).expand();
+  if (sensitivity.is_zero())
+    throw ModelFileError(wall.reset.where, wall.witness.key,
+                         "the witness's rate does not depend on the velocity '" +
+                             wall.reset.velocity + "': Newton's law cannot change it");
+  after[v] = symbols.state(v) - (1 + restitution) * gap_rate / sensitivity;
+  if (!wall.reset.position.empty()) {
+    const std::size_t q = symbols.state_index(wall.reset.position);
+    const GiNaC::ex slope = gap.diff(symbols.state(q)).expand();
+    if (slope.is_zero())
+      throw ModelFileError(wall.reset.where, wall.witness.key,
+                           "the witness does not depend on the position '" + wall.reset.position + "'");
+    after[q] = symbols.state(q) - gap / slope;
+  }
+  return after;
+}
+
+// All kernels of the model, in the order of `layout`.
+std::vector<Expressions> build_kernels(const ModelDefinition& model, KernelLayout& layout,
+                                       std::vector<ExpressionText>& written_texts) {
+  SymbolicModel symbols(model);
+  std::vector<Expressions> kernels;
+  auto add = [&](Expressions outputs) {
+    kernels.push_back(std::move(outputs));
+    return kernels.size() - 1;
+  };
+  Expressions written;
+  auto note = [&](const ExpressionText& text, const GiNaC::ex& value) {
+    written.push_back(value);
+    written_texts.push_back(text);
+    return value;
+  };
+
+  Expressions f;
+  for (const auto& [state, text] : model.rhs) f.push_back(note(text, symbols.parse(text)));
+  layout.free_rhs = add(f);
+  layout.free_jacobian = add(symbols.jacobian(f));
+
+  const GiNaC::ex omega = note(model.forcing_frequency, symbols.parse(model.forcing_frequency));
+  const GiNaC::ex max_step = model.max_step.text.empty()
+                                 ? 2 * GiNaC::Pi / omega / 16
+                                 : note(model.max_step, symbols.parse(model.max_step));
+  for (const auto& [e, text] : {std::pair{omega, &model.forcing_frequency}, std::pair{max_step, &model.max_step}}) {
+    if (symbols.varies(e))
+      throw ModelFileError(text->position, text->key, "may depend on parameters only");
+  }
+  layout.scalars = add({omega, max_step});
+
+  for (const ModelWall& wall : model.walls) {
+    const GiNaC::ex h = note(wall.witness, symbols.parse(wall.witness));
+    const GiNaC::ex h_rate = symbols.rate(h, f);
+    if (!symbols.varies(h))
+      throw ModelFileError(wall.witness.position, wall.witness.key,
+                           "the witness is constant: it never crosses zero");
+    layout.gap.push_back(add({h, h_rate}));
+    layout.gap_gradient.push_back(add(symbols.gradient(h)));
+
+    Expressions after;
+    GiNaC::ex restitution = -1;  // a map reset has none
+    if (wall.reset.kind == ModelReset::Kind::newton) {
+      restitution = note(wall.reset.restitution, symbols.parse(wall.reset.restitution));
+      after = newton_reset(symbols, wall, h, h_rate, restitution);
+    } else {
+      for (std::size_t i = 0; i < symbols.size(); ++i) after.emplace_back(symbols.state(i));
+      for (const auto& [state, text] : wall.reset.map)
+        after[symbols.state_index(state)] = symbols.parse(text);
+    }
+    Expressions reset_jacobian = symbols.jacobian(after);
+    for (const auto& component : after) reset_jacobian.push_back(component.diff(symbols.time()));
+    after.push_back(restitution);
+    layout.reset.push_back(add(after));
+    layout.reset_jacobian.push_back(add(reset_jacobian));
+
+    if (!wall.has_sticking) {
+      for (auto* slot : {&layout.stick_rhs, &layout.stick_jacobian, &layout.stick_state,
+                         &layout.stick_force, &layout.stick_force_gradient})
+        slot->push_back(no_kernel);
+      continue;
+    }
+    Expressions stuck_f, stuck_state;
+    for (const auto& [state, text] : wall.sticking.rhs) stuck_f.push_back(symbols.parse(text));
+    for (const auto& [state, text] : wall.sticking.state) stuck_state.push_back(symbols.parse(text));
+    const GiNaC::ex force = symbols.parse(wall.sticking.force);
+    const GiNaC::ex force_rate = symbols.rate(force, stuck_f);
+    layout.stick_rhs.push_back(add(stuck_f));
+    layout.stick_jacobian.push_back(add(symbols.jacobian(stuck_f)));
+    layout.stick_state.push_back(add(stuck_state));
+    layout.stick_force.push_back(add({force, force_rate, symbols.rate(force_rate, stuck_f)}));
+    layout.stick_force_gradient.push_back(add(symbols.gradient(force)));
+  }
+  layout.written = add(written);
+  return kernels;
+}
+
+// ---------------------------------------------------------------------------
+// code generation
+
+std::string c_source(const std::vector<Expressions>& kernels) {
+  std::ostringstream out;
+  out << "/* generated by impactlab from a [model] section */\n"
+         "#include <math.h>\n"
+         "#define Pi 3.14159265358979323846264338327950288\n";
+  out << GiNaC::csrc_double;
+  for (std::size_t k = 0; k < kernels.size(); ++k) {
+    out << "void impactlab_kernel_" << k
+        << "(const double* x, double t, const double* p, double* out) {\n"
+           "  (void)x; (void)t; (void)p;\n";
+    for (std::size_t i = 0; i < kernels[k].size(); ++i) {
+      out << "  out[" << i << "] = " << kernels[k][i] << ";\n";
+    }
+    out << "}\n";
+  }
+  return out.str();
+}
+
+std::uint64_t fnv1a(std::string_view text) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (const unsigned char c : text) {
+    hash ^= c;
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
+// What the generated source is a function of: the model as written and this
+// generator's version. (The source itself is not: GiNaC orders the terms of a
+// sum by the serial numbers of its symbols, which differ between two models
+// built in one process, though not between two runs of the program.)
+constexpr std::string_view generator_version = "impactlab model generator 1";
+
+std::string model_fingerprint(const ModelDefinition& model) {
+  std::string text(generator_version);
+  auto add = [&](std::string_view part) {
+    text += '\x1f';
+    text += part;
+  };
+  auto add_expressions = [&](const StateExpressions& expressions) {
+    for (const auto& [name, expression] : expressions) {
+      add(name);
+      add(expression.text);
+    }
+    add("|");
+  };
+  for (const auto& state : model.states) add(state);
+  add("|");
+  for (const auto& parameter : model.parameters) add(parameter.name);
+  add("|");
+  add_expressions(model.definitions);
+  add_expressions(model.rhs);
+  add(model.forcing_frequency.text);
+  add(model.max_step.text);
+  for (const auto& wall : model.walls) {
+    add(wall.witness.text);
+    add(wall.direction == TriggerDirection::falling ? "falling" : "rising");
+    add(wall.reset.kind == ModelReset::Kind::newton ? "newton" : "map");
+    add(wall.reset.velocity);
+    add(wall.reset.restitution.text);
+    add(wall.reset.position);
+    add_expressions(wall.reset.map);
+    add(wall.has_sticking ? "sticking" : "-");
+    add_expressions(wall.sticking.rhs);
+    add_expressions(wall.sticking.state);
+    add(wall.sticking.force.text);
+  }
+  return text;
+}
+
+// ---------------------------------------------------------------------------
+// the interpreted evaluator
+
+class ProgramWriter {
+ public:
+  std::vector<StackInstruction> code;
+
+  void emit(const GiNaC::ex& e) {
+    using Op = StackInstruction::Op;
+    if (GiNaC::is_a<GiNaC::numeric>(e)) {
+      push({Op::constant, 0, GiNaC::ex_to<GiNaC::numeric>(e).to_double()});
+    } else if (GiNaC::is_a<GiNaC::constant>(e)) {
+      push({Op::constant, 0, GiNaC::ex_to<GiNaC::numeric>(e.evalf()).to_double()});
+    } else if (GiNaC::is_a<GiNaC::symbol>(e)) {
+      const std::string name = GiNaC::ex_to<GiNaC::symbol>(e).get_name();
+      if (name == "t") {
+        push({Op::time});
+      } else {
+        const auto index = static_cast<std::uint32_t>(std::stoul(name.substr(2)));
+        push({name[0] == 'x' ? Op::state : Op::parameter, index});
+      }
+    } else if (GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e)) {
+      const Op op = GiNaC::is_a<GiNaC::add>(e) ? Op::add : Op::multiply;
+      emit(e.op(0));
+      for (std::size_t i = 1; i < e.nops(); ++i) {
+        emit(e.op(i));
+        pop({op});
+      }
+    } else if (GiNaC::is_a<GiNaC::power>(e)) {
+      emit(e.op(0));
+      if (e.op(1).is_equal(GiNaC::ex(2))) {
+        code.push_back({Op::square});
+      } else {
+        emit(e.op(1));
+        pop({Op::power});
+      }
+    } else if (GiNaC::is_a<GiNaC::function>(e)) {
+      static constexpr std::pair<std::string_view, Op> unary[] = {
+          {"sin", Op::sin},   {"cos", Op::cos},   {"tan", Op::tan},   {"asin", Op::asin},
+          {"acos", Op::acos}, {"atan", Op::atan}, {"sinh", Op::sinh}, {"cosh", Op::cosh},
+          {"tanh", Op::tanh}, {"exp", Op::exp},   {"log", Op::log},   {"abs", Op::abs}};
+      const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+      for (std::size_t i = 0; i < e.nops(); ++i) emit(e.op(i));
+      if (name == "atan2") {
+        pop({Op::atan2});
+        return;
+      }
+      for (const auto& [known, op] : unary) {
+        if (known == name) {
+          code.push_back({op});
+          return;
+        }
+      }
+      throw std::runtime_error("the interpreted evaluator has no function " + name);
+    } else {
+      throw std::runtime_error("the interpreted evaluator cannot evaluate this expression");
+    }
+  }
+  void store(std::uint32_t output) { pop({StackInstruction::Op::store, output}); }
+
+ private:
+  void push(StackInstruction in) {
+    code.push_back(in);
+    if (++depth_ > StackProgram::max_depth)
+      throw std::runtime_error("an expression too deep for the interpreted evaluator");
+  }
+  void pop(StackInstruction in) {
+    code.push_back(in);
+    --depth_;
+  }
+  std::size_t depth_ = 0;
+};
+
+StackProgram program_of(const Expressions& outputs) {
+  ProgramWriter writer;
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    writer.emit(outputs[i]);
+    writer.store(static_cast<std::uint32_t>(i));
+  }
+  return StackProgram(std::move(writer.code));
+}
+
+// ---------------------------------------------------------------------------
+// compilation and the cache
+
+std::string shell_quoted(const std::string& text) {
+  std::string quoted = "'";
+  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+std::string first_line_of(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+// A name no other run uses at the same time: pid, thread-independent counter, random bits.
+std::string unique_suffix() {
+  std::random_device device;
+  return fmt::format("{}-{:08x}", static_cast<long>(::getpid()), device());
+}
+
+constexpr std::string_view compiler_flags = "-O2 -fno-math-errno -shared -fPIC";
+
+// The shared object for `source`, compiled if the cache does not hold it.
+// Returns the path, or an empty path and the reason in `why`.
+fs::path shared_object(const std::string& fingerprint, const std::string& source,
+                       const CompileOptions& options, bool& from_cache, std::string& why) {
+  const std::string key = fmt::format("{}\n{} {}", fingerprint, options.compiler, compiler_flags);
+  const fs::path directory(options.cache_directory);
+  const fs::path target = directory / fmt::format("model-{:016x}.so", fnv1a(key));
+  std::error_code error;
+  if (fs::exists(target, error)) {
+    from_cache = true;
+    return target;
+  }
+  fs::create_directories(directory, error);
+  if (error || !fs::is_directory(directory)) {
+    why = fmt::format("cache directory {} is not usable ({})", directory.string(),
+                      error ? error.message() : "not a directory");
+    return {};
+  }
+  const std::string suffix = unique_suffix();
+  const fs::path source_file = directory / fmt::format("model-{:016x}.{}.c", fnv1a(key), suffix);
+  const fs::path temporary = directory / fmt::format("model-{:016x}.{}.so.tmp", fnv1a(key), suffix);
+  const fs::path log = directory / fmt::format("model-{:016x}.{}.log", fnv1a(key), suffix);
+  {
+    std::ofstream out(source_file);
+    out << source;
+    if (!out.flush()) {
+      why = fmt::format("cache directory {} is not writable", directory.string());
+      fs::remove(source_file, error);
+      return {};
+    }
+  }
+  const std::string command =
+      fmt::format("{} {} -o {} {} -lm > {} 2>&1", shell_quoted(options.compiler), compiler_flags,
+                  shell_quoted(temporary.string()), shell_quoted(source_file.string()),
+                  shell_quoted(log.string()));
+  const int status = std::system(command.c_str());
+  if (status != 0) {
+    const std::string detail = first_line_of(log);
+    why = fmt::format("the C compiler '{}' failed (status {}{}{})", options.compiler, status,
+                      detail.empty() ? "" : ": ", detail);
+    for (const auto& path : {source_file, temporary, log}) fs::remove(path, error);
+    return {};
+  }
+  // atomic: a concurrent run sees the old state (no file) or the whole file
+  fs::rename(temporary, target, error);
+  for (const auto& path : {source_file, log}) fs::remove(path, error);
+  if (error) {
+    why = fmt::format("cannot move the compiled model into {} ({})", directory.string(), error.message());
+    fs::remove(temporary, error);
+    return {};
+  }
+  return target;
+}
+
+}  // namespace
+
+CompileOptions compile_options_from_environment() {
+  CompileOptions options;
+  if (const char* compiler = std::getenv("IMPACTLAB_CC"); compiler && *compiler)
+    options.compiler = compiler;
+  if (const char* cache = std::getenv("IMPACTLAB_CACHE_DIR"); cache && *cache) {
+    options.cache_directory = cache;
+  } else if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
+    options.cache_directory = (fs::path(xdg) / "impactlab").string();
+  } else if (const char* home = std::getenv("HOME"); home && *home) {
+    options.cache_directory = (fs::path(home) / ".cache" / "impactlab").string();
+  } else {
+    options.cache_directory = (fs::temp_directory_path() / "impactlab-cache").string();
+  }
+  return options;
+}
+
+CompiledModel::~CompiledModel() {
+  if (library_handle) dlclose(library_handle);
+}
+
+std::shared_ptr<const CompiledModel> compile_model(const ModelDefinition& definition,
+                                                   const CompileOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  auto model = std::make_shared<CompiledModel>();
+  model->file = definition.file;
+  model->states = definition.states;
+  model->parameters = definition.parameters;
+  model->mode_names.push_back("free");
+  for (const ModelWall& wall : definition.walls) {
+    model->walls.push_back({wall.name, wall.side, wall.direction, wall.has_sticking});
+    model->mode_names.push_back("stuck_" + wall.name);
+  }
+
+  KernelLayout layout;
+  const std::vector<Expressions> kernels =
+      build_kernels(definition, layout, model->written_expressions);
+
+  // compiled, where a compiler and the cache are usable
+  std::vector<Kernel> loaded(kernels.size());
+  if (options.use_compiler) {
+    const std::string source = c_source(kernels);
+    std::string why;
+    const fs::path library =
+        shared_object(model_fingerprint(definition), source, options, model->from_cache, why);
+    if (!library.empty()) {
+      void* handle = dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
+      if (!handle) {
+        why = fmt::format("cannot load {} ({})", library.string(), dlerror());
+      } else {
+        model->library_handle = handle;
+        model->library = library.string();
+        for (std::size_t k = 0; k < kernels.size() && why.empty(); ++k) {
+          void* symbol = dlsym(handle, fmt::format("impactlab_kernel_{}", k).c_str());
+          if (!symbol) why = fmt::format("{} lacks kernel {}", library.string(), k);
+          loaded[k].compiled = reinterpret_cast<KernelFunction>(symbol);
+        }
+      }
+    }
+    model->compiled = why.empty();
+    model->slow_path_reason = why;
+  } else {
+    model->slow_path_reason = "compilation switched off";
+  }
+  // the interpreted slow path
+  if (!model->compiled) {
+    model->programs.reserve(kernels.size());
+    for (const auto& outputs : kernels) model->programs.push_back(program_of(outputs));
+    for (std::size_t k = 0; k < kernels.size(); ++k) loaded[k] = {nullptr, &model->programs[k]};
+  }
+
+  auto kernel = [&](std::size_t index) { return index == no_kernel ? Kernel{} : loaded[index]; };
+  auto kernel_list = [&](const std::vector<std::size_t>& indices) {
+    std::vector<Kernel> list;
+    for (auto index : indices) list.push_back(kernel(index));
+    return list;
+  };
+  model->free_rhs = kernel(layout.free_rhs);
+  model->free_jacobian = kernel(layout.free_jacobian);
+  model->scalars = kernel(layout.scalars);
+  model->written = kernel(layout.written);
+  model->gap = kernel_list(layout.gap);
+  model->gap_gradient = kernel_list(layout.gap_gradient);
+  model->reset = kernel_list(layout.reset);
+  model->reset_jacobian = kernel_list(layout.reset_jacobian);
+  model->stick_rhs = kernel_list(layout.stick_rhs);
+  model->stick_jacobian = kernel_list(layout.stick_jacobian);
+  model->stick_state = kernel_list(layout.stick_state);
+  model->stick_force = kernel_list(layout.stick_force);
+  model->stick_force_gradient = kernel_list(layout.stick_force_gradient);
+  model->build_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return model;
+}
+
+void check_initial_values(const CompiledModel& model, const std::vector<double>& x0, double t0,
+                          const std::vector<double>& p) {
+  std::vector<double> values(model.written_expressions.size());
+  model.written(x0.data(), t0, p.data(), values.data());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (std::isfinite(values[i])) continue;
+    const ExpressionText& text = model.written_expressions[i];
+    throw ModelFileError(text.position, text.key,
+                         fmt::format("evaluates to {} at the initial state (t = {}) in {} = \"{}\"",
+                                     values[i], t0, text.key, text.text));
+  }
+}
+
+}  // namespace impactlab

@@ -1,0 +1,99 @@
+// A model section turned into functions: symbolic differentiation (GiNaC) of
+// every vector field, witness and reset, C code for all of them compiled by
+// the system compiler into a shared object, cached by a hash of its source and
+// the compiler, and loaded with dlopen. When no compiler or cache directory is
+// usable the same expressions run on an interpreted evaluator, and the model
+// says so (slow_path_reason).
+//
+// The cache directory: $IMPACTLAB_CACHE_DIR, else $XDG_CACHE_HOME/impactlab,
+// else ~/.cache/impactlab. The compiler: $IMPACTLAB_CC, else `cc`. A shared
+// object is written under a temporary name and renamed into place, so runs
+// started at once on the same new model each see a whole file or none.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/hybrid_system.hpp"
+#include "oscillators/model_file/model_definition.hpp"
+#include "oscillators/model_file/model_kernels.hpp"
+
+namespace impactlab {
+
+struct CompileOptions {
+  std::string cache_directory;   // where the shared objects are kept
+  std::string compiler = "cc";   // the C compiler's command
+  bool use_compiler = true;      // false: go straight to the interpreted evaluator
+};
+
+// The options from the environment ($IMPACTLAB_CACHE_DIR, $XDG_CACHE_HOME,
+// $HOME, $IMPACTLAB_CC).
+CompileOptions compile_options_from_environment();
+
+struct CompiledWall {
+  std::string name;
+  int side = 1;
+  TriggerDirection direction = TriggerDirection::falling;
+  bool has_sticking = false;
+};
+
+// The model's functions. Modes: 0 is free flight; 1 + k is resting on wall k
+// (walls with a sticking mode only). N is the number of states.
+class CompiledModel {
+ public:
+  CompiledModel() = default;
+  CompiledModel(const CompiledModel&) = delete;
+  CompiledModel& operator=(const CompiledModel&) = delete;
+  ~CompiledModel();
+
+  // --- what the model is ---
+  std::string file;
+  std::vector<std::string> states;
+  std::vector<ModelParameter> parameters;
+  std::vector<CompiledWall> walls;
+  std::vector<std::string> mode_names;  // "free", then "stuck_<wall name>"
+
+  // --- its functions ---
+  Kernel free_rhs;        // f(x, t) in free flight (N)
+  Kernel free_jacobian;   // ∂f/∂x (N × N, row-major)
+  Kernel scalars;         // ω, max_step (parameters only)
+  std::vector<Kernel> gap;             // per wall: h, ḣ along the free flow
+  std::vector<Kernel> gap_gradient;    // per wall: ∂h/∂x (N)
+  std::vector<Kernel> reset;           // per wall: x⁺ (N), then the restitution r (−1 for a map)
+  std::vector<Kernel> reset_jacobian;  // per wall: ∂x⁺/∂x (N × N), then ∂x⁺/∂t (N)
+  std::vector<Kernel> stick_rhs;       // per wall: the vector field at rest on it (N)
+  std::vector<Kernel> stick_jacobian;  // per wall: its ∂/∂x (N × N)
+  std::vector<Kernel> stick_state;     // per wall: the state on the wall (N)
+  std::vector<Kernel> stick_force;     // per wall: F, Ḟ, F̈ along the sticking flow
+  std::vector<Kernel> stick_force_gradient;  // per wall: ∂F/∂x (N)
+  // every free-flight expression as written (right-hand sides, witnesses,
+  // restitutions, ω, max_step), for the check at the initial state
+  Kernel written;
+  std::vector<ExpressionText> written_expressions;
+
+  // --- how it was built ---
+  bool compiled = false;          // false: the interpreted slow path
+  std::string slow_path_reason;   // why not compiled (empty when compiled)
+  std::string library;            // the shared object's path
+  bool from_cache = false;        // the shared object was already there
+  double build_seconds = 0.0;     // symbolic work + code generation + compilation (s)
+
+  // storage behind the kernels
+  void* library_handle = nullptr;
+  std::vector<StackProgram> programs;
+};
+
+// Differentiates, generates, compiles (or finds in the cache) and loads.
+// ModelFileError for expressions that do not make sense (unknown symbols,
+// cycles among definitions, a Newton reset whose witness rate does not depend
+// on its velocity, ...). Never fails for a missing compiler: that is the slow path.
+std::shared_ptr<const CompiledModel> compile_model(const ModelDefinition& definition,
+                                                   const CompileOptions& options);
+
+// ModelFileError at the first written expression that is not finite at (x0, t0)
+// with parameters p.
+void check_initial_values(const CompiledModel& model, const std::vector<double>& x0, double t0,
+                          const std::vector<double>& p);
+
+}  // namespace impactlab

@@ -1,0 +1,230 @@
+// A model section's hybrid system (core/hybrid_system.hpp): the compiled
+// functions of oscillators/model_file/compiled_model.hpp behind the same
+// interface as a hand-written oscillator, so that the event loop, sections,
+// sweeps and (for one degree of freedom) saltation, Floquet and Lyapunov run
+// it unchanged.
+//
+// N, the number of states, is fixed at compile time so that the state is a
+// std::array and the loop allocates nothing; the binding instantiates N = 2
+// and N = 4. Modes: free flight, and one sticking mode per wall that has one.
+// Events per wall k:
+//   free flight, the witness h_k crosses zero in its direction: an impact,
+//     x⁺ from the wall's reset; with a sticking mode, the impacts that follow
+//     are summed into their accumulation point (contact/accumulation.hpp) when
+//     the push F into the wall is nearly constant over them, and the state
+//     rests on the wall (the sticking state) while F > 0;
+//   resting on wall k, F falls through zero: release into free flight from
+//     the sticking state.
+// events.csv's q and qdot are the first two states.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string_view>
+#include <vector>
+
+#include "contact/accumulation.hpp"
+#include "core/event_log.hpp"
+#include "core/has_jacobian.hpp"
+#include "core/hybrid_system.hpp"
+#include "oscillators/model_file/compiled_model.hpp"
+
+namespace impactlab {
+
+// 0: free flight; 1 + k: resting on wall k.
+enum class ModelMode : std::uint8_t {};
+
+template <std::size_t N>
+class ModelSystem {
+ public:
+  using State = std::array<double, N>;
+  using Mode = ModelMode;
+  static constexpr std::size_t max_witnesses = 6;
+  static constexpr Mode free_mode{0};
+
+  // parameters: values in the model's order; accumulation: what an
+  // accumulation estimate is held to, with the gap's resolution per unit of
+  // the wall coordinate (contact/accumulation.hpp; its apex and round-off
+  // terms are scaled by the wall coordinate at each impact)
+  ModelSystem(std::shared_ptr<const CompiledModel> model, std::vector<double> parameters,
+              AccumulationTolerance accumulation = {})
+      : model_(std::move(model)), p_(std::move(parameters)), accumulation_(accumulation) {
+    if (model_->states.size() != N || p_.size() != model_->parameters.size())
+      throw std::invalid_argument("ModelSystem: state or parameter count does not match the model");
+    double scalars[2];
+    model_->scalars(nullptr, 0.0, p_.data(), scalars);
+    omega_ = scalars[0];
+    max_step_ = scalars[1];
+  }
+
+  [[nodiscard]] const CompiledModel& model() const { return *model_; }
+  [[nodiscard]] const std::vector<double>& parameters() const { return p_; }
+  [[nodiscard]] double forcing_frequency() const { return omega_; }
+  [[nodiscard]] double max_step() const { return max_step_; }
+  [[nodiscard]] std::string_view mode_name(Mode mode) const { return model_->mode_names[index(mode)]; }
+  static constexpr Mode stuck_mode(std::size_t wall) { return Mode(static_cast<std::uint8_t>(wall + 1)); }
+
+  void rhs(Mode mode, const State& x, State& dxdt, double t) const {
+    const std::size_t m = index(mode);
+    const Kernel& field = m == 0 ? model_->free_rhs : model_->stick_rhs[m - 1];
+    field(x.data(), t, p_.data(), dxdt.data());
+  }
+
+  [[nodiscard]] std::size_t witness_count(Mode mode) const {
+    return index(mode) == 0 ? model_->walls.size() : 1;
+  }
+
+  [[nodiscard]] TriggerDirection trigger_direction(Mode mode, std::size_t k) const {
+    return index(mode) == 0 ? model_->walls[k].direction : TriggerDirection::falling;
+  }
+
+  // free: the wall's witness and its rate; resting on wall k: the push F, Ḟ
+  [[nodiscard]] WitnessSample witness(Mode mode, std::size_t k, const State& x, double t) const {
+    const std::size_t m = index(mode);
+    double out[3];
+    if (m == 0) {
+      model_->gap[k](x.data(), t, p_.data(), out);
+    } else {
+      model_->stick_force[m - 1](x.data(), t, p_.data(), out);
+    }
+    return {out[0], out[1]};
+  }
+
+  Transition<State, Mode> on_event(Mode mode, std::size_t k, CrossingKind crossing, const State& x,
+                                   double t, EventLog& log) const {
+    const std::size_t m = index(mode);
+    if (m == 0) return on_wall_reached(k, crossing, x, t, log);
+    // the push only touched zero and stays inward: the state stays on the wall
+    if (crossing == CrossingKind::grazing) return {x, mode, t, false};
+    const State released = sticking_state(m - 1, x, t);
+    log.record({t, EventKind::contact_end, model_->walls[m - 1].side, released[0], released[1],
+                released[1]});
+    return {released, free_mode, t, false};
+  }
+
+  // --- linearisation (core/has_jacobian.hpp), one degree of freedom only:
+  // the analyses' tangent space is (q, q̇) ---
+
+  void jacobian(Mode mode, const State& x, double t, TangentMatrix& j) const
+    requires(N == tangent_dimension)
+  {
+    const std::size_t m = index(mode);
+    double out[N * N];
+    const Kernel& field = m == 0 ? model_->free_jacobian : model_->stick_jacobian[m - 1];
+    field(x.data(), t, p_.data(), out);
+    j = {{{out[0], out[1]}, {out[2], out[3]}}};
+  }
+
+  [[nodiscard]] TangentVector witness_gradient(Mode mode, std::size_t k, const State& x,
+                                               double t) const
+    requires(N == tangent_dimension)
+  {
+    const std::size_t m = index(mode);
+    TangentVector g{};
+    const Kernel& gradient = m == 0 ? model_->gap_gradient[k] : model_->stick_force_gradient[m - 1];
+    gradient(x.data(), t, p_.data(), g.data());
+    return g;
+  }
+
+  [[nodiscard]] bool pinned(Mode mode) const
+    requires(N == tangent_dimension)
+  {
+    return index(mode) != 0;
+  }
+
+  // An impact: ∂x⁺/∂x and ∂x⁺/∂t of the wall's reset, differentiated
+  // symbolically. A grazing touch leaves the state alone; an accumulation and
+  // a release collapse nearby states into one.
+  [[nodiscard]] ResetJacobian reset_jacobian(Mode mode, std::size_t k, CrossingKind crossing,
+                                             const State& x, double t,
+                                             const Transition<State, Mode>& after) const
+    requires(N == tangent_dimension)
+  {
+    if (crossing == CrossingKind::grazing) return identity_reset();
+    if (index(mode) != 0 || index(after.mode) != 0 || after.time > t) return collapsed_reset();
+    double out[N * N + N];
+    model_->reset_jacobian[k](x.data(), t, p_.data(), out);
+    ResetJacobian reset;
+    reset.state = {{{out[0], out[1]}, {out[2], out[3]}}};
+    reset.time = {out[4], out[5]};
+    return reset;
+  }
+
+ private:
+  static constexpr std::size_t index(Mode mode) { return static_cast<std::size_t>(mode); }
+
+  [[nodiscard]] State sticking_state(std::size_t wall, const State& x, double t) const {
+    State s;
+    model_->stick_state[wall](x.data(), t, p_.data(), s.data());
+    return s;
+  }
+
+  // An impact (or a grazing touch) on wall k; then flight again, or, when the
+  // impacts are accumulating, a jump to their limit and rest on the wall.
+  Transition<State, Mode> on_wall_reached(std::size_t k, CrossingKind crossing, const State& x,
+                                          double t, EventLog& log) const {
+    const CompiledWall& wall = model_->walls[k];
+    if (crossing == CrossingKind::grazing) {
+      log.record({t, EventKind::grazing, wall.side, x[0], x[1], x[1]});
+      return {x, free_mode, t, false};
+    }
+    double reset[N + 1];  // x⁺, then the restitution
+    model_->reset[k](x.data(), t, p_.data(), reset);
+    State after;
+    std::copy_n(reset, N, after.begin());
+    log.record({t, EventKind::impact, wall.side, x[0], x[1], after[1]});
+    if (!wall.has_sticking) return {after, free_mode, t, false};
+
+    // chattering: is the wall pushing back, and is the accumulation estimate
+    // good? The separation speed is r |ḣ⁻| (Newton's law), not ḣ evaluated
+    // after the impact: that difference of nearly equal velocities would lose
+    // digits in a chatter, where the speeds are small.
+    double gap[2], push[3];
+    model_->gap[k](x.data(), t, p_.data(), gap);
+    const State resting = sticking_state(k, after, t);
+    model_->stick_force[k](resting.data(), t, p_.data(), push);
+    const double restitution = reset[N];
+    // the gap's resolution where this wall is: scaled by its coordinate
+    AccumulationTolerance tolerance = accumulation_;
+    const double wall_coordinate = std::max(1.0, std::fabs(after[0]));
+    tolerance.unresolved_apex *= wall_coordinate;
+    tolerance.gap_roundoff *= wall_coordinate;
+    const auto estimate = accept_accumulation(
+        {restitution * std::fabs(gap[1]), push[0], push[1], restitution, push[2]}, tolerance);
+    if (!estimate) return {after, free_mode, t, false};
+    return enter_stuck(k, after, t + estimate->remaining, estimate->error_bound, log);
+  }
+
+  // At the accumulation point the state rests on the wall if the push holds it
+  // there; otherwise it leaves from the sticking state.
+  Transition<State, Mode> enter_stuck(std::size_t k, const State& after, double t,
+                                      double time_error, EventLog& log) const {
+    const int side = model_->walls[k].side;
+    const State resting = sticking_state(k, after, t);
+    EventRecord accumulation{t, EventKind::accumulation, side, resting[0], resting[1], resting[1]};
+    accumulation.accumulation_error = time_error;
+    log.record(accumulation);
+    double push[3];
+    model_->stick_force[k](resting.data(), t, p_.data(), push);
+    if (!(push[0] > 0.0)) return {resting, free_mode, t, false};
+    log.record({t, EventKind::contact_start, side, resting[0], resting[1], resting[1]});
+    return {resting, stuck_mode(k), t, false};
+  }
+
+  std::shared_ptr<const CompiledModel> model_;
+  std::vector<double> p_;  // parameter values, in the model's order
+  AccumulationTolerance accumulation_;
+  double omega_ = 1.0;     // forcing frequency (rad per time unit)
+  double max_step_ = 0.1;  // largest integrator step (time)
+};
+
+static_assert(HybridSystem<ModelSystem<2>>);
+static_assert(HasJacobian<ModelSystem<2>>);
+static_assert(HybridSystem<ModelSystem<4>>);
+static_assert(!HasJacobian<ModelSystem<4>>);
+
+}  // namespace impactlab

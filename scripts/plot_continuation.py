@@ -1,0 +1,74 @@
+#!/usr/bin/python3
+"""The continuation diagram of `impactlab continue --plot` (or by hand).
+
+    plot_continuation.py branch.csv out.png PARAM QNAME [bifurcation.csv]
+
+q on the section against the parameter for every branch (stable parts solid,
+unstable parts dashed, one colour per branch), the bifurcations of points.csv
+(found beside branch.csv) marked and labelled, and, when given, the points of a
+brute-force sweep's bifurcation.csv of the same range underneath in grey.
+"""
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+MARKERS = {"fold": ("s", "tab:green"), "period_doubling": ("o", "tab:red"),
+           "neimark_sacker": ("D", "tab:purple"), "grazing": ("*", "black"),
+           "contact_onset": ("^", "tab:orange"), "contact_end": ("v", "tab:orange")}
+
+
+def read(path):
+    data = np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8")
+    return np.atleast_1d(data)
+
+
+def runs(mask):
+    """(start, stop) index pairs of the runs of equal values in a boolean array."""
+    edges = np.flatnonzero(np.diff(mask.astype(int))) + 1
+    starts = np.concatenate(([0], edges))
+    stops = np.concatenate((edges, [len(mask)]))
+    return zip(starts, stops)
+
+
+def main(argv):
+    branch_csv, png, param, q_name, *sweep = argv[1:]
+    branch = read(branch_csv)
+    fig, ax = plt.subplots(figsize=(8, 5))
+    if sweep:
+        points = read(sweep[0])
+        ax.plot(points[param], points["q"], ",", color="0.6", rasterized=True)
+        ax.plot([], [], ".", color="0.6", label="sweep (brute force)")
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for index in np.unique(branch["branch"]):
+        rows = branch[branch["branch"] == index]
+        colour = colours[int(index) % len(colours)]
+        stable = rows["stable"] == 1
+        for start, stop in runs(stable):
+            # overlap one point so that the stable and unstable pieces join
+            piece = rows[start:min(stop + 1, len(rows))]
+            ax.plot(piece[param], piece["q"], "-" if stable[start] else "--", color=colour,
+                    linewidth=1.4)
+        ax.plot([], [], "-", color=colour, label=f"period {rows['period'][0]} (dashed: unstable)")
+    points_csv = os.path.join(os.path.dirname(branch_csv), "points.csv")
+    if os.path.exists(points_csv):
+        points = read(points_csv)
+        for kind in np.unique(points["type"]) if len(points) else []:
+            rows = points[points["type"] == kind]
+            marker, colour = MARKERS.get(str(kind), ("x", "black"))
+            ax.plot(rows[param], rows["q"], marker, color=colour, markersize=8,
+                    linestyle="none", label=str(kind).replace("_", " "))
+    ax.set_xlabel(param)
+    ax.set_ylabel(f"{q_name} on the section")
+    ax.set_title("continuation")
+    ax.legend(loc="best", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(png, dpi=150)
+
+
+if __name__ == "__main__":
+    main(sys.argv)

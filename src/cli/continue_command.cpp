@@ -1,0 +1,269 @@
+// `impactlab continue`: pseudo-arclength continuation of a period-n orbit in
+// one scene key, with its bifurcations and grazing points located
+// (analysis/continuation.hpp); writes branch.csv, points.csv and
+// continuation.json (units, provenance, why each branch stopped).
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "analysis/continuation.hpp"
+#include "analysis/section.hpp"
+#include "api/scene_jobs.hpp"
+#include "api/scene_loading.hpp"
+#include "cli/command.hpp"
+#include "cli/commands.hpp"
+#include "cli/section_options.hpp"
+#include "io/bad_input.hpp"
+#include "io/output.hpp"
+
+namespace impactlab::cli {
+
+namespace {
+
+struct ContinueOptions {
+  SceneOptions scene;
+  std::string param;  // NAME=FROM:TO
+  int period = 1;
+  std::string section = "strobe";
+  bool switch_doubling = false;
+  std::vector<double> start;  // q,qdot
+  double transient = 100.0;
+  int max_points = 5000;
+  double tolerance = 1e-10;
+  double max_step = 0.0;  // arclength; 0: 1/50 of the range
+  bool plot = false;
+  std::string with_sweep;  // a sweep's bifurcation.csv drawn under the branch
+};
+
+constexpr int doublings_followed = 3;  // --switch: the cascade, up to period 8n
+
+struct ParameterRange {
+  std::string name;
+  double from = 0.0, to = 0.0;
+};
+
+// NAME=FROM:TO (the key and its range are checked by the scene API)
+ParameterRange parse_range(const std::string& text) {
+  const auto bad = [&](const std::string& why) { return BadInput("--param", text, why); };
+  const auto equals = text.find('=');
+  const auto colon = text.find(':', equals == std::string::npos ? 0 : equals);
+  if (equals == std::string::npos || equals == 0 || colon == std::string::npos ||
+      text.find(':', colon + 1) != std::string::npos)
+    throw bad("expected NAME=FROM:TO");
+  ParameterRange range{text.substr(0, equals)};
+  const std::string from = text.substr(equals + 1, colon - equals - 1), to = text.substr(colon + 1);
+  char* end = nullptr;
+  range.from = std::strtod(from.c_str(), &end);
+  const bool from_ok = !from.empty() && *end == '\0' && std::isfinite(range.from);
+  range.to = std::strtod(to.c_str(), &end);
+  const bool to_ok = !to.empty() && *end == '\0' && std::isfinite(range.to);
+  if (!from_ok || !to_ok) throw bad("FROM and TO must be finite numbers");
+  if (range.from == range.to) throw bad("FROM and TO must differ");
+  return range;
+}
+
+void write_branch_csv(AtomicFile& file, const std::string& name,
+                      const std::vector<ContinuedBranch>& branches) {
+  auto& out = file.stream();
+  out << name
+      << ",q,qdot,period,branch,impacts,contact_phases,stable,multiplier1_re,multiplier1_im,"
+         "multiplier2_re,multiplier2_im,multiplier1_abs,multiplier2_abs,min_impact_speed,"
+         "min_flight_gap,newton_iterations\n";
+  for (std::size_t b = 0; b < branches.size(); ++b)
+    for (const BranchPoint& p : branches[b].result.branch)
+      out << csv_field(p.parameter) << ',' << csv_field(p.state[0]) << ','
+          << csv_field(p.state[1]) << ',' << branches[b].period << ',' << b << ',' << p.impacts
+          << ',' << p.contact_phases << ',' << (p.stable ? 1 : 0) << ','
+          << csv_field(p.multipliers[0].real()) << ',' << csv_field(p.multipliers[0].imag()) << ','
+          << csv_field(p.multipliers[1].real()) << ',' << csv_field(p.multipliers[1].imag()) << ','
+          << csv_field(std::abs(p.multipliers[0])) << ',' << csv_field(std::abs(p.multipliers[1]))
+          << ',' << csv_field(std::isfinite(p.min_impact_speed) ? p.min_impact_speed : NAN) << ','
+          << csv_field(std::isfinite(p.min_flight_gap) ? p.min_flight_gap : NAN) << ','
+          << p.newton_iterations << '\n';
+}
+
+void write_points_csv(AtomicFile& file, const std::string& name,
+                      const std::vector<ContinuedBranch>& branches) {
+  auto& out = file.stream();
+  out << "type," << name
+      << ",q,qdot,period,branch,multiplier1_re,multiplier1_im,multiplier2_re,multiplier2_im,"
+         "error_estimate,located,graze_time,graze_witness,note\n";
+  for (std::size_t b = 0; b < branches.size(); ++b)
+    for (const BifurcationPoint& p : branches[b].result.points)
+      out << p.type << ',' << csv_field(p.parameter) << ',' << csv_field(p.state[0]) << ','
+          << csv_field(p.state[1]) << ',' << branches[b].period << ',' << b << ','
+          << csv_field(p.multipliers[0].real()) << ',' << csv_field(p.multipliers[0].imag()) << ','
+          << csv_field(p.multipliers[1].real()) << ',' << csv_field(p.multipliers[1].imag()) << ','
+          << csv_field(p.error_estimate) << ',' << (p.located ? 1 : 0) << ','
+          << csv_field(p.graze_time) << ',' << p.graze_witness << ",\"" << p.note << "\"\n";
+}
+
+int run_continue(const ContinueOptions& options, const std::vector<std::string>& command_line) {
+  const Scene scene = options.scene.load();
+  const ParameterRange range = parse_range(options.param);
+  const SectionSpec section = parse_section(options.section, "--section");
+  if (section.kind != SectionKind::strobe)
+    throw BadInput("--section", options.section,
+                   "continuation takes a stroboscopic section (strobe[:PHASE]) in this version");
+  if (!options.with_sweep.empty() && !std::filesystem::is_regular_file(options.with_sweep))
+    throw BadInput("--with-sweep", options.with_sweep, "no such file (a sweep's bifurcation.csv)");
+  if (!options.start.empty() && options.start.size() != 2)
+    throw BadInput("--start", fmt::format("{} numbers", options.start.size()),
+                   "expected Q,QDOT (two numbers)");
+
+  ContinuationJob job;
+  job.parameter = range.name;
+  job.from = range.from;
+  job.to = range.to;
+  job.period = options.period;
+  job.phase = section.phase;
+  job.transient_periods = options.transient;
+  job.doublings = options.switch_doubling ? doublings_followed : 0;
+  if (!options.start.empty()) {
+    job.has_start = true;
+    job.start = {options.start[0], options.start[1]};
+  }
+  job.numerics.max_points = options.max_points;
+  job.numerics.tolerance = options.tolerance;
+  job.numerics.max_step = options.max_step;
+  if (options.max_step > 0.0) job.numerics.initial_step = options.max_step;
+
+  const auto directory = options.scene.output_directory();
+  const auto started = std::chrono::steady_clock::now();
+  const ContinuationJobResult result = continue_orbit(scene, job);
+  const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+  prepare_output_directory(directory);
+  AtomicFile branch_file(directory / "branch.csv");
+  write_branch_csv(branch_file, range.name, result.branches);
+  AtomicFile points_file(directory / "points.csv");
+  write_points_csv(points_file, range.name, result.branches);
+
+  nlohmann::json branches = nlohmann::json::array();
+  for (const ContinuedBranch& branch : result.branches)
+    branches.push_back({{"period", branch.period},
+                        {"points", branch.result.branch.size()},
+                        {"bifurcations", branch.result.points.size()},
+                        {"stop_reason", branch.result.stop_reason},
+                        {"stop_detail", branch.result.stop_detail},
+                        {"map_evaluations", branch.result.map_evaluations}});
+  const nlohmann::json document = {
+      {"impactlab_version", IMPACTLAB_VERSION},
+      {"command", command_line},
+      {"created_utc", utc_now()},
+      {"scene", scene_record(scene)},
+      {"request",
+       {{"parameter", range.name},
+        {"from", range.from},
+        {"to", range.to},
+        {"period", options.period},
+        {"section", to_string(section)},
+        {"transient_periods", options.transient},
+        {"switch", options.switch_doubling},
+        {"tolerance", options.tolerance},
+        {"max_step", options.max_step},
+        {"start", options.start}}},
+      {"method",
+       "pseudo-arclength continuation of the fixed point of the n-fold stroboscopic map; "
+       "dF/dx from the saltation-corrected monodromy, dF/dp by a central difference; fold, "
+       "period doubling and Neimark-Sacker located by TOMS 748 on the arclength; grazing "
+       "solved as an extended system (zero gap, zero normal velocity)"},
+      {"columns",
+       {{"branch.csv",
+         {{range.name, "the continued scene key (its unit in scene.units)"},
+          {"q, qdot", "the orbit's state on the section (main coordinate and its rate)"},
+          {"period", "forcing periods of the orbit"},
+          {"branch", "0: the first branch; k: the k-th doubled branch (--switch)"},
+          {"impacts", "impacts per orbit period"},
+          {"stable", "1 if both Floquet multipliers lie inside the unit circle"},
+          {"min_flight_gap", "smallest wall gap in flight between impacts (q's unit)"},
+          {"min_impact_speed", "smallest normal approach speed of an impact"}}},
+        {"points.csv",
+         {{"type", "fold, period_doubling, neimark_sacker, grazing, contact_onset, contact_end"},
+          {"error_estimate", "bound on the error of the parameter value"},
+          {"graze_time", "grazing: time after the section at which the wall is touched"}}}}},
+      {"branches", branches},
+      {"wall_time_s", wall_time},
+  };
+  AtomicFile meta_file(directory / "continuation.json");
+  write_json(meta_file, document);
+  branch_file.commit();
+  points_file.commit();
+  meta_file.commit();
+
+  if (options.plot || !options.with_sweep.empty()) {
+    std::vector<std::string> names = {range.name,
+                                      std::string(scene_schema(scene).main_coordinate)};
+    if (!options.with_sweep.empty()) names.push_back(options.with_sweep);
+    plot_with_python("continuation", directory / "branch.csv", directory / "continuation.png",
+                     names);
+  }
+  if (!options.scene.quiet) {
+    for (const ContinuedBranch& branch : result.branches) {
+      std::cout << fmt::format("period-{} branch: {} points, stopped: {} ({})\n", branch.period,
+                               branch.result.branch.size(), branch.result.stop_reason,
+                               branch.result.stop_detail);
+      for (const BifurcationPoint& p : branch.result.points)
+        std::cout << fmt::format("  {} at {} = {:.12g} (error {:.2g}){}\n", p.type, range.name,
+                                 p.parameter, p.error_estimate, p.note.empty() ? "" : ": " + p.note);
+    }
+    std::cout << "wrote " << (directory / "branch.csv").string() << ", points.csv, continuation.json\n";
+  }
+  return exit_done;
+}
+
+}  // namespace
+
+Command add_continue_command(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "continue",
+      "continue a period-n orbit in one parameter (pseudo-arclength), locating folds, period "
+      "doublings, Neimark-Sacker and grazing points");
+  auto options = std::make_shared<ContinueOptions>();
+  command->add_option("scene", options->scene.scene, "built-in scene name or path")
+      ->capture_default_str();
+  command->add_option("--set", options->scene.assignments, "KEY=VALUE, repeatable");
+  command->add_option("--out", options->scene.out, "output directory (default out/<scene>)");
+  command->add_flag("--quiet", options->scene.quiet, "print nothing but errors");
+  command->add_option("--param", options->param, "NAME=FROM:TO: the scene key continued")
+      ->required();
+  command->add_option("--period", options->period, "n: the orbit's period in forcing periods")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  command->add_option("--section", options->section, "strobe[:PHASE]")->capture_default_str();
+  command->add_flag("--switch", options->switch_doubling,
+                    "at a period doubling, continue the doubled orbit (the cascade, up to 3 "
+                    "doublings)");
+  command->add_option("--start", options->start, "Q,QDOT: the start on the section (else the "
+                                                   "transient's end)")
+      ->delimiter(',');
+  command->add_option("--transient", options->transient, "forcing periods run for the start")
+      ->check(CLI::Range(0.0, 1e9))
+      ->capture_default_str();
+  command->add_option("--max-points", options->max_points, "points per branch")
+      ->check(CLI::Range(2, 1000000))
+      ->capture_default_str();
+  command->add_option("--tolerance", options->tolerance, "Newton residual |P^n(x) - x| / (1 + |x|)")
+      ->check(positive_number())
+      ->capture_default_str();
+  command->add_option("--max-step", options->max_step,
+                      "largest arclength step in (q, qdot, parameter) (default: 1/50 of the range)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_flag("--plot", options->plot,
+                    "draw continuation.png (scripts/plot_continuation.py): stable solid, "
+                    "unstable dashed, bifurcations marked");
+  command->add_option("--with-sweep", options->with_sweep,
+                      "a brute-force sweep's bifurcation.csv of the same parameter, drawn under "
+                      "the branch (implies --plot)");
+  return {command, [options](const std::vector<std::string>& command_line) {
+            return run_continue(*options, command_line);
+          }};
+}
+
+}  // namespace impactlab::cli

@@ -1,0 +1,125 @@
+// Rigorous isolation of the sign changes of a polynomial (a Taylor step's
+// witness polynomial) on an interval, and of its derivatives.
+//
+// The m-th derivative P⁽ᵐ⁾ on [lo, hi], with centre c and radius r, is
+// re-expanded at c (e_j = P⁽ᵐ⁺ʲ⁾(c) / j!). Then
+// * |e_0| > Σ_{j≥1} |e_j| r^j: P⁽ᵐ⁾ has no zero on the interval;
+// * |e_1| > Σ_{j≥2} j |e_j| r^{j−1}: P⁽ᵐ⁺¹⁾ has none, P⁽ᵐ⁾ is monotone and has
+//   a root exactly where its end values differ in sign (TOMS 748 finds it);
+// * otherwise the sign changes of P⁽ᵐ⁺¹⁾ split the interval into pieces on
+//   which P⁽ᵐ⁾ is monotone. The recursion ends: P⁽ᵈᵉᵍʳᵉᵉ⁾ is a constant.
+// No sampling: a root pair closer than any sampling grid (a grazing dip) is
+// separated by the critical point between its roots.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include <boost/math/tools/roots.hpp>
+
+namespace impactlab {
+
+// up to `capacity` sorted points in an interval
+template <int capacity, class Real = double>
+struct PointList {
+  std::array<Real, capacity> points{};
+  int count = 0;
+  void push(const Real& v) {
+    if (count < capacity) points[count++] = v;
+  }
+};
+
+template <int max_degree, class Real = double>
+class PolynomialRoots {
+ public:
+  static constexpr int capacity = max_degree + 2;
+  using Points = PointList<capacity, Real>;
+
+  // p: coefficients c_0..c_degree of P(h) = Σ c_j h^j; t_scale: the size of
+  // the absolute time at h (s), for the root's stopping tolerance
+  PolynomialRoots(const Real* p, int degree, const Real& t_scale)
+      : degree_(degree), t_scale_(t_scale) {
+    // derivative m's coefficients: d_m[j] = c_{j+m} (j+m)! / j!
+    for (int j = 0; j <= degree; ++j) derivative_[0][j] = p[j];
+    for (int m = 1; m <= degree; ++m)
+      for (int j = 0; j + m <= degree; ++j)
+        derivative_[m][j] = derivative_[m - 1][j + 1] * (j + 1);
+  }
+
+  // P⁽ᵐ⁾(h)
+  [[nodiscard]] Real value(int m, const Real& h) const {
+    if (m > degree_) return Real(0);
+    Real sum = 0;
+    for (int j = degree_ - m; j >= 0; --j) sum = sum * h + derivative_[m][j];
+    return sum;
+  }
+
+  // The sign changes of P⁽ᵐ⁾ in (lo, hi), in increasing order.
+  [[nodiscard]] Points sign_changes(int m, const Real& lo, const Real& hi) const {
+    using std::fabs;
+    Points out;
+    if (m >= degree_ || !(hi > lo)) return out;  // a constant has none
+    const int n = degree_ - m;
+    // re-expansion at the centre by repeated synthetic division
+    const Real centre = (lo + hi) / 2, radius = (hi - lo) / 2;
+    std::array<Real, max_degree + 1> e{};
+    for (int j = 0; j <= n; ++j) e[j] = derivative_[m][j];
+    for (int i = 0; i < n; ++i)
+      for (int j = n - 1; j >= i; --j) e[j] += centre * e[j + 1];
+    Real value_bound = 0, slope_bound = 0, power = 1;
+    for (int j = 1; j <= n; ++j) {
+      if (j >= 2) slope_bound += j * fabs(e[j]) * power;  // power = r^{j−1}
+      power *= radius;
+      value_bound += fabs(e[j]) * power;
+    }
+    if (fabs(e[0]) > value_bound) return out;
+    if (fabs(e[1]) > slope_bound) {
+      add_root_if_sign_change(m, lo, hi, out);
+      return out;
+    }
+    const Points inner = sign_changes(m + 1, lo, hi);
+    Real left = lo;
+    for (int i = 0; i <= inner.count; ++i) {
+      const Real right = i < inner.count ? inner.points[i] : hi;
+      add_root_if_sign_change(m, left, right, out);
+      left = right;
+    }
+    return out;
+  }
+
+  // The root of P⁽ᵐ⁾ in [lo, hi] where its end values differ in sign, to a
+  // few ulps of the absolute time; the end on `side`'s sign (the bracket end
+  // where P⁽ᵐ⁾ has the sign of P⁽ᵐ⁾(hi)) when `towards_hi`.
+  [[nodiscard]] Real root(int m, const Real& lo, const Real& hi, bool towards_hi) const {
+    using std::fabs;
+    const Real f_lo = value(m, lo), f_hi = value(m, hi);
+    if (f_hi == 0) return hi;
+    if (f_lo == 0) return lo;
+    auto f = [&](const Real& h) { return value(m, h); };
+    const Real scale = t_scale_;
+    auto tolerance = [scale](const Real& a, const Real& b) {
+      return fabs(b - a) <= 4 * std::numeric_limits<Real>::epsilon() * (scale + fabs(b));
+    };
+    std::uintmax_t iterations = 100;
+    const auto bracket = boost::math::tools::toms748_solve(f, lo, hi, f_lo, f_hi, tolerance, iterations);
+    if (!towards_hi) return (bracket.first + bracket.second) / 2;
+    return (f(bracket.second) > 0) == (f_hi > 0) ? bracket.second : bracket.first;
+  }
+
+ private:
+  void add_root_if_sign_change(int m, const Real& lo, const Real& hi, Points& out) const {
+    const Real f_lo = value(m, lo), f_hi = value(m, hi);
+    if ((f_lo < 0 && f_hi > 0) || (f_lo > 0 && f_hi < 0)) out.push(root(m, lo, hi, false));
+  }
+
+  // filled up to the degree in the constructor (no zero-initialisation: it
+  // runs once per witness in every step that the exclusion test keeps)
+  std::array<std::array<Real, max_degree + 1>, max_degree + 1> derivative_;
+  int degree_;
+  Real t_scale_;
+};
+
+}  // namespace impactlab

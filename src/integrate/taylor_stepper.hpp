@@ -1,0 +1,313 @@
+// The Taylor-series stepper (integrator.method = "taylor"): each step is the
+// Taylor polynomial of the solution at the step's start, its coefficients by
+// automatic differentiation of the system's own right-hand side
+// (integrate/taylor_series.hpp), so the polynomial is the dense output, as
+// accurate inside the step as at its end.
+//
+// Order and step (after Jorba & Zou 2005 and heyoka): the last two
+// coefficients estimate the radius of convergence,
+// ρ = min over j ∈ {p−1, p} of (s / ‖x_j‖∞)^{1/j}, with s = max(‖x_0‖∞, atol/rtol)
+// (relative error where the state is large, absolute where it is small), and
+// the step is the fixed fraction h = ρ · e^{−1.3} · exp(−0.7 / (p − 1)) of it;
+// the order p = ⌈−ln ε / 1.3⌉ (ε = rtol) makes the truncation error,
+// about (h/ρ)^p s, of order ε s. Jorba & Zou's and heyoka's fraction is e^{−2}
+// with p = ⌈−ln ε / 2⌉ + 1, optimal when the series' O(p²) work is the whole
+// cost of a step; here each step also costs its restart and event tests,
+// and on the pendulum (jin2003, V0 = 1.5) e^{−2} took 16 steps per forcing
+// period with errors 100× below the tolerance, e^{−1.3} takes 8 at about the
+// tolerance (docs/performance.md). The witnesses' coefficients bound ρ too.
+//
+// Events (locate_first_event): the witness functions of the mode are
+// recorded on the same tape, so each has its Taylor polynomial over the step.
+// A step whose witness polynomial g (oriented so that its trigger is a fall
+// through zero) satisfies g_0 − Σ_{j≥1} |g_j| h^j > the grazing tolerance
+// cannot hold an event and is skipped at the cost of one sum. In the others,
+// the critical points of g are isolated rigorously (integrate/
+// polynomial_roots.hpp); on each monotone piece a crossing is bracketed by
+// the sign of g at its ends and refined by TOMS 748 on the polynomial; a
+// minimum within the grazing tolerance is a grazing. No sampling and no
+// re-taken step: the event loop needs no max_step cap for this stepper.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+#include "core/hybrid_system.hpp"
+#include "integrate/event_location.hpp"
+#include "integrate/polynomial_roots.hpp"
+#include "integrate/stepper_settings.hpp"
+#include "integrate/taylor_series.hpp"
+
+namespace impactlab {
+
+template <class System>
+using SeriesState = std::array<TaylorVariable, std::tuple_size_v<typename System::State>>;
+
+// A system whose right-hand side and witnesses are written over a number
+// type, so that TaylorVariable runs through them.
+template <class S>
+concept HasSeriesRhs = HybridSystem<S> && requires(const S& system, typename S::Mode mode,
+                                                   const SeriesState<S>& x, SeriesState<S>& dxdt,
+                                                   const TaylorVariable& t, std::size_t k) {
+  { system.rhs(mode, x, dxdt, t) };
+  { system.witness(mode, k, x, t).value } -> std::convertible_to<TaylorVariable>;
+};
+
+// the fraction of the radius of convergence a step takes: e^{−step_exponent}
+inline constexpr double taylor_step_exponent = 1.3;
+
+// the order for a tolerance: ⌈−ln ε / 1.3⌉, within the tape's capacity
+inline int taylor_order(double tolerance) {
+  const double order = std::ceil(-std::log(tolerance) / taylor_step_exponent);
+  return static_cast<int>(std::clamp(order, 2.0, static_cast<double>(TaylorTape::max_order)));
+}
+
+// Real: the arithmetic of the series, the step's state and time (double; or
+// an extended-precision type for a reference run, integrator.method =
+// "taylor_quad": the loop still sees doubles, at events and step ends, while
+// the steps between events continue from the stepper's own Real state).
+template <HasSeriesRhs System, class Real = double>
+class TaylorStepper {
+ public:
+  using State = typename System::State;
+  using Mode = typename System::Mode;
+  using RealState = std::array<Real, std::tuple_size_v<State>>;
+  static constexpr const char* name = "taylor";
+  static constexpr bool has_cheap_scan = false;
+  static constexpr bool has_polish = true;  // state_at is the step's own polynomial
+  static constexpr std::size_t dimension = std::tuple_size_v<State>;
+  static constexpr std::size_t max_modes = 8;
+
+  explicit TaylorStepper(const StepperSettings& settings)
+      : settings_(settings),
+        order_(taylor_order(settings.rtol)),
+        scale_floor_(settings.atol / settings.rtol) {
+    if (!(settings.rtol > 0.0) || !(settings.atol > 0.0))
+      throw std::invalid_argument("taylor: rtol and atol must be positive");
+  }
+
+  [[nodiscard]] int order() const { return order_; }
+
+  template <class Rhs>
+  void initialize(const Rhs& rhs, const State& x, double t, double /*dt*/) {
+    for (std::size_t i = 0; i < dimension; ++i) x_[i] = x[i];
+    t_ = t;
+    x_double_ = x;
+    t_double_ = t;
+    bind(rhs);
+  }
+
+  // One step from (t_, x_): the Taylor polynomial, the step from its last
+  // two coefficients, never past t_limit.
+  template <class Rhs>
+  void do_step(const Rhs& rhs, double t_limit) {
+    bind(rhs);
+    x_old_ = x_;
+    t_old_ = t_;
+    x_old_double_ = x_double_;
+    t_old_double_ = t_double_;
+    tape_->evaluate(x_old_.data(), t_old_, order_, coefficients_);
+    *rhs.evaluations += static_cast<std::uint64_t>(order_ + 1);
+    if (tape_->signs_need_slope(coefficients_)) {
+      tape_->evaluate(x_old_.data(), t_old_, order_, coefficients_, true);
+      *rhs.evaluations += static_cast<std::uint64_t>(order_ + 1);
+    }
+    // the radius of convergence from the state's last two coefficients, and
+    // from each witness's (a witness may be a function of t alone, such as
+    // a moving table, over a state whose series ends: a free fall)
+    double scale = scale_floor_;
+    for (std::size_t i = 0; i < dimension; ++i)
+      scale = std::max(scale, std::fabs(static_cast<double>(x_old_[i])));
+    // ρ = min_j min_rows (s_row / |c_j|)^{1/j} = min_j (max_rows |c_j| / s_row)^{−1/j}
+    std::array<double, 2> ratio = {0.0, 0.0};  // orders p − 1 and p
+    auto bound_by = [&](const Real* c, double row_scale) {
+      for (int j = 0; j < 2; ++j)
+        ratio[j] = std::max(ratio[j], std::fabs(static_cast<double>(c[order_ - 1 + j])) / row_scale);
+    };
+    for (std::size_t i = 0; i < dimension; ++i)
+      bound_by(TaylorTape::row(coefficients_, static_cast<int>(i)), scale);
+    for (int k = 0; k < tape_->witness_count(); ++k) {
+      const Real* w = TaylorTape::row(coefficients_, tape_->witness_node(k));
+      // (the state's scale, or the witness's own size where larger: a
+      // witness whose higher coefficients are the state's, such as a gap,
+      // does not shorten the step)
+      bound_by(w, std::max({scale, std::fabs(static_cast<double>(w[0])),
+                            std::fabs(static_cast<double>(w[1]))}));
+    }
+    double radius = std::numeric_limits<double>::infinity();
+    for (int j = 0; j < 2; ++j)
+      if (ratio[j] > 0.0) radius = std::min(radius, std::pow(ratio[j], -1.0 / (order_ - 1 + j)));
+    const double safety = std::exp(-taylor_step_exponent - 0.7 / (order_ - 1));
+    double h = radius * safety;
+    const double room = t_limit - t_old_double_;
+    if (!std::isfinite(h)) h = room;  // a polynomial solution: exact at any step
+    if (!(h > 0.0)) throw std::runtime_error("taylor: step size underflow");
+    if (h >= room) {
+      t_double_ = t_limit;
+      t_ = t_limit;
+    } else {
+      t_ = t_old_ + Real(h);
+      t_double_ = static_cast<double>(t_);
+    }
+    step_ = t_ - t_old_;
+    evaluate_state(step_, x_);
+    for (std::size_t i = 0; i < dimension; ++i) x_double_[i] = static_cast<double>(x_[i]);
+  }
+
+  template <class Rhs>
+  void state_at(const Rhs&, double t, State& x) const {
+    if (t == t_double_) {
+      x = x_double_;
+      return;
+    }
+    RealState xr;
+    evaluate_state(Real(t) - t_old_, xr);
+    for (std::size_t i = 0; i < dimension; ++i) x[i] = static_cast<double>(xr[i]);
+  }
+  template <class Rhs>
+  void polish_state(const Rhs& rhs, double t, State& x) const { state_at(rhs, t, x); }
+  template <class Rhs>
+  void scan_state(const Rhs& rhs, double t, State& x) const { state_at(rhs, t, x); }
+
+  [[nodiscard]] double previous_time() const { return t_old_double_; }
+  [[nodiscard]] double current_time() const { return t_double_; }
+  [[nodiscard]] const State& current_state() const { return x_double_; }
+  [[nodiscard]] const State& previous_state() const { return x_old_double_; }
+  [[nodiscard]] double suggested_step() const { return static_cast<double>(step_); }
+
+  // The earliest event of the last step's mode in [ta, tb] ⊂ the last step,
+  // on the witnesses' Taylor polynomials (see the header comment). Same
+  // contract as integrate/event_location.hpp's locate_first_event.
+  [[nodiscard]] LocatedEvent locate_first_event(const System& system, Mode mode, double ta,
+                                                double tb, const EventLocationOptions& options,
+                                                std::size_t just_grazed) const {
+    using std::fabs;
+    LocatedEvent best;
+    const Real h_end = tb == t_double_ ? step_ : Real(tb) - t_old_;
+    const Real h_start = ta == t_old_double_ ? Real(0) : Real(ta) - t_old_;
+    const double tolerance = options.grazing_tolerance;
+    for (std::size_t k = 0; k < system.witness_count(mode); ++k) {
+      const Real* w = TaylorTape::row(coefficients_, tape_->witness_node(static_cast<int>(k)));
+      const TriggerDirection direction = system.trigger_direction(mode, k);
+      // orientation: the trigger is a fall through zero; an `either` witness
+      // is oriented so that its starting side (or the side it leaves zero
+      // to) is the armed one
+      const Real start_side = fabs(w[0]) <= tolerance ? w[1] : w[0];
+      const double s = direction == TriggerDirection::rising   ? -1.0
+                       : direction == TriggerDirection::either ? (start_side >= 0 ? 1.0 : -1.0)
+                                                               : 1.0;
+      std::array<Real, TaylorTape::max_order + 1> g;  // filled up to the order
+      for (int j = 0; j <= order_; ++j) g[j] = s * w[j];
+      const Real h_limit = best.found ? Real(best.t) - t_old_ : h_end;
+      const LocatedEvent candidate =
+          first_event(g, h_start, h_limit, tolerance, direction != TriggerDirection::either,
+                      k == just_grazed, k);
+      if (candidate.found && (!best.found || candidate.t < best.t)) best = candidate;
+    }
+    return best;
+  }
+
+ private:
+  template <class Rhs>
+  void bind(const Rhs& rhs) {
+    const auto index = static_cast<std::size_t>(rhs.mode);
+    if (index >= max_modes) throw std::length_error("taylor: more modes than the stepper holds");
+    TaylorTape& tape = tapes_[index];
+    if (!tape.recorded()) record(*rhs.system, rhs.mode, tape);
+    tape_ = &tape;
+  }
+
+  static void record(const System& system, Mode mode, TaylorTape& tape) {
+    TaylorVariable t;
+    const SeriesState<System> x = tape.begin<dimension>(t);
+    SeriesState<System> dxdt;
+    system.rhs(mode, x, dxdt, t);
+    tape.set_derivatives(dxdt);
+    for (std::size_t k = 0; k < system.witness_count(mode); ++k)
+      tape.add_witness(system.witness(mode, k, x, t).value);
+    tape.finish();
+  }
+
+  // the polynomial at h (s past the step's start), newest coefficients last
+  // by Horner's scheme
+  void evaluate_state(const Real& h, RealState& x) const {
+    for (std::size_t i = 0; i < dimension; ++i) {
+      const Real* c = TaylorTape::row(coefficients_, static_cast<int>(i));
+      Real sum = c[order_];
+      for (int j = order_ - 1; j >= 0; --j) sum = sum * h + c[j];
+      x[i] = sum;
+    }
+  }
+
+  // The first event of the oriented witness polynomial g on [lo, hi] (h
+  // past the step's start): a fall through zero from the armed side, or a
+  // minimum within the grazing tolerance; `one_sided`: a violation (below
+  // −tolerance without a crossing) is unresolved.
+  LocatedEvent first_event(const std::array<Real, TaylorTape::max_order + 1>& g, const Real& lo,
+                           const Real& hi, double tolerance, bool one_sided, bool just_grazed,
+                           std::size_t k) const {
+    using std::fabs;
+    if (!(hi > lo)) return {};
+    // exclusion: g stays above the tolerance over the whole step, by
+    // g(h) >= min(g0, g0 + g1 H) − Σ_{j≥2} |g_j| H^j (the linear part is
+    // monotone: its minimum is at an end)
+    if (lo == 0 && g[0] > tolerance) {
+      Real reach = 0, power = hi;
+      for (int j = 2; j <= order_; ++j) {
+        power *= hi;
+        reach += fabs(g[j]) * power;
+      }
+      const Real linear_end = g[0] + g[1] * hi;
+      if ((linear_end < g[0] ? linear_end : g[0]) - reach > tolerance) return {};
+    }
+    const PolynomialRoots<TaylorTape::max_order, Real> poly(g.data(), order_, fabs(t_old_));
+    auto at = [&](const Real& h) { return static_cast<double>(t_old_ + h); };
+    const auto critical = poly.sign_changes(1, lo, hi);
+    const Real g_lo = poly.value(0, lo);
+    const bool leaving_zero = fabs(g_lo) <= tolerance && poly.value(1, lo) > 0;
+    Real u = lo;
+    for (int i = 0; i <= critical.count; ++i) {
+      const Real v = i < critical.count ? critical.points[i] : hi;
+      const Real gu = poly.value(0, u), gv = poly.value(0, v);
+      const bool falling = poly.value(1, (u + v) / 2) < 0;
+      const bool armed = gu > 0 || (u == lo && leaving_zero);
+      const bool interior_minimum = falling && v < hi;
+      if (!armed) {
+        if (one_sided && (gu < -tolerance || gv < -tolerance))
+          return {true, at(u), k, CrossingKind::unresolved};
+      } else if (falling && !(u == lo && just_grazed && gv > -tolerance)) {
+        if (gv <= 0.0) {
+          // a dip below zero by less than the tolerance to a minimum inside
+          // the step touches the wall: a grazing, as in event_location.hpp
+          if (interior_minimum && gv > -tolerance && one_sided)
+            return {true, at(v), k, CrossingKind::grazing};
+          return {true, std::min(at(poly.root(0, u, v, true)), at(hi)), k,
+                  CrossingKind::crossing};
+        }
+        if (interior_minimum && gv <= tolerance && one_sided)
+          return {true, at(v), k, CrossingKind::grazing};
+      }
+      u = v;
+    }
+    return {};
+  }
+
+  StepperSettings settings_;
+  int order_;
+  double scale_floor_;  // atol / rtol (state units)
+  std::array<TaylorTape, max_modes> tapes_{};
+  const TaylorTape* tape_ = nullptr;
+  TaylorTape::CoefficientsOf<Real> coefficients_{};
+  RealState x_{}, x_old_{};             // the step's end and start
+  Real t_ = 0, t_old_ = 0, step_ = 0;   // s
+  State x_double_{}, x_old_double_{};   // the same, rounded, as the loop sees them
+  double t_double_ = 0.0, t_old_double_ = 0.0;
+};
+
+}  // namespace impactlab

@@ -1,0 +1,352 @@
+// Continuation of periodic orbits (analysis/continuation.hpp) against closed
+// forms derived here, independently of the toolkit:
+// * the linear impact oscillator's period-1 one-impact orbit: the impact time
+//   t* and speed v solve Φ(T) u(t*) = u(t* + T) for the deviation u from the
+//   particular solution (Φ the damped oscillator's transition matrix over one
+//   forcing period); the monodromy is S Φ with the Newton-impact saltation
+//   matrix S = [[−r, 0], [(1 + r)(A cos ωt* − σ)/v, −r]]; period doublings are
+//   roots of 1 + tr M + det M, and the grazing point is the ω where the
+//   interior maximum of the flight reaches the stop;
+// * the bouncing ball's period-1 orbit (flight time T, take-off speed gT/2):
+//   with Γ = Aω²/g, cos φ = π(1 − r)/(Γ(1 + r)), and the period doubling at
+//   Γ² = (π(1 − r)/(1 + r))² + (2(1 + r²)/(1 + r)²)².
+// The located points must agree to 1e-9 relative in the parameter; stable
+// branch points agree with the brute-force section (sweep) and `periodic`.
+#include <array>
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <boost/math/tools/roots.hpp>
+#include <gtest/gtest.h>
+
+#include "analysis/continuation.hpp"
+#include "analysis/periodic.hpp"
+#include "analysis/section.hpp"
+#include "api/scene_jobs.hpp"
+#include "api/scene_loading.hpp"
+#include "io/scene.hpp"
+
+namespace {
+
+using impactlab::BifurcationPoint;
+using impactlab::ContinuationJob;
+using impactlab::ContinuationJobResult;
+using impactlab::Scene;
+
+constexpr double two_pi = 2.0 * std::numbers::pi;
+
+double solve(auto&& f, double a, double b) {
+  std::uintmax_t iterations = 300;
+  const auto bracket = boost::math::tools::toms748_solve(
+      f, a, b, boost::math::tools::eps_tolerance<double>(50), iterations);
+  return 0.5 * (bracket.first + bracket.second);
+}
+
+struct ImpactOscillator {
+  double zeta = 0.05, r = 0.8, sigma = 0.0, A = 1.0;
+};
+
+// The one-impact period-1 orbit of ẍ + 2ζẋ + x = A cos ωt, x ≤ σ, ẋ⁺ = −r ẋ⁻.
+class PeriodOneOrbit {
+ public:
+  PeriodOneOrbit(const ImpactOscillator& o, double omega) : o_(o), omega_(omega) {
+    period_ = two_pi / omega;
+    wd_ = std::sqrt(1.0 - o.zeta * o.zeta);
+    const double denominator =
+        (1.0 - omega * omega) * (1.0 - omega * omega) + 4.0 * o.zeta * o.zeta * omega * omega;
+    cos_amplitude_ = o.A * (1.0 - omega * omega) / denominator;
+    sin_amplitude_ = 2.0 * o.zeta * omega * o.A / denominator;
+    transition_ = homogeneous(period_);
+    // the impact time: the root of the velocity condition with v > 0 and an
+    // admissible flight (x < σ strictly inside)
+    const int grid = 3000;
+    for (int k = 0; k < grid && !found_; ++k) {
+      const double a = period_ * k / grid, b = period_ * (k + 1) / grid;
+      if (!(closing(a) * closing(b) < 0.0)) continue;
+      const double t = solve([&](double s) { return closing(s); }, a, b);
+      const double v = speed(t);
+      if (!(v > 0.0)) continue;
+      impact_time_ = t;
+      speed_ = v;
+      found_ = highest_interior() < o_.sigma;
+    }
+  }
+
+  [[nodiscard]] bool found() const { return found_; }
+  [[nodiscard]] double speed() const { return speed_; }
+
+  // (x, ẋ) at time t of the orbit (t in [t*, t* + T])
+  [[nodiscard]] std::array<double, 2> state(double t) const {
+    const auto phi = homogeneous(t - impact_time_);
+    const double u0 = o_.sigma - particular(impact_time_)[0];
+    const double du0 = -o_.r * speed_ - particular(impact_time_)[1];
+    const auto p = particular(t);
+    return {phi[0][0] * u0 + phi[0][1] * du0 + p[0], phi[1][0] * u0 + phi[1][1] * du0 + p[1]};
+  }
+  // on the stroboscopic section ωt ≡ 0 (mod 2π)
+  [[nodiscard]] std::array<double, 2> section_state() const {
+    return state(period_);
+  }
+
+  // 1 + tr M + det M and 1 − tr M + det M of the monodromy S Φ
+  [[nodiscard]] std::array<double, 2> test_functions() const {
+    const double s21 = (1.0 + o_.r) * (o_.A * std::cos(omega_ * impact_time_) - o_.sigma) / speed_;
+    const auto& p = transition_;
+    const double m11 = -o_.r * p[0][0], m12 = -o_.r * p[0][1];
+    const double m21 = s21 * p[0][0] - o_.r * p[1][0], m22 = s21 * p[0][1] - o_.r * p[1][1];
+    const double trace = m11 + m22, determinant = m11 * m22 - m12 * m21;
+    return {1.0 + trace + determinant, 1.0 - trace + determinant};
+  }
+
+  // the highest point of the flight strictly between impacts: the largest x
+  // at the interior roots of ẋ
+  [[nodiscard]] double highest_interior() const {
+    double highest = -INFINITY;
+    const int grid = 2000;
+    for (int k = 1; k < grid - 1; ++k) {
+      const double a = impact_time_ + period_ * k / grid, b = impact_time_ + period_ * (k + 1) / grid;
+      if (!(state(a)[1] > 0.0 && state(b)[1] <= 0.0)) continue;
+      const double t = solve([&](double s) { return state(s)[1]; }, a, b);
+      highest = std::max(highest, state(t)[0]);
+    }
+    return highest;
+  }
+
+ private:
+  // the damped oscillator's transition matrix over τ
+  [[nodiscard]] std::array<std::array<double, 2>, 2> homogeneous(double tau) const {
+    const double decay = std::exp(-o_.zeta * tau);
+    const double c = std::cos(wd_ * tau), s = std::sin(wd_ * tau);
+    return {{{decay * (c + o_.zeta / wd_ * s), decay * s / wd_},
+             {-decay * s / wd_, decay * (c - o_.zeta / wd_ * s)}}};
+  }
+  [[nodiscard]] std::array<double, 2> particular(double t) const {
+    const double c = std::cos(omega_ * t), s = std::sin(omega_ * t);
+    return {cos_amplitude_ * c + sin_amplitude_ * s,
+            omega_ * (sin_amplitude_ * c - cos_amplitude_ * s)};
+  }
+  // the speed v that closes the position equation for an impact at t
+  [[nodiscard]] double speed(double t) const {
+    const auto p = particular(t);
+    const double a = o_.sigma - p[0];
+    const auto& m = transition_;
+    return ((m[0][0] - 1.0) * a - m[0][1] * p[1]) / (o_.r * m[0][1]);
+  }
+  [[nodiscard]] double closing(double t) const {
+    const auto p = particular(t);
+    const double a = o_.sigma - p[0], v = speed(t);
+    const auto& m = transition_;
+    return m[1][0] * a + m[1][1] * (-o_.r * v - p[1]) - (v - p[1]);
+  }
+
+  ImpactOscillator o_;
+  double omega_, period_, wd_, cos_amplitude_, sin_amplitude_;
+  std::array<std::array<double, 2>, 2> transition_{};
+  double impact_time_ = 0.0, speed_ = 0.0;
+  bool found_ = false;
+};
+
+Scene linear_impact_scene(const ImpactOscillator& o) {
+  Scene scene = impactlab::load_scene("linear_impact");
+  scene.values["zeta"] = o.zeta;
+  scene.values["r"] = o.r;
+  scene.values["sigma"] = o.sigma;
+  scene.values["A"] = o.A;
+  return scene;
+}
+
+ContinuationJobResult continue_scene(const Scene& scene, const std::string& key, double from,
+                                     double to, int doublings = 0,
+                                     std::optional<std::array<double, 2>> start = std::nullopt) {
+  ContinuationJob job;
+  job.parameter = key;
+  job.from = from;
+  job.to = to;
+  job.doublings = doublings;
+  if (start) {
+    job.has_start = true;
+    job.start = *start;
+  }
+  return impactlab::continue_orbit(scene, job);
+}
+
+std::vector<BifurcationPoint> points_of_type(const impactlab::ContinuationResult& result,
+                                             const std::string& type) {
+  std::vector<BifurcationPoint> found;
+  for (const auto& point : result.points)
+    if (point.type == type) found.push_back(point);
+  return found;
+}
+
+double period_doubling(const ImpactOscillator& o, double a, double b) {
+  return solve([&](double w) { return PeriodOneOrbit(o, w).test_functions()[0]; }, a, b);
+}
+
+TEST(Continuation, LinearImpactPeriodOneBranchUpToSeven) {
+  const ImpactOscillator o;  // ζ = 0.05, r = 0.8, σ = 0, A = 1
+  const Scene scene = linear_impact_scene(o);
+  const PeriodOneOrbit start(o, 1.02);
+  ASSERT_TRUE(start.found());
+  const auto job = continue_scene(scene, "omega", 1.02, 7.0, 0, start.section_state());
+  ASSERT_TRUE(job.available);
+  ASSERT_EQ(job.branches.size(), 1u);
+  const auto& branch = job.branches[0].result;
+  EXPECT_EQ(branch.stop_reason, "end_of_range") << branch.stop_detail;
+  EXPECT_NEAR(branch.branch.back().parameter, 7.0, 1e-12);
+
+  // the three period doublings of the closed form on [1.02, 7]
+  const std::array<double, 3> expected = {period_doubling(o, 1.02, 1.05),
+                                          period_doubling(o, 1.1, 1.5),
+                                          period_doubling(o, 2.6, 2.7)};
+  const auto doublings = points_of_type(branch, "period_doubling");
+  ASSERT_EQ(doublings.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_TRUE(doublings[k].located);
+    EXPECT_NEAR(doublings[k].parameter, expected[k], 1e-9 * expected[k]) << k;
+    EXPECT_LT(doublings[k].error_estimate, 1e-9 * expected[k]);
+    EXPECT_NEAR(doublings[k].multipliers[0].real(), -1.0, 1e-7);  // |−1| > |det M|
+  }
+  EXPECT_TRUE(points_of_type(branch, "fold").empty());
+
+  // every branch point is the closed-form orbit on the section
+  for (const auto& point : branch.branch) {
+    const PeriodOneOrbit closed(o, point.parameter);
+    ASSERT_TRUE(closed.found()) << point.parameter;
+    const auto x = closed.section_state();
+    EXPECT_NEAR(point.state[0], x[0], 1e-8) << point.parameter;
+    EXPECT_NEAR(point.state[1], x[1], 1e-8) << point.parameter;
+    EXPECT_EQ(point.impacts, 1);
+    // stability from the closed form's test functions: both multipliers real here
+    const auto tests = closed.test_functions();
+    EXPECT_EQ(point.stable, tests[0] > 0.0 && tests[1] > 0.0) << point.parameter;
+  }
+  EXPECT_GE(branch.branch.size(), 30u);
+}
+
+TEST(Continuation, LinearImpactBranchEndsAtTheGrazingWhereItIsBorn) {
+  const ImpactOscillator o;
+  const Scene scene = linear_impact_scene(o);
+  const PeriodOneOrbit start(o, 1.5);
+  ASSERT_TRUE(start.found());
+  const auto job = continue_scene(scene, "omega", 1.5, 1.0, 0, start.section_state());
+  const auto& branch = job.branches.at(0).result;
+  EXPECT_EQ(branch.stop_reason, "signature_change") << branch.stop_detail;
+  const auto grazings = points_of_type(branch, "grazing");
+  ASSERT_EQ(grazings.size(), 1u);
+  // the closed form: the interior maximum of the flight reaches σ
+  const double omega_graze = solve(
+      [&](double w) { return PeriodOneOrbit(o, w).highest_interior() - o.sigma; }, 1.012, 1.02);
+  EXPECT_NEAR(grazings[0].parameter, omega_graze, 1e-9 * omega_graze);
+  EXPECT_LT(grazings[0].error_estimate, 1e-9 * omega_graze);
+  // passing on the way: the two period doublings below 1.5
+  const auto doublings = points_of_type(branch, "period_doubling");
+  ASSERT_EQ(doublings.size(), 2u);
+  EXPECT_NEAR(doublings[0].parameter, period_doubling(o, 1.1, 1.5), 1e-9);
+  EXPECT_NEAR(doublings[1].parameter, period_doubling(o, 1.02, 1.05), 1e-9);
+}
+
+// σ = 0.2: the impact speed of the period-1 orbit falls to zero as ω rises,
+// where the orbit becomes the free harmonic response whose amplitude
+// A/√((1 − ω²)² + (2ζω)²) just reaches the stop: the second kind of grazing.
+TEST(Continuation, LinearImpactSecondParameterSetEndsWhereTheImpactSpeedVanishes) {
+  ImpactOscillator o;
+  o.sigma = 0.2;  // the scene's default stop
+  const Scene scene = linear_impact_scene(o);
+  // from the scene's own transient (no start given)
+  const auto job = continue_scene(scene, "omega", 2.0, 2.5);
+  const auto& branch = job.branches.at(0).result;
+  EXPECT_EQ(branch.stop_reason, "signature_change") << branch.stop_detail;
+  const auto doublings = points_of_type(branch, "period_doubling");
+  ASSERT_EQ(doublings.size(), 1u);
+  const double expected = period_doubling(o, 2.24, 2.29);
+  EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
+  const auto grazings = points_of_type(branch, "grazing");
+  ASSERT_EQ(grazings.size(), 1u);
+  const double omega_graze = solve(
+      [&](double w) {
+        const double detuning = 1.0 - w * w;
+        return detuning * detuning + 4.0 * o.zeta * o.zeta * w * w - (o.A / o.sigma) * (o.A / o.sigma);
+      },
+      2.3, 2.6);
+  EXPECT_NEAR(grazings[0].parameter, omega_graze, 1e-9 * omega_graze);
+  EXPECT_EQ(grazings[0].note, "an impact velocity goes to zero");
+}
+
+// The bouncing ball's period-doubling amplitude from Γ_pd.
+double bouncing_ball_period_doubling_amplitude(double g, double omega, double r) {
+  const double existence = std::numbers::pi * (1.0 - r) / (1.0 + r);
+  const double stability = 2.0 * (1.0 + r * r) / ((1.0 + r) * (1.0 + r));
+  const double gamma = std::sqrt(existence * existence + stability * stability);
+  return gamma * g / (omega * omega);
+}
+
+// The period-1 orbit on the section t ≡ 0 (mod T): take-off at the phase φ
+// with speed gT/2 from the table's height A sin φ.
+std::array<double, 2> bouncing_ball_start(double g, double omega, double r, double A) {
+  const double period = two_pi / omega;
+  const double gamma = A * omega * omega / g;
+  const double phase = std::acos(std::numbers::pi * (1.0 - r) / (gamma * (1.0 + r)));
+  const double flight = period - phase / omega, speed = g * period / 2.0;
+  return {A * std::sin(phase) + speed * flight - 0.5 * g * flight * flight, speed - g * flight};
+}
+
+TEST(Continuation, BouncingBallPeriodDoublingMatchesTheClosedForm) {
+  const Scene scene = impactlab::load_scene("bouncing_ball");  // g 9.81, ω 30, r 0.8
+  const auto job = continue_scene(scene, "A", 0.0112, 0.0125, 0,
+                                  bouncing_ball_start(9.81, 30.0, 0.8, 0.0112));
+  const auto& branch = job.branches.at(0).result;
+  const auto doublings = points_of_type(branch, "period_doubling");
+  ASSERT_EQ(doublings.size(), 1u) << branch.stop_reason << " " << branch.stop_detail;
+  const double expected = bouncing_ball_period_doubling_amplitude(9.81, 30.0, 0.8);
+  EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
+}
+
+TEST(Continuation, BouncingBallCascadeThroughTwoDoublings) {
+  const Scene scene = impactlab::load_scene("bouncing_ball");
+  const auto job = continue_scene(scene, "A", 0.0112, 0.0135, 2,
+                                  bouncing_ball_start(9.81, 30.0, 0.8, 0.0112));
+  ASSERT_EQ(job.branches.size(), 3u);
+  EXPECT_EQ(job.branches[1].period, 2);
+  EXPECT_EQ(job.branches[2].period, 4);
+  const double first = points_of_type(job.branches[0].result, "period_doubling").at(0).parameter;
+  const double second = points_of_type(job.branches[1].result, "period_doubling").at(0).parameter;
+  EXPECT_GT(second, first);
+  EXPECT_GE(job.branches[2].result.branch.size(), 3u);
+  // the doubled branch starts as two distinct points of a period-2 orbit
+  const auto& doubled = job.branches[1].result.branch;
+  ASSERT_GE(doubled.size(), 3u);
+  EXPECT_EQ(doubled[2].impacts, 2);
+}
+
+TEST(Continuation, StableBranchPointsAgreeWithTheSweepSectionAndPeriodic) {
+  const ImpactOscillator o;
+  Scene scene = linear_impact_scene(o);
+  const auto job = continue_scene(scene, "omega", 2.0, 2.5);
+  const auto& branch = job.branches.at(0).result;
+  int compared = 0;
+  for (std::size_t k = 0; k < branch.branch.size(); k += 4) {
+    const auto& point = branch.branch[k];
+    if (!point.stable) continue;
+    scene.values["omega"] = point.parameter;
+    impactlab::SectionRequest request;  // strobe at phase 0 after 100 periods, as sweep does
+    request.transient_periods = 600;
+    request.points = 4;
+    const auto section = impactlab::poincare(scene, request);
+    ASSERT_FALSE(section.points.empty());
+    EXPECT_NEAR(section.points.back().q, point.state[0], 1e-8) << point.parameter;
+    EXPECT_NEAR(section.points.back().qdot, point.state[1], 1e-8) << point.parameter;
+    impactlab::PeriodicRequest periodic;
+    const auto orbit = impactlab::periodic(scene, periodic);
+    ASSERT_TRUE(orbit.converged);
+    EXPECT_NEAR(orbit.state[0], point.state[0], 1e-9);
+    EXPECT_NEAR(orbit.state[1], point.state[1], 1e-9);
+    ++compared;
+  }
+  EXPECT_GE(compared, 3);
+}
+
+}  // namespace

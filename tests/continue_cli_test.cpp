@@ -1,0 +1,95 @@
+// `impactlab continue` from the command line: the files it writes, and bad
+// input (exit status 2 and one line naming the key and value).
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int status;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+fs::path scratch(const std::string& name) {
+  const auto dir = fs::temp_directory_path() /
+                   ("impactlab_continue_test_" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+Outcome run(const std::string& arguments, const fs::path& dir) {
+  const std::string command = std::string(IMPACTLAB_BINARY) + " " + arguments + " >" +
+                              (dir / "stdout").string() + " 2>" + (dir / "stderr").string() +
+                              " </dev/null";
+  const int raw = std::system(command.c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(dir / "stdout"), slurp(dir / "stderr")};
+}
+
+int line_count(const std::string& text) {
+  int count = 0;
+  for (char c : text) count += c == '\n';
+  return count;
+}
+
+TEST(ContinueCommand, WritesTheBranchThePointsAndTheSidecar) {
+  const auto dir = scratch("files");
+  const auto out = dir / "out";
+  const Outcome outcome =
+      run("continue linear_impact --param omega=2:2.5 --quiet --out " + out.string(), dir);
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const std::string branch = slurp(out / "branch.csv");
+  EXPECT_EQ(branch.rfind("omega,q,qdot,period,branch,impacts,contact_phases,stable,", 0), 0u);
+  EXPECT_GT(line_count(branch), 20);
+  const std::string points = slurp(out / "points.csv");
+  EXPECT_EQ(points.rfind("type,omega,q,qdot,", 0), 0u);
+  EXPECT_NE(points.find("period_doubling,2.265"), std::string::npos) << points;
+  EXPECT_NE(points.find("grazing,2.44"), std::string::npos) << points;
+  const auto meta = nlohmann::json::parse(slurp(out / "continuation.json"));
+  EXPECT_EQ(meta["branches"][0]["stop_reason"], "signature_change");
+  EXPECT_EQ(meta["request"]["parameter"], "omega");
+  // no temporary files left
+  for (const auto& entry : fs::directory_iterator(out))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
+}
+
+TEST(ContinueCommand, BadInputExitsWithTwoAndOneLine) {
+  const std::vector<std::string> bad = {
+      "continue linear_impact --param omega=-1:2",       // outside the key's range
+      "continue linear_impact --param zeta2=0:1",        // no such key
+      "continue linear_impact --param omega=2",          // malformed range
+      "continue linear_impact --param omega=2:2.5 --period 0",     // no such period
+      "continue jin2003 --set model=paper --param omega=6:7",      // no Jacobians (Model P)
+      "continue jin2003 --set model=rigid --param omega=6:7",      // the rigid model
+      "continue linear_impact --param omega=2:2.5 --section impact:1",
+      "continue linear_impact --param omega=2:2.5 --period 3 --transient 0 --start 5,5",  // no start
+  };
+  for (const auto& arguments : bad) {
+    const auto dir = scratch("bad");
+    const Outcome outcome = run(arguments + " --out " + (dir / "out").string(), dir);
+    EXPECT_EQ(outcome.status, 2) << arguments << "\n" << outcome.err;
+    EXPECT_EQ(line_count(outcome.err), 1) << arguments << "\n" << outcome.err;
+    EXPECT_FALSE(fs::exists(dir / "out" / "branch.csv")) << arguments;
+  }
+}
+
+}  // namespace

@@ -1,0 +1,123 @@
+// Model-file scenes through the command line: simulate, poincare, sweep and
+// periodic run them with no rebuild; the first run compiles into the cache and
+// later runs load it; a bad model file exits 2 with one FILE:LINE:COL line; a
+// broken compiler says it falls back to the slow path; two sweeps started at
+// once on the same new model both succeed (the cache's atomic rename).
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string examples = std::string(IMPACTLAB_SOURCE_DIR) + "/oscillators/model_file/examples/";
+
+struct Outcome {
+  int status;
+  std::string err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("impactlab_model_cli_" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Runs the program with a cache directory of its own (`cache`) and `prefix` in the environment.
+Outcome run(const std::string& arguments, const fs::path& cache, const std::string& label,
+            const std::string& prefix = "") {
+  const fs::path dir = scratch("io-" + label);
+  const std::string command = "IMPACTLAB_CACHE_DIR=" + cache.string() + " " + prefix + " " +
+                              std::string(IMPACTLAB_BINARY) + " " + arguments + " >" +
+                              (dir / "stdout").string() + " 2>" + (dir / "stderr").string() +
+                              " </dev/null";
+  const int raw = std::system(command.c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(dir / "stderr")};
+}
+
+TEST(ModelFileCli, EveryCommandRunsAModelFileAndTheCacheIsReused) {
+  const fs::path cache = scratch("cache-commands");
+  const fs::path out = scratch("out-commands");
+  const std::string scene = examples + "linear_impact_model.toml";
+  const Outcome first = run("simulate " + scene + " --periods 20 --quiet --out " + (out / "a").string(), cache, "a");
+  ASSERT_EQ(first.status, 0) << first.err;
+  int shared_objects = 0;
+  for (const auto& entry : fs::directory_iterator(cache)) shared_objects += entry.path().extension() == ".so";
+  EXPECT_EQ(shared_objects, 1);
+  EXPECT_TRUE(fs::exists(out / "a" / "meta.json"));
+  EXPECT_NE(slurp(out / "a" / "events.csv").find("impact"), std::string::npos);
+  // a second run and the other commands load the same shared object
+  for (const std::string command :
+       {"simulate " + scene + " --periods 5 --set r=0.5 --quiet --out " + (out / "b").string(),
+        "poincare " + scene + " --section impact --transient 10 --points 5 --quiet --out " + (out / "c").string(),
+        "periodic " + scene + " --period 1 --quiet --out " + (out / "d").string()}) {
+    const Outcome outcome = run(command, cache, "b");
+    EXPECT_EQ(outcome.status, 0) << command << ": " << outcome.err;
+  }
+  shared_objects = 0;
+  for (const auto& entry : fs::directory_iterator(cache)) shared_objects += entry.path().extension() == ".so";
+  EXPECT_EQ(shared_objects, 1);
+}
+
+TEST(ModelFileCli, ABadModelFileExitsTwoWithOneLine) {
+  const fs::path dir = scratch("bad");
+  const fs::path file = dir / "bad.toml";
+  std::ofstream(file) << "[model]\nstates = [\"x\", \"v\"]\nforcing_frequency = \"1\"\n"
+                         "[model.rhs]\nx = \"v\"\nv = \"-x + y\"\n";
+  const Outcome outcome = run("simulate " + file.string() + " --quiet", scratch("cache-bad"), "bad");
+  EXPECT_EQ(outcome.status, 2);
+  EXPECT_EQ(outcome.err.find(file.string() + ":6:11: unknown symbol 'y'"), 11u) << outcome.err;
+  EXPECT_EQ(outcome.err.find('\n'), outcome.err.size() - 1) << outcome.err;
+}
+
+TEST(ModelFileCli, ABrokenCompilerFallsBackToTheSlowPathAndSaysSo) {
+  const fs::path out = scratch("out-slow");
+  const Outcome outcome = run("simulate " + examples + "bouncing_ball_model.toml --periods 5 --quiet --out " +
+                                  out.string(),
+                              scratch("cache-slow"), "slow", "IMPACTLAB_CC=/nonexistent/cc");
+  EXPECT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_NE(outcome.err.find("compiler"), std::string::npos) << outcome.err;
+  EXPECT_NE(outcome.err.find("slow path"), std::string::npos) << outcome.err;
+}
+
+TEST(ModelFileCli, TwoSweepsStartedAtOnceOnANewModelBothSucceed) {
+  const fs::path cache = scratch("cache-concurrent");
+  auto sweep = [&](const std::string& label) {
+    return run("sweep " + examples + "duffing_stop.toml --param omega=1.2:1.6:4 --transient 5 --points 3 --quiet --out " +
+                   scratch("out-" + label).string(),
+               cache, label);
+  };
+  auto first = std::async(std::launch::async, sweep, "sweep1");
+  auto second = std::async(std::launch::async, sweep, "sweep2");
+  const Outcome a = first.get();
+  const Outcome b = second.get();
+  EXPECT_EQ(a.status, 0) << a.err;
+  EXPECT_EQ(b.status, 0) << b.err;
+  int shared_objects = 0, leftovers = 0;
+  for (const auto& entry : fs::directory_iterator(cache)) {
+    shared_objects += entry.path().extension() == ".so";
+    leftovers += entry.path().extension() != ".so";
+  }
+  EXPECT_EQ(shared_objects, 1);
+  EXPECT_EQ(leftovers, 0);
+}
+
+}  // namespace

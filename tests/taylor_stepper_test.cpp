@@ -1,0 +1,251 @@
+// The Taylor-series stepper (integrate/taylor_stepper.hpp) and its parts:
+// * the series arithmetic (integrate/taylor_series.hpp) against Taylor
+//   coefficients known in closed form;
+// * the polynomial root isolation (integrate/polynomial_roots.hpp) on root
+//   pairs far closer than any sampling grid;
+// * whole runs against closed-form flows (the linear impact oscillator's
+//   exact flow), with steps far longer than the systems' max_step;
+// * systems whose right-hand side is not written over a number type are
+//   refused with a clear error.
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/simulator.hpp"
+#include "integrate/polynomial_roots.hpp"
+#include "integrate/stepper_dispatch.hpp"
+#include "integrate/taylor_series.hpp"
+#include "integrate/taylor_stepper.hpp"
+#include "oscillators/linear_impact/linear_impact.hpp"
+#include "oscillators/pendulum_walls/pendulum_walls.hpp"
+
+namespace {
+
+using namespace impactlab;
+constexpr double pi = std::numbers::pi;
+
+double factorial(int k) {
+  double f = 1.0;
+  for (int j = 2; j <= k; ++j) f *= j;
+  return f;
+}
+
+// x' = cos(ω t) · x... recorded by hand on a tape: the series of
+// y(t) = sin(a + b t) and of z = y · y / (1 + t) against the closed forms
+TEST(TaylorSeries, SinCosOfAffineArgumentMatchClosedForm) {
+  TaylorTape tape;
+  TaylorVariable t;
+  const auto x = tape.begin<1>(t);
+  const double a = 0.7, b = 2.5;
+  const TaylorVariable s = sin(a + b * t);
+  const TaylorVariable c = cos(a + b * t);
+  tape.set_derivatives(std::array<TaylorVariable, 1>{s});
+  tape.add_witness(s);
+  tape.add_witness(c);
+  tape.add_witness(x[0]);
+  tape.finish();
+  TaylorTape::Coefficients coefficients{};
+  const double x0 = 0.0, t0 = 0.3;
+  const int order = 20;
+  tape.evaluate(&x0, t0, order, coefficients);
+  const double* sk = TaylorTape::row(coefficients, tape.witness_node(0));
+  const double* ck = TaylorTape::row(coefficients, tape.witness_node(1));
+  const double* xk = TaylorTape::row(coefficients, tape.witness_node(2));
+  const double phase = a + b * t0;
+  for (int k = 0; k <= order; ++k) {
+    // d^k/dt^k sin(a + b t) = b^k sin(phase + k π/2)
+    const double expected_s = std::pow(b, k) * std::sin(phase + k * pi / 2) / factorial(k);
+    const double expected_c = std::pow(b, k) * std::cos(phase + k * pi / 2) / factorial(k);
+    // round-off grows by about one ulp per order in both the recurrence and
+    // the closed form (k π / 2)
+    const double scale = std::pow(b, k) / factorial(k);
+    EXPECT_NEAR(sk[k], expected_s, 4e-16 * (k + 1) * scale) << k;
+    EXPECT_NEAR(ck[k], expected_c, 4e-16 * (k + 1) * scale) << k;
+    // x' = sin(a + b t), x(t0) = 0: x_{k+1} = s_k / (k + 1)
+    if (k < order) {
+      EXPECT_DOUBLE_EQ(xk[k + 1], sk[k] / (k + 1)) << k;
+    }
+  }
+}
+
+// x' = x², x(0) = 1: x = 1 / (1 − t), every coefficient 1; and
+// y' = y / (1 + t)... here x' = −x / (1 + t) with x(0) = 1: x = 1 / (1 + t)
+TEST(TaylorSeries, ProductAndQuotientRecurrences) {
+  TaylorTape tape;
+  TaylorVariable t;
+  const auto x = tape.begin<2>(t);
+  const std::array<TaylorVariable, 2> dxdt = {x[0] * x[0], -x[1] / (1.0 + t)};
+  tape.set_derivatives(dxdt);
+  tape.finish();
+  TaylorTape::Coefficients coefficients{};
+  const std::array<double, 2> x0 = {1.0, 1.0};
+  tape.evaluate(x0.data(), 0.0, 25, coefficients);
+  for (int k = 0; k <= 25; ++k) {
+    EXPECT_NEAR(TaylorTape::row(coefficients, 0)[k], 1.0, 1e-13) << k;
+    EXPECT_NEAR(TaylorTape::row(coefficients, 1)[k], k % 2 == 0 ? 1.0 : -1.0, 1e-13) << k;
+  }
+}
+
+// sin of a state variable (the coupled recurrence, not the affine shortcut):
+// x' = 1 with x(0) = x0 gives sin x = sin(x0 + t)
+TEST(TaylorSeries, SinOfSeriesArgumentByCoupledRecurrence) {
+  TaylorTape tape;
+  TaylorVariable t;
+  const auto x = tape.begin<2>(t);
+  const std::array<TaylorVariable, 2> dxdt = {TaylorVariable(1.0), sin(x[0] * x[0])};
+  tape.set_derivatives(dxdt);
+  tape.add_witness(sin(x[0]));
+  tape.finish();
+  TaylorTape::Coefficients coefficients{};
+  const std::array<double, 2> x0 = {0.4, 0.0};
+  tape.evaluate(x0.data(), 0.0, 18, coefficients);
+  const double* sk = TaylorTape::row(coefficients, tape.witness_node(0));
+  for (int k = 0; k <= 18; ++k)
+    EXPECT_NEAR(sk[k], std::sin(0.4 + k * pi / 2) / factorial(k), 1e-15) << k;
+}
+
+// (h − 1/2)² − δ² has the roots 1/2 ± δ; with δ = 1e-7 no sampling of [0, 1]
+// coarser than 2e-7 separates them. (h − 1/2)² + δ² has none.
+TEST(PolynomialRoots, CloseRootPairIsSeparatedAndNearMissIsNot) {
+  const double delta = 1e-7;
+  const std::array<double, 3> pair = {0.25 - delta * delta, -1.0, 1.0};
+  const PolynomialRoots<8> p(pair.data(), 2, 1.0);
+  const auto roots = p.sign_changes(0, 0.0, 1.0);
+  ASSERT_EQ(roots.count, 2);
+  // the slope there is ±2δ and the polynomial's round-off about 1e-17: the
+  // roots are determined in double to about 1e-17 / 2δ = 5e-11
+  EXPECT_NEAR(roots.points[0], 0.5 - delta, 1e-9);
+  EXPECT_NEAR(roots.points[1], 0.5 + delta, 1e-9);
+
+  const std::array<double, 3> miss = {0.25 + delta * delta, -1.0, 1.0};
+  const PolynomialRoots<8> q(miss.data(), 2, 1.0);
+  EXPECT_EQ(q.sign_changes(0, 0.0, 1.0).count, 0);
+  const auto critical = q.sign_changes(1, 0.0, 1.0);
+  ASSERT_EQ(critical.count, 1);
+  EXPECT_NEAR(critical.points[0], 0.5, 1e-15);
+}
+
+// a degree-9 polynomial with roots at 0.1, 0.2, ..., 0.9: all nine found
+TEST(PolynomialRoots, AllRootsOfAProductInOrder) {
+  std::array<double, 10> c{};
+  c[0] = 1.0;
+  for (int r = 1; r <= 9; ++r) {
+    // multiply by (h − r/10)
+    for (int j = r; j >= 0; --j) c[j] = (j > 0 ? c[j - 1] : 0.0) - 0.1 * r * c[j];
+  }
+  const PolynomialRoots<12> p(c.data(), 9, 1.0);
+  const auto roots = p.sign_changes(0, 0.0, 0.95);
+  ASSERT_EQ(roots.count, 9);
+  // the coefficients carry round-off, amplified ~1e4 times by these
+  // clustered roots (Wilkinson)
+  for (int r = 1; r <= 9; ++r) EXPECT_NEAR(roots.points[r - 1], 0.1 * r, 1e-10) << r;
+}
+
+// Free flight of the damped, forced linear oscillator against its closed-form
+// flow (LinearImpact::exact_flow), with the stop far away: the error at
+// t = 40 falls with the tolerance and is at the tolerance's level.
+TEST(TaylorStepper, LinearOscillatorMatchesClosedFormFlow) {
+  LinearImpactParameters p;
+  p.zeta = 0.05;
+  p.A = 0.7;
+  p.omega = 1.3;
+  p.sigma = 100.0;
+  const LinearImpact system(p);
+  const LinearImpact::State x0 = {0.2, -0.4};
+  LinearImpact::State exact;
+  system.exact_flow(LinearImpact::Mode::free, x0, 0.0, 40.0, exact);
+  double previous_error = INFINITY;
+  for (const double tolerance : {1e-8, 1e-11, 1e-14}) {
+    StepperSettings settings;
+    settings.rtol = settings.atol = tolerance;
+    settings.max_step = system.max_step();
+    EventLog log;
+    TaylorStepper<LinearImpact> stepper(settings);
+    const auto result = simulate(system, stepper, x0, LinearImpact::Mode::free, 0.0, 40.0,
+                                 LoopOptions{}, log);
+    const double error =
+        std::max(std::fabs(result.state[0] - exact[0]), std::fabs(result.state[1] - exact[1]));
+    EXPECT_LE(error, 200.0 * tolerance) << tolerance;
+    EXPECT_LT(error, previous_error) << tolerance;
+    previous_error = error;
+    // no max_step cap: the steps are longer than the system's T/16
+    EXPECT_LT(static_cast<double>(result.counters.steps), 40.0 / system.max_step()) << tolerance;
+  }
+}
+
+// The jin2003 pendulum (V0 = 1.5 m/s, 200 forcing periods): the impact times
+// agree with rkf78 at rtol 1e-13 (with its T/16 cap and re-taken steps) to
+// 1e-9 s, the Taylor stepper running without any step cap.
+TEST(TaylorStepper, PendulumImpactTimesAgreeWithRkf78) {
+  PendulumWallsParameters p;
+  p.V0 = 1.5;
+  const PendulumWalls system(p);
+  const double t_end = 200.0 * 2.0 * pi / p.omega;
+  auto run = [&](std::string_view method, double rtol) {
+    StepperSettings settings;
+    settings.rtol = rtol;
+    settings.atol = 1e-14;
+    settings.max_step = system.max_step();
+    EventLog log;
+    const auto result = with_stepper<PendulumWalls>(method, settings, [&](auto& stepper) {
+      return simulate(system, stepper, PendulumWalls::State{0.0, 0.1, 0.0},
+                      PendulumWalls::Mode::free, 0.0, t_end, LoopOptions{}, log);
+    });
+    EXPECT_EQ(result.termination, Termination::completed);
+    return std::make_pair(result, log.records());
+  };
+  const auto [taylor, taylor_events] = run("taylor", 1e-12);
+  const auto [reference, reference_events] = run("rkf78", 1e-13);
+  ASSERT_GT(reference_events.size(), 150u);
+  ASSERT_EQ(taylor_events.size(), reference_events.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < taylor_events.size(); ++i) {
+    ASSERT_EQ(taylor_events[i].kind, reference_events[i].kind) << i;
+    worst = std::max(worst, std::fabs(taylor_events[i].t - reference_events[i].t));
+  }
+  EXPECT_LE(worst, 1e-9);
+  RecordProperty("taylor_steps", std::to_string(taylor.counters.steps));
+}
+
+// A system whose right-hand side takes doubles only
+struct DoublesOnly {
+  using State = std::array<double, 2>;
+  enum class Mode { free };
+  static constexpr std::size_t max_witnesses = 1;
+  void rhs(Mode, const State& x, State& dxdt, double) const {
+    dxdt[0] = x[1];
+    dxdt[1] = -x[0];
+  }
+  [[nodiscard]] std::size_t witness_count(Mode) const { return 1; }
+  [[nodiscard]] TriggerDirection trigger_direction(Mode, std::size_t) const {
+    return TriggerDirection::falling;
+  }
+  [[nodiscard]] WitnessSample witness(Mode, std::size_t, const State& x, double) const {
+    return {1.0 - x[0], -x[1]};
+  }
+  Transition<State, Mode> on_event(Mode, std::size_t, CrossingKind, const State& x, double t,
+                                   EventLog&) const {
+    return {x, Mode::free, t, false};
+  }
+  [[nodiscard]] double max_step() const { return 0.1; }
+};
+static_assert(!HasSeriesRhs<DoublesOnly>);
+static_assert(HasSeriesRhs<PendulumWalls>);
+static_assert(HasSeriesRhs<PaperPendulumWalls>);
+static_assert(HasSeriesRhs<LinearImpact>);
+
+TEST(TaylorStepper, SystemWithoutSeriesRhsIsRefusedByName) {
+  StepperSettings settings;
+  try {
+    with_stepper<DoublesOnly>("taylor", settings, [](auto&) { return 0; });
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("integrator.method = taylor"), std::string::npos);
+  }
+}
+
+}  // namespace
