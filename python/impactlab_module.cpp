@@ -5,6 +5,8 @@
 // call the user's callback and to look for Ctrl-C, and a Python exception
 // there cancels the job and comes out of the call unchanged.
 #include <chrono>
+#include <cmath>
+#include <complex>
 #include <numbers>
 #include <sstream>
 #include <exception>
@@ -13,11 +15,13 @@
 #include <string>
 #include <vector>
 
+#include <pybind11/complex.h>
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "analysis/continuation.hpp"
 #include "analysis/section.hpp"
 #include "api/compare.hpp"
 #include "api/periodic_job.hpp"
@@ -112,6 +116,7 @@ py::dtype event_dtype() {
   add("instantaneous_residual", "<f8", offsetof(EventRecord, instantaneous_residual));
   add("sliding_residual", "<f8", offsetof(EventRecord, sliding_residual));
   add("tangential_velocity_after", "<f8", offsetof(EventRecord, tangential_velocity_after));
+  add("accumulation_error", "<f8", offsetof(EventRecord, accumulation_error));
   py::dict spec;
   spec["names"] = names;
   spec["formats"] = formats;
@@ -139,14 +144,9 @@ py::object json_to_python(const nlohmann::json& document) {
 // never do): the scene and the run's counters, without its events and samples.
 struct PendingRunRecord {
   Scene scene;
-  RunOutput output;  // events and samples moved out
-  std::size_t events = 0;
+  RunOutput output;  // events and samples moved out (output.event_count counts them)
 
-  [[nodiscard]] py::object meta() const {
-    nlohmann::json record = run_record(scene, output);
-    record["counts"]["events"] = events;
-    return json_to_python(record);
-  }
+  [[nodiscard]] py::object meta() const { return json_to_python(run_record(scene, output)); }
 };
 
 py::dict simulate_binding(const Scene& scene, double periods, double t_end, double sample_step,
@@ -178,11 +178,10 @@ py::dict simulate_binding(const Scene& scene, double periods, double t_end, doub
   result["samples_q"] = owning_array(std::move(q));
   result["samples_qdot"] = owning_array(std::move(qdot));
   result["samples_mode"] = modes;
-  const std::size_t event_count = output.events.size();
   result["events"] = event_array(std::move(output.events));
   output.events.clear();
   output.samples.clear();
-  result["record"] = PendingRunRecord{scene, std::move(output), event_count};
+  result["record"] = PendingRunRecord{scene, std::move(output)};
   return result;
 }
 
@@ -443,6 +442,126 @@ py::dict bench_binding(const Scene& scene, std::vector<std::string> methods,
   return out;
 }
 
+// Pseudo-arclength continuation of a period-n orbit (the CLI's `continue`):
+// per branch, the columns of branch.csv; all branches' bifurcation points as
+// the rows of points.csv.
+py::dict continue_binding(const Scene& scene, const std::string& parameter, double from, double to,
+                          int period, const std::string& section, bool switch_doubling,
+                          std::optional<std::vector<double>> start, double transient,
+                          int max_points, double tolerance, double max_step, py::object progress) {
+  const SectionSpec spec = parse_section(section, "section");
+  if (spec.kind != SectionKind::strobe)
+    throw BadInput("section", section,
+                   "continuation takes a stroboscopic section (strobe[:PHASE]) in this version");
+  if (period < 1 || period > 1000)
+    throw BadInput("period", std::to_string(period), "expected 1 to 1000");
+  if (max_points < 2 || max_points > 1000000)
+    throw BadInput("max_points", std::to_string(max_points), "expected 2 to 1000000");
+  if (!(transient >= 0.0 && transient <= 1e9))
+    throw BadInput("transient", std::to_string(transient), "expected 0 to 1e9");
+  if (start && start->size() != 2)
+    throw BadInput("start", std::to_string(start->size()) + " numbers",
+                   "expected Q,QDOT (two numbers)");
+  ContinuationJob job;
+  job.parameter = parameter;
+  job.from = from;
+  job.to = to;
+  job.period = period;
+  job.phase = spec.phase;
+  job.transient_periods = transient;
+  job.doublings = switch_doubling ? 3 : 0;  // the CLI's --switch: the cascade, up to 8n
+  if (start) {
+    job.has_start = true;
+    job.start = {(*start)[0], (*start)[1]};
+  }
+  job.numerics.max_points = max_points;
+  job.numerics.tolerance = tolerance;
+  job.numerics.max_step = max_step;
+  if (max_step > 0.0) job.numerics.initial_step = max_step;
+  ProgressRelay relay(std::move(progress));
+  // the continuation reports no progress of its own: the check runs once after it
+  const ContinuationJobResult result = relay.run([&] { return continue_orbit(scene, job); });
+  relay(1.0);
+
+  py::list branches;
+  std::vector<std::string> type, note;
+  std::vector<double> point_parameter, point_q, point_qdot, error_estimate, graze_time;
+  std::vector<std::complex<double>> point_multiplier1, point_multiplier2;
+  std::vector<int> point_period, point_branch, located, graze_witness;
+  for (std::size_t b = 0; b < result.branches.size(); ++b) {
+    const ContinuedBranch& continued = result.branches[b];
+    std::vector<double> value, q, qdot, min_impact_speed, min_flight_gap;
+    std::vector<int> impacts, contact_phases, stable, newton_iterations;
+    std::vector<std::complex<double>> multiplier1, multiplier2;
+    for (const BranchPoint& p : continued.result.branch) {
+      value.push_back(p.parameter);
+      q.push_back(p.state[0]);
+      qdot.push_back(p.state[1]);
+      impacts.push_back(p.impacts);
+      contact_phases.push_back(p.contact_phases);
+      stable.push_back(p.stable ? 1 : 0);
+      multiplier1.push_back(p.multipliers[0]);
+      multiplier2.push_back(p.multipliers[1]);
+      // branch.csv leaves an undefined speed or gap empty (NaN here)
+      min_impact_speed.push_back(std::isfinite(p.min_impact_speed) ? p.min_impact_speed : NAN);
+      min_flight_gap.push_back(std::isfinite(p.min_flight_gap) ? p.min_flight_gap : NAN);
+      newton_iterations.push_back(p.newton_iterations);
+    }
+    py::dict one;
+    one["period"] = continued.period;
+    one["stop_reason"] = continued.result.stop_reason;
+    one["stop_detail"] = continued.result.stop_detail;
+    one["map_evaluations"] = continued.result.map_evaluations;
+    one[py::str(parameter)] = owning_array(std::move(value));
+    one["q"] = owning_array(std::move(q));
+    one["qdot"] = owning_array(std::move(qdot));
+    one["impacts"] = owning_array(std::move(impacts));
+    one["contact_phases"] = owning_array(std::move(contact_phases));
+    one["stable"] = owning_array(std::move(stable));
+    one["multiplier1"] = owning_array(std::move(multiplier1));
+    one["multiplier2"] = owning_array(std::move(multiplier2));
+    one["min_impact_speed"] = owning_array(std::move(min_impact_speed));
+    one["min_flight_gap"] = owning_array(std::move(min_flight_gap));
+    one["newton_iterations"] = owning_array(std::move(newton_iterations));
+    branches.append(one);
+    for (const BifurcationPoint& p : continued.result.points) {
+      type.push_back(p.type);
+      point_parameter.push_back(p.parameter);
+      point_q.push_back(p.state[0]);
+      point_qdot.push_back(p.state[1]);
+      point_period.push_back(continued.period);
+      point_branch.push_back(static_cast<int>(b));
+      point_multiplier1.push_back(p.multipliers[0]);
+      point_multiplier2.push_back(p.multipliers[1]);
+      error_estimate.push_back(p.error_estimate);
+      located.push_back(p.located ? 1 : 0);
+      graze_time.push_back(p.graze_time);
+      graze_witness.push_back(p.graze_witness);
+      note.push_back(p.note);
+    }
+  }
+  py::dict points;
+  points["type"] = py::cast(type);
+  points[py::str(parameter)] = owning_array(std::move(point_parameter));
+  points["q"] = owning_array(std::move(point_q));
+  points["qdot"] = owning_array(std::move(point_qdot));
+  points["period"] = owning_array(std::move(point_period));
+  points["branch"] = owning_array(std::move(point_branch));
+  points["multiplier1"] = owning_array(std::move(point_multiplier1));
+  points["multiplier2"] = owning_array(std::move(point_multiplier2));
+  points["error_estimate"] = owning_array(std::move(error_estimate));
+  points["located"] = owning_array(std::move(located));
+  points["graze_time"] = owning_array(std::move(graze_time));
+  points["graze_witness"] = owning_array(std::move(graze_witness));
+  points["note"] = py::cast(note);
+  py::dict out;
+  out["available"] = result.available;
+  out["note"] = result.note;
+  out["branches"] = branches;
+  out["points"] = points;
+  return out;
+}
+
 py::list scene_keys(const Scene& scene) {
   py::list keys;
   for (const auto& spec : scene_schema(scene).keys) {
@@ -516,6 +635,7 @@ PYBIND11_MODULE(_impactlab, m) {
   m.def("periodic", &periodic_binding);
   m.def("compare", &compare_binding);
   m.def("bench", &bench_binding);
+  m.def("continue_", &continue_binding);
   m.def("event_kind_names", [] {
     std::vector<std::string> names;
     for (int kind = 0; kind <= static_cast<int>(EventKind::painleve); ++kind)

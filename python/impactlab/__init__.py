@@ -21,7 +21,7 @@ from . import _impactlab
 
 __all__ = [
     "Scene", "scenes", "scene", "simulate", "poincare", "sweep", "periodic", "compare",
-    "bench", "EventArray", "PhysicalDiagnosticWarning",
+    "bench", "continue_", "EventArray", "PhysicalDiagnosticWarning",
 ]
 
 Scene = _impactlab.Scene
@@ -315,3 +315,47 @@ def bench(scene_=None, *, methods=None, rtols=(1e-6, 1e-8, 1e-10), atol_ratio=1e
         _whole("max_reference_impacts", max_reference_impacts, 1),
         _whole("repetitions", repetitions, 1), callback), progress, "bench")
     return Result(scene=loaded, **raw)
+
+
+def _parameter_range(param):
+    """NAME=FROM:TO as (name, from, to); the key and its range are checked by the job."""
+    if isinstance(param, str):
+        name, equals, span = param.partition("=")
+        low, colon, high = span.partition(":")
+        if name and equals and colon and ":" not in high:
+            try:
+                low, high = float(low), float(high)
+            except ValueError:
+                low = high = math.nan
+            if not (math.isfinite(low) and math.isfinite(high)):
+                raise ValueError("param = {!r}: FROM and TO must be finite numbers".format(param))
+            if low == high:
+                raise ValueError("param = {!r}: FROM and TO must differ".format(param))
+            return name, low, high
+    raise ValueError("param = {!r}: expected NAME=FROM:TO".format(param))
+
+
+def continue_(scene_=None, *, param, period=1, section="strobe", switch=False, start=None,
+              transient=100.0, max_points=5000, tolerance=1e-10, max_step=0.0, progress=None,
+              **keys):
+    """Pseudo-arclength continuation of a period-n orbit in one scene key (the
+    CLI's `continue`): branches (per branch: the columns of branch.csv, its
+    period and why it stopped) and points (the rows of points.csv: folds,
+    period doublings, Neimark-Sacker and grazing points)."""
+    loaded = scene(scene_ if scene_ is not None else "linear_impact", **keys)
+    name, low, high = _parameter_range(param)
+    if not isinstance(section, str):
+        raise ValueError("section = {!r}: expected text such as strobe or strobe:PHASE".format(section))
+    if not isinstance(switch, bool):
+        raise ValueError("switch = {!r}: expected True or False".format(switch))
+    if start is not None:
+        if not isinstance(start, (list, tuple, np.ndarray)):
+            raise ValueError("start = {!r}: expected (q, qdot)".format(start))
+        start = [_number("start", value) for value in start]
+    raw = _run(lambda callback: _impactlab.continue_(
+        loaded, name, low, high, _whole("period", period, 1), section, switch, start,
+        _number("transient", transient), _whole("max_points", max_points, 2),
+        _number("tolerance", tolerance, positive=True),
+        _number("max_step", max_step, positive=True, allow_zero=True), callback),
+        progress, "continue")
+    return Result(scene=loaded, parameter=name, **raw)

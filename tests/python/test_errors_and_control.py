@@ -60,6 +60,13 @@ def test_unknown_scene_raises_value_error():
     (lambda: impactlab.periodic("jin2003", period="two"), "period"),
     (lambda: impactlab.compare("jin2003", models=["newton", "newton"]), "models"),
     (lambda: impactlab.simulate("jin2003", progress=42), "progress"),
+    (lambda: impactlab.simulate("jin2003", period=5), "period"),  # an unknown keyword
+    (lambda: impactlab.sweep("jin2003", param="omega=6:7:3", point=5), "point"),
+    (lambda: impactlab.continue_("linear_impact", param="omega=2"), "param"),
+    (lambda: impactlab.continue_("linear_impact", param="omega=2:nan"), "param"),
+    (lambda: impactlab.continue_("linear_impact", param="nokey=2:3"), "nokey"),
+    (lambda: impactlab.continue_("linear_impact", param="omega=2:3", section="impact"), "section"),
+    (lambda: impactlab.continue_("linear_impact", param="omega=2:3", start=[0.1]), "start"),
 ])
 def test_bad_option_raises_value_error_naming_it(call, named):
     with pytest.raises(ValueError) as raised:
