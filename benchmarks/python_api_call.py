@@ -8,6 +8,8 @@ Prints medians; the machine may be loaded, so the sweep runs alternate
 (Python, CLI, Python, CLI, ...) and their ratio is what counts.
 """
 import argparse
+import json
+import os
 import statistics
 import subprocess
 import tempfile
@@ -40,12 +42,15 @@ def main():
     with tempfile.TemporaryDirectory() as directory:
         for _ in range(options.sweep_repeats):
             start = time.perf_counter()
-            impactlab.sweep("jin2003", param="omega=6:8:400", threads=2)
+            result = impactlab.sweep("jin2003", param="omega=6:8:400", threads=2)
             python_times.append(time.perf_counter() - start)
             start = time.perf_counter()
             subprocess.run([options.cli, "sweep", "jin2003", "--param", "omega=6:8:400",
                             "--threads", "2", "--quiet", "--out", directory], check=True)
             cli_times.append(time.perf_counter() - start)
+            # the same plan on both sides (section, transient, points, ...)
+            with open(os.path.join(directory, "meta.json")) as meta:
+                assert json.load(meta)["sweep"] == result.definition
     python_sweep, cli_sweep = statistics.median(python_times), statistics.median(cli_times)
     print(f"sweep of 400 omega values, 2 threads: Python median {python_sweep:.3f} s, "
           f"CLI median {cli_sweep:.3f} s, ratio {python_sweep / cli_sweep:.3f} "
