@@ -7,11 +7,11 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
-#include <numbers>
-#include <sstream>
 #include <exception>
 #include <memory>
+#include <numbers>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -31,8 +31,8 @@
 #include "api/scene_record.hpp"
 #include "api/sweep_job.hpp"
 #include "api/work_precision.hpp"
-#include "io/bad_input.hpp"
 #include "integrate/stepper_dispatch.hpp"
+#include "io/bad_input.hpp"
 #include "io/builtin_scenes.hpp"
 
 namespace py = pybind11;

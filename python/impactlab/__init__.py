@@ -302,7 +302,9 @@ def bench(scene_=None, *, methods=None, rtols=(1e-6, 1e-8, 1e-10), atol_ratio=1e
     its fixed cases): per method and rtol, CPU and wall seconds per impact,
     right-hand sides and steps per impact, and the largest impact-time and
     impact-velocity errors against the reference (the closed form where the
-    oscillator has one, else rk8pd and bulirsch_stoer at rtol 1e-14)."""
+    oscillator has one; else two methods at rtol 1e-14 trusted where they
+    agree: the quad-precision Taylor stepper and rk8pd for the pendulum's
+    Model N, as the CLI's bench, rk8pd and bulirsch_stoer otherwise)."""
     loaded = scene(scene_ if scene_ is not None else "jin2003", **keys)
     if methods is not None and (isinstance(methods, str) or
                                 not all(isinstance(m, str) for m in methods)):

@@ -152,29 +152,33 @@ def test_compare_equals_cli(cli):
 
 
 def test_bench_equals_cli_work_precision(tmp_path):
-    # the CLI's quick study (its linear_impact case is the built-in scene as it is);
-    # work_precision.csv prints 6 significant digits, the counts in full
+    # the CLI's quick study; its cases linear_impact and jin2003_periodic are the
+    # built-in scenes as they are (the first against the closed form, the second
+    # against the quad-precision Taylor reference); work_precision.csv prints
+    # 6 significant digits, the counts in full
     out = tmp_path / "bench"
     subprocess.run([os.environ["IMPACTLAB_CLI"], "bench", "--quick", "--no-scipy", "--no-plots",
                     "--quiet", "--out", str(out)], check=True)
     columns = read_csv(out / "work_precision.csv")
-    rows = [dict(zip(columns, values)) for values in zip(*columns.values())]
-    rows = [row for row in rows if row["case"] == "linear_impact" and row["method"] != "exact"]
-    methods = sorted({row["method"] for row in rows})
-    result = impactlab.bench("linear_impact", methods=methods, rtols=(1e-6, 1e-8, 1e-10),
-                             periods=50, reference_periods=20, max_reference_impacts=20)
-    assert result.reference_method == "closed_form"
-    ours = {(m, r): i for i, (m, r) in enumerate(zip(result.method, result.rtol))}
-    assert len(ours) == len(rows) > 0
-    for row in rows:
-        i = ours[(row["method"], row["rtol"])]
-        assert row["impacts"] == result.impacts[i]
-        assert row["compared_impacts"] == result.impacts_compared[i]
-        for column, ours_column in (("rhs_per_impact", result.rhs_per_impact),
-                                    ("steps_per_impact", result.steps_per_impact),
-                                    ("max_time_error", result.impact_time_error),
-                                    ("max_velocity_error", result.impact_velocity_error)):
-            assert row[column] == float(format(ours_column[i], ".6g")), (row, column)
+    all_rows = [dict(zip(columns, values)) for values in zip(*columns.values())]
+    for case, scene_name, reference in (("linear_impact", "linear_impact", "closed_form"),
+                                        ("jin2003_periodic", "jin2003", "taylor_quad+rk8pd")):
+        rows = [row for row in all_rows if row["case"] == case and row["method"] != "exact"]
+        methods = sorted({row["method"] for row in rows})
+        result = impactlab.bench(scene_name, methods=methods, rtols=(1e-6, 1e-8, 1e-10),
+                                 periods=50, reference_periods=20, max_reference_impacts=20)
+        assert result.reference_method == reference
+        ours = {(m, r): i for i, (m, r) in enumerate(zip(result.method, result.rtol))}
+        assert len(ours) == len(rows) > 0
+        for row in rows:
+            i = ours[(row["method"], row["rtol"])]
+            assert row["impacts"] == result.impacts[i]
+            assert row["compared_impacts"] == result.impacts_compared[i]
+            for column, ours_column in (("rhs_per_impact", result.rhs_per_impact),
+                                        ("steps_per_impact", result.steps_per_impact),
+                                        ("max_time_error", result.impact_time_error),
+                                        ("max_velocity_error", result.impact_velocity_error)):
+                assert row[column] == float(format(ours_column[i], ".6g")), (case, row, column)
 
 
 def test_continue_equals_cli_branch_and_points(cli):
