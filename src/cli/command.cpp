@@ -102,7 +102,6 @@ std::string utc_now() {
   return text;
 }
 
-
 nlohmann::json scene_record(const Scene& scene) { return impactlab::scene_record(scene); }
 
 }  // namespace impactlab::cli
