@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <numbers>
 
 #include "contact/accumulation.hpp"
@@ -53,7 +54,13 @@ class LinearImpact {
       : p_(p),
         omega_d_(std::sqrt(std::max(1.0 - p.zeta * p.zeta, 0.0))),
         P_(p.A * (1.0 - p.omega * p.omega) / response_denominator(p)),
-        Q_(2.0 * p.zeta * p.omega * p.A / response_denominator(p)) {}
+        Q_(2.0 * p.zeta * p.omega * p.A / response_denominator(p)) {
+    // the exact flow's gap σ − x is a difference of terms as large as the
+    // forced response's amplitude √(P² + Q²): its round-off is theirs
+    p_.accumulation.gap_roundoff =
+        std::max(p_.accumulation.gap_roundoff, 4.0 * std::numeric_limits<double>::epsilon() *
+                                                   (std::fabs(p.sigma) + std::hypot(P_, Q_)));
+  }
 
   // Whether exact_flow is available: the underdamped case, except undamped
   // forcing at resonance (ω = 1, where the particular solution is secular).
