@@ -20,8 +20,8 @@ class CrossingSection {
   using Mode = typename Base::Mode;
   static constexpr std::size_t max_witnesses = Base::max_witnesses + 1;
 
-  // points: where the crossings are appended
-  CrossingSection(const Base& base, const SectionSpec& section, std::vector<SectionPoint>& points)
+  // points: where the crossings go
+  CrossingSection(const Base& base, const SectionSpec& section, SectionPoints& points)
       : base_(base), section_(section), points_(&points) {}
 
   [[nodiscard]] double max_step() const { return base_.max_step(); }
@@ -70,14 +70,14 @@ class CrossingSection {
     if (k < base_.witness_count(mode)) return base_.on_event(mode, k, crossing, x, t, log);
     const double rate = witness(mode, k, x, t).rate;
     const bool wanted = section_.direction == 0 || (section_.direction > 0 ? rate > 0.0 : rate < 0.0);
-    if (crossing == CrossingKind::crossing && wanted) points_->push_back({t, x[0], x[1], 0});
+    if (crossing == CrossingKind::crossing && wanted) points_->add({t, x[0], x[1], 0});
     return {x, mode, t, false};
   }
 
  private:
   Base base_;
   SectionSpec section_;
-  std::vector<SectionPoint>* points_;  // the caller's; appended to at each crossing
+  SectionPoints* points_;  // the caller's; given each crossing
 };
 
 }  // namespace impactlab

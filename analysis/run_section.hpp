@@ -29,7 +29,7 @@ namespace detail {
 class StrobeObserver {
  public:
   StrobeObserver(double omega, double phase, double from, std::uint64_t count,
-                 std::vector<SectionPoint>& points)
+                 SectionPoints& points)
       : omega_(omega), phase_(phase), count_(count), points_(points) {
     // first k with t_k >= from (to round-off)
     first_ = std::ceil((omega * from - phase) / (2.0 * std::numbers::pi) - 1e-9);
@@ -40,7 +40,7 @@ class StrobeObserver {
   }
   template <class State, class Mode>
   void observe(double t, const State& x, Mode) {
-    points_.push_back({t, x[0], x[1], 0});
+    points_.add({t, x[0], x[1], 0});
     ++taken_;
   }
   [[nodiscard]] double last_time() const {
@@ -51,7 +51,7 @@ class StrobeObserver {
  private:
   double omega_, phase_, first_;
   std::uint64_t count_, taken_ = 0;
-  std::vector<SectionPoint>& points_;
+  SectionPoints& points_;
 };
 
 template <class Result>
@@ -126,17 +126,21 @@ SectionResult run_section(const System& system, const typename System::State& x0
 
     // record
     EventLog record_log(request.section.kind == SectionKind::impact);
+    SectionPoints collected(result.points, request.point_sink, request.points);
+    if (request.point_sink != nullptr) request.point_sink->begin(omega);
     if (request.section.kind == SectionKind::strobe) {
-      detail::StrobeObserver observer(omega, request.section.phase, t, request.points,
-                                      result.points);
+      detail::StrobeObserver observer(omega, request.section.phase, t, request.points, collected);
       const double end = std::max(t + static_cast<double>(request.points) * period,
                                   observer.last_time());
-      if (!advance(end, record_log, observer)) return result;
+      if (!advance(end, record_log, observer)) {
+        result.point_count = collected.count();
+        return result;
+      }
     } else if (request.section.kind != SectionKind::impact) {
       // a user-given section: the system with one more witness, in whole periods
-      const CrossingSection<System> crossing(system, request.section, result.points);
+      const CrossingSection<System> crossing(system, request.section, collected);
       const std::uint64_t chunk = std::max<std::uint64_t>(request.points, 1);
-      for (std::uint64_t periods = 0; result.points.size() < request.points; periods += chunk) {
+      for (std::uint64_t periods = 0; !collected.full(); periods += chunk) {
         if (periods >= max_periods) {
           result.termination = "crossings_not_reached";
           break;
@@ -156,23 +160,23 @@ SectionResult run_section(const System& system, const typename System::State& x0
           break;
         }
       }
-      if (result.points.size() > request.points) result.points.resize(request.points);
     } else {
       const std::uint64_t chunk = std::max<std::uint64_t>(request.points, 1);
-      for (std::uint64_t periods = 0; result.points.size() < request.points; periods += chunk) {
+      for (std::uint64_t periods = 0; !collected.full(); periods += chunk) {
         if (periods >= max_periods) {
           result.termination = "impacts_not_reached";
           break;
         }
         if (!advance(t + static_cast<double>(chunk) * period, record_log, NoObserver{})) break;
         for (const auto& event : record_log.records())
-          if (event.kind == EventKind::impact && result.points.size() < request.points &&
+          if (event.kind == EventKind::impact &&
               (request.section.wall == 0 || event.wall == request.section.wall) &&
-              (result.points.empty() || event.t > result.points.back().t))
-            result.points.push_back({event.t, event.q, event.qdot_before, event.wall});
+              event.t > collected.last_time())
+            collected.add({event.t, event.q, event.qdot_before, event.wall});
         record_log.clear_records();
       }
     }
+    result.point_count = collected.count();
     // whole periods, up to the round-off of the time sums
     result.periods_recorded = (t - result.record_start) / period;
     if (std::fabs(result.periods_recorded - std::round(result.periods_recorded)) < 1e-6)

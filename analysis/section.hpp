@@ -43,6 +43,44 @@ struct SectionPoint {
   int wall = 0;       // impact map: the wall hit; 0 for a stroboscopic point
 };
 
+// Where a run's section points go as they are found, instead of
+// SectionResult::points: a long record written straight to its file keeps
+// the run's memory independent of its length.
+class SectionPointSink {
+ public:
+  virtual ~SectionPointSink() = default;
+  // the run's forcing frequency ω (rad per time unit), before its first point
+  virtual void begin(double omega) = 0;
+  virtual void write(const SectionPoint& point) = 0;
+};
+
+// The points of one record, at most `limit`: appended to `points`, or handed
+// to `sink` when there is one.
+class SectionPoints {
+ public:
+  SectionPoints(std::vector<SectionPoint>& points, SectionPointSink* sink, std::uint64_t limit)
+      : points_(points), sink_(sink), limit_(limit) {}
+  void add(const SectionPoint& point) {
+    if (count_ >= limit_) return;
+    ++count_;
+    last_time_ = point.t;
+    if (sink_ != nullptr) {
+      sink_->write(point);
+    } else {
+      points_.push_back(point);
+    }
+  }
+  [[nodiscard]] std::uint64_t count() const { return count_; }
+  [[nodiscard]] bool full() const { return count_ >= limit_; }
+  [[nodiscard]] double last_time() const { return last_time_; }  // -inf before the first
+
+ private:
+  std::vector<SectionPoint>& points_;
+  SectionPointSink* sink_;
+  std::uint64_t limit_, count_ = 0;
+  double last_time_ = -std::numeric_limits<double>::infinity();
+};
+
 // The state a run ends in, to continue from at the next parameter value.
 struct ContinuationState {
   std::vector<double> state;  // the system's whole state
@@ -58,10 +96,13 @@ struct SectionRequest {
   int lyapunov_alignment_periods = 10; // periods a tangent vector turns before averaging
   double max_periods = 1e5;            // cap on a transient or record counted in impacts
   std::optional<ContinuationState> start;  // instead of the scene's initial state
+  // where the points go as they are found; none: SectionResult::points
+  SectionPointSink* point_sink = nullptr;
 };
 
 struct SectionResult {
-  std::vector<SectionPoint> points;
+  std::vector<SectionPoint> points;  // empty when they went to a point_sink
+  std::uint64_t point_count = 0;     // points recorded, wherever they went
   std::optional<ContinuationState> final_state;  // none when the run stopped early
   std::string termination = "completed";  // completed, stopped_by_model, no_progress
   double omega = 0.0;              // forcing frequency (rad per time unit)

@@ -192,5 +192,31 @@ TEST(SimulateFiles, PeakMemoryDoesNotGrowWithTheRunLength) {
       << " KiB at 1e4";
 }
 
+
+// The same for a long Poincaré record: 30 times the points (the linear
+// impact oscillator's strobe, exact flow) within 10 % of the same peak. Held
+// in memory at 32 bytes a point, 3e5 points alone would add 9.6 MB.
+TEST(PoincareFiles, PeakMemoryDoesNotGrowWithThePointCount) {
+  const auto short_dir = scratch("poincare_memory_short");
+  const auto long_dir = scratch("poincare_memory_long");
+  const ChildRun short_run =
+      run_program({"poincare", "linear_impact", "--points", "10000", "--transient", "10",
+                   "--quiet", "--out", short_dir.string()});
+  const ChildRun long_run =
+      run_program({"poincare", "linear_impact", "--points", "300000", "--transient", "10",
+                   "--quiet", "--out", long_dir.string()});
+  ASSERT_EQ(short_run.status, 0);
+  ASSERT_EQ(long_run.status, 0);
+  std::ifstream in(long_dir / "poincare.csv");
+  std::uint64_t rows = 0;
+  for (std::string line; std::getline(in, line);) ++rows;
+  EXPECT_EQ(rows, 300000u + 1);
+  const auto meta_long = nlohmann::json::parse(slurp(long_dir / "meta.json"));
+  EXPECT_EQ(meta_long["counts"]["points"].get<std::uint64_t>(), 300000u);
+  EXPECT_LE(static_cast<double>(long_run.max_rss_kb), 1.10 * static_cast<double>(short_run.max_rss_kb))
+      << "peak memory " << short_run.max_rss_kb << " KiB at 1e4 points, " << long_run.max_rss_kb
+      << " KiB at 3e5";
+}
+
 }  // namespace
 }  // namespace impactlab

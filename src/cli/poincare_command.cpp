@@ -2,6 +2,8 @@
 // writes poincare.csv (k,t,q,qdot; the impact map adds wall,phase) and
 // meta.json, atomically (meta.json last); --plot adds poincare.png.
 #include <cmath>
+#include <cstdint>
+#include <fstream>
 #include <iostream>
 #include <numbers>
 
@@ -20,6 +22,31 @@ namespace {
 
 std::string number(double value) { return fmt::format("{}", value); }
 
+// poincare.csv, one row per point as the run finds it (memory does not grow
+// with --points)
+class PoincareCsvWriter final : public SectionPointSink {
+ public:
+  PoincareCsvWriter(std::ofstream& out, bool impact_map, bool user_section)
+      : out_(out), impact_map_(impact_map), user_section_(user_section) {
+    out_ << (impact_map ? "k,t,q,qdot,wall,phase\n"
+                        : user_section ? "k,t,q,qdot,phase\n" : "k,t,q,qdot\n");
+  }
+  void begin(double omega) override { omega_ = omega; }
+  void write(const SectionPoint& p) override {
+    out_ << index_++ << ',' << number(p.t) << ',' << number(p.q) << ',' << number(p.qdot);
+    if (impact_map_) out_ << ',' << p.wall;
+    if (impact_map_ || user_section_)
+      out_ << ',' << number(std::fmod(omega_ * p.t, 2.0 * std::numbers::pi));
+    out_ << '\n';
+  }
+
+ private:
+  std::ofstream& out_;
+  bool impact_map_, user_section_;
+  double omega_ = 0.0;  // rad per time unit, from begin()
+  std::uint64_t index_ = 0;
+};
+
 int run_poincare(const SectionOptions& options, bool lyapunov,
                  const std::vector<std::string>& command_line) {
   const Scene scene = options.scene.load();
@@ -29,6 +56,12 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
   // poincare.csv and meta.json, committed together (meta.json last)
   RunFiles files(directory);
 
+  const bool impact_map = request.section.kind == SectionKind::impact;
+  const bool user_section = request.section.kind != SectionKind::impact &&
+                            request.section.kind != SectionKind::strobe;
+  PoincareCsvWriter rows(files.add("poincare.csv").stream(), impact_map, user_section);
+  request.point_sink = &rows;
+
   const auto start = std::chrono::steady_clock::now();
   const SectionResult result = poincare(scene, request);
   const double wall_time =
@@ -36,19 +69,6 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
 
   const SceneSchema& schema = scene_schema(scene);
   const std::string q_name(schema.main_coordinate);
-  const bool impact_map = request.section.kind == SectionKind::impact;
-  const bool user_section = request.section.kind != SectionKind::impact &&
-                            request.section.kind != SectionKind::strobe;
-  auto& out = files.add("poincare.csv").stream();
-  out << (impact_map ? "k,t,q,qdot,wall,phase\n" : user_section ? "k,t,q,qdot,phase\n" : "k,t,q,qdot\n");
-  for (std::size_t k = 0; k < result.points.size(); ++k) {
-    const SectionPoint& p = result.points[k];
-    out << k << ',' << number(p.t) << ',' << number(p.q) << ',' << number(p.qdot);
-    if (impact_map) out << ',' << p.wall;
-    if (impact_map || user_section)
-      out << ',' << number(std::fmod(result.omega * p.t, 2.0 * std::numbers::pi));
-    out << '\n';
-  }
 
   nlohmann::json meta = {
       {"impactlab_version", IMPACTLAB_VERSION},
@@ -60,7 +80,7 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
       {"forcing_period", result.forcing_period},
       {"record_start", result.record_start},
       {"counts",
-       {{"points", result.points.size()},
+       {{"points", result.point_count},
         {"periods_recorded", result.periods_recorded},
         {"impacts_recorded", result.impacts},
         {"contact_phases_recorded", result.contact_phases},
@@ -88,11 +108,11 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
                      {q_name});
   if (!options.scene.quiet)
     std::cout << fmt::format("{}: {} section points ({}), {:.3f} s wall\nwrote {}\n", scene.name,
-                             result.points.size(), to_string(request.section), wall_time,
+                             result.point_count, to_string(request.section), wall_time,
                              (directory / "poincare.csv").string());
   if (result.termination != "completed") {
     std::cerr << fmt::format("impactlab: run stopped early ({}); {} points recorded\n",
-                             result.termination, result.points.size());
+                             result.termination, result.point_count);
     return exit_stopped_early;
   }
   return exit_done;
