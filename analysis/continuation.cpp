@@ -263,6 +263,14 @@ class Driver {
     node.orbit = orbit;
   }
 
+  // a time since the working section as a time since the requested one (s)
+  double time_since_requested_section(double t, const OrbitEvaluation& orbit) const {
+    if (phase_ == problem_.phase || !(orbit.omega > 0.0)) return t;
+    double shift = std::remainder(phase_ - problem_.phase, 2.0 * std::numbers::pi);
+    if (shift < 0.0) shift += 2.0 * std::numbers::pi;
+    return std::fmod(t + shift / orbit.omega, orbit.span);
+  }
+
   // the state on the requested section
   OrbitPoint reported_state(const Vec3& y) const {
     if (phase_ == problem_.phase) return state_of(y);
@@ -512,7 +520,7 @@ class Driver {
         point.multipliers = multipliers_of(orbit.monodromy);
         point.error_estimate = std::max(std::fabs(last_parameter_step) * scale_,
                                         request_.tolerance * (1.0 + std::fabs(z[2] * scale_)));
-        point.graze_time = z[3];
+        point.graze_time = time_since_requested_section(z[3], orbit);
         point.graze_witness = witness;
         point.located = true;
         solved_point = Vec3(z[0], z[1], z[2]);

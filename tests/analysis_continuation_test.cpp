@@ -12,6 +12,10 @@
 //   Γ² = (π(1 − r)/(1 + r))² + (2(1 + r²)/(1 + r)²)².
 // The located points must agree to 1e-9 relative in the parameter; stable
 // branch points agree with the brute-force section (sweep) and `periodic`.
+// Two-parameter curves (analysis/curve_continuation.hpp) are checked point by
+// point against the same closed forms: the ball's period-doubling amplitude
+// as a function of r, the linear oscillator's period doubling in (ω, r), and
+// its impact-velocity grazing A/√((1 − ω²)² + (2ζω)²) = σ in (ω, σ).
 #include <array>
 #include <cmath>
 #include <complex>
@@ -347,6 +351,95 @@ TEST(Continuation, StableBranchPointsAgreeWithTheSweepSectionAndPeriodic) {
     ++compared;
   }
   EXPECT_GE(compared, 3);
+}
+
+ContinuationJob curve_job(const std::string& key, double from, double to, const std::string& key2,
+                          double from2, double to2, const std::string& type) {
+  ContinuationJob job;
+  job.parameter = key;
+  job.from = from;
+  job.to = to;
+  job.second_parameter = key2;
+  job.second_from = from2;
+  job.second_to = to2;
+  job.curve_type = type;
+  return job;
+}
+
+TEST(CurveContinuation, BouncingBallPeriodDoublingCurveInAmplitudeAndRestitution) {
+  const Scene scene = impactlab::load_scene("bouncing_ball");  // g 9.81, ω 30, r 0.8
+  ContinuationJob job = curve_job("A", 0.0112, 0.02, "r", 0.8, 0.5, "period_doubling");
+  job.has_start = true;
+  job.start = bouncing_ball_start(9.81, 30.0, 0.8, 0.0112);
+  const auto result = impactlab::continue_orbit(scene, job);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  EXPECT_EQ(curve.type, "period_doubling");
+  EXPECT_EQ(curve.stop_reason, "end_of_range") << curve.stop_detail;
+  ASSERT_GE(curve.curve.size(), 20u);
+  EXPECT_EQ(curve.curve.back().p2, 0.5);
+  for (const auto& point : curve.curve) {
+    const double expected = bouncing_ball_period_doubling_amplitude(9.81, 30.0, point.p2);
+    EXPECT_NEAR(point.p1, expected, 1e-9 * expected) << "r = " << point.p2;
+    EXPECT_NEAR(point.multipliers[0].real(), -1.0, 1e-7) << "r = " << point.p2;
+  }
+}
+
+TEST(CurveContinuation, LinearImpactPeriodDoublingCurveInOmegaAndRestitution) {
+  ImpactOscillator o;  // ζ = 0.05, σ = 0, A = 1; r from 0.8 down to 0.6
+  const Scene scene = linear_impact_scene(o);
+  const auto result = impactlab::continue_orbit(
+      scene, curve_job("omega", 2.5, 2.8, "r", 0.8, 0.6, "period_doubling"));
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  EXPECT_EQ(curve.stop_reason, "end_of_range") << curve.stop_detail;
+  ASSERT_GE(curve.curve.size(), 10u);
+  int compared = 0;
+  for (std::size_t k = 0; k < curve.curve.size(); k += 4) {
+    const auto& point = curve.curve[k];
+    o.r = point.p2;
+    // the closed form's period doubling at this r, bracketed around the point
+    const double expected = period_doubling(o, point.p1 - 0.01, point.p1 + 0.01);
+    EXPECT_NEAR(point.p1, expected, 1e-9 * expected) << "r = " << point.p2;
+    const PeriodOneOrbit closed(o, point.p1);
+    ASSERT_TRUE(closed.found());
+    EXPECT_NEAR(point.state[0], closed.section_state()[0], 1e-8) << "r = " << point.p2;
+    ++compared;
+  }
+  EXPECT_GE(compared, 4);
+}
+
+TEST(CurveContinuation, LinearImpactGrazingCurveInOmegaAndSigma) {
+  ImpactOscillator o;
+  o.sigma = 0.2;
+  const Scene scene = linear_impact_scene(o);
+  const auto result = impactlab::continue_orbit(
+      scene, curve_job("omega", 2.0, 2.5, "sigma", 0.2, 0.4, "grazing"));
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  EXPECT_EQ(curve.type, "grazing");
+  ASSERT_GE(curve.curve.size(), 20u);
+  // ends where ω leaves [2, 2.5] (σ ≈ 0.33 at ω = 2)
+  EXPECT_EQ(curve.stop_reason, "left_range") << curve.stop_detail;
+  for (const auto& point : curve.curve) {
+    const double detuning = 1.0 - point.p1 * point.p1;
+    const double amplitude =
+        o.A / std::sqrt(detuning * detuning + 4.0 * o.zeta * o.zeta * point.p1 * point.p1);
+    EXPECT_NEAR(point.p2, amplitude, 1e-9 * amplitude) << "omega = " << point.p1;
+  }
+  EXPECT_GT(curve.curve.back().p2, 0.3);
+}
+
+TEST(CurveContinuation, NoPointOfTheTypeOnTheBranchGivesNoCurve) {
+  const ImpactOscillator o;
+  const Scene scene = linear_impact_scene(o);
+  ContinuationJob job = curve_job("omega", 3.0, 4.0, "r", 0.8, 0.6, "fold");  // no fold up to 7
+  job.has_start = true;
+  job.start = PeriodOneOrbit(o, 3.0).section_state();
+  const auto result = impactlab::continue_orbit(scene, job);
+  ASSERT_EQ(result.branches.at(0).result.stop_reason, "end_of_range");
+  EXPECT_FALSE(result.has_curve);
+  EXPECT_NE(result.curve_note.find("fold"), std::string::npos);
 }
 
 }  // namespace
