@@ -19,7 +19,8 @@ import numpy as np  # noqa: E402
 
 
 def read(path):
-    data = np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8")
+    data = np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8",
+                         deletechars="")
     return np.atleast_1d(data)
 
 

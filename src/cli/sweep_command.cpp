@@ -1,5 +1,8 @@
 // `impactlab sweep`: 1D bifurcation sweeps (bifurcation.csv, summary.csv) and
-// 2D classification maps (classes.csv) over any numeric scene parameter, on
+// 2D classification maps (classes.csv) over any numeric scene parameter, and
+// `impactlab basins`: a 2D sweep whose points each start from the scene's
+// state with the two keys set (basins.csv, attractors.csv; the attractors
+// told apart by analysis/basins.hpp), on
 // threads (--threads) and, under mpirun, across MPI ranks; resumable from a
 // per-rank checkpoint (checkpoint-<rank>.jsonl, one flushed line per point,
 // first line identifying the sweep). The data files and meta.json appear only
@@ -15,6 +18,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include "analysis/basins.hpp"
 #include "analysis/sweep.hpp"
 #include "api/scene_jobs.hpp"
 #include "cli/command.hpp"
@@ -39,6 +43,8 @@ struct SweepOptions {
   long stop_after = 0;  // hidden, for tests: stop after this many new points per rank
   double period_tolerance = 1e-6;
   int max_period = 16;
+  bool basins = false;             // `impactlab basins`: params are --x, --y
+  double attractor_tolerance = 1e-4;  // basins: relative distance of canonical points
 };
 
 std::string number(double value) { return fmt::format("{}", value); }
@@ -66,6 +72,37 @@ std::map<RecordKey, SweepRecord> read_checkpoints(const std::filesystem::path& d
 
 std::string csv_bool(bool value) { return value ? "1" : "0"; }
 
+// basins.csv (each grid point's attractor) and attractors.csv (each
+// attractor's class, canonical section point and basin size)
+void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<SweepTask>& tasks,
+                  const std::map<RecordKey, SweepRecord>& records, std::vector<std::string>& files) {
+  std::vector<const SweepRecord*> in_grid_order;
+  for (const auto& task : tasks)
+    for (std::size_t p = 0; p < task.points.size(); ++p)
+      in_grid_order.push_back(&records.at({task.id, static_cast<int>(p)}));
+  const BasinMap map = identify_attractors(in_grid_order, plan.attractor_tolerance);
+  AtomicFile& basins = run_files.add("basins.csv");
+  basins.stream() << plan.axes[0].name << ',' << plan.axes[1].name
+                  << ",attractor,period,impacts_per_period,contact,termination\n";
+  for (std::size_t k = 0; k < in_grid_order.size(); ++k) {
+    const SweepRecord& r = *in_grid_order[k];
+    basins.stream() << number(plan.axes[0].value(r.index[0])) << ','
+                    << number(plan.axes[1].value(r.index[1])) << ',' << map.attractor[k] << ','
+                    << r.classification.period << ','
+                    << number(r.classification.impacts_per_period) << ','
+                    << csv_bool(r.classification.contact) << ',' << r.result.termination << '\n';
+  }
+  AtomicFile& attractors = run_files.add("attractors.csv");
+  attractors.stream() << "attractor,period,impacts_per_period,contact,q,qdot,basin_points\n";
+  if (map.unclassified > 0)
+    attractors.stream() << "0,0,nan,0,nan,nan," << map.unclassified << '\n';
+  for (const Attractor& a : map.attractors)
+    attractors.stream() << a.id << ',' << a.period << ',' << number(a.impacts_per_period) << ','
+                        << csv_bool(a.contact) << ',' << number(a.point[0]) << ','
+                        << number(a.point[1]) << ',' << a.basin_points << '\n';
+  files = {"basins.csv", "attractors.csv"};
+}
+
 void write_outputs(RunFiles& run_files, const SweepPlan& plan,
                    const std::vector<SweepTask>& tasks,
                    const std::map<RecordKey, SweepRecord>& records, std::vector<std::string>& files) {
@@ -75,6 +112,10 @@ void write_outputs(RunFiles& run_files, const SweepPlan& plan,
                        csv_bool(r.classification.contact), number(r.result.lyapunov),
                        r.result.termination);
   };
+  if (plan.axes.size() == 2 && !plan.follow_attractor) {
+    write_basins(run_files, plan, tasks, records, files);
+    return;
+  }
   if (plan.axes.size() == 1) {
     const SweepAxis& axis = plan.axes[0];
     AtomicFile& bifurcation = run_files.add("bifurcation.csv");
@@ -126,14 +167,23 @@ void write_outputs(RunFiles& run_files, const SweepPlan& plan,
 // The plan the options describe, validated against the scene (BadInput).
 SweepPlan plan_from(const SweepOptions& options, const Scene& scene, const SceneSchema& schema) {
   SweepPlan plan;
-  for (const auto& text : options.params) plan.axes.push_back(parse_axis(text, "--param"));
+  if (options.basins) {
+    plan.axes = {parse_axis(options.params.at(0), "--x"), parse_axis(options.params.at(1), "--y")};
+    plan.follow_attractor = false;
+    plan.attractor_tolerance = options.attractor_tolerance;
+    if (plan.axes[0].name == plan.axes[1].name)
+      throw BadInput("--y", plan.axes[1].name, "must differ from --x's key");
+  } else {
+    for (const auto& text : options.params) plan.axes.push_back(parse_axis(text, "--param"));
+  }
   plan.direction = parse_direction(options.direction, "--direction");
   plan.chunks = options.chunks;
   plan.section = options.section.request();
   plan.period_tolerance = options.period_tolerance;
   plan.max_period = options.max_period;
   // Lyapunov: on by default for 2D maps, off for 1D sweeps
-  plan.section.lyapunov = options.lyapunov || (plan.axes.size() == 2 && !options.no_lyapunov);
+  plan.section.lyapunov =
+      options.lyapunov || (plan.axes.size() == 2 && !options.no_lyapunov && !options.basins);
   validate_plan(plan, scene, schema);
   if (plan.axes.size() == 2 && plan.direction != SweepDirection::up)
     throw BadInput("--direction", options.direction,
@@ -155,7 +205,7 @@ nlohmann::json sweep_definition(const SweepOptions& options, const SweepPlan& pl
                     {"to", a.to},
                     {"count", a.count}});
   }
-  return {
+  nlohmann::json definition = {
       {"scene", scene_record(scene)},
       {"axes", axes},
       {"direction", to_string(plan.direction)},
@@ -167,6 +217,11 @@ nlohmann::json sweep_definition(const SweepOptions& options, const SweepPlan& pl
       {"max_period", plan.max_period},
       {"impactlab_version", IMPACTLAB_VERSION},
   };
+  if (options.basins) {
+    definition["basins"] = true;  // every point from the scene's state
+    definition["attractor_tolerance"] = plan.attractor_tolerance;
+  }
+  return definition;
 }
 
 // This rank's checkpoint, opened for appending; one that is not this
@@ -300,7 +355,9 @@ void write_meta(RunFiles& run_files, const nlohmann::json& definition,
         {"lyapunov", "largest Lyapunov exponent (1/time unit); nan where not computed, -inf "
                      "where nearby states merge (rest on a wall)"},
         {"termination", "completed, stopped_by_model, no_progress, ..."},
-        {"points", "section points recorded"}}},
+        {"points", "section points recorded"},
+        {"attractor", "basins: the attractor the point settles on (attractors.csv; 0: none found)"},
+        {"basin_points", "basins: grid points that settle on the attractor"}}},
       {"files", files},
   };
   write_json(run_files.add("meta.json"), meta);
@@ -372,7 +429,10 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
 
   const std::string q_name(target.schema->main_coordinate);
   if (options.section.plot) {
-    if (plan.axes.size() == 1)
+    if (options.basins)
+      plot_with_python("basins", directory / "basins.csv", directory / "basins.png",
+                       {plan.axes[0].name, plan.axes[1].name});
+    else if (plan.axes.size() == 1)
       plot_with_python("bifurcation", directory / "bifurcation.csv",
                        directory / "bifurcation.png", {plan.axes[0].name, q_name});
     else
@@ -428,6 +488,44 @@ Command add_sweep_command(CLI::App& app) {
   command->add_flag("--resume", options->resume,
                     "reuse the finished points of an interrupted run of the same sweep in --out");
   // for tests of --resume: stop (exit 3, checkpoint kept) after this many new points per rank
+  command->add_option("--stop-after", options->stop_after)->group("")->check(CLI::Range(1L, 1L << 40));
+  return {command, [options](const std::vector<std::string>& command_line) {
+            return run_sweep(*options, command_line);
+          }};
+}
+
+Command add_basins_command(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "basins",
+      "basins of attraction: each initial condition of a 2D grid (e.g. initial.theta x "
+      "initial.theta_dot) classified by the attractor it settles on (basins.csv, attractors.csv)");
+  auto options = std::make_shared<SweepOptions>();
+  options->basins = true;
+  options->params.resize(2);
+  options->section.add_to(*command,
+                          "section points recorded per initial condition (strobe: forcing "
+                          "periods; impact: impacts)");
+  command->add_option("--x", options->params[0], "KEY=FROM:TO:N: the first grid key (fastest)")
+      ->required();
+  command->add_option("--y", options->params[1], "KEY=FROM:TO:N: the second grid key")->required();
+  command->add_option("--threads", options->threads, "worker threads")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  command->add_flag("--lyapunov", options->lyapunov, "also compute the largest Lyapunov exponent");
+  command->add_option("--period-tol", options->period_tolerance,
+                      "relative distance under which section points count as repeating")
+      ->check(positive_number())
+      ->capture_default_str();
+  command->add_option("--max-period", options->max_period, "longest period looked for")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  command->add_option("--attractor-tol", options->attractor_tolerance,
+                      "relative distance under which two canonical section points are one "
+                      "attractor")
+      ->check(positive_number())
+      ->capture_default_str();
+  command->add_flag("--resume", options->resume,
+                    "reuse the finished points of an interrupted run of the same map in --out");
   command->add_option("--stop-after", options->stop_after)->group("")->check(CLI::Range(1L, 1L << 40));
   return {command, [options](const std::vector<std::string>& command_line) {
             return run_sweep(*options, command_line);
