@@ -375,6 +375,7 @@ class Driver {
       if (point.type == "fold" && a.tangent[2] * b.tangent[2] > 0.0) point.type = "branch_point";
       result_.points.push_back(point);
     }
+    for (const ParameterBoundary& boundary : problem_.boundaries) locate_boundary(boundary, a, b);
     if (a.orbit.contact_phases != b.orbit.contact_phases) {
       BifurcationPoint point;
       point.type = b.orbit.contact_phases > a.orbit.contact_phases ? "contact_onset" : "contact_end";
@@ -385,6 +386,38 @@ class Driver {
       point.note = "detected between two branch points";
       result_.points.push_back(point);
     }
+  }
+
+  // A parameter boundary crossed between nodes a and b: its root in p (TOMS
+  // 748 on the boundary's own function), and the orbit corrected there at
+  // fixed p from the point of the secant a–b at that p.
+  void locate_boundary(const ParameterBoundary& boundary, const Node& a, const Node& b) {
+    const double pa = a.y[2] * scale_, pb = b.y[2] * scale_;
+    const double fa = boundary.value(pa), fb = boundary.value(pb);
+    if (!(fa * fb < 0.0)) return;
+    BifurcationPoint point;
+    point.type = boundary.type;
+    point.note = boundary.note;
+    std::uintmax_t iterations = 100;
+    const auto bracket = boost::math::tools::toms748_solve(
+        [&](double p) { return boundary.value(p); }, std::min(pa, pb), std::max(pa, pb),
+        pa < pb ? fa : fb, pa < pb ? fb : fa, boost::math::tools::eps_tolerance<double>(52),
+        iterations);
+    point.parameter = 0.5 * (bracket.first + bracket.second);
+    point.error_estimate = bracket.second - bracket.first;
+    const double fraction = (point.parameter - pa) / (pb - pa);
+    Vec3 guess = a.y + fraction * (b.y - a.y);
+    guess[2] = point.parameter / scale_;
+    Correction c = correct(guess, Vec3(0.0, 0.0, 1.0), guess, {}, nullptr);
+    if (c.converged) {
+      point.state = reported_state(c.y);
+      point.multipliers = multipliers_of(c.orbit.monodromy);
+      point.located = true;
+    } else {
+      point.state = reported_state(guess);
+      point.note += " (the orbit there interpolated: the corrector failed)";
+    }
+    result_.points.push_back(point);
   }
 
   // The root of a test function on the arclength from node a, each trial

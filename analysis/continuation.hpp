@@ -76,6 +76,16 @@ struct GapSample {
   double rate = 0.0;   // its time derivative along the flow
 };
 
+// A boundary that depends on the parameter alone, reported where the branch
+// crosses it (a sign change of `value`) and located exactly (the root of
+// `value`, then the orbit corrected there): the pendulum's V0·ω = g, below
+// which no contact phase can exist.
+struct ParameterBoundary {
+  std::string type;  // its type in points.csv
+  std::string note;
+  std::function<double(double p)> value;
+};
+
 // The section is ωt ≡ phase (mod 2π); the driver may move it off an impact
 // that comes too close to it (where the stroboscopic map jumps) and reports
 // every state on the requested `phase`.
@@ -95,6 +105,7 @@ struct ContinuationProblem {
       transport;
   double phase = 0.0;                // rad: the requested section
   double forcing_period_at_p = 0.0;  // nT at the start (s): the scale of the grazing window
+  std::vector<ParameterBoundary> boundaries;  // reported where the branch crosses them
 };
 
 struct ContinuationRequest {

@@ -337,6 +337,13 @@ void continue_curve_of(ContinuationJobResult& result, SystemAt system_at,
   result.has_curve = true;
 }
 
+// A boundary in terms of the scene (ParameterBoundary): `value(scene)` changes
+// sign where it is crossed, as a function of the continued key alone.
+struct SceneBoundary {
+  std::string type, note;
+  double (*value)(const Scene& scene) = nullptr;
+};
+
 // A continuation from a scene: the start from a transient from the scene's
 // initial state at p = from (or the job's start), the branch, then, for each
 // period doubling asked for, the doubled orbit's branch from the first period
@@ -345,7 +352,8 @@ void continue_curve_of(ContinuationJobResult& result, SystemAt system_at,
 template <HybridSystem System, class SystemAt>
 ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode flight_mode,
                                        const typename System::State& initial_state,
-                                       const Scene& job_scene, const ContinuationJob& job) {
+                                       const Scene& job_scene, const ContinuationJob& job,
+                                       const std::vector<SceneBoundary>& boundaries = {}) {
   ContinuationJobResult result;
   // a two-parameter job runs its branch at second_parameter = second_from
   Scene scene = job_scene;
@@ -386,8 +394,17 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
         at.values[parameter] = p;
         return system_at(at);
       };
-      return section_map_problem<System>(make_system, flight_mode, setup, job.phase, period,
-                                         omega);
+      ContinuationProblem problem = section_map_problem<System>(make_system, flight_mode, setup,
+                                                                job.phase, period, omega);
+      for (const SceneBoundary& boundary : boundaries)
+        problem.boundaries.push_back(
+            {boundary.type, boundary.note,
+             [scene, parameter = job.parameter, value = boundary.value](double p) {
+               Scene at = scene;
+               at.values[parameter] = p;
+               return value(at);
+             }});
+      return problem;
     };
     int period = job.period;
     result.branches.push_back({period, continue_branch(problem_for(period), request)});

@@ -16,6 +16,7 @@
 // point against the same closed forms: the ball's period-doubling amplitude
 // as a function of r, the linear oscillator's period doubling in (ω, r), and
 // its impact-velocity grazing A/√((1 − ω²)² + (2ζω)²) = σ in (ω, σ).
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <complex>
@@ -351,6 +352,30 @@ TEST(Continuation, StableBranchPointsAgreeWithTheSweepSectionAndPeriodic) {
     ++compared;
   }
   EXPECT_GE(compared, 3);
+}
+
+// jin2003 (Model N, V0 = 1.5 m/s, g = 9.81 m/s²): the pivot's peak
+// acceleration V0·ω reaches g at ω = g/V0, below which no contact phase can
+// exist; the branch reports where it crosses it.
+TEST(Continuation, PendulumBranchReportsTheContactBoundaryAtOmegaEqualToGOverV0) {
+  const Scene scene = impactlab::load_scene("jin2003");
+  const auto job = continue_scene(scene, "omega", 5.0, 9.0);
+  const auto boundaries = points_of_type(job.branches.at(0).result, "contact_boundary");
+  ASSERT_EQ(boundaries.size(), 1u);
+  const double expected = scene.number("g") / scene.number("V0");
+  EXPECT_NEAR(boundaries[0].parameter, expected, 1e-12 * expected);
+  EXPECT_TRUE(boundaries[0].located) << boundaries[0].note;
+  // the orbit there: the branch's own, between its neighbours
+  const auto& branch = job.branches[0].result.branch;
+  const auto after = std::find_if(branch.begin(), branch.end(),
+                                  [&](const auto& p) { return p.parameter > expected; });
+  ASSERT_NE(after, branch.end());
+  ASSERT_NE(after, branch.begin());
+  const auto before = after - 1;
+  const double lower = std::min(before->state[0], after->state[0]) - 1e-6;
+  const double upper = std::max(before->state[0], after->state[0]) + 1e-6;
+  EXPECT_GE(boundaries[0].state[0], lower);
+  EXPECT_LE(boundaries[0].state[0], upper);
 }
 
 ContinuationJob curve_job(const std::string& key, double from, double to, const std::string& key2,

@@ -217,7 +217,8 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
           {"min_flight_gap", "smallest wall gap in flight between impacts (q's unit)"},
           {"min_impact_speed", "smallest normal approach speed of an impact"}}},
         {"points.csv",
-         {{"type", "fold, period_doubling, neimark_sacker, grazing, contact_onset, contact_end"},
+         {{"type", "fold, branch_point, period_doubling, neimark_sacker, grazing, contact_onset, "
+                  "contact_end, contact_boundary (the pendulum's V0*omega = g)"},
           {"error_estimate", "bound on the error of the parameter value"},
           {"graze_time", "grazing: time after the section at which the wall is touched"}}}}},
       {"branches", branches},
