@@ -12,7 +12,9 @@
 //   Γ² = (π(1 − r)/(1 + r))² + (2(1 + r²)/(1 + r)²)².
 // The located points must agree to 1e-9 relative in the parameter; stable
 // branch points agree with the brute-force section (sweep) and `periodic`.
-// Two-parameter curves (analysis/curve_continuation.hpp) are checked point by
+// A Neimark–Sacker point is checked on a synthetic rotating map whose fixed
+// point and multipliers are known (no impact oscillator here has one in
+// closed form). Two-parameter curves (analysis/curve_continuation.hpp) are checked point by
 // point against the same closed forms: the ball's period-doubling amplitude
 // as a function of r, the linear oscillator's period doubling in (ω, r), and
 // its impact-velocity grazing A/√((1 − ω²)² + (2ζω)²) = σ in (ω, σ).
@@ -376,6 +378,59 @@ TEST(Continuation, PendulumBranchReportsTheContactBoundaryAtOmegaEqualToGOverV0)
   const double upper = std::max(before->state[0], after->state[0]) + 1e-6;
   EXPECT_GE(boundaries[0].state[0], lower);
   EXPECT_LE(boundaries[0].state[0], upper);
+}
+
+// The driver on a map with a known Neimark–Sacker point: P(x; p) = c(p) +
+// ρ(p) R(θ) (x − c(p)), a rotation by θ = 1 rad scaled by ρ(p) = 0.5 + p²
+// about c(p) = (sin p, p²). Its fixed point is c(p), its multipliers
+// ρ e^{±iθ}, a complex pair through the unit circle at p = √0.5.
+TEST(Continuation, NeimarkSackerOfARotatingMapAtItsClosedForm) {
+  constexpr double theta = 1.0;
+  auto centre = [](double p) { return std::array<double, 2>{std::sin(p), p * p}; };
+  impactlab::ContinuationProblem problem;
+  problem.phase = 0.0;
+  problem.forcing_period_at_p = two_pi;
+  problem.evaluate = [&](const impactlab::OrbitPoint& x, double p, double, bool,
+                         const impactlab::ContactWindow&) {
+    impactlab::OrbitEvaluation e;
+    const double rho = 0.5 + p * p;
+    const auto c = centre(p);
+    const double u = x[0] - c[0], v = x[1] - c[1];
+    e.completed = true;
+    e.image = {c[0] + rho * (std::cos(theta) * u - std::sin(theta) * v),
+               c[1] + rho * (std::sin(theta) * u + std::cos(theta) * v)};
+    e.monodromy = {{{rho * std::cos(theta), -rho * std::sin(theta)},
+                    {rho * std::sin(theta), rho * std::cos(theta)}}};
+    e.span = two_pi;
+    e.omega = 1.0;
+    return e;
+  };
+  problem.gap_at = [](const impactlab::OrbitPoint&, double, double,
+                      const impactlab::ContactWindow&, double) { return impactlab::GapSample{}; };
+  problem.transport = [](const impactlab::OrbitPoint& x, double, double, double) {
+    return std::optional<impactlab::OrbitPoint>(x);
+  };
+  impactlab::ContinuationRequest request;
+  request.from = 0.2;
+  request.to = 1.2;
+  request.start = {0.1, 0.1};  // a guess; Newton finds c(0.2)
+  const auto result = impactlab::continue_branch(problem, request);
+  EXPECT_EQ(result.stop_reason, "end_of_range") << result.stop_detail;
+  const auto points = points_of_type(result, "neimark_sacker");
+  ASSERT_EQ(points.size(), 1u);
+  const double expected = std::sqrt(0.5);
+  EXPECT_TRUE(points[0].located);
+  EXPECT_NEAR(points[0].parameter, expected, 1e-12);
+  EXPECT_NEAR(std::abs(points[0].multipliers[0]), 1.0, 1e-12);
+  EXPECT_NEAR(std::fabs(std::arg(points[0].multipliers[0])), theta, 1e-12);
+  EXPECT_NEAR(points[0].state[0], centre(expected)[0], 1e-10);
+  EXPECT_NEAR(points[0].state[1], centre(expected)[1], 1e-10);
+  // stable below, unstable above
+  for (const auto& point : result.branch) {
+    if (std::fabs(point.parameter - expected) > 1e-9) {
+      EXPECT_EQ(point.stable, point.parameter < expected) << point.parameter;
+    }
+  }
 }
 
 ContinuationJob curve_job(const std::string& key, double from, double to, const std::string& key2,
