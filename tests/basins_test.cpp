@@ -184,6 +184,9 @@ TEST(Basins, BadInputExitsWithTwoAndOneLine) {
     const auto dir = scratch("bad");
     const Outcome o = run(arguments + " --out " + (dir / "out").string(), dir);
     EXPECT_EQ(o.status, 2) << arguments << "\n" << o.err;
+    if (arguments.find("colour") != std::string::npos) {
+      EXPECT_NE(o.err.find("--x = colour"), std::string::npos) << o.err;
+    }
     EXPECT_EQ(lines(o.err).size(), 1u) << arguments << "\n" << o.err;
     EXPECT_FALSE(fs::exists(dir / "out" / "basins.csv")) << arguments;
   }

@@ -173,6 +173,14 @@ SweepPlan plan_from(const SweepOptions& options, const Scene& scene, const Scene
     plan.attractor_tolerance = options.attractor_tolerance;
     if (plan.axes[0].name == plan.axes[1].name)
       throw BadInput("--y", plan.axes[1].name, "must differ from --x's key");
+    // the keys named by the options that gave them (validate_plan says --param)
+    for (const auto& [option, axis] : {std::pair{"--x", plan.axes[0]}, std::pair{"--y", plan.axes[1]}}) {
+      const auto spec = std::find_if(schema.keys.begin(), schema.keys.end(),
+                                     [&](const KeySpec& k) { return k.key == axis.name; });
+      if (spec == schema.keys.end() || spec->is_text)
+        throw BadInput(option, axis.name,
+                       fmt::format("not a numeric key of oscillator {}", schema.oscillator));
+    }
   } else {
     for (const auto& text : options.params) plan.axes.push_back(parse_axis(text, "--param"));
   }
