@@ -6,7 +6,8 @@ namespace impactlab {
 
 FlowSetup flow_setup(const Scene& scene) {
   return {scene.text("integrator.method"), scene.number("integrator.rtol"),
-          scene.number("integrator.atol")};
+          scene.number("integrator.atol"),
+          static_cast<std::uint64_t>(scene.number("limits.max_steps"))};
 }
 
 }  // namespace impactlab

@@ -4,6 +4,7 @@
 // `impactlab simulate` does (api/run_system.hpp).
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "core/hybrid_system.hpp"
@@ -18,9 +19,10 @@ struct FlowSetup {
   std::string method = "dopri5";  // integrator.method
   double rtol = 1e-10;            // integrator.rtol
   double atol = 1e-12;            // integrator.atol (state units)
+  std::uint64_t step_budget = default_step_budget;  // limits.max_steps, per event-loop run
 };
 
-// The scene's integrator keys.
+// The scene's integrator keys and step budget.
 FlowSetup flow_setup(const Scene& scene);
 
 template <HybridSystem System>
@@ -35,6 +37,7 @@ StepperSettings stepper_settings(const System& system, const FlowSetup& setup) {
 inline LoopOptions loop_options(const FlowSetup& setup) {
   LoopOptions options;
   options.location.grazing_tolerance = setup.atol;
+  options.step_budget = setup.step_budget;
   return options;
 }
 

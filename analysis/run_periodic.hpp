@@ -8,6 +8,7 @@
 
 #include "analysis/floquet.hpp"
 #include "analysis/periodic.hpp"
+#include "analysis/section.hpp"
 #include "core/simulator.hpp"
 #include "integrate/stepper_dispatch.hpp"
 #include "io/scene.hpp"
@@ -25,6 +26,10 @@ PeriodicResult run_periodic(const System& system, const typename System::State& 
   } else {
     result.available = true;
     const FlowSetup setup = flow_setup(scene);
+    SectionRequest size;  // the transient and one orbit, sized like a section run
+    size.transient_periods = request.transient_periods + request.period;
+    size.points = 0;
+    check_section_size(size, omega, system.max_step(), setup.step_budget);
     const double period = 2.0 * std::numbers::pi / omega;
     const double t0 = scene.number("t0");
     // the first section time at or after the transient

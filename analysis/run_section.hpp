@@ -75,6 +75,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
   result.forcing_period = 2.0 * std::numbers::pi / omega;
   const double period = result.forcing_period;
   const FlowSetup setup = flow_setup(scene);
+  check_section_size(request, omega, system.max_step(), setup.step_budget);
   const LoopOptions options = loop_options(setup);
 
   State x = x0;

@@ -71,4 +71,30 @@ std::string to_string(const SectionSpec& section) {
                      section.level, direction);
 }
 
+void check_section_size(const SectionRequest& request, double omega, double max_step,
+                        std::uint64_t step_budget) {
+  const double period = 2.0 * std::numbers::pi / omega;
+  if (!(std::isfinite(period) && period > 0.0))
+    throw BadInput("omega", fmt::format("{}", omega),
+                   fmt::format("the forcing period 2 pi/omega = {} is not a finite time", period));
+  // a stroboscopic record is one period per point; an impact or crossing
+  // record has no least length (it is bounded while it runs)
+  const double record_periods =
+      request.section.kind == SectionKind::strobe ? static_cast<double>(request.points) : 0.0;
+  const double periods =
+      (request.transient_impacts > 0 ? 0.0 : request.transient_periods) + record_periods;
+  const double least_steps =
+      std::isfinite(max_step) && max_step > 0.0 ? periods * period / max_step : 0.0;
+  if (least_steps > static_cast<double>(step_budget)) {
+    // name the larger of the two parts
+    const bool transient_larger =
+        request.transient_impacts == 0 && request.transient_periods > record_periods;
+    throw BadInput(transient_larger ? "--transient" : "--points",
+                   fmt::format("{}", transient_larger ? request.transient_periods : record_periods),
+                   fmt::format("needs at least {:.3g} steps, over limits.max_steps = {} (raise "
+                               "it with --set limits.max_steps=N)",
+                               least_steps, step_budget));
+  }
+}
+
 }  // namespace impactlab

@@ -75,4 +75,11 @@ struct SectionResult {
   std::string lyapunov_note;       // why it is NaN, where it is
 };
 
+// Refuses (BadInput) a section run that cannot be sized: a forcing period
+// 2π/ω that is not a finite positive time (key `omega`), or a transient and
+// record that need more than `step_budget` steps at the least
+// (periods × forcing period / max_step; key --transient or --points).
+void check_section_size(const SectionRequest& request, double omega, double max_step,
+                        std::uint64_t step_budget);
+
 }  // namespace impactlab

@@ -1,8 +1,26 @@
 #!/usr/bin/env bash
 # From a fresh clone: installs missing Debian packages, builds, runs every test with CTest.
+#   scripts/test.sh             the Release build in build/
+#   scripts/test.sh --sanitize  the whole suite built with AddressSanitizer and
+#                               UndefinedBehaviorSanitizer in build-sanitize/
+#                               (LeakSanitizer suppressions: scripts/lsan_suppressions.txt)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh
+jobs="$(nproc)"
+if [ "${1:-}" = "--sanitize" ]; then
+  cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIMPACTLAB_SANITIZE=ON \
+    -DIMPACTLAB_BUILD_BENCHMARKS=OFF > build-sanitize.log 2>&1 || { cat build-sanitize.log; exit 1; }
+  cmake --build build-sanitize -j"$jobs" >> build-sanitize.log 2>&1 || { tail -50 build-sanitize.log; exit 1; }
+  echo "build-sanitize: ok (log in build-sanitize.log)"
+  export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1"
+  export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan_suppressions.txt:print_suppressions=0"
+  export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+  cd build-sanitize
+  # sanitized code runs several times slower: a longer per-test limit
+  ctest --output-on-failure -j"$jobs" --timeout 900
+  exit 0
+fi
 scripts/build.sh
 cd build
-ctest --output-on-failure -j"$(nproc)" --timeout 300
+ctest --output-on-failure -j"$jobs" --timeout 300

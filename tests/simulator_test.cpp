@@ -4,7 +4,10 @@
 //   pair of roots 1e-7 inside the stop is an impact, 1e-7 outside nothing;
 // * an event exactly at t0 is applied once, before the first step;
 // * an event exactly at the end time is logged once;
-// * no event is found twice at the same instant.
+// * no event is found twice at the same instant;
+// * a run whose time cannot advance, whose state overflows, whose end time is
+//   NaN, or that takes its whole step budget stops with a termination naming
+//   that, never `completed` (issue 13).
 // The motions: LinearImpact with ζ = 0, A = 0 is the harmonic oscillator,
 // x = x0 cos t + ẋ0 sin t between impacts.
 #include <algorithm>
@@ -287,6 +290,56 @@ TEST_P(EventLoop, UnresolvedZenoStopsWithNoProgress) {
   // the ball never got through the floor by more than the tolerance
   EXPECT_GE(result.state[0], -1e-9);
   for (const EventRecord& e : log.records()) EXPECT_LE(e.t, accumulation + 1e-6);
+}
+
+// issue 13: at t0 = 1e17 s the spacing of doubles is 16 s, so that t + step
+// == t for any step of this oscillator (max step 0.5): the run must say so,
+// not report `completed` with the initial state (it did, with five identical
+// section points).
+TEST_P(EventLoop, FrozenTimeStopsTheRun) {
+  const LinearImpact system(harmonic(2.0));
+  const double t0 = 1e17;
+  LoopOptions options;
+  const auto run_result = run(system, GetParam(), tight(0.5), options, {0.5, 0.0}, t0, t0 + 100.0);
+  EXPECT_EQ(run_result.result.termination, Termination::frozen_time);
+  EXPECT_EQ(run_result.result.t, t0);
+}
+
+// x = x0 cos t + v0 sin t from x0 = v0 = -1.5e308 reaches -2.1e308 at t = π/4,
+// past the largest double, away from the stop: the run stops (non_finite_state,
+// or integrator_failure where the stepper's own error control gives up first)
+// at a finite state, never `completed`.
+TEST_P(EventLoop, OverflowingStateStopsTheRun) {
+  const LinearImpact system(harmonic(2.0));
+  LoopOptions options;
+  const auto run_result =
+      run(system, GetParam(), tight(0.1), options, {-1.5e308, -1.5e308}, 0.0, 10.0);
+  EXPECT_TRUE(run_result.result.termination == Termination::non_finite_state ||
+              run_result.result.termination == Termination::integrator_failure)
+      << to_string(run_result.result.termination);
+  EXPECT_LT(run_result.result.t, 10.0);
+  EXPECT_TRUE(std::isfinite(run_result.result.state[0]) && std::isfinite(run_result.result.state[1]));
+}
+
+// A NaN end time (from a NaN phase: `periodic --phase nan` reported an orbit
+// "converged after 0 iterations") is not a run that completed.
+TEST_P(EventLoop, NanEndTimeIsNotCompleted) {
+  const LinearImpact system(harmonic(2.0));
+  LoopOptions options;
+  const auto run_result = run(system, GetParam(), tight(0.5), options, {0.5, 0.0}, 0.0, NAN);
+  EXPECT_EQ(run_result.result.termination, Termination::non_finite_state);
+}
+
+// Every run is bounded: past its step budget it stops, having taken exactly
+// that many steps.
+TEST_P(EventLoop, StepBudgetStopsTheRun) {
+  const LinearImpact system(harmonic(2.0));
+  LoopOptions options;
+  options.step_budget = 25;
+  const auto run_result = run(system, GetParam(), tight(0.5), options, {0.5, 0.0}, 0.0, 1e6);
+  EXPECT_EQ(run_result.result.termination, Termination::step_budget);
+  EXPECT_EQ(run_result.result.counters.steps, 25u);
+  EXPECT_LT(run_result.result.t, 1e6);
 }
 
 }  // namespace

@@ -22,6 +22,7 @@
 // current contact phase (0 after chattering; −e_n θ̇0 in a sliding impact).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -124,7 +125,11 @@ class BasicPendulumWalls {
   [[nodiscard]] double max_step() const {
     const double forcing_period = 2.0 * std::numbers::pi / p_.omega;
     const double natural_period = 2.0 * std::numbers::pi * std::sqrt(p_.l / p_.g);
-    return std::min(forcing_period, natural_period) / 16.0;
+    // the damping's relaxation time m l²/d (s): an explicit stepper cannot step
+    // much past it, so that an overdamped scene (m = 1e-12 kg, d = 1e12) is
+    // sized by it up front (api/run_system.hpp) instead of crawling
+    const double damping_period = 2.0 * std::numbers::pi * p_.m * p_.l * p_.l / p_.d;
+    return std::min({forcing_period, natural_period, damping_period}) / 16.0;
   }
 
   // Written once over a number type: double for the Runge–Kutta steppers, a

@@ -5,8 +5,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <string_view>
+
+#include <fmt/format.h>
 
 #include "core/simulator.hpp"
 #include "integrate/stepper_dispatch.hpp"
@@ -62,6 +65,53 @@ class SamplingObserver {
 
 }  // namespace detail
 
+// Refuses, before anything runs, a time span that is not a finite interval
+// after t0, or whose size passes the scene's limits: the steps it needs at the
+// least (span / max_step, the system's longest step) over limits.max_steps,
+// or its trajectory samples over limits.max_rows. BadInput names the option
+// the user gave (--t-end, --periods, --sample) or the scene key at fault.
+inline void check_run_size(const RunRequest& request, const Scene& scene, double forcing_period,
+                           double max_step) {
+  const double t0 = scene.number("t0");
+  const auto step_budget = static_cast<std::uint64_t>(scene.number("limits.max_steps"));
+  const auto row_budget = static_cast<std::uint64_t>(scene.number("limits.max_rows"));
+  const bool by_periods = request.periods > 0.0;
+  const std::string length_key = by_periods ? "--periods" : "--t-end";
+  const std::string length_value = fmt::format("{}", by_periods ? request.periods : request.t_end);
+  if (by_periods && !(std::isfinite(forcing_period) && forcing_period > 0.0))
+    throw BadInput("omega", scene.values.contains("omega") ? to_text(scene.values.at("omega")) : "",
+                   fmt::format("the forcing period 2 pi/omega = {} is not a finite time",
+                               forcing_period));
+  const double t_end = by_periods ? t0 + request.periods * forcing_period : request.t_end;
+  if (!std::isfinite(t_end))
+    throw BadInput(length_key, length_value,
+                   fmt::format("the end time t0 + span = {} s is not finite", t_end));
+  if (by_periods && request.periods > 0.0 && !(t_end > t0))
+    throw BadInput("t0", fmt::format("{}", t0),
+                   fmt::format("time cannot advance here: {} periods ({:.3g} s) are below the "
+                               "resolution of a double at t0 ({:.3g} s)",
+                               request.periods, request.periods * forcing_period,
+                               std::nextafter(t0, INFINITY) - t0));
+  if (!(t_end > t0))
+    throw BadInput(length_key, length_value,
+                   fmt::format("the end time {} s must be after t0 = {} s", t_end, t0));
+  const double span = t_end - t0;
+  const double least_steps = std::isfinite(max_step) && max_step > 0.0 ? span / max_step : 0.0;
+  if (least_steps > static_cast<double>(step_budget))
+    throw BadInput(length_key, length_value,
+                   fmt::format("needs at least {:.3g} steps, over limits.max_steps = {} (raise "
+                               "it with --set limits.max_steps=N)",
+                               least_steps, step_budget));
+  if (request.sample_step > 0.0) {
+    const double rows = span / request.sample_step;
+    if (!(rows <= static_cast<double>(row_budget)))
+      throw BadInput("--sample", fmt::format("{}", request.sample_step),
+                     fmt::format("would write {:.3g} rows, over limits.max_rows = {} (raise it "
+                                 "with --set limits.max_rows=N)",
+                                 rows, row_budget));
+  }
+}
+
 // forcing_period: the scene's natural time unit for `periods` (s).
 // mode_name: Mode -> std::string_view, for the trajectory's mode column.
 template <HybridSystem System, class ModeName>
@@ -70,10 +120,9 @@ RunOutput run_system(const System& system, const typename System::State& x0,
                      double forcing_period, ModeName mode_name) {
   RunOutput output;
   output.t0 = scene.number("t0");
+  check_run_size(request, scene, forcing_period, system.max_step());
   output.t_end = request.periods > 0.0 ? output.t0 + request.periods * forcing_period
                                        : request.t_end;
-  if (!(output.t_end > output.t0) || !std::isfinite(output.t_end))
-    throw BadInput("--t-end", std::to_string(output.t_end), "must be finite and after t0");
 
   StepperSettings settings;
   settings.rtol = scene.number("integrator.rtol");
@@ -81,6 +130,7 @@ RunOutput run_system(const System& system, const typename System::State& x0,
   settings.max_step = system.max_step();
   LoopOptions options;
   options.location.grazing_tolerance = settings.atol;
+  options.step_budget = static_cast<std::uint64_t>(scene.number("limits.max_steps"));
 
   EventLog log(request.keep_events, request.event_sink);
   if (request.keep_events) log.reserve(1024);

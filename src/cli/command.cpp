@@ -1,5 +1,6 @@
 #include "cli/command.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -7,19 +8,44 @@
 
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include "api/scene_jobs.hpp"
 #include "api/scene_loading.hpp"
+#include "io/message_text.hpp"
 
 namespace impactlab::cli {
 
 namespace {
 
+// CLI11 puts the validator's text after the option's name; the value is
+// shortened so that the message stays one short line
+std::string shown(const std::string& text) { return elide_value(text); }
+
 std::string check_number(const std::string& text, bool positive) {
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
-  if (end == text.c_str() || *end != '\0') return "not a number: " + text;
-  if (!std::isfinite(value)) return "not a finite number: " + text;
-  if (positive && !(value > 0.0)) return "must be > 0: " + text;
+  if (end == text.c_str() || *end != '\0') return "not a number: " + shown(text);
+  if (!std::isfinite(value)) return "not a finite number: " + shown(text);
+  if (positive && !(value > 0.0)) return "must be > 0: " + shown(text);
+  return {};
+}
+
+std::string check_number_in(const std::string& text, double lower, double upper) {
+  if (auto error = check_number(text, false); !error.empty()) return error;
+  const double value = std::strtod(text.c_str(), nullptr);
+  if (value < lower || value > upper)
+    return fmt::format("{} is outside [{}, {}]", shown(text), lower, upper);
+  return {};
+}
+
+std::string check_count_in(const std::string& text, std::uint64_t lower, std::uint64_t upper) {
+  std::uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size())
+    return "not a whole number >= 0: " + shown(text);
+  if (value < lower || value > upper)
+    return fmt::format("{} is outside [{}, {}]", shown(text), lower, upper);
   return {};
 }
 
@@ -37,14 +63,26 @@ const CLI::Validator& positive_number() {
   return validator;
 }
 
+CLI::Validator number_in(double lower, double upper) {
+  return CLI::Validator(
+      [lower, upper](std::string& text) { return check_number_in(text, lower, upper); },
+      fmt::format("FINITE in [{}, {}]", lower, upper));
+}
+
+CLI::Validator count_in(std::uint64_t lower, std::uint64_t upper) {
+  return CLI::Validator(
+      [lower, upper](std::string& text) { return check_count_in(text, lower, upper); },
+      fmt::format("WHOLE in [{}, {}]", lower, upper));
+}
+
 void SceneOptions::add_to(CLI::App& command) {
   command.add_option("scene", scene, "built-in scene name or path to a scene file (.toml)")
       ->capture_default_str();
   command.add_option("--set", assignments,
                      "KEY=VALUE, repeatable: a parameter (omega, V0, e_n, ...) or a dotted key "
                      "(initial.theta, integrator.rtol)");
-  auto* t_end_option =
-      command.add_option("--t-end", t_end, "end time (s)")->check(finite_number());
+  t_end_option = command.add_option("--t-end", t_end, "end time (s), after t0; excludes --periods")
+                     ->check(finite_number());
   command.add_option("--periods", periods, "forcing periods to run from t0 (default 100)")
       ->check(positive_number())
       ->excludes(t_end_option);
@@ -62,7 +100,7 @@ Scene SceneOptions::load() const {
 
 RunRequest SceneOptions::request() const {
   RunRequest request;
-  if (t_end != 0.0) {
+  if (t_end_option != nullptr && t_end_option->count() > 0) {
     request.periods = 0.0;
     request.t_end = t_end;
   } else {

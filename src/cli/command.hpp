@@ -7,6 +7,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -36,6 +37,10 @@ struct Command {
 // through and print the whole double range.
 const CLI::Validator& finite_number();
 const CLI::Validator& positive_number();
+// A finite number in [lower, upper]; a whole number (digits only, so that -1
+// cannot wrap around) in [lower, upper].
+CLI::Validator number_in(double lower, double upper);
+CLI::Validator count_in(std::uint64_t lower, std::uint64_t upper);
 
 // Options shared by the subcommands that run a scene.
 struct SceneOptions {
@@ -46,11 +51,14 @@ struct SceneOptions {
   std::string out;
   int threads = 1;
   bool quiet = false;
+  CLI::Option* t_end_option = nullptr;  // set by add_to: whether --t-end was given
 
   void add_to(CLI::App& command);
   // the scene with every --set applied (BadInput on a bad key or value)
   [[nodiscard]] Scene load() const;
-  // the time span: --t-end, else --periods (default 100)
+  // the time span: --t-end T (an absolute end time, which must be after t0:
+  // --t-end 0 with t0 = 0 is refused, not read as "not given"), else
+  // --periods N from t0 (default 100); the two exclude each other
   [[nodiscard]] RunRequest request() const;
   // --out, else out/<scene>
   [[nodiscard]] std::filesystem::path output_directory() const;

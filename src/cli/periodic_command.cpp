@@ -107,6 +107,9 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
         result.iterations, result.residual, result.multipliers[0].real(),
         result.multipliers[0].imag(), result.multipliers[1].real(), result.multipliers[1].imag(),
         (directory / "periodic.json").string());
+  if (result.termination != "completed")
+    std::cerr << fmt::format("impactlab: run stopped early ({}) at the section time {} s\n",
+                             result.termination, result.t_section);
   return result.converged ? exit_done : exit_stopped_early;
 }
 
@@ -126,10 +129,10 @@ Command add_periodic_command(CLI::App& app) {
                       "stroboscopic points after the transient)")
       ->capture_default_str();
   command->add_option("--phase", options->phase, "section phase omega t mod 2 pi (rad)")
-      ->check(CLI::Range(0.0, 6.283185307179586))
+      ->check(number_in(0.0, 6.283185307179586))
       ->capture_default_str();
   command->add_option("--transient", options->transient, "forcing periods run first")
-      ->check(CLI::Range(0.0, 1e9))
+      ->check(number_in(0.0, 1e9))
       ->capture_default_str();
   command->add_option("--max-iterations", options->max_iterations, "Newton iterations")
       ->check(CLI::Range(1, 1000))

@@ -1,17 +1,12 @@
 #include "cli/section_options.hpp"
 
-#include <cstdlib>
 #include <iostream>
-
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <fmt/format.h>
 
 #include "api/scene_jobs.hpp"
+#include "cli/run_program.hpp"
 #include "io/bad_input.hpp"
-
-extern char** environ;
 
 namespace impactlab::cli {
 
@@ -28,13 +23,14 @@ void SectionOptions::add_to(CLI::App& command, const std::string& points_help) {
                      "or qdot=LEVEL[:up|down|both]")
       ->capture_default_str();
   auto* by_impacts = command.add_option("--transient-impacts", transient_impacts,
-                                        "discard this many impacts instead of periods");
+                                        "discard this many impacts instead of periods")
+                        ->check(count_in(0, 1000000000));
   command.add_option("--transient", transient, "forcing periods discarded first")
-      ->check(CLI::Range(0.0, 1e9))
+      ->check(number_in(0.0, 1e9))
       ->capture_default_str()
       ->excludes(by_impacts);
   command.add_option("--points", points, points_help)
-      ->check(CLI::Range(1, 100000000))
+      ->check(count_in(1, 100000000))
       ->capture_default_str();
   command.add_flag("--plot", plot, "also write a PNG (matplotlib through /usr/bin/python3)");
 }
@@ -70,14 +66,7 @@ bool plot_with_python(const std::string& kind, const std::filesystem::path& csv,
   std::vector<std::string> arguments = {python.string(), script.string(), kind, csv.string(),
                                         png.string()};
   arguments.insert(arguments.end(), extra.begin(), extra.end());
-  std::vector<char*> argv;
-  for (auto& argument : arguments) argv.push_back(argument.data());
-  argv.push_back(nullptr);
-  pid_t child = 0;
-  int status = -1;
-  if (::posix_spawn(&child, argv[0], nullptr, nullptr, argv.data(), environ) == 0)
-    ::waitpid(child, &status, 0);
-  if (status != 0) {
+  if (run_program(arguments) != 0) {
     std::cerr << fmt::format(
         "impactlab: warning: plot skipped (the plot script failed: is python3-matplotlib "
         "installed?); the data are in {}\n",

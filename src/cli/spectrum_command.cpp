@@ -101,7 +101,7 @@ Command add_spectrum_command(CLI::App& app) {
   command->add_option("--out", options->scene.out, "output directory (default out/<scene>)");
   command->add_flag("--quiet", options->scene.quiet, "print nothing but errors");
   command->add_option("--transient", options->transient, "forcing periods discarded first")
-      ->check(CLI::Range(0.0, 1e9))
+      ->check(number_in(0.0, 1e9))
       ->capture_default_str();
   command->add_option("--periods", options->periods, "forcing periods analysed")
       ->check(CLI::Range(1, 1000000))

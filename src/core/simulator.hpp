@@ -11,12 +11,17 @@
 // * the loop itself allocates nothing and calls the right-hand side through a
 //   template parameter (no virtual call per evaluation);
 // * a run that makes no progress in time (an accumulation of events that the
-//   model did not resolve) is stopped by the named Zeno guard, not left to hang.
+//   model did not resolve) is stopped by the named Zeno guard, not left to hang;
+// * a run whose time can no longer advance in a double (t + step == t, for
+//   example t0 = 1e17 s), whose state becomes non-finite (inf or NaN), or that
+//   has taken its whole step budget, stops with a termination that says so; it
+//   never reports `completed`.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <string_view>
 
 #include "core/event_log.hpp"
@@ -32,6 +37,11 @@ enum class Termination {
   no_progress,      // the Zeno guard fired, or a witness went past zero by
                     // more than the tolerance with no event found (hops below
                     // round-off): an accumulation the model did not resolve
+  frozen_time,      // t + step == t: time can no longer advance in a double
+  non_finite_state, // a component of the state became inf or NaN
+  step_budget,      // the run took LoopOptions::step_budget steps without reaching the end
+  integrator_failure,  // the stepper could not take a step (its error control gave up,
+                       // a GSL routine failed): an exception from do_step
 };
 
 constexpr std::string_view to_string(Termination termination) {
@@ -39,6 +49,10 @@ constexpr std::string_view to_string(Termination termination) {
     case Termination::completed: return "completed";
     case Termination::stopped_by_model: return "stopped_by_model";
     case Termination::no_progress: return "no_progress";
+    case Termination::frozen_time: return "frozen_time";
+    case Termination::non_finite_state: return "non_finite_state";
+    case Termination::step_budget: return "step_budget";
+    case Termination::integrator_failure: return "integrator_failure";
   }
   return "unknown";
 }
@@ -51,10 +65,23 @@ struct ZenoGuard {
   double window = 1e-6;  // s
 };
 
+// The most steps (accepted steps, one per event restart included) one call of
+// simulate() may take before it stops with Termination::step_budget: every
+// run is bounded, whatever its parameters. 10^9 steps is of the order of an
+// hour of CPU time; callers that know their run's size pass a tighter budget.
+constexpr std::uint64_t default_step_budget = 1'000'000'000;
+
 struct LoopOptions {
   EventLocationOptions location;
   ZenoGuard zeno;
+  std::uint64_t step_budget = default_step_budget;
 };
+
+// True when every component of the state is finite.
+template <class State>
+bool all_finite(const State& x) {
+  return std::all_of(std::begin(x), std::end(x), [](double value) { return std::isfinite(value); });
+}
 
 struct RunCounters {
   std::uint64_t steps = 0;
@@ -90,6 +117,8 @@ RunResult<typename System::State, typename System::Mode> simulate(
   ModeRhs<System> rhs{&system, mode, &result.counters.rhs_evaluations};
   double t = t0;
   double zeno_checkpoint_time = t0;
+  // why apply_event() stopped the run, when the system did not ask for it
+  Termination stopped_by = Termination::stopped_by_model;
   std::uint64_t zeno_checkpoint_events = 0;
 
   auto emit_observations = [&](double up_to, auto&& state_at) {
@@ -115,6 +144,12 @@ RunResult<typename System::State, typename System::Mode> simulate(
     if (transition.stop) {
       t = te;
       x = transition.state;
+      return false;
+    }
+    if (!all_finite(transition.state)) {
+      t = te;
+      x = xe;
+      stopped_by = Termination::non_finite_state;
       return false;
     }
     // the state between the event and a later restart time (an accumulation
@@ -155,6 +190,10 @@ RunResult<typename System::State, typename System::Mode> simulate(
     return true;
   };
 
+  // a time that is not a number (t0, or an end time computed from bad input)
+  // is a non-finite state: no run, and never `completed`
+  if (!std::isfinite(t0) || std::isnan(t_end)) return finish(Termination::non_finite_state);
+
   // events at t0: a witness at zero, moving towards its trigger side or not
   // moving at all (a state resting on a wall: the system decides whether it
   // stays in contact or leaves)
@@ -166,20 +205,34 @@ RunResult<typename System::State, typename System::Mode> simulate(
                         : direction == TriggerDirection::rising ? w.rate >= 0.0
                                                                 : false;
     if (at_zero && inward) {
-      if (!apply_event(k, CrossingKind::crossing, t, x)) return finish(Termination::stopped_by_model);
+      if (!apply_event(k, CrossingKind::crossing, t, x)) return finish(stopped_by);
       break;
     }
   }
+  if (!all_finite(x)) return finish(Termination::non_finite_state);
   emit_observations(t, [&](double, State& out) { out = x; });
 
   constexpr std::size_t no_witness = static_cast<std::size_t>(-1);
   std::size_t just_grazed = no_witness;  // witness whose grazing was the last event
-  stepper.initialize(rhs, x, t, std::min(0.01 * system.max_step(), t_end - t0));
+  // time is frozen where a hundredth of the system's longest step is lost in
+  // t's spacing, even for a span that itself rounded to nothing (t0 = 1e17 s
+  // plus five forcing periods is t0 again)
+  if (t + 0.01 * system.max_step() == t) return finish(Termination::frozen_time);
+  const double first_step = std::min(0.01 * system.max_step(), t_end - t0);
+  stepper.initialize(rhs, x, t, first_step);
   while (t < t_end) {
-    stepper.do_step(rhs, t_end);
+    if (result.counters.steps >= options.step_budget) return finish(Termination::step_budget);
+    // Boost.Odeint gives up on a step after 500 rejections (step_adjustment_error),
+    // the GSL stepper on a failed status: both std::runtime_error
+    try {
+      stepper.do_step(rhs, t_end);
+    } catch (const std::runtime_error&) {
+      return finish(Termination::integrator_failure);
+    }
     ++result.counters.steps;
     const double ta = stepper.previous_time();
     const double tb = std::min(stepper.current_time(), t_end);
+    if (!(tb > ta)) return finish(Termination::frozen_time);
     auto state_at = [&](double ts, State& out) { stepper.state_at(rhs, ts, out); };
     auto scan_at = [&](double ts, State& out) { stepper.scan_state(rhs, ts, out); };
     State x_end;
@@ -187,6 +240,7 @@ RunResult<typename System::State, typename System::Mode> simulate(
       x_end = stepper.current_state();
     else
       state_at(tb, x_end);
+    if (!all_finite(x_end)) return finish(Termination::non_finite_state);
 
     // a stepper whose dense output is a polynomial locates events on it
     // itself (integrate/taylor_stepper.hpp); the others are scanned
@@ -204,7 +258,7 @@ RunResult<typename System::State, typename System::Mode> simulate(
       emit_observations(tb, state_at);
       t = tb;
       x = x_end;
-      if (t >= t_end && !apply_event_at_end(ta)) return finish(Termination::stopped_by_model);
+      if (t >= t_end && !apply_event_at_end(ta)) return finish(stopped_by);
       continue;
     }
 
@@ -233,8 +287,7 @@ RunResult<typename System::State, typename System::Mode> simulate(
     }
     emit_observations(te, state_at);
     const auto mode_before = rhs.mode;
-    if (!apply_event(event.witness, event.kind, te, xe))
-      return finish(Termination::stopped_by_model);
+    if (!apply_event(event.witness, event.kind, te, xe)) return finish(stopped_by);
     if (event.kind == CrossingKind::grazing && rhs.mode == mode_before) just_grazed = event.witness;
     if (zeno_guard_fired()) return finish(Termination::no_progress);
     stepper.initialize(rhs, x, t, stepper.suggested_step());

@@ -72,6 +72,9 @@ template <class F>
 double bracketed_root(F&& f, double a, double b, double fa, double fb) {
   if (fb == 0.0) return b;
   if (fa == 0.0) return a;
+  // a bracket with no double inside (a time so large that its spacing is the
+  // step, t0 = 1e15 s): the event is at its triggered end, to time resolution
+  if (!(a < b) || std::nextafter(a, b) == b) return b;
   std::uintmax_t max_iterations = 100;
   const auto bracket = boost::math::tools::toms748_solve(f, a, b, fa, fb, TimeTolerance{},
                                                          max_iterations);

@@ -50,18 +50,25 @@ void AtomicFile::commit() {
 }
 
 RunFiles::RunFiles(std::filesystem::path directory) : directory_(std::move(directory)) {
+  // the levels of the path that do not exist yet, deepest first: a failed
+  // run removes exactly these (when empty), so `out/jin2003` leaves no `out`
   std::error_code error;
-  const bool existed = std::filesystem::exists(directory_, error);
+  for (std::filesystem::path level = directory_; !level.empty() && level != level.parent_path();
+       level = level.parent_path()) {
+    if (std::filesystem::exists(level, error)) break;
+    created_directories_.push_back(level);
+  }
   prepare_output_directory(directory_);
-  created_directory_ = !existed;
 }
 
 RunFiles::~RunFiles() {
   if (committed_) return;
   files_.clear();  // removes the temporaries
   std::error_code ignored;
-  if (created_directory_ && std::filesystem::is_empty(directory_, ignored))
-    std::filesystem::remove(directory_, ignored);
+  for (const auto& level : created_directories_) {
+    if (!std::filesystem::is_empty(level, ignored)) break;
+    std::filesystem::remove(level, ignored);
+  }
 }
 
 AtomicFile& RunFiles::add(const std::string& name) {

@@ -68,7 +68,7 @@ class RunFiles {
 
  private:
   std::filesystem::path directory_;
-  bool created_directory_ = false;
+  std::vector<std::filesystem::path> created_directories_;  // deepest first
   bool committed_ = false;
   std::vector<std::unique_ptr<AtomicFile>> files_;
 };

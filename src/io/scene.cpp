@@ -123,6 +123,15 @@ std::vector<KeySpec> common_keys() {
        .lower = 0.0, .upper = 1.0, .lower_open = true},
       {.key = "integrator.atol", .unit = "state units", .help = "absolute tolerance per step",
        .default_number = 1e-12, .lower = 0.0, .upper = 1.0, .lower_open = true},
+      {.key = "limits.max_steps",
+       .help = "step budget of one run: refused up front when it needs more, else stops "
+               "(step_budget) when it takes more",
+       .default_number = static_cast<double>(default_scene_step_budget), .lower = 1.0,
+       .upper = 1e15},
+      {.key = "limits.max_rows",
+       .help = "most rows a sampled output (trajectory.csv) may have; refused up front beyond",
+       .default_number = static_cast<double>(default_scene_row_budget), .lower = 1.0,
+       .upper = 1e12},
   };
 }
 

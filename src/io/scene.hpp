@@ -5,6 +5,7 @@
 // `scenes` listing and the meta.json record.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <string>
@@ -46,8 +47,15 @@ struct Scene {
   [[nodiscard]] const std::string& text(const std::string& key) const;
 };
 
-// Keys every oscillator accepts (integrator and start time), merged into each
-// oscillator's schema.
+// Default resource limits of a run (scene keys limits.max_steps and
+// limits.max_rows): 10^8 steps is a few minutes of CPU time for the built-in
+// scenes (docs/simulation.md, "Resource limits"); 10^7 rows of trajectory.csv
+// is about 0.5 GB of text.
+constexpr std::uint64_t default_scene_step_budget = 100'000'000;
+constexpr std::uint64_t default_scene_row_budget = 10'000'000;
+
+// Keys every oscillator accepts (integrator, start time, resource limits),
+// merged into each oscillator's schema.
 std::vector<KeySpec> common_keys();
 
 // `accumulation_tol`, the key of every oscillator whose impacts can
