@@ -12,6 +12,7 @@ packages=(
   libopenmpi-dev openmpi-bin
   python3 python3-numpy python3-matplotlib python3-scipy
   jupyter-nbconvert python3-nbformat python3-ipykernel
+  pybind11-dev python3-dev python3-pytest python3-setuptools python3-pip
 )
 
 missing=()

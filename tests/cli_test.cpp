@@ -154,6 +154,29 @@ TEST(Simulate, SetOverridesReachTheRun) {
   EXPECT_NEAR(meta["run"]["t_end_s"].get<double>(), 5 * 2 * M_PI / 6.5, 1e-12);
 }
 
+// meta.json's derived friction work is that of the last contact phase in
+// events.csv, although the run streams its events to the file instead of
+// keeping them (the tally sees each event as it passes: api/event_tap.hpp).
+TEST(Simulate, DerivedFrictionWorkIsTheLastContactPhasesOfTheStreamedEvents) {
+  const auto out_dir = scratch("friction");
+  const Outcome outcome =
+      run("simulate jin2003 --periods 30 --quiet --set V0=4.163 --out " + out_dir.string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  std::stringstream events(slurp(out_dir / "events.csv"));
+  std::string last_contact_end;
+  for (std::string line; std::getline(events, line);)
+    if (line.find(",contact_end,") != std::string::npos) last_contact_end = line;
+  ASSERT_FALSE(last_contact_end.empty());
+  std::vector<std::string> fields;
+  std::stringstream row(last_contact_end);
+  for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+  ASSERT_GE(fields.size(), 10u);  // friction_work is the 10th column
+  const double friction_work = std::stod(fields[9]);
+  EXPECT_GT(friction_work, 0.0);
+  const auto meta = nlohmann::json::parse(slurp(out_dir / "meta.json"));
+  EXPECT_EQ(meta["derived"]["friction_work_J"].get<double>(), friction_work);
+}
+
 // μ tan θ0 = 15 · 0.0716 > 1: the first impact that slips downwards (γ_T > 0)
 // is a Painlevé configuration, so the run stops there with exit status 3 and
 // complete outputs that say why.

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "api/oscillator_registry.hpp"
+#include "api/scene_jobs.hpp"
 #include "api/scene_loading.hpp"
 #include "io/bad_input.hpp"
 
@@ -328,6 +329,30 @@ std::string comparison_summary(const Comparison& comparison, const nlohmann::jso
           "models that differ slightly separate after some impacts even where their attractors "
           "are alike: compare the strobe sections (compare_section.csv) for that.\n";
   return text;
+}
+
+std::vector<std::string> models_to_compare(const Scene& scene, const std::string& list,
+                                           const std::function<void(const BadInput&)>& skipped) {
+  if (!scene.values.contains("model"))
+    throw BadInput("oscillator", scene.oscillator, "this oscillator has no `model` key to compare");
+  if (!list.empty()) return parse_model_list(list);
+  std::vector<std::string> accepted;
+  for (const auto& model : scene_models(scene)) {
+    Scene probe = scene;
+    try {
+      apply_override(probe, "model=" + model);
+      RunRequest tiny;
+      tiny.periods = 0.0;
+      tiny.t_end = probe.number("t0") + 1e-9;
+      tiny.keep_events = false;
+      simulate(probe, tiny);
+      accepted.push_back(model);
+    } catch (const BadInput& bad) {
+      if (skipped) skipped(bad);
+    }
+  }
+  if (accepted.empty()) throw BadInput("--models", "(default)", "the scene accepts no model");
+  return accepted;
 }
 
 }  // namespace impactlab

@@ -5,6 +5,7 @@
 // and writes the tables and a summary whose numbers are all computed here.
 #pragma once
 
+#include <functional>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -12,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/bad_input.hpp"
 #include "io/run_output.hpp"
 #include "io/scene.hpp"
 
@@ -44,6 +46,13 @@ std::vector<std::string> parse_model_list(std::string_view list);
 
 // The choices of the scene's `model` key (empty if it has none).
 std::vector<std::string> scene_models(const Scene& scene);
+
+// The models to compare: those of `list` ("newton,rigid"), or where it is
+// empty every model the scene accepts (each tried on a tiny run; `skipped`
+// hears why one is not). BadInput (key `oscillator`) for a scene without a
+// `model` key, (key --models) when none is accepted.
+std::vector<std::string> models_to_compare(const Scene& scene, const std::string& list,
+                                           const std::function<void(const BadInput&)>& skipped);
 
 // Runs every model; BadInput from the scene (an unknown or unavailable model,
 // keys that do not fit the model) is passed on before anything is written.

@@ -162,6 +162,17 @@ ReferenceImpacts integrated_reference(const Scene& scene, double t_end, std::siz
                                       const std::vector<std::string>& methods,
                                       double trusted_time_spread);
 
+// Whether the scene's oscillator has a closed-form flow (the `exact` stepper
+// and closed_form_reference): linear_impact, bouncing_ball.
+bool has_closed_form(const Scene& scene);
+
+// The reference the bench measures errors against, from t0 to t_end: the
+// closed form where there is one, else the scene integrated at rtol 1e-14 by
+// two methods whose impacts are trusted where they agree within 1e-10: the
+// quad-precision Taylor stepper and rk8pd for the pendulum's Model N (the
+// CLI's bench cases), rk8pd and bulirsch_stoer otherwise.
+ReferenceImpacts bench_reference(const Scene& scene, double t_end, std::size_t max_impacts);
+
 // The impacts of a pendulum_walls scene (Model N) from t0 to t_end by the
 // Taylor stepper in 113-bit arithmetic (Boost.Multiprecision's
 // cpp_bin_float_quad) at rtol = atol = `tolerance` (1e-20: order 25): the

@@ -110,10 +110,6 @@ void start_on_period_one_orbit(Scene& scene) {
   apply_override(scene, fmt::format("initial.y_dot={:.17g}", 0.5 * g * period));
 }
 
-bool has_closed_form(const Scene& scene) {
-  return scene.oscillator == "linear_impact" || scene.oscillator == "bouncing_ball";
-}
-
 std::string number_text(double value) {
   return std::isfinite(value) ? fmt::format("{:.6g}", value) : "";
 }
@@ -226,11 +222,7 @@ int run_bench(const BenchOptions& options, const std::vector<std::string>& comma
     result.forcing_period = forcing_period_of(result.scene);
     const double t_reference =
         result.scene.number("t0") + plan.reference_periods * result.forcing_period;
-    result.reference =
-        has_closed_form(result.scene)
-            ? closed_form_reference(result.scene, t_reference, plan.max_reference_impacts)
-            : integrated_reference(result.scene, t_reference, plan.max_reference_impacts,
-                                   {"taylor_quad", "rk8pd"}, 1e-10);
+    result.reference = bench_reference(result.scene, t_reference, plan.max_reference_impacts);
     if (result.reference.impacts.empty())
       throw std::runtime_error("bench: case " + bench_case.name + " has no trusted reference impact");
     results.push_back(std::move(result));

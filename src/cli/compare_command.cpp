@@ -24,26 +24,9 @@ namespace {
 
 // The models to run: the listed ones, or every model the scene accepts.
 std::vector<std::string> models_to_run(const Scene& scene, const std::string& list, bool quiet) {
-  if (!scene.values.contains("model"))
-    throw BadInput("oscillator", scene.oscillator, "this oscillator has no `model` key to compare");
-  if (!list.empty()) return parse_model_list(list);
-  std::vector<std::string> accepted;
-  for (const auto& model : scene_models(scene)) {
-    Scene probe = scene;
-    try {
-      apply_override(probe, "model=" + model);
-      RunRequest tiny;
-      tiny.periods = 0.0;
-      tiny.t_end = probe.number("t0") + 1e-9;
-      tiny.keep_events = false;
-      simulate(probe, tiny);
-      accepted.push_back(model);
-    } catch (const BadInput& bad) {
-      if (!quiet) std::cerr << "impactlab: compare: skipping " << bad.what() << '\n';
-    }
-  }
-  if (accepted.empty()) throw BadInput("--models", "(default)", "the scene accepts no model");
-  return accepted;
+  return models_to_compare(scene, list, [quiet](const BadInput& bad) {
+    if (!quiet) std::cerr << "impactlab: compare: skipping " << bad.what() << '\n';
+  });
 }
 
 int run_compare(const SceneOptions& options, const std::string& model_list,

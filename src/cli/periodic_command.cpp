@@ -9,8 +9,7 @@
 #include <fmt/format.h>
 
 #include "analysis/periodic.hpp"
-#include "analysis/sweep.hpp"
-#include "api/scene_jobs.hpp"
+#include "api/periodic_job.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
 #include "cli/section_options.hpp"
@@ -30,72 +29,23 @@ struct PeriodicOptions {
   double tolerance = 1e-11;
 };
 
-nlohmann::json complex_record(std::complex<double> z) {
-  return {{"re", z.real()}, {"im", z.imag()}, {"abs", std::abs(z)}};
-}
-
 int run_periodic(const PeriodicOptions& options, const std::vector<std::string>& command_line) {
   const Scene scene = options.scene.load();
-  PeriodicRequest request;
-  std::string period_source = "given";
-  if (options.period == "auto") {
-    // the period of 64 stroboscopic points after the transient (1 if none is found)
-    SectionRequest probe;
-    probe.section.phase = options.phase;
-    probe.transient_periods = options.transient;
-    probe.points = 64;
-    SweepPlan plan;
-    plan.max_period = 32;
-    const SectionResult points = poincare(scene, probe);
-    const int detected = classify(points, plan).period;
-    request.period = detected > 0 ? detected : 1;
-    period_source = detected > 0 ? "detected from 64 stroboscopic points"
-                                 : "none detected in 64 stroboscopic points: 1 tried";
-  } else {
-    char* end = nullptr;
-    const long n = std::strtol(options.period.c_str(), &end, 10);
-    if (end == options.period.c_str() || *end != '\0' || n < 1 || n > 1000)
-      throw BadInput("--period", options.period, "expected auto or a whole number from 1 to 1000");
-    request.period = static_cast<int>(n);
-  }
-  request.phase = options.phase;
-  request.transient_periods = options.transient;
-  request.max_iterations = options.max_iterations;
-  request.tolerance = options.tolerance;
+  PeriodicJob job;
+  job.period = options.period;
+  job.phase = options.phase;
+  job.transient = options.transient;
+  job.max_iterations = options.max_iterations;
+  job.tolerance = options.tolerance;
+  const PeriodicJobResult found = find_periodic_orbit(scene, job);
   const auto directory = options.scene.output_directory();
   prepare_output_directory(directory);
-  const auto start = std::chrono::steady_clock::now();
-  const PeriodicResult result = periodic(scene, request);
-  const double wall_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!result.available) throw BadInput("oscillator", scene.oscillator, result.note);
-
-  const auto& m = result.monodromy;
-  nlohmann::json document = {
-      {"impactlab_version", IMPACTLAB_VERSION},
-      {"command", command_line},
-      {"created_utc", utc_now()},
-      {"scene", scene_record(scene)},
-      {"request",
-       {{"period", request.period},
-        {"period_source", period_source},
-        {"phase_rad", request.phase},
-        {"transient_periods", request.transient_periods},
-        {"max_iterations", request.max_iterations},
-        {"tolerance", request.tolerance}}},
-      {"converged", result.converged},
-      {"iterations", result.iterations},
-      {"residual", result.residual},
-      {"termination", result.termination},
-      {"t_section", result.t_section},
-      {"orbit_period", result.orbit_period},
-      {"state", result.state},
-      {"mode", result.mode},
-      {"monodromy", {{m[0][0], m[0][1]}, {m[1][0], m[1][1]}}},
-      {"floquet_multipliers",
-       {complex_record(result.multipliers[0]), complex_record(result.multipliers[1])}},
-      {"wall_time_s", wall_time},
-  };
+  const PeriodicRequest& request = found.request;
+  const PeriodicResult& result = found.result;
+  nlohmann::json document = periodic_record(scene, found);
+  document["command"] = command_line;
+  document["created_utc"] = utc_now();
+  document["wall_time_s"] = found.wall_time;
   AtomicFile file(directory / "periodic.json");
   write_json(file, document);
   file.commit();

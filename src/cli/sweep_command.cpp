@@ -8,19 +8,16 @@
 // first line identifying the sweep). The data files and meta.json appear only
 // when the whole sweep is complete, written by rank 0 (AtomicFile).
 #include <algorithm>
-#include <atomic>
-#include <exception>
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <mutex>
 
 #include <fmt/format.h>
-#include <omp.h>
 
 #include "analysis/basins.hpp"
 #include "analysis/sweep.hpp"
 #include "api/scene_jobs.hpp"
+#include "api/sweep_job.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
 #include "cli/mpi_session.hpp"
@@ -43,13 +40,13 @@ struct SweepOptions {
   long stop_after = 0;  // hidden, for tests: stop after this many new points per rank
   double period_tolerance = 1e-6;
   int max_period = 16;
-  bool basins = false;             // `impactlab basins`: params are --x, --y
+  bool basins = false;                // `impactlab basins`: params are --x, --y
   double attractor_tolerance = 1e-4;  // basins: relative distance of canonical points
 };
 
 std::string number(double value) { return fmt::format("{}", value); }
 
-using RecordKey = std::pair<int, int>;  // task, position
+using RecordKey = SweepRecordKey;
 
 std::string checkpoint_name(int rank) { return fmt::format("checkpoint-{}.jsonl", rank); }
 
@@ -70,8 +67,6 @@ std::map<RecordKey, SweepRecord> read_checkpoints(const std::filesystem::path& d
   return done;
 }
 
-std::string csv_bool(bool value) { return value ? "1" : "0"; }
-
 // basins.csv (each grid point's attractor) and attractors.csv (each
 // attractor's class, canonical section point and basin size)
 void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<SweepTask>& tasks,
@@ -81,6 +76,7 @@ void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<
     for (std::size_t p = 0; p < task.points.size(); ++p)
       in_grid_order.push_back(&records.at({task.id, static_cast<int>(p)}));
   const BasinMap map = identify_attractors(in_grid_order, plan.attractor_tolerance);
+  auto flag = [](bool value) { return value ? 1 : 0; };
   AtomicFile& basins = run_files.add("basins.csv");
   basins.stream() << plan.axes[0].name << ',' << plan.axes[1].name
                   << ",attractor,period,impacts_per_period,contact,termination\n";
@@ -90,7 +86,7 @@ void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<
                     << number(plan.axes[1].value(r.index[1])) << ',' << map.attractor[k] << ','
                     << r.classification.period << ','
                     << number(r.classification.impacts_per_period) << ','
-                    << csv_bool(r.classification.contact) << ',' << r.result.termination << '\n';
+                    << flag(r.classification.contact) << ',' << r.result.termination << '\n';
   }
   AtomicFile& attractors = run_files.add("attractors.csv");
   attractors.stream() << "attractor,period,impacts_per_period,contact,q,qdot,basin_points\n";
@@ -98,24 +94,18 @@ void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<
     attractors.stream() << "0,0,nan,0,nan,nan," << map.unclassified << '\n';
   for (const Attractor& a : map.attractors)
     attractors.stream() << a.id << ',' << a.period << ',' << number(a.impacts_per_period) << ','
-                        << csv_bool(a.contact) << ',' << number(a.point[0]) << ','
+                        << flag(a.contact) << ',' << number(a.point[0]) << ','
                         << number(a.point[1]) << ',' << a.basin_points << '\n';
   files = {"basins.csv", "attractors.csv"};
 }
 
 void write_outputs(RunFiles& run_files, const SweepPlan& plan,
-                   const std::vector<SweepTask>& tasks,
-                   const std::map<RecordKey, SweepRecord>& records, std::vector<std::string>& files) {
-  auto summary_fields = [](const SweepRecord& r) {
-    return fmt::format("{},{},{},{},{}", r.classification.period,
-                       number(r.classification.impacts_per_period),
-                       csv_bool(r.classification.contact), number(r.result.lyapunov),
-                       r.result.termination);
+                   const SweepTable& table, std::vector<std::string>& files) {
+  auto summary_fields = [&](std::size_t row) {
+    return fmt::format("{},{},{},{},{}", table.period[row], number(table.impacts_per_period[row]),
+                       table.contact[row], number(table.lyapunov[row]), table.termination[row]);
   };
-  if (plan.axes.size() == 2 && !plan.follow_attractor) {
-    write_basins(run_files, plan, tasks, records, files);
-    return;
-  }
+  auto direction_name = [](int direction) { return direction > 0 ? "up" : "down"; };
   if (plan.axes.size() == 1) {
     const SweepAxis& axis = plan.axes[0];
     AtomicFile& bifurcation = run_files.add("bifurcation.csv");
@@ -124,113 +114,45 @@ void write_outputs(RunFiles& run_files, const SweepPlan& plan,
     summary.stream() << axis.name
                      << ",direction,period,impacts_per_period,contact,lyapunov,termination,"
                         "points\n";
-    for (int direction : {1, -1}) {
-      // this direction's records by grid index, written in the sweep's order
-      std::map<int, const SweepRecord*> by_index;
-      for (const auto& task : tasks)
-        if (task.direction == direction)
-          for (std::size_t p = 0; p < task.points.size(); ++p)
-            by_index[task.points[p][0]] = &records.at({task.id, static_cast<int>(p)});
-      if (by_index.empty()) continue;
-      const std::string name = direction > 0 ? "up" : "down";
-      auto write = [&](const SweepRecord& r) {
-        const std::string value = number(axis.value(r.index[0]));
-        for (std::size_t k = 0; k < r.result.points.size(); ++k) {
-          const SectionPoint& p = r.result.points[k];
-          bifurcation.stream() << value << ',' << k << ',' << number(p.t) << ',' << number(p.q)
-                               << ',' << number(p.qdot) << ',' << p.wall << ',' << name << '\n';
-        }
-        summary.stream() << value << ',' << name << ',' << summary_fields(r) << ','
-                         << r.result.points.size() << '\n';
-      };
-      if (direction > 0)
-        for (const auto& [index, record] : by_index) write(*record);
-      else
-        for (auto it = by_index.rbegin(); it != by_index.rend(); ++it) write(*it->second);
-    }
+    for (std::size_t row = 0; row < table.point_value.size(); ++row)
+      bifurcation.stream() << number(table.point_value[row]) << ',' << table.point_k[row] << ','
+                           << number(table.point_t[row]) << ',' << number(table.point_q[row])
+                           << ',' << number(table.point_qdot[row]) << ','
+                           << table.point_wall[row] << ','
+                           << direction_name(table.point_direction[row]) << '\n';
+    for (std::size_t row = 0; row < table.value.size(); ++row)
+      summary.stream() << number(table.value[row]) << ',' << direction_name(table.direction[row])
+                       << ',' << summary_fields(row) << ',' << table.points[row] << '\n';
     files = {"bifurcation.csv", "summary.csv"};
     return;
   }
   AtomicFile& classes = run_files.add("classes.csv");
   classes.stream() << plan.axes[0].name << ',' << plan.axes[1].name
                    << ",period,impacts_per_period,contact,lyapunov,termination\n";
-  for (const auto& task : tasks)
-    for (std::size_t p = 0; p < task.points.size(); ++p) {
-      const SweepRecord& r = records.at({task.id, static_cast<int>(p)});
-      classes.stream() << number(plan.axes[0].value(r.index[0])) << ','
-                       << number(plan.axes[1].value(r.index[1])) << ',' << summary_fields(r)
-                       << '\n';
-    }
+  for (std::size_t row = 0; row < table.value.size(); ++row)
+    classes.stream() << number(table.value[row]) << ',' << number(table.value2[row]) << ','
+                     << summary_fields(row) << '\n';
   files = {"classes.csv"};
 }
 
-// The plan the options describe, validated against the scene (BadInput).
-SweepPlan plan_from(const SweepOptions& options, const Scene& scene, const SceneSchema& schema) {
-  SweepPlan plan;
+// The sweep the options describe (api/sweep_job.hpp).
+SweepSpec sweep_spec(const SweepOptions& options) {
+  SweepSpec spec;
+  spec.params = options.params;
+  spec.direction = options.direction;
+  spec.chunks = options.chunks;
+  spec.section = options.section.request();
+  if (options.lyapunov) spec.lyapunov = true;
+  if (options.no_lyapunov) spec.lyapunov = false;
   if (options.basins) {
-    plan.axes = {parse_axis(options.params.at(0), "--x"), parse_axis(options.params.at(1), "--y")};
-    plan.follow_attractor = false;
-    plan.attractor_tolerance = options.attractor_tolerance;
-    if (plan.axes[0].name == plan.axes[1].name)
-      throw BadInput("--y", plan.axes[1].name, "must differ from --x's key");
-    // the keys named by the options that gave them (validate_plan says --param)
-    for (const auto& [option, axis] : {std::pair{"--x", plan.axes[0]}, std::pair{"--y", plan.axes[1]}}) {
-      const auto spec = std::find_if(schema.keys.begin(), schema.keys.end(),
-                                     [&](const KeySpec& k) { return k.key == axis.name; });
-      if (spec == schema.keys.end() || spec->is_text)
-        throw BadInput(option, axis.name,
-                       fmt::format("not a numeric key of oscillator {}", schema.oscillator));
-    }
-  } else {
-    for (const auto& text : options.params) plan.axes.push_back(parse_axis(text, "--param"));
+    spec.lyapunov = options.lyapunov;  // off unless asked for
+    spec.param_key = "--x/--y";
   }
-  plan.direction = parse_direction(options.direction, "--direction");
-  plan.chunks = options.chunks;
-  plan.section = options.section.request();
-  plan.period_tolerance = options.period_tolerance;
-  plan.max_period = options.max_period;
-  // Lyapunov: on by default for 2D maps, off for 1D sweeps
-  plan.section.lyapunov =
-      options.lyapunov || (plan.axes.size() == 2 && !options.no_lyapunov && !options.basins);
-  validate_plan(plan, scene, schema);
-  if (plan.axes.size() == 2 && plan.direction != SweepDirection::up)
-    throw BadInput("--direction", options.direction,
-                   "a 2D sweep follows the first parameter upwards only");
-  return plan;
+  spec.period_tolerance = options.period_tolerance;
+  spec.max_period = options.max_period;
+  return spec;
 }
 
-// Everything that decides the sweep's results (and nothing that does not,
-// such as threads or ranks): the checkpoint header and meta.json's "sweep".
-nlohmann::json sweep_definition(const SweepOptions& options, const SweepPlan& plan,
-                                const Scene& scene, const SceneSchema& schema) {
-  nlohmann::json axes = nlohmann::json::array();
-  for (const auto& a : plan.axes) {
-    const auto spec = std::find_if(schema.keys.begin(), schema.keys.end(),
-                                   [&](const KeySpec& k) { return k.key == a.name; });
-    axes.push_back({{"name", a.name},
-                    {"unit", std::string(spec->unit)},
-                    {"from", a.from},
-                    {"to", a.to},
-                    {"count", a.count}});
-  }
-  nlohmann::json definition = {
-      {"scene", scene_record(scene)},
-      {"axes", axes},
-      {"direction", to_string(plan.direction)},
-      {"chunks", plan.chunks},
-      {"section", options.section.record()},
-      {"lyapunov", plan.section.lyapunov},
-      {"lyapunov_alignment_periods", plan.section.lyapunov_alignment_periods},
-      {"period_tolerance", plan.period_tolerance},
-      {"max_period", plan.max_period},
-      {"impactlab_version", IMPACTLAB_VERSION},
-  };
-  if (options.basins) {
-    definition["basins"] = true;  // every point from the scene's state
-    definition["attractor_tolerance"] = plan.attractor_tolerance;
-  }
-  return definition;
-}
 
 // This rank's checkpoint, opened for appending; one that is not this
 // sweep's (or any, without --resume) is started afresh with the header.
@@ -245,69 +167,6 @@ std::ofstream open_checkpoint(const std::filesystem::path& path, const std::stri
   std::ofstream checkpoint(path, std::ios::app);
   if (!checkpoint) throw BadInput("--out", path.parent_path().string(), "cannot write the checkpoint");
   return checkpoint;
-}
-
-struct RankWork {
-  std::vector<std::vector<SweepRecord>> records;  // per task of this rank, in order
-  bool stopped = false;                           // --stop-after ended it early
-};
-
-// Runs this rank's tasks on `threads` threads: finished points are taken from
-// `done`, new ones appended to the checkpoint as they finish.
-RankWork run_rank_tasks(const Scene& scene, const SweepTarget& target, const SweepPlan& plan,
-                        const std::vector<const SweepTask*>& tasks,
-                        const std::map<RecordKey, SweepRecord>& done, std::ofstream& checkpoint,
-                        const SweepOptions& options, bool show_progress) {
-  std::size_t points = 0;
-  for (const SweepTask* task : tasks) points += task->points.size();
-  ProgressBar progress(show_progress);
-  std::mutex mutex;  // guards the checkpoint, the progress bar and `failure`
-  std::size_t finished = 0;
-  std::atomic<long> new_points{0};
-  std::atomic<bool> stopped{false};
-  std::exception_ptr failure;
-  RankWork work;
-  work.records.resize(tasks.size());
-  auto advance_progress = [&] {
-    progress.update(static_cast<double>(++finished) / static_cast<double>(points));
-  };
-
-#pragma omp parallel for schedule(dynamic, 1) num_threads(options.threads)
-  for (std::size_t m = 0; m < tasks.size(); ++m) {
-    try {
-      const SweepTask& task = *tasks[m];
-      work.records[m] = run_sweep_task(
-          scene, target, plan, task,
-          [&](int position) -> const SweepRecord* {
-            const auto it = done.find({task.id, position});
-            if (it == done.end()) return nullptr;
-            std::lock_guard lock(mutex);
-            advance_progress();
-            return &it->second;
-          },
-          [&](const SweepRecord& record) {
-            const std::string line = to_json_line(record);
-            std::lock_guard lock(mutex);
-            checkpoint << line << '\n' << std::flush;
-            advance_progress();
-          },
-          [&] {
-            if (stopped) return false;
-            if (options.stop_after > 0 && new_points.fetch_add(1) >= options.stop_after) {
-              stopped = true;
-              return false;
-            }
-            return true;
-          });
-    } catch (...) {
-      std::lock_guard lock(mutex);
-      if (!failure) failure = std::current_exception();
-      stopped = true;
-    }
-  }
-  if (failure) std::rethrow_exception(failure);
-  work.stopped = stopped;
-  return work;
 }
 
 // The records in every rank's text (one checkpoint line each), by key.
@@ -371,10 +230,30 @@ void write_meta(RunFiles& run_files, const nlohmann::json& definition,
   write_json(run_files.add("meta.json"), meta);
 }
 
-int run_sweep(const SweepOptions& options, const std::vector<std::string>& command_line) {
+int run_sweep_command(const SweepOptions& options, const std::vector<std::string>& command_line) {
   const Scene scene = options.section.scene.load();
   const SweepTarget target = sweep_target(scene);
-  const SweepPlan plan = plan_from(options, scene, *target.schema);
+  const SceneSchema& schema = *target.schema;
+  if (options.basins) {
+    // the grid keys named by the options that gave them
+    for (const auto& [option, text] : {std::pair{"--x", options.params.at(0)},
+                                       std::pair{"--y", options.params.at(1)}}) {
+      const SweepAxis axis = parse_axis(text, option);
+      const auto spec = std::find_if(schema.keys.begin(), schema.keys.end(),
+                                     [&](const KeySpec& k) { return k.key == axis.name; });
+      if (spec == schema.keys.end() || spec->is_text)
+        throw BadInput(option, axis.name,
+                       fmt::format("not a numeric key of oscillator {}", schema.oscillator));
+    }
+    if (parse_axis(options.params[0], "--x").name == parse_axis(options.params[1], "--y").name)
+      throw BadInput("--y", parse_axis(options.params[1], "--y").name,
+                     "must differ from --x's key");
+  }
+  SweepPlan plan = make_sweep_plan(sweep_spec(options), scene, schema);
+  if (options.basins) {
+    plan.follow_attractor = false;  // every point from the scene's state
+    plan.attractor_tolerance = options.attractor_tolerance;
+  }
   const auto directory = options.section.scene.output_directory();
   // the sweep's data files and meta.json, committed together by rank 0
   RunFiles run_files(directory);
@@ -382,7 +261,11 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
   // status 2 on every rank alike, before any rank waits for another
   MpiSession mpi;
 
-  const nlohmann::json definition = sweep_definition(options, plan, scene, *target.schema);
+  nlohmann::json definition = sweep_definition(plan, scene, schema, options.section.record());
+  if (options.basins) {
+    definition["basins"] = true;
+    definition["attractor_tolerance"] = plan.attractor_tolerance;
+  }
   const std::string header = nlohmann::json{{"impactlab_sweep_checkpoint", definition}}.dump();
   std::map<RecordKey, SweepRecord> done;
   if (options.resume) done = read_checkpoints(directory, header);
@@ -398,8 +281,16 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
     if (task.id % mpi.size() == mpi.rank()) mine.push_back(&task);
   }
   const auto start = std::chrono::steady_clock::now();
-  const RankWork work = run_rank_tasks(scene, target, plan, mine, done, checkpoint, options,
-                                       !options.section.scene.quiet && mpi.rank() == 0);
+  ProgressBar progress(!options.section.scene.quiet && mpi.rank() == 0);
+  SweepJobOptions job;
+  job.threads = options.threads;
+  job.done = &done;
+  job.on_record = [&checkpoint](const SweepRecord& record) {
+    checkpoint << to_json_line(record) << '\n' << std::flush;
+  };
+  job.progress = [&progress](double fraction) { progress.update(fraction); };
+  job.stop_after = options.stop_after;
+  const SweepOutput work = run_sweep(scene, target, plan, mine, job);
   const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -419,7 +310,10 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
   }
 
   std::vector<std::string> files;
-  write_outputs(run_files, plan, tasks, all, files);
+  if (options.basins)
+    write_basins(run_files, plan, tasks, all, files);
+  else
+    write_outputs(run_files, plan, sweep_table(plan, tasks, all), files);
   write_meta(run_files, definition, scene, *target.schema, all,
              {{"threads", options.threads},
               {"mpi_ranks", mpi.size()},
@@ -498,7 +392,7 @@ Command add_sweep_command(CLI::App& app) {
   // for tests of --resume: stop (exit 3, checkpoint kept) after this many new points per rank
   command->add_option("--stop-after", options->stop_after)->group("")->check(CLI::Range(1L, 1L << 40));
   return {command, [options](const std::vector<std::string>& command_line) {
-            return run_sweep(*options, command_line);
+            return run_sweep_command(*options, command_line);
           }};
 }
 
@@ -536,7 +430,7 @@ Command add_basins_command(CLI::App& app) {
                     "reuse the finished points of an interrupted run of the same map in --out");
   command->add_option("--stop-after", options->stop_after)->group("")->check(CLI::Range(1L, 1L << 40));
   return {command, [options](const std::vector<std::string>& command_line) {
-            return run_sweep(*options, command_line);
+            return run_sweep_command(*options, command_line);
           }};
 }
 

@@ -2,12 +2,14 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <optional>
 
 #include "analysis/run_continuation.hpp"
 #include "analysis/run_periodic.hpp"
 #include "analysis/run_section.hpp"
 #include "api/bindings/pendulum_walls_parameters.hpp"
 #include "api/bindings/rigid_pendulum_binding.hpp"
+#include "api/event_tap.hpp"
 #include "api/oscillator_registry.hpp"
 #include "api/run_system.hpp"
 #include "io/bad_input.hpp"
@@ -163,18 +165,23 @@ RunOutput run_model(const Scene& scene, const RunRequest& request) {
   const typename System::State x0 = initial_state(scene, system);
   const double period = 2.0 * std::numbers::pi / p.omega;
 
-  RunOutput output = run_system(system, x0, PendulumMode::free, scene, request, period, mode_name);
+  // the derived quantities, tallied as the events pass (kept or streamed)
   double friction_work = 0.0;
   std::uint64_t sliding_impacts = 0;
-  for (std::size_t i = 0; i < output.events.size(); ++i) {
-    const EventRecord& event = output.events[i];
-    if (event.kind == EventKind::contact_end) friction_work = event.friction_work;
-    // a sliding impact: a contact phase that starts at an impact, not at the
-    // accumulation point of a chatter
-    if (event.kind == EventKind::contact_start && i > 0 &&
-        output.events[i - 1].kind == EventKind::impact)
-      ++sliding_impacts;
-  }
+  std::optional<EventKind> previous;
+  EventTap tally(
+      [&](const EventRecord& event) {
+        if (event.kind == EventKind::contact_end) friction_work = event.friction_work;
+        // a sliding impact: a contact phase that starts at an impact, not at
+        // the accumulation point of a chatter
+        if (event.kind == EventKind::contact_start && previous == EventKind::impact)
+          ++sliding_impacts;
+        previous = event.kind;
+      },
+      request.event_sink);
+  RunRequest tallied = request;
+  tallied.event_sink = &tally;
+  RunOutput output = run_system(system, x0, PendulumMode::free, scene, tallied, period, mode_name);
   output.derived = {
       {"theta0_rad", system.wall_angle()},
       {"mu_tan_theta0", p.mu * std::tan(system.wall_angle())},

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "api/bindings/pendulum_walls_parameters.hpp"
+#include "api/event_tap.hpp"
 #include "api/run_system.hpp"
 #include "io/bad_input.hpp"
 #include "oscillators/pendulum_walls/rigid_pendulum_walls.hpp"
@@ -64,18 +65,22 @@ RunOutput run_rigid_pendulum(const Scene& scene, const RunRequest& request) {
   const RigidPendulumWalls::State x0{theta, theta_dot, theta, rp.spin_free ? 0.0 : theta_dot, 0.0};
   const double period = 2.0 * std::numbers::pi / p.omega;
 
-  RunOutput output =
-      run_system(system, x0, RigidPendulumWalls::Mode::free, scene, request, period, mode_name);
-
   // the tangential restitution that emerges: ρ = γ_T⁺ / γ_T⁻ per impact, and
-  // in the paper's convention v_y,a = −e_y v_y0, e_y = −ρ
+  // in the paper's convention v_y,a = −e_y v_y0, e_y = −ρ; tallied as the
+  // events pass (kept or streamed)
   double friction_work = 0.0;
   std::vector<double> ratios;
-  for (const auto& event : output.events) {
-    if (event.kind == EventKind::contact_end) friction_work = event.friction_work;
-    if (event.kind == EventKind::impact && std::fabs(event.tangential_velocity) > 1e-9)
-      ratios.push_back(event.tangential_velocity_after / event.tangential_velocity);
-  }
+  EventTap tally(
+      [&](const EventRecord& event) {
+        if (event.kind == EventKind::contact_end) friction_work = event.friction_work;
+        if (event.kind == EventKind::impact && std::fabs(event.tangential_velocity) > 1e-9)
+          ratios.push_back(event.tangential_velocity_after / event.tangential_velocity);
+      },
+      request.event_sink);
+  RunRequest tallied = request;
+  tallied.event_sink = &tally;
+  RunOutput output =
+      run_system(system, x0, RigidPendulumWalls::Mode::free, scene, tallied, period, mode_name);
   const auto [lowest, highest] = std::minmax_element(ratios.begin(), ratios.end());
   output.derived = {
       {"theta0_rad", system.wall_angle()},

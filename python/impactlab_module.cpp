@@ -1,0 +1,645 @@
+// The compiled part of the Python package impactlab: thin bindings of the
+// scene API (src/api/) for python/impactlab/__init__.py, which adds the
+// keyword handling, the result classes and the warnings. Every job runs with
+// the GIL released; its progress callback takes the GIL back now and then to
+// call the user's callback and to look for Ctrl-C, and a Python exception
+// there cancels the job and comes out of the call unchanged.
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <exception>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <pybind11/complex.h>
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "analysis/continuation.hpp"
+#include "analysis/section.hpp"
+#include "api/compare.hpp"
+#include "api/periodic_job.hpp"
+#include "api/run_record.hpp"
+#include "api/scene_jobs.hpp"
+#include "api/scene_loading.hpp"
+#include "api/scene_record.hpp"
+#include "api/sweep_job.hpp"
+#include "api/work_precision.hpp"
+#include "integrate/stepper_dispatch.hpp"
+#include "io/bad_input.hpp"
+#include "io/builtin_scenes.hpp"
+
+namespace py = pybind11;
+using namespace impactlab;
+
+namespace {
+
+// Thrown through a job (with the GIL released) when the Python side raised
+// in a progress callback; the Python error is kept and restored afterwards.
+struct Cancelled {};
+
+// Progress of one job: the user's callback and the Ctrl-C check. The check
+// takes the GIL at most every `check_interval`, so that a short run pays
+// nothing for it.
+class ProgressRelay {
+ public:
+  explicit ProgressRelay(py::object callback) : callback_(std::move(callback)) {}
+
+  // called from the job, without the GIL; throws Cancelled
+  void operator()(double fraction) {
+    const auto now = std::chrono::steady_clock::now();
+    if (callback_.is_none() && now - last_check_ < check_interval) return;
+    last_check_ = now;
+    py::gil_scoped_acquire gil;
+    try {
+      if (!callback_.is_none()) callback_(fraction);
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    } catch (py::error_already_set& error) {
+      error_ = std::make_unique<py::error_already_set>(std::move(error));
+      throw Cancelled{};
+    }
+  }
+
+  // runs `job` without the GIL; a cancellation re-raises the Python error
+  template <class Job>
+  auto run(Job&& job) {
+    try {
+      py::gil_scoped_release release;
+      return job();
+    } catch (const Cancelled&) {
+      if (error_) throw std::move(*error_);
+      throw;
+    }
+  }
+
+ private:
+  static constexpr std::chrono::milliseconds check_interval{20};
+  py::object callback_;
+  std::chrono::steady_clock::time_point last_check_ = std::chrono::steady_clock::now();
+  std::unique_ptr<py::error_already_set> error_;
+};
+
+// A NumPy array over a vector's data without a copy: the vector moves into
+// the array's base object.
+template <class T>
+py::array owning_array(std::vector<T>&& values) {
+  auto* owner = new std::vector<T>(std::move(values));
+  py::capsule base(owner, [](void* pointer) { delete static_cast<std::vector<T>*>(pointer); });
+  return py::array_t<T>({static_cast<py::ssize_t>(owner->size())}, owner->data(), base);
+}
+
+// The structured dtype of EventRecord, field by field at its C++ offsets, so
+// that the event log is one array without a copy.
+py::dtype event_dtype() {
+  py::list names, formats, offsets;
+  auto add = [&](const char* name, const char* format, std::size_t offset) {
+    names.append(name);
+    formats.append(format);
+    offsets.append(offset);
+  };
+  add("t", "<f8", offsetof(EventRecord, t));
+  add("kind", "u1", offsetof(EventRecord, kind));
+  add("wall", "<i4", offsetof(EventRecord, wall));
+  add("q", "<f8", offsetof(EventRecord, q));
+  add("qdot_before", "<f8", offsetof(EventRecord, qdot_before));
+  add("qdot_after", "<f8", offsetof(EventRecord, qdot_after));
+  add("normal_impulse", "<f8", offsetof(EventRecord, normal_impulse));
+  add("tangential_velocity", "<f8", offsetof(EventRecord, tangential_velocity));
+  add("normal_force", "<f8", offsetof(EventRecord, normal_force));
+  add("friction_work", "<f8", offsetof(EventRecord, friction_work));
+  add("instantaneous_residual", "<f8", offsetof(EventRecord, instantaneous_residual));
+  add("sliding_residual", "<f8", offsetof(EventRecord, sliding_residual));
+  add("tangential_velocity_after", "<f8", offsetof(EventRecord, tangential_velocity_after));
+  add("accumulation_error", "<f8", offsetof(EventRecord, accumulation_error));
+  py::dict spec;
+  spec["names"] = names;
+  spec["formats"] = formats;
+  spec["offsets"] = offsets;
+  spec["itemsize"] = sizeof(EventRecord);
+  return py::dtype::from_args(spec);
+}
+
+py::array event_array(std::vector<EventRecord>&& events) {
+  // built once: the dtype is the same for every run (never freed, so that it
+  // outlives no interpreter)
+  static const auto* dtype = new py::dtype(event_dtype());
+  auto* owner = new std::vector<EventRecord>(std::move(events));
+  py::capsule base(owner,
+                   [](void* pointer) { delete static_cast<std::vector<EventRecord>*>(pointer); });
+  return py::array(*dtype, {static_cast<py::ssize_t>(owner->size())}, {},
+                   owner->data(), base);
+}
+
+py::object json_to_python(const nlohmann::json& document) {
+  return py::module_::import("json").attr("loads")(document.dump());
+}
+
+// What meta.json records of a run, made when Python asks for it (most calls
+// never do): the scene and the run's counters, without its events and samples.
+struct PendingRunRecord {
+  Scene scene;
+  RunOutput output;  // events and samples moved out (output.event_count counts them)
+
+  [[nodiscard]] py::object meta() const { return json_to_python(run_record(scene, output)); }
+};
+
+py::dict simulate_binding(const Scene& scene, double periods, double t_end, double sample_step,
+                          py::object progress) {
+  RunRequest request;
+  if (t_end != 0.0) {
+    request.periods = 0.0;
+    request.t_end = t_end;
+  } else {
+    request.periods = periods;
+  }
+  request.sample_step = sample_step;
+  ProgressRelay relay(std::move(progress));
+  request.progress = [&relay](double fraction) { relay(fraction); };
+  RunOutput output = relay.run([&] { return simulate(scene, request); });
+
+  py::dict result;
+  result["termination"] = output.termination;
+  // samples: t, q, qdot as arrays, the mode names as a list
+  std::vector<double> t, q, qdot;
+  py::list modes;
+  for (const auto& sample : output.samples) {
+    t.push_back(sample.t);
+    q.push_back(sample.q);
+    qdot.push_back(sample.qdot);
+    modes.append(py::str(sample.mode.data(), sample.mode.size()));
+  }
+  result["samples_t"] = owning_array(std::move(t));
+  result["samples_q"] = owning_array(std::move(q));
+  result["samples_qdot"] = owning_array(std::move(qdot));
+  result["samples_mode"] = modes;
+  result["events"] = event_array(std::move(output.events));
+  output.events.clear();
+  output.samples.clear();
+  result["record"] = PendingRunRecord{scene, std::move(output)};
+  return result;
+}
+
+SectionRequest section_request(const std::string& section, double transient,
+                               std::uint64_t transient_impacts, std::uint64_t points,
+                               bool lyapunov) {
+  SectionRequest request;
+  request.section = parse_section(section, "section");
+  request.transient_periods = transient;
+  request.transient_impacts = transient_impacts;
+  request.points = points;
+  request.lyapunov = lyapunov;
+  return request;
+}
+
+py::dict section_arrays(const SectionResult& result) {
+  std::vector<double> t, q, qdot;
+  std::vector<int> wall;
+  for (const auto& p : result.points) {
+    t.push_back(p.t);
+    q.push_back(p.q);
+    qdot.push_back(p.qdot);
+    wall.push_back(p.wall);
+  }
+  py::dict arrays;
+  arrays["t"] = owning_array(std::move(t));
+  arrays["q"] = owning_array(std::move(q));
+  arrays["qdot"] = owning_array(std::move(qdot));
+  arrays["wall"] = owning_array(std::move(wall));
+  return arrays;
+}
+
+py::dict poincare_binding(const Scene& scene, const std::string& section, double transient,
+                          std::uint64_t transient_impacts, std::uint64_t points, bool lyapunov,
+                          py::object progress) {
+  const SectionRequest request =
+      section_request(section, transient, transient_impacts, points, lyapunov);
+  ProgressRelay relay(std::move(progress));
+  // a Poincaré run reports no progress of its own: the check runs once after it
+  const SectionResult result = relay.run([&] { return poincare(scene, request); });
+  relay(1.0);
+  py::dict out = section_arrays(result);
+  out["termination"] = result.termination;
+  out["omega"] = result.omega;
+  out["forcing_period"] = result.forcing_period;
+  out["record_start"] = result.record_start;
+  out["periods_recorded"] = result.periods_recorded;
+  out["impacts"] = result.impacts;
+  out["contact_phases"] = result.contact_phases;
+  out["steps"] = result.steps;
+  out["rhs_evaluations"] = result.rhs_evaluations;
+  out["lyapunov"] = result.lyapunov;
+  out["lyapunov_note"] = result.lyapunov_note;
+  return out;
+}
+
+py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& params,
+                       const std::string& direction, int chunks, const std::string& section,
+                       double transient, std::uint64_t transient_impacts, std::uint64_t points,
+                       std::optional<bool> lyapunov, double period_tolerance, int max_period,
+                       int threads, py::object progress) {
+  if (threads < 1 || threads > 1024)
+    throw BadInput("threads", std::to_string(threads), "expected 1 to 1024");
+  if (chunks < 1 || chunks > 1000000)
+    throw BadInput("chunks", std::to_string(chunks), "expected 1 to 1000000");
+  if (max_period < 1 || max_period > 10000)
+    throw BadInput("max_period", std::to_string(max_period), "expected 1 to 10000");
+  if (!(period_tolerance > 0.0))
+    throw BadInput("period_tol", std::to_string(period_tolerance), "must be > 0");
+  SweepSpec spec;
+  spec.params = params;
+  spec.direction = direction;
+  spec.chunks = chunks;
+  spec.section = section_request(section, transient, transient_impacts, points, false);
+  spec.lyapunov = lyapunov;
+  spec.period_tolerance = period_tolerance;
+  spec.max_period = max_period;
+  spec.param_key = "param";
+  spec.direction_key = "direction";
+  const SweepTarget target = sweep_target(scene);
+  const SweepPlan plan = make_sweep_plan(spec, scene, *target.schema);
+  const std::vector<SweepTask> tasks = sweep_tasks(plan);
+  std::vector<const SweepTask*> all_tasks;
+  for (const auto& task : tasks) all_tasks.push_back(&task);
+
+  ProgressRelay relay(std::move(progress));
+  SweepJobOptions job;
+  job.threads = threads;
+  job.progress = [&relay](double fraction) { relay(fraction); };
+  const auto start = std::chrono::steady_clock::now();
+  SweepOutput output = relay.run([&] { return run_sweep(scene, target, plan, all_tasks, job); });
+  const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  std::map<SweepRecordKey, SweepRecord> records;
+  for (auto& task_records : output.records)
+    for (auto& record : task_records)
+      records.emplace(SweepRecordKey{record.task, record.position}, std::move(record));
+  SweepTable table = sweep_table(plan, tasks, records);
+
+  nlohmann::json section_record = {
+      {"section", section},
+      {"transient_periods", transient_impacts > 0 ? 0.0 : transient},
+      {"transient_impacts", transient_impacts},
+      {"points", points}};
+  py::dict out;
+  out["definition"] = json_to_python(sweep_definition(plan, scene, *target.schema, section_record));
+  out["axes"] = py::cast(std::vector<std::string>{plan.axes[0].name,
+                                                  plan.axes.size() > 1 ? plan.axes[1].name : ""});
+  out["point_value"] = owning_array(std::move(table.point_value));
+  out["point_k"] = owning_array(std::move(table.point_k));
+  out["point_t"] = owning_array(std::move(table.point_t));
+  out["point_q"] = owning_array(std::move(table.point_q));
+  out["point_qdot"] = owning_array(std::move(table.point_qdot));
+  out["point_wall"] = owning_array(std::move(table.point_wall));
+  out["point_direction"] = owning_array(std::move(table.point_direction));
+  out["value"] = owning_array(std::move(table.value));
+  out["value2"] = owning_array(std::move(table.value2));
+  out["direction"] = owning_array(std::move(table.direction));
+  out["period"] = owning_array(std::move(table.period));
+  out["impacts_per_period"] = owning_array(std::move(table.impacts_per_period));
+  out["contact"] = owning_array(std::move(table.contact));
+  out["lyapunov"] = owning_array(std::move(table.lyapunov));
+  out["termination"] = py::cast(table.termination);
+  out["points"] = owning_array(std::move(table.points));
+  out["wall_time_s"] = wall_time;
+  out["threads"] = threads;
+  return out;
+}
+
+py::dict periodic_binding(const Scene& scene, const std::string& period, double phase,
+                          double transient, int max_iterations, double tolerance,
+                          py::object progress) {
+  PeriodicJob job;
+  job.period = period;
+  job.phase = phase;
+  job.transient = transient;
+  job.max_iterations = max_iterations;
+  job.tolerance = tolerance;
+  job.period_key = "period";
+  ProgressRelay relay(std::move(progress));
+  const PeriodicJobResult found = relay.run([&] { return find_periodic_orbit(scene, job); });
+  relay(1.0);
+  py::dict out;
+  out["meta"] = json_to_python(periodic_record(scene, found));
+  out["converged"] = found.result.converged;
+  out["termination"] = found.result.termination;
+  return out;
+}
+
+py::dict compare_binding(const Scene& scene, const std::string& models, double periods,
+                         double t_end, py::object progress) {
+  RunRequest request;
+  if (t_end != 0.0) {
+    request.periods = 0.0;
+    request.t_end = t_end;
+  } else {
+    request.periods = periods;
+  }
+  std::vector<std::string> skipped;
+  const std::vector<std::string> names = models_to_compare(
+      scene, models, [&skipped](const BadInput& bad) { skipped.emplace_back(bad.what()); });
+  ProgressRelay relay(std::move(progress));
+  request.progress = [&relay](double fraction) { relay(fraction); };
+  Comparison comparison = relay.run([&] { return compare_models(scene, names, request); });
+  const nlohmann::json numbers = comparison_numbers(comparison);
+  std::ostringstream impacts, contacts, section;
+  write_impacts_csv(impacts, comparison);
+  write_contacts_csv(contacts, comparison);
+  write_section_csv(section, comparison);
+  py::dict out;
+  out["numbers"] = json_to_python(numbers);
+  out["summary"] = comparison_summary(comparison, numbers);
+  out["impacts_csv"] = impacts.str();
+  out["contacts_csv"] = contacts.str();
+  out["section_csv"] = section.str();
+  out["skipped"] = py::cast(skipped);
+  out["period"] = comparison.period;
+  py::dict runs;
+  for (auto& run : comparison.runs) {
+    py::dict one;
+    one["meta"] = json_to_python(run_record(run.scene, run.output));
+    one["termination"] = run.output.termination;
+    one["events"] = event_array(std::move(run.output.events));
+    runs[py::str(run.model)] = one;
+  }
+  out["runs"] = runs;
+  return out;
+}
+
+// Work against precision on one scene (the CLI's `bench` does this for its
+// fixed cases): each method at each rtol (atol = atol_ratio rtol), errors
+// against bench_reference over reference_periods.
+py::dict bench_binding(const Scene& scene, std::vector<std::string> methods,
+                       const std::vector<double>& rtols, double atol_ratio, double periods,
+                       double reference_periods, std::size_t max_reference_impacts,
+                       int repetitions, py::object progress) {
+  if (methods.empty())
+    for (auto name : stepper_names)
+      if (name != "exact" || has_closed_form(scene)) methods.emplace_back(name);
+  for (const auto& method : methods) {
+    bool known = false;
+    for (auto name : stepper_names) known = known || name == method;
+    if (!known || (method == "exact" && !has_closed_form(scene)))
+      throw BadInput("methods", method, "not a stepper of this scene");
+  }
+  for (double rtol : rtols)
+    if (!(rtol > 0.0 && rtol < 1.0)) throw BadInput("rtols", std::to_string(rtol), "expected 0 < rtol < 1");
+  if (repetitions < 1) throw BadInput("repetitions", std::to_string(repetitions), "expected >= 1");
+  const double forcing_period = 2.0 * std::numbers::pi / scene.number("omega");
+  ProgressRelay relay(std::move(progress));
+  py::dict out;
+  std::vector<std::string> method_column;
+  std::vector<double> rtol_column, atol_column, seconds, wall_seconds, rhs, steps, time_error,
+      velocity_error;
+  std::vector<std::uint64_t> impacts, compared;
+  std::vector<std::string> termination;
+  const std::size_t total = methods.size() * rtols.size();
+  ReferenceImpacts reference;
+  relay.run([&] {
+    reference = bench_reference(scene, scene.number("t0") + reference_periods * forcing_period,
+                                max_reference_impacts);
+    std::size_t done = 0;
+    for (const auto& method : methods)
+      for (double rtol : rtols) {
+        const WorkPrecisionPoint point = measure_point(scene, method, rtol, atol_ratio * rtol,
+                                                       periods, repetitions, reference);
+        method_column.push_back(method);
+        rtol_column.push_back(point.rtol);
+        atol_column.push_back(point.atol);
+        impacts.push_back(point.impacts);
+        seconds.push_back(point.seconds_per_impact);
+        wall_seconds.push_back(point.wall_seconds_per_impact);
+        rhs.push_back(point.rhs_per_impact);
+        steps.push_back(point.steps_per_impact);
+        time_error.push_back(point.errors.time);
+        velocity_error.push_back(point.errors.velocity);
+        compared.push_back(point.errors.compared);
+        termination.push_back(point.termination);
+        relay(static_cast<double>(++done) / static_cast<double>(total));
+      }
+    return 0;
+  });
+  out["method"] = py::cast(method_column);
+  out["rtol"] = owning_array(std::move(rtol_column));
+  out["atol"] = owning_array(std::move(atol_column));
+  out["impacts"] = owning_array(std::move(impacts));
+  out["seconds_per_impact"] = owning_array(std::move(seconds));
+  out["wall_seconds_per_impact"] = owning_array(std::move(wall_seconds));
+  out["rhs_per_impact"] = owning_array(std::move(rhs));
+  out["steps_per_impact"] = owning_array(std::move(steps));
+  out["impact_time_error"] = owning_array(std::move(time_error));
+  out["impact_velocity_error"] = owning_array(std::move(velocity_error));
+  out["impacts_compared"] = owning_array(std::move(compared));
+  out["termination"] = py::cast(termination);
+  out["reference_method"] = reference.method;
+  out["reference_impacts"] = reference.impacts.size();
+  return out;
+}
+
+// Pseudo-arclength continuation of a period-n orbit (the CLI's `continue`):
+// per branch, the columns of branch.csv; all branches' bifurcation points as
+// the rows of points.csv.
+py::dict continue_binding(const Scene& scene, const std::string& parameter, double from, double to,
+                          int period, const std::string& section, bool switch_doubling,
+                          std::optional<std::vector<double>> start, double transient,
+                          int max_points, double tolerance, double max_step, py::object progress) {
+  const SectionSpec spec = parse_section(section, "section");
+  if (spec.kind != SectionKind::strobe)
+    throw BadInput("section", section,
+                   "continuation takes a stroboscopic section (strobe[:PHASE]) in this version");
+  if (period < 1 || period > 1000)
+    throw BadInput("period", std::to_string(period), "expected 1 to 1000");
+  if (max_points < 2 || max_points > 1000000)
+    throw BadInput("max_points", std::to_string(max_points), "expected 2 to 1000000");
+  if (!(transient >= 0.0 && transient <= 1e9))
+    throw BadInput("transient", std::to_string(transient), "expected 0 to 1e9");
+  if (start && start->size() != 2)
+    throw BadInput("start", std::to_string(start->size()) + " numbers",
+                   "expected Q,QDOT (two numbers)");
+  ContinuationJob job;
+  job.parameter = parameter;
+  job.from = from;
+  job.to = to;
+  job.period = period;
+  job.phase = spec.phase;
+  job.transient_periods = transient;
+  job.doublings = switch_doubling ? 3 : 0;  // the CLI's --switch: the cascade, up to 8n
+  if (start) {
+    job.has_start = true;
+    job.start = {(*start)[0], (*start)[1]};
+  }
+  job.numerics.max_points = max_points;
+  job.numerics.tolerance = tolerance;
+  job.numerics.max_step = max_step;
+  if (max_step > 0.0) job.numerics.initial_step = max_step;
+  ProgressRelay relay(std::move(progress));
+  // the continuation reports no progress of its own: the check runs once after it
+  const ContinuationJobResult result = relay.run([&] { return continue_orbit(scene, job); });
+  relay(1.0);
+
+  py::list branches;
+  std::vector<std::string> type, note;
+  std::vector<double> point_parameter, point_q, point_qdot, error_estimate, graze_time;
+  std::vector<std::complex<double>> point_multiplier1, point_multiplier2;
+  std::vector<int> point_period, point_branch, located, graze_witness;
+  for (std::size_t b = 0; b < result.branches.size(); ++b) {
+    const ContinuedBranch& continued = result.branches[b];
+    std::vector<double> value, q, qdot, min_impact_speed, min_flight_gap;
+    std::vector<int> impacts, contact_phases, stable, newton_iterations;
+    std::vector<std::complex<double>> multiplier1, multiplier2;
+    for (const BranchPoint& p : continued.result.branch) {
+      value.push_back(p.parameter);
+      q.push_back(p.state[0]);
+      qdot.push_back(p.state[1]);
+      impacts.push_back(p.impacts);
+      contact_phases.push_back(p.contact_phases);
+      stable.push_back(p.stable ? 1 : 0);
+      multiplier1.push_back(p.multipliers[0]);
+      multiplier2.push_back(p.multipliers[1]);
+      // branch.csv leaves an undefined speed or gap empty (NaN here)
+      min_impact_speed.push_back(std::isfinite(p.min_impact_speed) ? p.min_impact_speed : NAN);
+      min_flight_gap.push_back(std::isfinite(p.min_flight_gap) ? p.min_flight_gap : NAN);
+      newton_iterations.push_back(p.newton_iterations);
+    }
+    py::dict one;
+    one["period"] = continued.period;
+    one["stop_reason"] = continued.result.stop_reason;
+    one["stop_detail"] = continued.result.stop_detail;
+    one["map_evaluations"] = continued.result.map_evaluations;
+    one[py::str(parameter)] = owning_array(std::move(value));
+    one["q"] = owning_array(std::move(q));
+    one["qdot"] = owning_array(std::move(qdot));
+    one["impacts"] = owning_array(std::move(impacts));
+    one["contact_phases"] = owning_array(std::move(contact_phases));
+    one["stable"] = owning_array(std::move(stable));
+    one["multiplier1"] = owning_array(std::move(multiplier1));
+    one["multiplier2"] = owning_array(std::move(multiplier2));
+    one["min_impact_speed"] = owning_array(std::move(min_impact_speed));
+    one["min_flight_gap"] = owning_array(std::move(min_flight_gap));
+    one["newton_iterations"] = owning_array(std::move(newton_iterations));
+    branches.append(one);
+    for (const BifurcationPoint& p : continued.result.points) {
+      type.push_back(p.type);
+      point_parameter.push_back(p.parameter);
+      point_q.push_back(p.state[0]);
+      point_qdot.push_back(p.state[1]);
+      point_period.push_back(continued.period);
+      point_branch.push_back(static_cast<int>(b));
+      point_multiplier1.push_back(p.multipliers[0]);
+      point_multiplier2.push_back(p.multipliers[1]);
+      error_estimate.push_back(p.error_estimate);
+      located.push_back(p.located ? 1 : 0);
+      graze_time.push_back(p.graze_time);
+      graze_witness.push_back(p.graze_witness);
+      note.push_back(p.note);
+    }
+  }
+  py::dict points;
+  points["type"] = py::cast(type);
+  points[py::str(parameter)] = owning_array(std::move(point_parameter));
+  points["q"] = owning_array(std::move(point_q));
+  points["qdot"] = owning_array(std::move(point_qdot));
+  points["period"] = owning_array(std::move(point_period));
+  points["branch"] = owning_array(std::move(point_branch));
+  points["multiplier1"] = owning_array(std::move(point_multiplier1));
+  points["multiplier2"] = owning_array(std::move(point_multiplier2));
+  points["error_estimate"] = owning_array(std::move(error_estimate));
+  points["located"] = owning_array(std::move(located));
+  points["graze_time"] = owning_array(std::move(graze_time));
+  points["graze_witness"] = owning_array(std::move(graze_witness));
+  points["note"] = py::cast(note);
+  py::dict out;
+  out["available"] = result.available;
+  out["note"] = result.note;
+  out["branches"] = branches;
+  out["points"] = points;
+  return out;
+}
+
+py::list scene_keys(const Scene& scene) {
+  py::list keys;
+  for (const auto& spec : scene_schema(scene).keys) {
+    py::dict entry;
+    entry["key"] = std::string(spec.key);
+    entry["unit"] = std::string(spec.unit);
+    entry["help"] = std::string(spec.help);
+    entry["is_text"] = spec.is_text;
+    if (spec.is_text) {
+      py::list choices;
+      for (auto choice : spec.choices) choices.append(std::string(choice));
+      entry["choices"] = choices;
+    } else {
+      entry["lower"] = spec.lower;
+      entry["upper"] = spec.upper;
+      entry["lower_open"] = spec.lower_open;
+      entry["upper_open"] = spec.upper_open;
+    }
+    keys.append(entry);
+  }
+  return keys;
+}
+
+py::dict scene_values(const Scene& scene) {
+  py::dict values;
+  for (const auto& [key, value] : scene.values) {
+    if (const auto* number = std::get_if<double>(&value))
+      values[py::str(key)] = *number;
+    else
+      values[py::str(key)] = std::get<std::string>(value);
+  }
+  return values;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_impactlab, m) {
+  m.doc() = "impactlab's scene API (use the package impactlab, not this module)";
+
+  // bad input: ValueError whose message names the key and the value, as the CLI's line
+  py::register_exception_translator([](std::exception_ptr pointer) {
+    try {
+      if (pointer) std::rethrow_exception(pointer);
+    } catch (const BadInput& bad) {
+      PyErr_SetString(PyExc_ValueError, bad.what());
+    }
+  });
+
+  py::class_<PendingRunRecord>(m, "PendingRunRecord").def("meta", &PendingRunRecord::meta);
+
+  py::class_<Scene>(m, "Scene")
+      .def_readonly("name", &Scene::name)
+      .def_readonly("oscillator", &Scene::oscillator)
+      .def("values", &scene_values)
+      .def("keys", &scene_keys)
+      .def("record", [](const Scene& scene) { return json_to_python(scene_record(scene)); })
+      .def("copy", [](const Scene& scene) { return Scene(scene); });
+
+  m.def("builtin_scene_names", [] {
+    std::vector<std::string> names;
+    for (const auto& builtin : builtin_scenes()) names.emplace_back(builtin.name);
+    return names;
+  });
+  m.def("load_scene", [](const std::string& name) { return load_scene(name); });
+  m.def("apply_override", [](Scene& scene, const std::string& assignment) {
+    apply_override(scene, assignment);
+  });
+  m.def("simulate", &simulate_binding);
+  m.def("poincare", &poincare_binding);
+  m.def("sweep", &sweep_binding);
+  m.def("periodic", &periodic_binding);
+  m.def("compare", &compare_binding);
+  m.def("bench", &bench_binding);
+  m.def("continue_", &continue_binding);
+  m.def("event_kind_names", [] {
+    std::vector<std::string> names;
+    for (int kind = 0; kind <= static_cast<int>(EventKind::painleve); ++kind)
+      names.emplace_back(to_string(static_cast<EventKind>(kind)));
+    return names;
+  });
+}

@@ -1,0 +1,172 @@
+"""Bad input raises ValueError naming the key; a run can be cancelled from a
+progress callback or by Ctrl-C; the GIL is released during a run; a run
+stopped by a physical diagnostic returns its result and warns."""
+import math
+import os
+import signal
+import threading
+import time
+
+import pytest
+
+import impactlab
+
+
+@pytest.mark.parametrize("keys, named", [
+    ({"omegaa": 7.0}, "omegaa"),                 # unknown key
+    ({"e_n": 1.5}, "e_n"),                       # out of range
+    ({"V0": math.nan}, "V0"),                    # NaN
+    ({"V0": float("inf")}, "V0"),                # not finite
+    ({"V0": [1.0, 2.0]}, "V0"),                  # wrong type
+    ({"V0": True}, "V0"),                        # a bool is not a number
+    ({"integrator__method": "euler9"}, "integrator.method"),  # bad choice
+])
+def test_bad_scene_key_raises_value_error_naming_key_and_value(keys, named):
+    with pytest.raises(ValueError) as raised:
+        impactlab.scene("jin2003", **keys)
+    assert named in str(raised.value)
+    with pytest.raises(ValueError) as raised:
+        impactlab.simulate("jin2003", periods=1, **keys)
+    assert named in str(raised.value)
+
+
+def test_scene_message_equals_the_cli_set_message(cli, tmp_path):
+    import subprocess
+    completed = subprocess.run([os.environ["IMPACTLAB_CLI"], "simulate", "jin2003", "--set",
+                                "e_n=1.5", "--out", str(tmp_path / "x"), "--quiet"],
+                               capture_output=True, text=True, check=False)
+    assert completed.returncode == 2
+    with pytest.raises(ValueError) as raised:
+        impactlab.scene("jin2003", e_n=1.5)
+    assert str(raised.value) in completed.stderr
+
+
+def test_unknown_scene_raises_value_error():
+    with pytest.raises(ValueError, match="no_such_scene"):
+        impactlab.scene("no_such_scene")
+
+
+@pytest.mark.parametrize("call, named", [
+    (lambda: impactlab.simulate("jin2003", periods=-1), "periods"),
+    (lambda: impactlab.simulate("jin2003", periods=math.nan), "periods"),
+    (lambda: impactlab.simulate("jin2003", periods="10"), "periods"),
+    (lambda: impactlab.simulate("jin2003", sample=0), "sample"),
+    (lambda: impactlab.poincare("jin2003", section="sideways"), "section"),
+    (lambda: impactlab.poincare("jin2003", points=0), "points"),
+    (lambda: impactlab.sweep("jin2003", param="omega=7:6"), "param"),
+    (lambda: impactlab.sweep("jin2003", param="nokey=1:2:3"), "nokey"),
+    (lambda: impactlab.sweep("jin2003", param="omega=6:7:3", direction="sideways"), "direction"),
+    (lambda: impactlab.sweep("jin2003", param="omega=6:7:3", threads=0), "threads"),
+    (lambda: impactlab.periodic("jin2003", period="two"), "period"),
+    (lambda: impactlab.compare("jin2003", models=["newton", "newton"]), "models"),
+    (lambda: impactlab.simulate("jin2003", progress=42), "progress"),
+    (lambda: impactlab.simulate("jin2003", period=5), "period"),  # an unknown keyword
+    (lambda: impactlab.sweep("jin2003", param="omega=6:7:3", point=5), "point"),
+    (lambda: impactlab.continue_("linear_impact", param="omega=2"), "param"),
+    (lambda: impactlab.continue_("linear_impact", param="omega=2:nan"), "param"),
+    (lambda: impactlab.continue_("linear_impact", param="nokey=2:3"), "nokey"),
+    (lambda: impactlab.continue_("linear_impact", param="omega=2:3", section="impact"), "section"),
+    (lambda: impactlab.continue_("linear_impact", param="omega=2:3", start=[0.1]), "start"),
+])
+def test_bad_option_raises_value_error_naming_it(call, named):
+    with pytest.raises(ValueError) as raised:
+        call()
+    assert named in str(raised.value)
+
+
+def test_progress_callback_is_called_with_growing_fractions():
+    fractions = []
+    impactlab.simulate("jin2003", periods=50, progress=fractions.append)
+    assert len(fractions) >= 10
+    assert fractions == sorted(fractions) and 0.0 < fractions[-1] <= 1.0
+
+
+def test_exception_in_progress_callback_cancels_the_run():
+    calls = []
+
+    def interrupt(fraction):
+        calls.append(fraction)
+        if len(calls) == 3:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        impactlab.simulate("jin2003", periods=100000, progress=interrupt)
+    assert len(calls) == 3  # stopped at once, not after the run
+    # the interpreter and the module are fine afterwards
+    assert len(impactlab.simulate("jin2003", periods=5).events) > 0
+
+
+def test_sweep_is_cancelled_by_its_progress_callback():
+    def interrupt(fraction):
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        impactlab.sweep("jin2003", param="omega=6:8:40", points=5, transient=5, threads=2,
+                        progress=interrupt)
+    # the threads have stopped and the module runs the next sweep as usual
+    assert len(impactlab.sweep("jin2003", param="omega=6:8:4", points=5, transient=5,
+                               threads=2).summary["period"]) == 4
+
+
+def test_ctrl_c_interrupts_a_long_run():
+    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    started = time.monotonic()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            # about 100 s of run, looked at each hundredth (about 1 s)
+            impactlab.simulate("jin2003", periods=2_000_000)
+    finally:
+        timer.cancel()
+    assert time.monotonic() - started < 30.0
+
+
+def test_gil_is_released_during_a_run():
+    ticks = []
+    running = threading.Event()
+
+    def count():
+        while not running.is_set():
+            pass
+        while running.is_set():
+            ticks.append(time.monotonic())
+            time.sleep(0.001)
+
+    counter = threading.Thread(target=count)
+    counter.start()
+    seen = []
+
+    def progress(fraction):
+        running.set()
+        seen.append(len(ticks))
+
+    # with no callback the run takes the GIL only every 20 ms; with one, at
+    # each hundredth: the other thread must advance between hundredths
+    impactlab.simulate("jin2003", periods=20000, progress=progress)
+    running.clear()
+    counter.join()
+    assert seen[-1] - seen[0] > 10, seen
+
+
+def test_physical_diagnostic_returns_result_and_warns():
+    with pytest.warns(impactlab.PhysicalDiagnosticWarning, match="stopped_by_model"):
+        run = impactlab.simulate("jin2003", mu=15)
+    assert run.termination == "stopped_by_model"
+    assert run.meta["run"]["termination"] == "stopped_by_model"
+    assert run.events.kind_names()[-1] == "painleve"
+
+
+def test_scenes_lists_the_builtin_scenes():
+    listed = impactlab.scenes()
+    assert "jin2003" in [s["name"] for s in listed]
+    assert all(s["oscillator"] for s in listed)
+
+
+def test_bench_error_falls_with_tolerance_against_the_closed_form():
+    result = impactlab.bench("linear_impact", methods=["rk8pd"], rtols=[1e-5, 1e-11], periods=20,
+                             reference_periods=10, max_reference_impacts=10)
+    assert result.reference_method == "closed_form"
+    assert list(result.impacts_compared) == [result.reference_impacts] * 2
+    assert result.impact_time_error[1] < result.impact_time_error[0]
+    with pytest.raises(ValueError, match="methods"):
+        impactlab.bench("jin2003", methods=["exact"])

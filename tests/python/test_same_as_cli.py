@@ -1,0 +1,206 @@
+"""Every entry point gives the numbers of the CLI's files bit for bit, for
+the same scene and options."""
+import os
+import subprocess
+
+import pytest
+
+import impactlab
+from conftest import read_csv, read_json, same_numbers
+
+EVENT_COLUMNS = ["t", "wall", "q", "qdot_before", "qdot_after", "normal_impulse",
+                 "tangential_velocity", "normal_force", "friction_work", "instantaneous_residual",
+                 "sliding_residual", "tangential_velocity_after", "accumulation_error"]
+
+# what meta.json holds that a second run cannot reproduce, or that only a file has
+FILE_ONLY = {"command", "created_utc", "files", "wall_time_s"}
+
+
+def without(document, keys):
+    return {k: v for k, v in document.items() if k not in keys}
+
+
+def test_simulate_equals_cli_events_trajectory_and_meta(cli):
+    out = cli("simulate", "jin2003", "--set", "V0=4.163", "--periods", "30", "--sample", "0.05")
+    run = impactlab.simulate("jin2003", V0=4.163, periods=30, sample=0.05)
+    events = read_csv(out / "events.csv")
+    assert len(run.events) == len(events["t"]) > 10
+    for column in EVENT_COLUMNS:
+        same_numbers(events[column], run.events[column])
+    assert list(run.events.kind_names()) == events["kind"]
+    trajectory = read_csv(out / "trajectory.csv")
+    same_numbers(trajectory["t"], run.trajectory.t)
+    same_numbers(trajectory["q"], run.trajectory.q)
+    same_numbers(trajectory["qdot"], run.trajectory.qdot)
+    assert run.trajectory.mode == trajectory["mode"]
+    assert without(read_json(out / "meta.json"), FILE_ONLY) == without(run.meta, FILE_ONLY)
+
+
+def test_simulate_the_issue_example_equals_cli_events(cli):
+    # chattering, accumulations and contact phases: every event column, bit for bit
+    out = cli("simulate", "jin2003", "--set", "V0=4.163", "--periods", "100")
+    run = impactlab.simulate("jin2003", V0=4.163, periods=100)
+    events = read_csv(out / "events.csv")
+    assert "accumulation" in events["kind"] and "contact_start" in events["kind"]
+    assert len(run.events) == len(events["t"])
+    for column in EVENT_COLUMNS:
+        same_numbers(events[column], run.events[column])
+    assert list(run.events.kind_names()) == events["kind"]
+
+
+def test_scenes_equal_cli_list():
+    listed = subprocess.run([os.environ["IMPACTLAB_CLI"], "scenes"], capture_output=True,
+                            text=True, check=True).stdout.splitlines()
+    names = [line.split()[0] for line in listed]
+    oscillators = [line.split()[1] for line in listed]
+    assert [s["name"] for s in impactlab.scenes()] == names
+    assert [s["oscillator"] for s in impactlab.scenes()] == oscillators
+
+
+def test_scene_equals_cli_set(cli):
+    out = cli("simulate", "jin2003", "--set", "V0=4.163", "--set", "omega=7", "--periods", "1")
+    loaded = impactlab.scene("jin2003", V0=4.163, omega=7)
+    assert loaded.record() == read_json(out / "meta.json")["scene"]
+    assert loaded.values()["V0"] == 4.163 and loaded.values()["omega"] == 7.0
+
+
+def test_simulate_event_array_is_a_view_without_copy():
+    run = impactlab.simulate("jin2003", periods=5)
+    assert run.events.base is not None
+    assert not run.events.flags["OWNDATA"]
+    assert run.events.dtype.names[:4] == ("t", "kind", "wall", "q")
+
+
+def test_dotted_keys_two_spellings_equal_cli(cli):
+    out = cli("simulate", "jin2003", "--set", "initial.theta=0.01", "--periods", "10")
+    events = read_csv(out / "events.csv")
+    for run in (impactlab.simulate("jin2003", initial__theta=0.01, periods=10),
+                impactlab.simulate("jin2003", periods=10, **{"initial.theta": 0.01})):
+        same_numbers(events["t"], run.events["t"])
+        same_numbers(events["qdot_after"], run.events["qdot_after"])
+
+
+def test_poincare_equals_cli(cli):
+    out = cli("poincare", "jin2003", "--section", "impact", "--points", "20", "--transient", "20")
+    section = impactlab.poincare("jin2003", section="impact", points=20, transient=20)
+    rows = read_csv(out / "poincare.csv")
+    assert len(rows["t"]) == 20
+    for column in ("k", "t", "q", "qdot", "wall", "phase"):
+        same_numbers(rows[column], getattr(section, column))
+
+
+def test_sweep_1d_both_directions_equals_cli(cli):
+    out = cli("sweep", "jin2003", "--param", "omega=6.5:7.5:4", "--direction", "both",
+              "--points", "8", "--transient", "10", "--threads", "2")
+    result = impactlab.sweep("jin2003", param="omega=6.5:7.5:4", direction="both", points=8,
+                             transient=10, threads=2)
+    bifurcation = read_csv(out / "bifurcation.csv")
+    summary = read_csv(out / "summary.csv")
+    for column in ("omega", "k", "t", "q", "qdot", "wall"):
+        same_numbers(bifurcation[column], result.bifurcation[column])
+    assert result.bifurcation["direction"] == bifurcation["direction"]
+    for column in ("omega", "period", "impacts_per_period", "contact", "lyapunov", "points"):
+        same_numbers(summary[column], result.summary[column])
+    assert result.summary["termination"] == summary["termination"]
+    assert result.summary["direction"] == summary["direction"]
+    assert result.definition == read_json(out / "meta.json")["sweep"]
+
+
+def test_sweep_2d_map_equals_cli(cli):
+    out = cli("sweep", "jin2003", "--param", "omega=6.5:7.5:3", "--param", "V0=3.5:4.5:2",
+              "--points", "6", "--transient", "5")
+    result = impactlab.sweep("jin2003", param=["omega=6.5:7.5:3", "V0=3.5:4.5:2"], points=6,
+                             transient=5)
+    classes = read_csv(out / "classes.csv")
+    for column in ("omega", "V0", "period", "impacts_per_period", "contact", "lyapunov"):
+        same_numbers(classes[column], result.summary[column])
+
+
+def test_periodic_equals_cli(cli):
+    out = cli("periodic", "jin2003", "--transient", "50")
+    orbit = impactlab.periodic("jin2003", transient=50)
+    expected = read_json(out / "periodic.json")
+    assert without(expected, FILE_ONLY) == without(orbit.meta, FILE_ONLY)
+    assert orbit.multipliers.shape == (2,)
+
+
+def test_compare_equals_cli(cli):
+    out = cli("compare", "jin2003", "--models", "newton,rigid", "--periods", "10")
+    comparison = impactlab.compare("jin2003", models=["newton", "rigid"], periods=10)
+    for name, text in (("compare_impacts.csv", comparison.impacts_csv),
+                       ("compare_contacts.csv", comparison.contacts_csv),
+                       ("compare_section.csv", comparison.section_csv)):
+        assert (out / name).read_text() == text
+    # the summary's table and the numbers hold each run's wall time: all else is equal
+    def table_without_wall_time(text):
+        return [line.rsplit("|", 2)[0] if line.startswith("|") else line
+                for line in text.splitlines()]
+
+    assert table_without_wall_time((out / "summary.md").read_text()) == \
+        table_without_wall_time(comparison.summary)
+    numbers = read_json(out / "compare.json")["numbers"]
+    for model in numbers["models"].values():
+        model.pop("wall_time_s")
+    for model in comparison.numbers["models"].values():
+        model.pop("wall_time_s")
+    assert numbers == comparison.numbers
+    assert set(numbers["models"]) == {"newton", "rigid"}
+    impacts = read_csv(out / "compare_impacts.csv")
+    for model, run in comparison.runs.items():
+        impact_times = run["events"]["t"][run["events"].kind_names() == "impact"]
+        same_numbers([t for t in impacts["t_" + model] if t == t], impact_times)
+
+
+def test_bench_equals_cli_work_precision(tmp_path):
+    # the CLI's quick study; its cases linear_impact and jin2003_periodic are the
+    # built-in scenes as they are (the first against the closed form, the second
+    # against the quad-precision Taylor reference); work_precision.csv prints
+    # 6 significant digits, the counts in full
+    out = tmp_path / "bench"
+    subprocess.run([os.environ["IMPACTLAB_CLI"], "bench", "--quick", "--no-scipy", "--no-plots",
+                    "--quiet", "--out", str(out)], check=True)
+    columns = read_csv(out / "work_precision.csv")
+    all_rows = [dict(zip(columns, values)) for values in zip(*columns.values())]
+    for case, scene_name, reference in (("linear_impact", "linear_impact", "closed_form"),
+                                        ("jin2003_periodic", "jin2003", "taylor_quad+rk8pd")):
+        rows = [row for row in all_rows if row["case"] == case and row["method"] != "exact"]
+        methods = sorted({row["method"] for row in rows})
+        result = impactlab.bench(scene_name, methods=methods, rtols=(1e-6, 1e-8, 1e-10),
+                                 periods=50, reference_periods=20, max_reference_impacts=20)
+        assert result.reference_method == reference
+        ours = {(m, r): i for i, (m, r) in enumerate(zip(result.method, result.rtol))}
+        assert len(ours) == len(rows) > 0
+        for row in rows:
+            i = ours[(row["method"], row["rtol"])]
+            assert row["impacts"] == result.impacts[i]
+            assert row["compared_impacts"] == result.impacts_compared[i]
+            for column, ours_column in (("rhs_per_impact", result.rhs_per_impact),
+                                        ("steps_per_impact", result.steps_per_impact),
+                                        ("max_time_error", result.impact_time_error),
+                                        ("max_velocity_error", result.impact_velocity_error)):
+                assert row[column] == float(format(ours_column[i], ".6g")), (case, row, column)
+
+
+def test_continue_equals_cli_branch_and_points(cli):
+    out = cli("continue", "linear_impact", "--set", "sigma=0.2", "--param", "omega=2:2.5",
+              "--switch")
+    result = impactlab.continue_("linear_impact", sigma=0.2, param="omega=2:2.5", switch=True)
+    branch = read_csv(out / "branch.csv")
+    rows = 0
+    for number, one in enumerate(result.branches):
+        mine = [i for i, b in enumerate(branch["branch"]) if b == number]
+        rows += len(mine)
+        pick = lambda column: [branch[column][i] for i in mine]  # noqa: E731
+        for column in ("omega", "q", "qdot", "impacts", "contact_phases", "stable",
+                       "min_impact_speed", "min_flight_gap", "newton_iterations"):
+            same_numbers(pick(column), one[column])
+        same_numbers(pick("period"), [one["period"]] * len(mine))
+        for k in (1, 2):
+            same_numbers(pick("multiplier{}_re".format(k)), one["multiplier{}".format(k)].real)
+            same_numbers(pick("multiplier{}_im".format(k)), one["multiplier{}".format(k)].imag)
+    assert rows == len(branch["omega"]) > 10
+    points = read_csv(out / "points.csv")
+    assert points["type"] == result.points["type"] and "period_doubling" in points["type"]
+    for column in ("omega", "q", "qdot", "period", "branch", "error_estimate", "located",
+                   "graze_time", "graze_witness"):
+        same_numbers(points[column], result.points[column])
