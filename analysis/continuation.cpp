@@ -263,6 +263,14 @@ class Driver {
     node.orbit = orbit;
   }
 
+  // a time since the working section as a time since the requested one (s)
+  double time_since_requested_section(double t, const OrbitEvaluation& orbit) const {
+    if (phase_ == problem_.phase || !(orbit.omega > 0.0)) return t;
+    double shift = std::remainder(phase_ - problem_.phase, 2.0 * std::numbers::pi);
+    if (shift < 0.0) shift += 2.0 * std::numbers::pi;
+    return std::fmod(t + shift / orbit.omega, orbit.span);
+  }
+
   // the state on the requested section
   OrbitPoint reported_state(const Vec3& y) const {
     if (phase_ == problem_.phase) return state_of(y);
@@ -367,6 +375,7 @@ class Driver {
       if (point.type == "fold" && a.tangent[2] * b.tangent[2] > 0.0) point.type = "branch_point";
       result_.points.push_back(point);
     }
+    for (const ParameterBoundary& boundary : problem_.boundaries) locate_boundary(boundary, a, b);
     if (a.orbit.contact_phases != b.orbit.contact_phases) {
       BifurcationPoint point;
       point.type = b.orbit.contact_phases > a.orbit.contact_phases ? "contact_onset" : "contact_end";
@@ -377,6 +386,38 @@ class Driver {
       point.note = "detected between two branch points";
       result_.points.push_back(point);
     }
+  }
+
+  // A parameter boundary crossed between nodes a and b: its root in p (TOMS
+  // 748 on the boundary's own function), and the orbit corrected there at
+  // fixed p from the point of the secant a–b at that p.
+  void locate_boundary(const ParameterBoundary& boundary, const Node& a, const Node& b) {
+    const double pa = a.y[2] * scale_, pb = b.y[2] * scale_;
+    const double fa = boundary.value(pa), fb = boundary.value(pb);
+    if (!(fa * fb < 0.0)) return;
+    BifurcationPoint point;
+    point.type = boundary.type;
+    point.note = boundary.note;
+    std::uintmax_t iterations = 100;
+    const auto bracket = boost::math::tools::toms748_solve(
+        [&](double p) { return boundary.value(p); }, std::min(pa, pb), std::max(pa, pb),
+        pa < pb ? fa : fb, pa < pb ? fb : fa, boost::math::tools::eps_tolerance<double>(52),
+        iterations);
+    point.parameter = 0.5 * (bracket.first + bracket.second);
+    point.error_estimate = bracket.second - bracket.first;
+    const double fraction = (point.parameter - pa) / (pb - pa);
+    Vec3 guess = a.y + fraction * (b.y - a.y);
+    guess[2] = point.parameter / scale_;
+    Correction c = correct(guess, Vec3(0.0, 0.0, 1.0), guess, {}, nullptr);
+    if (c.converged) {
+      point.state = reported_state(c.y);
+      point.multipliers = multipliers_of(c.orbit.monodromy);
+      point.located = true;
+    } else {
+      point.state = reported_state(guess);
+      point.note += " (the orbit there interpolated: the corrector failed)";
+    }
+    result_.points.push_back(point);
   }
 
   // The root of a test function on the arclength from node a, each trial
@@ -512,7 +553,7 @@ class Driver {
         point.multipliers = multipliers_of(orbit.monodromy);
         point.error_estimate = std::max(std::fabs(last_parameter_step) * scale_,
                                         request_.tolerance * (1.0 + std::fabs(z[2] * scale_)));
-        point.graze_time = z[3];
+        point.graze_time = time_since_requested_section(z[3], orbit);
         point.graze_witness = witness;
         point.located = true;
         solved_point = Vec3(z[0], z[1], z[2]);

@@ -76,6 +76,16 @@ struct GapSample {
   double rate = 0.0;   // its time derivative along the flow
 };
 
+// A boundary that depends on the parameter alone, reported where the branch
+// crosses it (a sign change of `value`) and located exactly (the root of
+// `value`, then the orbit corrected there): the pendulum's V0·ω = g, below
+// which no contact phase can exist.
+struct ParameterBoundary {
+  std::string type;  // its type in points.csv
+  std::string note;
+  std::function<double(double p)> value;
+};
+
 // The section is ωt ≡ phase (mod 2π); the driver may move it off an impact
 // that comes too close to it (where the stroboscopic map jumps) and reports
 // every state on the requested `phase`.
@@ -95,6 +105,7 @@ struct ContinuationProblem {
       transport;
   double phase = 0.0;                // rad: the requested section
   double forcing_period_at_p = 0.0;  // nT at the start (s): the scale of the grazing window
+  std::vector<ParameterBoundary> boundaries;  // reported where the branch crosses them
 };
 
 struct ContinuationRequest {
@@ -148,6 +159,29 @@ struct ContinuationResult {
   int map_evaluations = 0;
 };
 
+// A point of a two-parameter curve of a fold, period doubling or grazing
+// point (analysis/curve_continuation.hpp).
+struct CurvePoint {
+  double p1 = 0.0, p2 = 0.0;
+  OrbitPoint state{};                                  // on the requested section
+  std::array<std::complex<double>, 2> multipliers{};   // largest modulus first
+  double graze_time = std::numeric_limits<double>::quiet_NaN();  // s since the requested section
+  int impacts = 0;
+  int newton_iterations = 0;
+  double step = 0.0;                                   // the arclength that reached it
+};
+
+struct CurveResult {
+  std::string type;
+  std::vector<CurvePoint> curve;
+  // end_of_range (p₂ reached to2), left_range (p₁ left its range),
+  // branch_point (the corrector fails below the smallest step), max_points,
+  // start_not_converged
+  std::string stop_reason = "end_of_range";
+  std::string stop_detail;
+  int map_evaluations = 0;
+};
+
 // Corrects `request.start` onto the orbit at p = from (Newton at fixed p) and
 // continues the branch towards `to`.
 ContinuationResult continue_branch(const ContinuationProblem& problem,
@@ -173,6 +207,14 @@ struct ContinuationJob {
   OrbitPoint start{};
   int doublings = 0;               // period doublings to switch at (the cascade followed)
   ContinuationRequest numerics;    // from, to and start are set from the fields above
+  // a two-parameter curve: with `second_parameter` set, the branch runs at
+  // second_parameter = second_from, and the curve of the first located point
+  // of `curve_type` (fold, period_doubling or grazing; empty: the first of
+  // any) is followed in (parameter, second_parameter) from second_from
+  // towards second_to, within [from, to] in the first
+  std::string second_parameter;
+  double second_from = 0.0, second_to = 1.0;
+  std::string curve_type;
 };
 
 struct ContinuedBranch {
@@ -184,6 +226,9 @@ struct ContinuationJobResult {
   bool available = false;  // false: the oscillator/model has no Jacobians (see note)
   std::string note;
   std::vector<ContinuedBranch> branches;  // the first, then each doubled one
+  bool has_curve = false;                 // a curve was asked for and a point to start it found
+  CurveResult curve;                      // the two-parameter curve (job.second_parameter)
+  std::string curve_note;                 // why there is no curve, where one was asked for
 };
 
 // The eigenvector of M for the real multiplier nearest `multiplier`, unit length.

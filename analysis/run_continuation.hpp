@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "analysis/continuation.hpp"
+#include "analysis/curve_continuation.hpp"
 #include "analysis/flow_setup.hpp"
 #include "analysis/variational.hpp"
 #include "core/simulator.hpp"
@@ -285,6 +286,64 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
   return problem;
 }
 
+// The curve of the first located fold, period doubling or grazing point (of
+// job.curve_type where given) of the first branch, in (job.parameter,
+// job.second_parameter), into result.curve (result.curve_note says why not).
+template <HasJacobian System, class SystemAt>
+void continue_curve_of(ContinuationJobResult& result, SystemAt system_at,
+                       typename System::Mode flight_mode, const Scene& scene,
+                       const ContinuationJob& job, const FlowSetup& setup, double omega) {
+  const ContinuationResult& branch = result.branches.front().result;
+  const auto wanted = [&](const BifurcationPoint& p) {
+    if (!p.located) return false;
+    const std::string type = p.type == "branch_point" ? "fold" : p.type;
+    if (!job.curve_type.empty()) return type == job.curve_type;
+    return type == "fold" || type == "period_doubling" || type == "grazing";
+  };
+  const auto found = std::find_if(branch.points.begin(), branch.points.end(), wanted);
+  if (found == branch.points.end()) {
+    result.curve_note = "no located " +
+                        (job.curve_type.empty() ? std::string("fold, period doubling or grazing")
+                                                : job.curve_type) +
+                        " point on the branch to start the curve from";
+    return;
+  }
+  CurveRequest request;
+  request.type = found->type == "branch_point" ? "fold" : found->type;
+  request.from1 = job.from;
+  request.to1 = job.to;
+  request.from2 = job.second_from;
+  request.to2 = job.second_to;
+  request.p1 = found->parameter;
+  request.state = found->state;
+  request.graze_time = found->graze_time;
+  request.graze_witness = found->graze_witness;
+  request.max_points = job.numerics.max_points;
+  request.tolerance = job.numerics.tolerance;
+  // the branch's largest step, as a fraction of the first parameter's range
+  if (job.numerics.max_step > 0.0) request.max_step = job.numerics.max_step / std::fabs(job.to - job.from);
+  TwoParameterProblem problem;
+  problem.at = [scene, job, system_at, flight_mode, setup, omega](double p2) {
+    auto make_system = [scene, job, system_at, p2](double p1) {
+      Scene at = scene;
+      at.values[job.parameter] = p1;
+      at.values[job.second_parameter] = p2;
+      return system_at(at);
+    };
+    return section_map_problem<System>(make_system, flight_mode, setup, job.phase, job.period,
+                                       omega);
+  };
+  result.curve = continue_curve(problem, request);
+  result.has_curve = true;
+}
+
+// A boundary in terms of the scene (ParameterBoundary): `value(scene)` changes
+// sign where it is crossed, as a function of the continued key alone.
+struct SceneBoundary {
+  std::string type, note;
+  double (*value)(const Scene& scene) = nullptr;
+};
+
 // A continuation from a scene: the start from a transient from the scene's
 // initial state at p = from (or the job's start), the branch, then, for each
 // period doubling asked for, the doubled orbit's branch from the first period
@@ -293,8 +352,12 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
 template <HybridSystem System, class SystemAt>
 ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode flight_mode,
                                        const typename System::State& initial_state,
-                                       const Scene& scene, const ContinuationJob& job) {
+                                       const Scene& job_scene, const ContinuationJob& job,
+                                       const std::vector<SceneBoundary>& boundaries = {}) {
   ContinuationJobResult result;
+  // a two-parameter job runs its branch at second_parameter = second_from
+  Scene scene = job_scene;
+  if (!job.second_parameter.empty()) scene.values[job.second_parameter] = job.second_from;
   if constexpr (!HasJacobian<System>) {
     result.note = "this oscillator/model has no Jacobians";
     return result;
@@ -331,8 +394,17 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
         at.values[parameter] = p;
         return system_at(at);
       };
-      return section_map_problem<System>(make_system, flight_mode, setup, job.phase, period,
-                                         omega);
+      ContinuationProblem problem = section_map_problem<System>(make_system, flight_mode, setup,
+                                                                job.phase, period, omega);
+      for (const SceneBoundary& boundary : boundaries)
+        problem.boundaries.push_back(
+            {boundary.type, boundary.note,
+             [scene, parameter = job.parameter, value = boundary.value](double p) {
+               Scene at = scene;
+               at.values[parameter] = p;
+               return value(at);
+             }});
+      return problem;
     };
     int period = job.period;
     result.branches.push_back({period, continue_branch(problem_for(period), request)});
@@ -355,6 +427,8 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
           {period, continue_branch_from(problem_for(period), doubled, doubling_point.state,
                                         doubling_point.parameter, {v[0], v[1], 0.0})});
     }
+    if (!job.second_parameter.empty())
+      continue_curve_of<System>(result, system_at, flight_mode, scene, job, setup, omega);
     return result;
   }
 }

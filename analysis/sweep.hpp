@@ -46,6 +46,11 @@ struct SweepPlan {
   SectionRequest section;       // transient, points, section, Lyapunov
   double period_tolerance = 1e-6;  // relative distance under which section points repeat
   int max_period = 16;             // longest period looked for (section-map iterations)
+  // each point starts from the previous point's final state (the attractor
+  // followed along a row); false: every point from the scene's own initial
+  // state, which the axes may set (basins of attraction)
+  bool follow_attractor = true;
+  double attractor_tolerance = 1e-4;  // basins: relative distance of two attractors' canonical points
 };
 
 // What a sweep needs of the scene's oscillator: its schema (to validate each

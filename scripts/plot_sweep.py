@@ -5,6 +5,8 @@
     plot_sweep.py classes     classes.csv     out.png PARAM1 PARAM2
     plot_sweep.py poincare    poincare.csv    out.png QNAME
     plot_sweep.py continuation branch.csv     out.png PARAM QNAME [bifurcation.csv]
+    plot_sweep.py curve        curve.csv      out.png PARAM1 PARAM2 [classes.csv]
+    plot_sweep.py basins       basins.csv     out.png XKEY YKEY
 
 bifurcation: the section's q against the parameter, up and down sweeps in two
 colours (hysteresis shows where they differ). classes: a colour map of the
@@ -93,6 +95,16 @@ def main(argv):
         sys.path.insert(0, __import__("os").path.dirname(__file__))
         import plot_continuation
         plot_continuation.main([argv[0], csv, png, *names])
+        return
+    if kind == "basins":  # scripts/plot_basins.py
+        sys.path.insert(0, __import__("os").path.dirname(__file__))
+        import plot_basins
+        plot_basins.main([argv[0], csv, png, *names])
+        return
+    if kind == "curve":  # scripts/plot_curve.py
+        sys.path.insert(0, __import__("os").path.dirname(__file__))
+        import plot_curve
+        plot_curve.main([argv[0], csv, png, *names])
         return
     {"bifurcation": bifurcation, "classes": classes, "poincare": poincare}[kind](csv, png, *names)
 

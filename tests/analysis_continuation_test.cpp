@@ -12,6 +12,13 @@
 //   Γ² = (π(1 − r)/(1 + r))² + (2(1 + r²)/(1 + r)²)².
 // The located points must agree to 1e-9 relative in the parameter; stable
 // branch points agree with the brute-force section (sweep) and `periodic`.
+// A Neimark–Sacker point is checked on a synthetic rotating map whose fixed
+// point and multipliers are known (no impact oscillator here has one in
+// closed form). Two-parameter curves (analysis/curve_continuation.hpp) are checked point by
+// point against the same closed forms: the ball's period-doubling amplitude
+// as a function of r, the linear oscillator's period doubling in (ω, r), and
+// its impact-velocity grazing A/√((1 − ω²)² + (2ζω)²) = σ in (ω, σ).
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <complex>
@@ -347,6 +354,172 @@ TEST(Continuation, StableBranchPointsAgreeWithTheSweepSectionAndPeriodic) {
     ++compared;
   }
   EXPECT_GE(compared, 3);
+}
+
+// jin2003 (Model N, V0 = 1.5 m/s, g = 9.81 m/s²): the pivot's peak
+// acceleration V0·ω reaches g at ω = g/V0, below which no contact phase can
+// exist; the branch reports where it crosses it.
+TEST(Continuation, PendulumBranchReportsTheContactBoundaryAtOmegaEqualToGOverV0) {
+  const Scene scene = impactlab::load_scene("jin2003");
+  const auto job = continue_scene(scene, "omega", 5.0, 9.0);
+  const auto boundaries = points_of_type(job.branches.at(0).result, "contact_boundary");
+  ASSERT_EQ(boundaries.size(), 1u);
+  const double expected = scene.number("g") / scene.number("V0");
+  EXPECT_NEAR(boundaries[0].parameter, expected, 1e-12 * expected);
+  EXPECT_TRUE(boundaries[0].located) << boundaries[0].note;
+  // the orbit there: the branch's own, between its neighbours
+  const auto& branch = job.branches[0].result.branch;
+  const auto after = std::find_if(branch.begin(), branch.end(),
+                                  [&](const auto& p) { return p.parameter > expected; });
+  ASSERT_NE(after, branch.end());
+  ASSERT_NE(after, branch.begin());
+  const auto before = after - 1;
+  const double lower = std::min(before->state[0], after->state[0]) - 1e-6;
+  const double upper = std::max(before->state[0], after->state[0]) + 1e-6;
+  EXPECT_GE(boundaries[0].state[0], lower);
+  EXPECT_LE(boundaries[0].state[0], upper);
+}
+
+// The driver on a map with a known Neimark–Sacker point: P(x; p) = c(p) +
+// ρ(p) R(θ) (x − c(p)), a rotation by θ = 1 rad scaled by ρ(p) = 0.5 + p²
+// about c(p) = (sin p, p²). Its fixed point is c(p), its multipliers
+// ρ e^{±iθ}, a complex pair through the unit circle at p = √0.5.
+TEST(Continuation, NeimarkSackerOfARotatingMapAtItsClosedForm) {
+  constexpr double theta = 1.0;
+  auto centre = [](double p) { return std::array<double, 2>{std::sin(p), p * p}; };
+  impactlab::ContinuationProblem problem;
+  problem.phase = 0.0;
+  problem.forcing_period_at_p = two_pi;
+  problem.evaluate = [&](const impactlab::OrbitPoint& x, double p, double, bool,
+                         const impactlab::ContactWindow&) {
+    impactlab::OrbitEvaluation e;
+    const double rho = 0.5 + p * p;
+    const auto c = centre(p);
+    const double u = x[0] - c[0], v = x[1] - c[1];
+    e.completed = true;
+    e.image = {c[0] + rho * (std::cos(theta) * u - std::sin(theta) * v),
+               c[1] + rho * (std::sin(theta) * u + std::cos(theta) * v)};
+    e.monodromy = {{{rho * std::cos(theta), -rho * std::sin(theta)},
+                    {rho * std::sin(theta), rho * std::cos(theta)}}};
+    e.span = two_pi;
+    e.omega = 1.0;
+    return e;
+  };
+  problem.gap_at = [](const impactlab::OrbitPoint&, double, double,
+                      const impactlab::ContactWindow&, double) { return impactlab::GapSample{}; };
+  problem.transport = [](const impactlab::OrbitPoint& x, double, double, double) {
+    return std::optional<impactlab::OrbitPoint>(x);
+  };
+  impactlab::ContinuationRequest request;
+  request.from = 0.2;
+  request.to = 1.2;
+  request.start = {0.1, 0.1};  // a guess; Newton finds c(0.2)
+  const auto result = impactlab::continue_branch(problem, request);
+  EXPECT_EQ(result.stop_reason, "end_of_range") << result.stop_detail;
+  const auto points = points_of_type(result, "neimark_sacker");
+  ASSERT_EQ(points.size(), 1u);
+  const double expected = std::sqrt(0.5);
+  EXPECT_TRUE(points[0].located);
+  EXPECT_NEAR(points[0].parameter, expected, 1e-12);
+  EXPECT_NEAR(std::abs(points[0].multipliers[0]), 1.0, 1e-12);
+  EXPECT_NEAR(std::fabs(std::arg(points[0].multipliers[0])), theta, 1e-12);
+  EXPECT_NEAR(points[0].state[0], centre(expected)[0], 1e-10);
+  EXPECT_NEAR(points[0].state[1], centre(expected)[1], 1e-10);
+  // stable below, unstable above
+  for (const auto& point : result.branch) {
+    if (std::fabs(point.parameter - expected) > 1e-9) {
+      EXPECT_EQ(point.stable, point.parameter < expected) << point.parameter;
+    }
+  }
+}
+
+ContinuationJob curve_job(const std::string& key, double from, double to, const std::string& key2,
+                          double from2, double to2, const std::string& type) {
+  ContinuationJob job;
+  job.parameter = key;
+  job.from = from;
+  job.to = to;
+  job.second_parameter = key2;
+  job.second_from = from2;
+  job.second_to = to2;
+  job.curve_type = type;
+  return job;
+}
+
+TEST(CurveContinuation, BouncingBallPeriodDoublingCurveInAmplitudeAndRestitution) {
+  const Scene scene = impactlab::load_scene("bouncing_ball");  // g 9.81, ω 30, r 0.8
+  ContinuationJob job = curve_job("A", 0.0112, 0.02, "r", 0.8, 0.5, "period_doubling");
+  job.has_start = true;
+  job.start = bouncing_ball_start(9.81, 30.0, 0.8, 0.0112);
+  const auto result = impactlab::continue_orbit(scene, job);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  EXPECT_EQ(curve.type, "period_doubling");
+  EXPECT_EQ(curve.stop_reason, "end_of_range") << curve.stop_detail;
+  ASSERT_GE(curve.curve.size(), 20u);
+  EXPECT_EQ(curve.curve.back().p2, 0.5);
+  for (const auto& point : curve.curve) {
+    const double expected = bouncing_ball_period_doubling_amplitude(9.81, 30.0, point.p2);
+    EXPECT_NEAR(point.p1, expected, 1e-9 * expected) << "r = " << point.p2;
+    EXPECT_NEAR(point.multipliers[0].real(), -1.0, 1e-7) << "r = " << point.p2;
+  }
+}
+
+TEST(CurveContinuation, LinearImpactPeriodDoublingCurveInOmegaAndRestitution) {
+  ImpactOscillator o;  // ζ = 0.05, σ = 0, A = 1; r from 0.8 down to 0.6
+  const Scene scene = linear_impact_scene(o);
+  const auto result = impactlab::continue_orbit(
+      scene, curve_job("omega", 2.5, 2.8, "r", 0.8, 0.6, "period_doubling"));
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  EXPECT_EQ(curve.stop_reason, "end_of_range") << curve.stop_detail;
+  ASSERT_GE(curve.curve.size(), 10u);
+  int compared = 0;
+  for (std::size_t k = 0; k < curve.curve.size(); k += 4) {
+    const auto& point = curve.curve[k];
+    o.r = point.p2;
+    // the closed form's period doubling at this r, bracketed around the point
+    const double expected = period_doubling(o, point.p1 - 0.01, point.p1 + 0.01);
+    EXPECT_NEAR(point.p1, expected, 1e-9 * expected) << "r = " << point.p2;
+    const PeriodOneOrbit closed(o, point.p1);
+    ASSERT_TRUE(closed.found());
+    EXPECT_NEAR(point.state[0], closed.section_state()[0], 1e-8) << "r = " << point.p2;
+    ++compared;
+  }
+  EXPECT_GE(compared, 4);
+}
+
+TEST(CurveContinuation, LinearImpactGrazingCurveInOmegaAndSigma) {
+  ImpactOscillator o;
+  o.sigma = 0.2;
+  const Scene scene = linear_impact_scene(o);
+  const auto result = impactlab::continue_orbit(
+      scene, curve_job("omega", 2.0, 2.5, "sigma", 0.2, 0.4, "grazing"));
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  EXPECT_EQ(curve.type, "grazing");
+  ASSERT_GE(curve.curve.size(), 20u);
+  // ends where ω leaves [2, 2.5] (σ ≈ 0.33 at ω = 2)
+  EXPECT_EQ(curve.stop_reason, "left_range") << curve.stop_detail;
+  for (const auto& point : curve.curve) {
+    const double detuning = 1.0 - point.p1 * point.p1;
+    const double amplitude =
+        o.A / std::sqrt(detuning * detuning + 4.0 * o.zeta * o.zeta * point.p1 * point.p1);
+    EXPECT_NEAR(point.p2, amplitude, 1e-9 * amplitude) << "omega = " << point.p1;
+  }
+  EXPECT_GT(curve.curve.back().p2, 0.3);
+}
+
+TEST(CurveContinuation, NoPointOfTheTypeOnTheBranchGivesNoCurve) {
+  const ImpactOscillator o;
+  const Scene scene = linear_impact_scene(o);
+  ContinuationJob job = curve_job("omega", 3.0, 4.0, "r", 0.8, 0.6, "fold");  // no fold up to 7
+  job.has_start = true;
+  job.start = PeriodOneOrbit(o, 3.0).section_state();
+  const auto result = impactlab::continue_orbit(scene, job);
+  ASSERT_EQ(result.branches.at(0).result.stop_reason, "end_of_range");
+  EXPECT_FALSE(result.has_curve);
+  EXPECT_NE(result.curve_note.find("fold"), std::string::npos);
 }
 
 }  // namespace

@@ -72,6 +72,24 @@ TEST(ContinueCommand, WritesTheBranchThePointsAndTheSidecar) {
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
 }
 
+TEST(ContinueCommand, TwoParameterCurveWritesTheCurveAndItsSidecar) {
+  const auto dir = scratch("curve");
+  const auto out = dir / "out";
+  const Outcome outcome = run("continue linear_impact --param omega=2:2.5 --param2 sigma=0.2:0.3 "
+                              "--curve grazing --quiet --out " + out.string(), dir);
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const std::string curve = slurp(out / "curve.csv");
+  EXPECT_EQ(curve.rfind("omega,sigma,q,qdot,multiplier1_re,", 0), 0u) << curve;
+  EXPECT_GT(line_count(curve), 10);
+  EXPECT_NE(curve.find("2.448265181"), std::string::npos) << curve;  // the start: the located graze
+  const auto meta = nlohmann::json::parse(slurp(out / "curve.json"));
+  EXPECT_EQ(meta["type"], "grazing");
+  EXPECT_EQ(meta["stop_reason"], "end_of_range");
+  EXPECT_EQ(meta["request"]["parameter2"], "sigma");
+  EXPECT_TRUE(meta["columns"].contains("graze_time"));
+  EXPECT_TRUE(fs::exists(out / "branch.csv"));
+}
+
 TEST(ContinueCommand, BadInputExitsWithTwoAndOneLine) {
   const std::vector<std::string> bad = {
       "continue linear_impact --param omega=-1:2",       // outside the key's range
@@ -82,6 +100,13 @@ TEST(ContinueCommand, BadInputExitsWithTwoAndOneLine) {
       "continue jin2003 --set model=rigid --param omega=6:7",      // the rigid model
       "continue linear_impact --param omega=2:2.5 --section impact:1",
       "continue linear_impact --param omega=2:2.5 --period 3 --transient 0 --start 5,5",  // no start
+      "continue linear_impact --param omega=2:2.5 --param2 omega=3:4",   // the same key twice
+      "continue linear_impact --param omega=2:2.5 --param2 sigma=0.2",   // malformed range
+      "continue linear_impact --param omega=2:2.5 --param2 r=0.8:1.5",   // outside r's range
+      "continue linear_impact --param omega=2:2.5 --param2 zeta2=0:1",   // no such key
+      "continue linear_impact --param omega=2:2.5 --curve fold",         // --curve without --param2
+      "continue linear_impact --param omega=2:2.5 --param2 r=0.8:0.6 --curve torus",
+      "continue linear_impact --param omega=2:2.5 --param2 r=0.8:0.6 --switch",
   };
   for (const auto& arguments : bad) {
     const auto dir = scratch("bad");

@@ -29,17 +29,29 @@ ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& 
   if (!entry.continuation)
     throw BadInput("oscillator", scene.oscillator, "has no continuation entry");
   const SceneSchema& schema = *entry.schema;
-  const auto spec = std::find_if(schema.keys.begin(), schema.keys.end(),
-                                 [&](const KeySpec& k) { return k.key == job.parameter; });
-  if (spec == schema.keys.end() || spec->is_text || job.parameter.starts_with("initial.") ||
-      job.parameter.starts_with("integrator.") || job.parameter == "t0")
-    throw BadInput("--param", job.parameter,
-                   fmt::format("not a numeric parameter of oscillator {}", schema.oscillator));
-  // both ends admissible (BadInput names the key and value otherwise)
-  Scene probe = scene;
-  for (double value : {job.from, job.to}) {
-    probe.values[job.parameter] = value;
-    validate(probe, schema);
+  const auto check_key = [&](const std::string& option, const std::string& key, double from,
+                             double to) {
+    const auto spec = std::find_if(schema.keys.begin(), schema.keys.end(),
+                                   [&](const KeySpec& k) { return k.key == key; });
+    if (spec == schema.keys.end() || spec->is_text || key.starts_with("initial.") ||
+        key.starts_with("integrator.") || key == "t0")
+      throw BadInput(option, key,
+                     fmt::format("not a numeric parameter of oscillator {}", schema.oscillator));
+    // both ends admissible (BadInput names the key and value otherwise)
+    Scene probe = scene;
+    for (double value : {from, to}) {
+      probe.values[key] = value;
+      validate(probe, schema);
+    }
+  };
+  check_key("--param", job.parameter, job.from, job.to);
+  if (!job.second_parameter.empty()) {
+    if (job.second_parameter == job.parameter)
+      throw BadInput("--param2", job.second_parameter, "must differ from --param's key");
+    check_key("--param2", job.second_parameter, job.second_from, job.second_to);
+    if (!job.curve_type.empty() && job.curve_type != "fold" && job.curve_type != "period_doubling" &&
+        job.curve_type != "grazing")
+      throw BadInput("--curve", job.curve_type, "expected fold, period_doubling or grazing");
   }
   ContinuationJobResult result = entry.continuation(scene, job);
   if (!result.available) throw BadInput("oscillator", scene.oscillator, result.note);

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -27,6 +28,8 @@ namespace {
 struct ContinueOptions {
   SceneOptions scene;
   std::string param;  // NAME=FROM:TO
+  std::string param2;  // NAME=FROM:TO: the second parameter of a two-parameter curve
+  std::string curve;   // fold, period_doubling, grazing (empty: the first located)
   int period = 1;
   std::string section = "strobe";
   bool switch_doubling = false;
@@ -47,8 +50,8 @@ struct ParameterRange {
 };
 
 // NAME=FROM:TO (the key and its range are checked by the scene API)
-ParameterRange parse_range(const std::string& text) {
-  const auto bad = [&](const std::string& why) { return BadInput("--param", text, why); };
+ParameterRange parse_range(const std::string& text, const std::string& option) {
+  const auto bad = [&](const std::string& why) { return BadInput(option, text, why); };
   const auto equals = text.find('=');
   const auto colon = text.find(':', equals == std::string::npos ? 0 : equals);
   if (equals == std::string::npos || equals == 0 || colon == std::string::npos ||
@@ -102,15 +105,39 @@ void write_points_csv(AtomicFile& file, const std::string& name,
           << csv_field(p.graze_time) << ',' << p.graze_witness << ",\"" << p.note << "\"\n";
 }
 
+void write_curve_csv(AtomicFile& file, const std::string& name1, const std::string& name2,
+                     const CurveResult& curve) {
+  auto& out = file.stream();
+  out << name1 << ',' << name2
+      << ",q,qdot,multiplier1_re,multiplier1_im,multiplier2_re,multiplier2_im,multiplier1_abs,"
+         "multiplier2_abs,graze_time,impacts,newton_iterations\n";
+  for (const CurvePoint& p : curve.curve)
+    out << csv_field(p.p1) << ',' << csv_field(p.p2) << ',' << csv_field(p.state[0]) << ','
+        << csv_field(p.state[1]) << ',' << csv_field(p.multipliers[0].real()) << ','
+        << csv_field(p.multipliers[0].imag()) << ',' << csv_field(p.multipliers[1].real()) << ','
+        << csv_field(p.multipliers[1].imag()) << ',' << csv_field(std::abs(p.multipliers[0]))
+        << ',' << csv_field(std::abs(p.multipliers[1])) << ',' << csv_field(p.graze_time) << ','
+        << p.impacts << ',' << p.newton_iterations << '\n';
+}
+
 int run_continue(const ContinueOptions& options, const std::vector<std::string>& command_line) {
   const Scene scene = options.scene.load();
-  const ParameterRange range = parse_range(options.param);
+  const ParameterRange range = parse_range(options.param, "--param");
+  const bool two_parameter = !options.param2.empty();
+  const ParameterRange range2 = two_parameter ? parse_range(options.param2, "--param2")
+                                              : ParameterRange{};
+  if (!options.curve.empty() && !two_parameter)
+    throw BadInput("--curve", options.curve, "needs --param2");
+  if (two_parameter && options.switch_doubling)
+    throw BadInput("--switch", "set", "a two-parameter curve (--param2) follows the first branch only");
   const SectionSpec section = parse_section(options.section, "--section");
   if (section.kind != SectionKind::strobe)
     throw BadInput("--section", options.section,
                    "continuation takes a stroboscopic section (strobe[:PHASE]) in this version");
   if (!options.with_sweep.empty() && !std::filesystem::is_regular_file(options.with_sweep))
-    throw BadInput("--with-sweep", options.with_sweep, "no such file (a sweep's bifurcation.csv)");
+    throw BadInput("--with-sweep", options.with_sweep,
+                   two_parameter ? "no such file (a 2D sweep's classes.csv)"
+                                 : "no such file (a sweep's bifurcation.csv)");
   if (!options.start.empty() && options.start.size() != 2)
     throw BadInput("--start", fmt::format("{} numbers", options.start.size()),
                    "expected Q,QDOT (two numbers)");
@@ -123,6 +150,12 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
   job.phase = section.phase;
   job.transient_periods = options.transient;
   job.doublings = options.switch_doubling ? doublings_followed : 0;
+  if (two_parameter) {
+    job.second_parameter = range2.name;
+    job.second_from = range2.from;
+    job.second_to = range2.to;
+    job.curve_type = options.curve;
+  }
   if (!options.start.empty()) {
     job.has_start = true;
     job.start = {options.start[0], options.start[1]};
@@ -184,7 +217,8 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
           {"min_flight_gap", "smallest wall gap in flight between impacts (q's unit)"},
           {"min_impact_speed", "smallest normal approach speed of an impact"}}},
         {"points.csv",
-         {{"type", "fold, period_doubling, neimark_sacker, grazing, contact_onset, contact_end"},
+         {{"type", "fold, branch_point, period_doubling, neimark_sacker, grazing, contact_onset, "
+                  "contact_end, contact_boundary (the pendulum's V0*omega = g)"},
           {"error_estimate", "bound on the error of the parameter value"},
           {"graze_time", "grazing: time after the section at which the wall is touched"}}}}},
       {"branches", branches},
@@ -192,16 +226,66 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
   };
   AtomicFile meta_file(directory / "continuation.json");
   write_json(meta_file, document);
+  std::optional<AtomicFile> curve_file, curve_meta_file;
+  if (two_parameter) {
+    curve_file.emplace(directory / "curve.csv");
+    write_curve_csv(*curve_file, range.name, range2.name, result.curve);
+    const nlohmann::json curve_document = {
+        {"impactlab_version", IMPACTLAB_VERSION},
+        {"command", command_line},
+        {"created_utc", utc_now()},
+        {"scene", scene_record(scene)},
+        {"request",
+         {{"parameter", range.name},
+          {"from", range.from},
+          {"to", range.to},
+          {"parameter2", range2.name},
+          {"from2", range2.from},
+          {"to2", range2.to},
+          {"curve", options.curve.empty() ? "first located" : options.curve},
+          {"period", options.period},
+          {"section", to_string(section)},
+          {"tolerance", options.tolerance}}},
+        {"type", result.has_curve ? result.curve.type : ""},
+        {"points", result.curve.curve.size()},
+        {"stop_reason", result.has_curve ? result.curve.stop_reason : "no_start_point"},
+        {"stop_detail", result.has_curve ? result.curve.stop_detail : result.curve_note},
+        {"map_evaluations", result.curve.map_evaluations},
+        {"method",
+         "pseudo-arclength continuation in (q, qdot, p1, p2) of the orbit condition "
+         "P^n(x) = x with det(M - I) = 0 (fold), det(M + I) = 0 (period doubling), or zero gap "
+         "and zero gap rate at t_g with the wall's contacts suppressed near t_g (grazing; t_g is "
+         "an unknown too); the branch is run first at p2 = from2 and the curve starts at its "
+         "first located point of the type"},
+        {"columns",
+         {{range.name, "the first scene key (its unit in scene.units)"},
+          {range2.name, "the second scene key (its unit in scene.units)"},
+          {"q, qdot", "the orbit's state on the section at the curve point"},
+          {"multiplier*", "Floquet multipliers of the orbit at the point"},
+          {"graze_time", "grazing: time after the section at which the wall is touched (s)"},
+          {"impacts", "impacts per orbit period (a grazing point's touch not counted)"}}},
+        {"wall_time_s", wall_time},
+    };
+    curve_meta_file.emplace(directory / "curve.json");
+    write_json(*curve_meta_file, curve_document);
+  }
   branch_file.commit();
   points_file.commit();
   meta_file.commit();
+  if (curve_file) curve_file->commit();
+  if (curve_meta_file) curve_meta_file->commit();
 
   if (options.plot || !options.with_sweep.empty()) {
     std::vector<std::string> names = {range.name,
                                       std::string(scene_schema(scene).main_coordinate)};
-    if (!options.with_sweep.empty()) names.push_back(options.with_sweep);
+    if (!options.with_sweep.empty() && !two_parameter) names.push_back(options.with_sweep);
     plot_with_python("continuation", directory / "branch.csv", directory / "continuation.png",
                      names);
+    if (two_parameter) {
+      std::vector<std::string> curve_names = {range.name, range2.name};
+      if (!options.with_sweep.empty()) curve_names.push_back(options.with_sweep);
+      plot_with_python("curve", directory / "curve.csv", directory / "curve.png", curve_names);
+    }
   }
   if (!options.scene.quiet) {
     for (const ContinuedBranch& branch : result.branches) {
@@ -212,7 +296,17 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
         std::cout << fmt::format("  {} at {} = {:.12g} (error {:.2g}){}\n", p.type, range.name,
                                  p.parameter, p.error_estimate, p.note.empty() ? "" : ": " + p.note);
     }
-    std::cout << "wrote " << (directory / "branch.csv").string() << ", points.csv, continuation.json\n";
+    if (two_parameter) {
+      if (result.has_curve)
+        std::cout << fmt::format("{} curve in ({}, {}): {} points, stopped: {} ({})\n",
+                                 result.curve.type, range.name, range2.name,
+                                 result.curve.curve.size(), result.curve.stop_reason,
+                                 result.curve.stop_detail);
+      else
+        std::cout << "no curve: " << result.curve_note << '\n';
+    }
+    std::cout << "wrote " << (directory / "branch.csv").string() << ", points.csv, continuation.json"
+              << (two_parameter ? ", curve.csv, curve.json" : "") << '\n';
   }
   return exit_done;
 }
@@ -232,6 +326,13 @@ Command add_continue_command(CLI::App& app) {
   command->add_flag("--quiet", options->scene.quiet, "print nothing but errors");
   command->add_option("--param", options->param, "NAME=FROM:TO: the scene key continued")
       ->required();
+  command->add_option("--param2", options->param2,
+                      "NAME=FROM:TO: follow the first located fold, period doubling or grazing "
+                      "point of the branch (run at NAME=FROM) in (--param, NAME) to NAME=TO; "
+                      "writes curve.csv");
+  command->add_option("--curve", options->curve,
+                      "fold|period_doubling|grazing: the bifurcation whose curve --param2 follows "
+                      "(default: the first located)");
   command->add_option("--period", options->period, "n: the orbit's period in forcing periods")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
@@ -260,7 +361,8 @@ Command add_continue_command(CLI::App& app) {
                     "unstable dashed, bifurcations marked");
   command->add_option("--with-sweep", options->with_sweep,
                       "a brute-force sweep's bifurcation.csv of the same parameter, drawn under "
-                      "the branch (implies --plot)");
+                      "the branch; with --param2 a 2D sweep's classes.csv under the curve "
+                      "(implies --plot)");
   return {command, [options](const std::vector<std::string>& command_line) {
             return run_continue(*options, command_line);
           }};

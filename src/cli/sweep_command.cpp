@@ -1,15 +1,20 @@
 // `impactlab sweep`: 1D bifurcation sweeps (bifurcation.csv, summary.csv) and
-// 2D classification maps (classes.csv) over any numeric scene parameter, on
+// 2D classification maps (classes.csv) over any numeric scene parameter, and
+// `impactlab basins`: a 2D sweep whose points each start from the scene's
+// state with the two keys set (basins.csv, attractors.csv; the attractors
+// told apart by analysis/basins.hpp), on
 // threads (--threads) and, under mpirun, across MPI ranks; resumable from a
 // per-rank checkpoint (checkpoint-<rank>.jsonl, one flushed line per point,
 // first line identifying the sweep). The data files and meta.json appear only
 // when the whole sweep is complete, written by rank 0 (AtomicFile).
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <map>
 
 #include <fmt/format.h>
 
+#include "analysis/basins.hpp"
 #include "analysis/sweep.hpp"
 #include "api/scene_jobs.hpp"
 #include "api/sweep_job.hpp"
@@ -35,6 +40,8 @@ struct SweepOptions {
   long stop_after = 0;  // hidden, for tests: stop after this many new points per rank
   double period_tolerance = 1e-6;
   int max_period = 16;
+  bool basins = false;                // `impactlab basins`: params are --x, --y
+  double attractor_tolerance = 1e-4;  // basins: relative distance of canonical points
 };
 
 std::string number(double value) { return fmt::format("{}", value); }
@@ -58,6 +65,38 @@ std::map<RecordKey, SweepRecord> read_checkpoints(const std::filesystem::path& d
         done.emplace(RecordKey{record->task, record->position}, std::move(*record));
   }
   return done;
+}
+
+// basins.csv (each grid point's attractor) and attractors.csv (each
+// attractor's class, canonical section point and basin size)
+void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<SweepTask>& tasks,
+                  const std::map<RecordKey, SweepRecord>& records, std::vector<std::string>& files) {
+  std::vector<const SweepRecord*> in_grid_order;
+  for (const auto& task : tasks)
+    for (std::size_t p = 0; p < task.points.size(); ++p)
+      in_grid_order.push_back(&records.at({task.id, static_cast<int>(p)}));
+  const BasinMap map = identify_attractors(in_grid_order, plan.attractor_tolerance);
+  auto flag = [](bool value) { return value ? 1 : 0; };
+  AtomicFile& basins = run_files.add("basins.csv");
+  basins.stream() << plan.axes[0].name << ',' << plan.axes[1].name
+                  << ",attractor,period,impacts_per_period,contact,termination\n";
+  for (std::size_t k = 0; k < in_grid_order.size(); ++k) {
+    const SweepRecord& r = *in_grid_order[k];
+    basins.stream() << number(plan.axes[0].value(r.index[0])) << ','
+                    << number(plan.axes[1].value(r.index[1])) << ',' << map.attractor[k] << ','
+                    << r.classification.period << ','
+                    << number(r.classification.impacts_per_period) << ','
+                    << flag(r.classification.contact) << ',' << r.result.termination << '\n';
+  }
+  AtomicFile& attractors = run_files.add("attractors.csv");
+  attractors.stream() << "attractor,period,impacts_per_period,contact,q,qdot,basin_points\n";
+  if (map.unclassified > 0)
+    attractors.stream() << "0,0,nan,0,nan,nan," << map.unclassified << '\n';
+  for (const Attractor& a : map.attractors)
+    attractors.stream() << a.id << ',' << a.period << ',' << number(a.impacts_per_period) << ','
+                        << flag(a.contact) << ',' << number(a.point[0]) << ','
+                        << number(a.point[1]) << ',' << a.basin_points << '\n';
+  files = {"basins.csv", "attractors.csv"};
 }
 
 void write_outputs(RunFiles& run_files, const SweepPlan& plan,
@@ -105,6 +144,10 @@ SweepSpec sweep_spec(const SweepOptions& options) {
   spec.section = options.section.request();
   if (options.lyapunov) spec.lyapunov = true;
   if (options.no_lyapunov) spec.lyapunov = false;
+  if (options.basins) {
+    spec.lyapunov = options.lyapunov;  // off unless asked for
+    spec.param_key = "--x/--y";
+  }
   spec.period_tolerance = options.period_tolerance;
   spec.max_period = options.max_period;
   return spec;
@@ -179,7 +222,9 @@ void write_meta(RunFiles& run_files, const nlohmann::json& definition,
         {"lyapunov", "largest Lyapunov exponent (1/time unit); nan where not computed, -inf "
                      "where nearby states merge (rest on a wall)"},
         {"termination", "completed, stopped_by_model, no_progress, ..."},
-        {"points", "section points recorded"}}},
+        {"points", "section points recorded"},
+        {"attractor", "basins: the attractor the point settles on (attractors.csv; 0: none found)"},
+        {"basin_points", "basins: grid points that settle on the attractor"}}},
       {"files", files},
   };
   write_json(run_files.add("meta.json"), meta);
@@ -188,7 +233,27 @@ void write_meta(RunFiles& run_files, const nlohmann::json& definition,
 int run_sweep_command(const SweepOptions& options, const std::vector<std::string>& command_line) {
   const Scene scene = options.section.scene.load();
   const SweepTarget target = sweep_target(scene);
-  const SweepPlan plan = make_sweep_plan(sweep_spec(options), scene, *target.schema);
+  const SceneSchema& schema = *target.schema;
+  if (options.basins) {
+    // the grid keys named by the options that gave them
+    for (const auto& [option, text] : {std::pair{"--x", options.params.at(0)},
+                                       std::pair{"--y", options.params.at(1)}}) {
+      const SweepAxis axis = parse_axis(text, option);
+      const auto spec = std::find_if(schema.keys.begin(), schema.keys.end(),
+                                     [&](const KeySpec& k) { return k.key == axis.name; });
+      if (spec == schema.keys.end() || spec->is_text)
+        throw BadInput(option, axis.name,
+                       fmt::format("not a numeric key of oscillator {}", schema.oscillator));
+    }
+    if (parse_axis(options.params[0], "--x").name == parse_axis(options.params[1], "--y").name)
+      throw BadInput("--y", parse_axis(options.params[1], "--y").name,
+                     "must differ from --x's key");
+  }
+  SweepPlan plan = make_sweep_plan(sweep_spec(options), scene, schema);
+  if (options.basins) {
+    plan.follow_attractor = false;  // every point from the scene's state
+    plan.attractor_tolerance = options.attractor_tolerance;
+  }
   const auto directory = options.section.scene.output_directory();
   // the sweep's data files and meta.json, committed together by rank 0
   RunFiles run_files(directory);
@@ -196,8 +261,11 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   // status 2 on every rank alike, before any rank waits for another
   MpiSession mpi;
 
-  const nlohmann::json definition =
-      sweep_definition(plan, scene, *target.schema, options.section.record());
+  nlohmann::json definition = sweep_definition(plan, scene, schema, options.section.record());
+  if (options.basins) {
+    definition["basins"] = true;
+    definition["attractor_tolerance"] = plan.attractor_tolerance;
+  }
   const std::string header = nlohmann::json{{"impactlab_sweep_checkpoint", definition}}.dump();
   std::map<RecordKey, SweepRecord> done;
   if (options.resume) done = read_checkpoints(directory, header);
@@ -242,7 +310,10 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   }
 
   std::vector<std::string> files;
-  write_outputs(run_files, plan, sweep_table(plan, tasks, all), files);
+  if (options.basins)
+    write_basins(run_files, plan, tasks, all, files);
+  else
+    write_outputs(run_files, plan, sweep_table(plan, tasks, all), files);
   write_meta(run_files, definition, scene, *target.schema, all,
              {{"threads", options.threads},
               {"mpi_ranks", mpi.size()},
@@ -260,7 +331,10 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
 
   const std::string q_name(target.schema->main_coordinate);
   if (options.section.plot) {
-    if (plan.axes.size() == 1)
+    if (options.basins)
+      plot_with_python("basins", directory / "basins.csv", directory / "basins.png",
+                       {plan.axes[0].name, plan.axes[1].name});
+    else if (plan.axes.size() == 1)
       plot_with_python("bifurcation", directory / "bifurcation.csv",
                        directory / "bifurcation.png", {plan.axes[0].name, q_name});
     else
@@ -316,6 +390,44 @@ Command add_sweep_command(CLI::App& app) {
   command->add_flag("--resume", options->resume,
                     "reuse the finished points of an interrupted run of the same sweep in --out");
   // for tests of --resume: stop (exit 3, checkpoint kept) after this many new points per rank
+  command->add_option("--stop-after", options->stop_after)->group("")->check(CLI::Range(1L, 1L << 40));
+  return {command, [options](const std::vector<std::string>& command_line) {
+            return run_sweep_command(*options, command_line);
+          }};
+}
+
+Command add_basins_command(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "basins",
+      "basins of attraction: each initial condition of a 2D grid (e.g. initial.theta x "
+      "initial.theta_dot) classified by the attractor it settles on (basins.csv, attractors.csv)");
+  auto options = std::make_shared<SweepOptions>();
+  options->basins = true;
+  options->params.resize(2);
+  options->section.add_to(*command,
+                          "section points recorded per initial condition (strobe: forcing "
+                          "periods; impact: impacts)");
+  command->add_option("--x", options->params[0], "KEY=FROM:TO:N: the first grid key (fastest)")
+      ->required();
+  command->add_option("--y", options->params[1], "KEY=FROM:TO:N: the second grid key")->required();
+  command->add_option("--threads", options->threads, "worker threads")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  command->add_flag("--lyapunov", options->lyapunov, "also compute the largest Lyapunov exponent");
+  command->add_option("--period-tol", options->period_tolerance,
+                      "relative distance under which section points count as repeating")
+      ->check(positive_number())
+      ->capture_default_str();
+  command->add_option("--max-period", options->max_period, "longest period looked for")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  command->add_option("--attractor-tol", options->attractor_tolerance,
+                      "relative distance under which two canonical section points are one "
+                      "attractor")
+      ->check(positive_number())
+      ->capture_default_str();
+  command->add_flag("--resume", options->resume,
+                    "reuse the finished points of an interrupted run of the same map in --out");
   command->add_option("--stop-after", options->stop_after)->group("")->check(CLI::Range(1L, 1L << 40));
   return {command, [options](const std::vector<std::string>& command_line) {
             return run_sweep_command(*options, command_line);

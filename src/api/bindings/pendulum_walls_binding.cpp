@@ -143,7 +143,12 @@ ContinuationJobResult continuation_model(const Scene& scene, const ContinuationJ
   const typename System::State x0 =
       job.has_start ? typename System::State{} : initial_state(scene, system);
   auto system_at = [](const Scene& at) { return System(pendulum_walls_parameters(at)); };
-  return run_continuation<System>(system_at, PendulumMode::free, x0, scene, job);
+  // the pivot's peak acceleration V0·ω reaches g: below it the bob cannot be
+  // held on a wall, so no contact phase can exist
+  const std::vector<SceneBoundary> boundaries = {
+      {"contact_boundary", "V0*omega = g: below it no contact phase can exist",
+       [](const Scene& at) { return at.number("V0") * at.number("omega") - at.number("g"); }}};
+  return run_continuation<System>(system_at, PendulumMode::free, x0, scene, job, boundaries);
 }
 
 ContinuationJobResult continuation(const Scene& scene, const ContinuationJob& job) {

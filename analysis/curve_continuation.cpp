@@ -1,0 +1,340 @@
+#include "analysis/curve_continuation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include <Eigen/Dense>
+
+#include "analysis/floquet.hpp"
+
+namespace impactlab {
+
+namespace {
+
+using Vector = Eigen::VectorXd;
+using Matrix = Eigen::MatrixXd;
+
+double det_minus_identity(const TangentMatrix& m) {  // (1 − λ₁)(1 − λ₂)
+  return (m[0][0] - 1.0) * (m[1][1] - 1.0) - m[0][1] * m[1][0];
+}
+double det_plus_identity(const TangentMatrix& m) {  // (1 + λ₁)(1 + λ₂)
+  return (m[0][0] + 1.0) * (m[1][1] + 1.0) - m[0][1] * m[1][0];
+}
+
+// The residual of the defining system at one point, and the orbit it ran.
+struct Evaluation {
+  bool completed = false;
+  Vector residual;  // F (2), then det(M ∓ I) or gap and gap rate
+  OrbitEvaluation orbit;
+};
+
+struct Corrected {
+  bool converged = false;
+  Vector z;
+  Evaluation at;
+  Matrix jacobian;  // of the residual, at the last iterate before z
+  int iterations = 0;
+};
+
+class CurveDriver {
+ public:
+  CurveDriver(const TwoParameterProblem& problem, const CurveRequest& request)
+      : problem_(problem), request_(request) {
+    grazing_ = request.type == "grazing";
+    size_ = grazing_ ? 5 : 4;
+    scale1_ = std::fabs(request.to1 - request.from1);
+    scale2_ = std::fabs(request.to2 - request.from2);
+    if (!(scale1_ > 0.0)) scale1_ = 1.0;
+    if (!(scale2_ > 0.0)) scale2_ = 1.0;
+    h_initial_ = request.initial_step > 0.0 ? request.initial_step : 0.01;
+    h_min_ = request.min_step > 0.0 ? request.min_step : 1e-7;
+    h_max_ = request.max_step > 0.0 ? request.max_step : 0.02;
+    at_start_ = problem.at(request.from2);
+    requested_phase_ = at_start_.phase;
+    phase_ = requested_phase_;
+    // the scale of t_g in the arclength: the orbit's span at the start
+    time_scale_ = at_start_.forcing_period_at_p > 0.0 ? at_start_.forcing_period_at_p : 1.0;
+    window_half_width_ = 0.1 * time_scale_;
+  }
+
+  CurveResult run() {
+    result_.type = request_.type;
+    Vector z(size_);
+    z << request_.state[0], request_.state[1], request_.p1 / scale1_, request_.from2 / scale2_,
+        0.0;
+    if (grazing_) {
+      if (request_.graze_witness < 0 || !std::isfinite(request_.graze_time))
+        return stop("start_not_converged", "a grazing curve needs the graze time and wall");
+      z[4] = request_.graze_time / time_scale_;
+      window_center_ = request_.graze_time;
+    }
+    choose_section(z);
+    // the start: corrected at p₂ = from2
+    Vector fixed_p2 = Vector::Zero(size_);
+    fixed_p2[3] = 1.0;
+    Corrected start = correct(z, fixed_p2, z);
+    if (!start.converged)
+      return stop("start_not_converged", "Newton at the located point did not converge");
+    const double direction2 = request_.to2 >= request_.from2 ? 1.0 : -1.0;
+    Vector along = Vector::Zero(size_);
+    along[3] = direction2;
+    auto tangent = tangent_of(start.jacobian, along);
+    if (!tangent) return stop("start_not_converged", "no curve tangent at the start");
+    accept(start, *tangent, 0.0);
+
+    const double to2 = request_.to2 / scale2_;
+    const double low1 = std::min(request_.from1, request_.to1) / scale1_;
+    const double high1 = std::max(request_.from1, request_.to1) / scale1_;
+    double h = h_initial_;
+    while (static_cast<int>(result_.curve.size()) < request_.max_points) {
+      const Vector last = z_;
+      const Vector tau = tangent_;
+      const double remaining = (to2 - last[3]) * direction2;
+      if (remaining <= 1e-12 * (1.0 + std::fabs(to2))) return finish();
+      if (last[2] < low1 - 1e-9 || last[2] > high1 + 1e-9)
+        return stop("left_range", "the curve left the first parameter's range");
+      const double toward_end = tau[3] * direction2;
+      if (toward_end > 0.0 && h * toward_end >= remaining) {
+        const double h_end = remaining / toward_end;
+        Vector predicted = last + h_end * tau;
+        predicted[3] = to2;
+        Corrected c = correct(predicted, fixed_p2, predicted);
+        if (c.converged) {
+          const auto t = tangent_of(c.jacobian, tau);
+          if (t) {
+            accept(c, *t, h_end);
+            return finish();
+          }
+        }
+        h = 0.5 * std::min(h, h_end);
+        if (h < h_min_) return stop("branch_point", "the corrector fails before the end of the range");
+        continue;
+      }
+      const Vector predicted = last + h * tau;
+      Corrected c = correct(predicted, tau, predicted);
+      std::optional<Vector> t;
+      if (c.converged) t = tangent_of(c.jacobian, tau);
+      if (t && t->dot(tau) > std::cos(30.0 * std::numbers::pi / 180.0)) {
+        accept(c, *t, h);
+        if (c.iterations <= 3) h = std::min(1.5 * h, h_max_);
+        else if (c.iterations > 6) h *= 0.7;
+        continue;
+      }
+      h *= 0.5;
+      if (h < h_min_)
+        return stop("branch_point", "step below the smallest: the corrector cannot pass this point");
+    }
+    return stop("max_points", "the curve reached the point limit");
+  }
+
+ private:
+  double p1_of(const Vector& z) const { return z[2] * scale1_; }
+  double p2_of(const Vector& z) const { return z[3] * scale2_; }
+  static OrbitPoint state_of(const Vector& z) { return {z[0], z[1]}; }
+
+  ContactWindow window() const {
+    if (!grazing_) return {};
+    return {request_.graze_witness, window_center_ - window_half_width_,
+            window_center_ + window_half_width_};
+  }
+
+  Evaluation evaluate(const Vector& z) {
+    ++result_.map_evaluations;
+    Evaluation e;
+    const ContinuationProblem at = problem_.at(p2_of(z));
+    e.orbit = at.evaluate(state_of(z), p1_of(z), phase_, false, window());
+    if (!e.orbit.completed) return e;
+    e.residual.resize(size_ - 1);
+    e.residual[0] = e.orbit.image[0] - z[0];
+    e.residual[1] = e.orbit.image[1] - z[1];
+    if (grazing_) {
+      const GapSample gap = at.gap_at(state_of(z), p1_of(z), phase_, window(), z[4] * time_scale_);
+      if (!gap.completed) return e;
+      e.residual[2] = gap.value;
+      e.residual[3] = gap.rate;
+    } else if (request_.type == "period_doubling") {
+      e.residual[2] = det_plus_identity(e.orbit.monodromy);
+    } else {
+      e.residual[2] = det_minus_identity(e.orbit.monodromy);
+    }
+    e.completed = e.residual.allFinite();
+    return e;
+  }
+
+  // ∂residual/∂z: the orbit rows' state part from the monodromy, the rest by
+  // central differences
+  std::optional<Matrix> jacobian(const Vector& z, const Evaluation& at) {
+    Matrix j(size_ - 1, size_);
+    for (int k = 0; k < size_; ++k) {
+      const double dz = (k < 2 || k == 4 ? 1e-7 : 1e-6) * (1.0 + std::fabs(z[k]));
+      Vector up = z, down = z;
+      up[k] += dz;
+      down[k] -= dz;
+      const Evaluation eu = evaluate(up), ed = evaluate(down);
+      if (!eu.completed || !ed.completed) return std::nullopt;
+      j.col(k) = (eu.residual - ed.residual) / (2.0 * dz);
+    }
+    const TangentMatrix& m = at.orbit.monodromy;
+    j(0, 0) = m[0][0] - 1.0;
+    j(0, 1) = m[0][1];
+    j(1, 0) = m[1][0];
+    j(1, 1) = m[1][1] - 1.0;
+    return j;
+  }
+
+  // Newton on (residual, τ·(z − z_pred)) = 0 from z.
+  Corrected correct(Vector z, const Vector& tau, const Vector& z_pred) {
+    Corrected c;
+    double last_step = INFINITY;
+    for (int iteration = 0;; ++iteration) {
+      c.at = evaluate(z);
+      c.z = z;
+      c.iterations = iteration;
+      if (!c.at.completed) return c;
+      const double size = 1.0 + std::hypot(z[0], z[1]);
+      const double arc = tau.dot(z - z_pred);
+      const double orbit_residual = c.at.residual.head<2>().norm();
+      const double condition_residual = c.at.residual.tail(size_ - 3).norm();
+      const bool small_step = last_step <= 1e-11 * (1.0 + z.norm());
+      if (c.jacobian.size() > 0 && std::fabs(arc) <= 1e-9 * (1.0 + z.norm()) &&
+          ((orbit_residual <= request_.tolerance * size &&
+            condition_residual <= request_.tolerance * size && last_step <= 1e-9 * (1.0 + z.norm())) ||
+           (small_step && orbit_residual <= 100.0 * request_.tolerance * size))) {
+        c.converged = true;
+        return c;
+      }
+      if (iteration == request_.max_newton_iterations) return c;
+      const auto j = jacobian(z, c.at);
+      if (!j) return c;
+      c.jacobian = *j;
+      Matrix system(size_, size_);
+      system.topRows(size_ - 1) = *j;
+      system.row(size_ - 1) = tau.transpose();
+      Vector right(size_);
+      right.head(size_ - 1) = -c.at.residual;
+      right[size_ - 1] = -arc;
+      const Vector step = system.fullPivLu().solve(right);
+      if (!step.allFinite()) return c;
+      z += step;
+      last_step = step.norm();
+      if (grazing_ && std::fabs(z[4] * time_scale_ - window_center_) > window_half_width_)
+        return c;  // the graze left the suppression window
+    }
+  }
+
+  // The unit null vector of the (size − 1) × size Jacobian, oriented along `along`.
+  std::optional<Vector> tangent_of(const Matrix& j, const Vector& along) const {
+    if (j.rows() != size_ - 1) return std::nullopt;
+    Eigen::JacobiSVD<Matrix> svd(j, Eigen::ComputeFullV);
+    Vector t = svd.matrixV().col(size_ - 1);
+    if (!t.allFinite() || !(t.norm() > 0.0)) return std::nullopt;
+    t.normalize();
+    if (t.dot(along) < 0.0) t = -t;
+    return t;
+  }
+
+  void accept(const Corrected& c, const Vector& tangent, double step) {
+    z_ = c.z;
+    tangent_ = tangent;
+    CurvePoint point;
+    point.p1 = p1_of(c.z);
+    point.p2 = p2_of(c.z);
+    point.multipliers = eigenvalues(c.at.orbit.monodromy);
+    point.impacts = c.at.orbit.impacts;
+    point.newton_iterations = c.iterations;
+    point.step = step;
+    const double omega = c.at.orbit.omega;
+    const double shift = std::remainder(phase_ - requested_phase_, 2.0 * std::numbers::pi);
+    const double delay = (shift < 0.0 ? shift + 2.0 * std::numbers::pi : shift) / omega;
+    if (grazing_) {
+      point.graze_time = std::fmod(c.z[4] * time_scale_ + delay, c.at.orbit.span);
+      window_center_ = c.z[4] * time_scale_;
+    }
+    point.state = state_of(c.z);
+    if (phase_ != requested_phase_) {
+      const auto moved = problem_.at(point.p2).transport(state_of(c.z), point.p1, phase_,
+                                                          requested_phase_);
+      if (moved) point.state = *moved;
+    }
+    result_.curve.push_back(point);
+  }
+
+  // The fraction of the span between the section (moved by `shift_time`) and
+  // the nearest event (the graze counted as one).
+  double clearance(const OrbitEvaluation& orbit, double shift_time, double graze_time) const {
+    double nearest = 0.5;
+    auto include = [&](double t) {
+      double u = std::fmod(t - shift_time, orbit.span);
+      if (u < 0.0) u += orbit.span;
+      nearest = std::min({nearest, u / orbit.span, 1.0 - u / orbit.span});
+    };
+    for (double t : orbit.event_times) include(t);
+    if (grazing_) include(graze_time);
+    return nearest;
+  }
+
+  // The stroboscopic map jumps where an event crosses the section: the curve
+  // is computed on the section phase, among 16, farthest from every event of
+  // the start's orbit (the requested one where it is clear by 2 % of the
+  // span); states are reported on the requested section.
+  void choose_section(Vector& z) {
+    const OrbitEvaluation orbit =
+        at_start_.evaluate(state_of(z), p1_of(z), phase_, false, window());
+    if (!orbit.completed || orbit.span <= 0.0) return;
+    const double graze = grazing_ ? z[4] * time_scale_ : 0.0;
+    if (clearance(orbit, 0.0, graze) > 0.02) return;
+    double best_shift = 0.0, best = clearance(orbit, 0.0, graze);
+    for (int j = 1; j < 16; ++j) {
+      const double shift = 2.0 * std::numbers::pi * j / 16.0;
+      const double value = clearance(orbit, shift / orbit.omega, graze);
+      if (value > best) {
+        best = value;
+        best_shift = shift;
+      }
+    }
+    if (best_shift == 0.0) return;
+    const double phase = std::remainder(requested_phase_ + best_shift, 2.0 * std::numbers::pi);
+    const auto moved = at_start_.transport(state_of(z), p1_of(z), phase_, phase);
+    if (!moved) return;
+    phase_ = phase;
+    z[0] = (*moved)[0];
+    z[1] = (*moved)[1];
+    if (grazing_) {
+      double t = std::fmod(z[4] * time_scale_ - best_shift / orbit.omega, orbit.span);
+      if (t < 0.0) t += orbit.span;
+      z[4] = t / time_scale_;
+      window_center_ = t;
+    }
+  }
+
+  CurveResult stop(const std::string& reason, const std::string& detail) {
+    result_.stop_reason = reason;
+    result_.stop_detail = detail;
+    return finish();
+  }
+  CurveResult finish() { return std::move(result_); }
+
+  const TwoParameterProblem& problem_;
+  const CurveRequest& request_;
+  ContinuationProblem at_start_;
+  bool grazing_ = false;
+  int size_ = 4;                          // unknowns: (q, q̇, p₁, p₂ [, t_g])
+  double scale1_ = 1.0, scale2_ = 1.0;    // the parameters' units of arclength (their ranges)
+  double time_scale_ = 1.0;               // t_g's unit of arclength: nT at the start (s)
+  double window_center_ = 0.0;            // s since the working section
+  double window_half_width_ = 0.0;        // s: contacts suppressed within this of the graze
+  double h_initial_ = 0.01, h_min_ = 1e-7, h_max_ = 0.02;
+  double requested_phase_ = 0.0, phase_ = 0.0;  // rad: the requested and the working section
+  Vector z_, tangent_;
+  CurveResult result_;
+};
+
+}  // namespace
+
+CurveResult continue_curve(const TwoParameterProblem& problem, const CurveRequest& request) {
+  return CurveDriver(problem, request).run();
+}
+
+}  // namespace impactlab

@@ -1,0 +1,64 @@
+#!/usr/bin/python3
+"""The basins of attraction of `impactlab basins --plot` (or by hand).
+
+    plot_basins.py basins.csv out.png XKEY YKEY
+
+Each grid point coloured by the attractor it settles on, with a legend of the
+attractors (attractors.csv beside basins.csv: period, impacts per period,
+contact, canonical section point); attractor 0 (none found) in white.
+"""
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.colors import ListedColormap  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
+
+
+def read(path):
+    data = np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8",
+                         deletechars="")
+    return np.atleast_1d(data)
+
+
+def describe(row):
+    if int(row["attractor"]) == 0:
+        return "0: none found"
+    text = f"{int(row['attractor'])}: period {int(row['period'])}, " \
+           f"{float(row['impacts_per_period']):.3g} impacts/period"
+    if int(row["contact"]):
+        text += ", contact"
+    return text + f" (q {float(row['q']):.4g}, qdot {float(row['qdot']):.4g})"
+
+
+def main(argv):
+    basins_csv, png, x_key, y_key = argv[1:5]
+    data = read(basins_csv)
+    attractors = read(os.path.join(os.path.dirname(basins_csv), "attractors.csv"))
+    x = np.unique(data[x_key])
+    y = np.unique(data[y_key])
+    grid = np.full((len(y), len(x)), np.nan)
+    grid[np.searchsorted(y, data[y_key]), np.searchsorted(x, data[x_key])] = data["attractor"]
+    count = int(max(np.nanmax(grid), 1))
+    palette = plt.get_cmap("tab20")
+    colours = ["white"] + [palette(k % 20) for k in range(count)]
+    fig, ax = plt.subplots(figsize=(8, 6))
+    ax.pcolormesh(x, y, grid, shading="nearest", cmap=ListedColormap(colours), vmin=-0.5,
+                  vmax=count + 0.5)
+    handles = [Patch(facecolor=colours[int(row["attractor"])], edgecolor="0.5",
+                     label=describe(row)) for row in attractors]
+    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.12), fontsize=8,
+              ncol=1 if len(handles) < 6 else 2)
+    ax.set_xlabel(x_key)
+    ax.set_ylabel(y_key)
+    ax.set_title("basins of attraction")
+    fig.tight_layout()
+    fig.savefig(png, dpi=150)
+
+
+if __name__ == "__main__":
+    main(sys.argv)

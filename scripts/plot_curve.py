@@ -1,0 +1,60 @@
+#!/usr/bin/python3
+"""The two-parameter curve of `impactlab continue --param2 --plot` (or by hand).
+
+    plot_curve.py curve.csv out.png PARAM1 PARAM2 [classes.csv]
+
+The curve of the fold, period-doubling or grazing point in (PARAM1, PARAM2),
+its type read from curve.json beside curve.csv, drawn over the period map of a
+2D sweep's classes.csv (the same two keys) when given.
+"""
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def read(path):
+    data = np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8",
+                         deletechars="")
+    return np.atleast_1d(data)
+
+
+def main(argv):
+    curve_csv, png, param1, param2, *sweep = argv[1:]
+    fig, ax = plt.subplots(figsize=(7, 5))
+    if sweep:
+        data = read(sweep[0])
+        x = np.unique(data[param1])
+        y = np.unique(data[param2])
+        period = np.full((len(y), len(x)), np.nan)
+        period[np.searchsorted(y, data[param2]), np.searchsorted(x, data[param1])] = np.where(
+            data["period"] > 0, data["period"], np.nan)
+        mesh = ax.pcolormesh(x, y, period, shading="nearest", cmap="tab10", vmin=0.5, vmax=10.5,
+                             alpha=0.6)
+        fig.colorbar(mesh, ax=ax, label="period of the section map, 2D sweep (blank: none found)")
+    kind = "curve"
+    meta = os.path.join(os.path.dirname(curve_csv), "curve.json")
+    if os.path.exists(meta):
+        with open(meta, encoding="utf-8") as handle:
+            kind = json.load(handle).get("type") or kind
+    curve = read(curve_csv)
+    if len(curve) and curve.dtype.names and param1 in curve.dtype.names:
+        ax.plot(curve[param1], curve[param2], "-", color="black", linewidth=1.8,
+                label=f"{kind.replace('_', ' ')} curve (continuation)")
+        ax.plot(curve[param1][:1], curve[param2][:1], "o", color="black", markersize=6,
+                label="start (located on the branch)")
+        ax.legend(loc="best", fontsize=8)
+    ax.set_xlabel(param1)
+    ax.set_ylabel(param2)
+    ax.set_title("two-parameter continuation")
+    fig.tight_layout()
+    fig.savefig(png, dpi=150)
+
+
+if __name__ == "__main__":
+    main(sys.argv)
