@@ -10,7 +10,7 @@ scripts/deps.sh
 jobs="$(nproc)"
 if [ "${1:-}" = "--sanitize" ]; then
   cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIMPACTLAB_SANITIZE=ON \
-    -DIMPACTLAB_BUILD_BENCHMARKS=OFF > build-sanitize.log 2>&1 || { cat build-sanitize.log; exit 1; }
+    -DIMPACTLAB_BUILD_BENCHMARKS=OFF -DIMPACTLAB_BUILD_PYTHON=OFF > build-sanitize.log 2>&1 || { cat build-sanitize.log; exit 1; }
   cmake --build build-sanitize -j"$jobs" >> build-sanitize.log 2>&1 || { tail -50 build-sanitize.log; exit 1; }
   echo "build-sanitize: ok (log in build-sanitize.log)"
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1"
