@@ -23,6 +23,7 @@
 
 #include "analysis/continuation.hpp"
 #include "analysis/section.hpp"
+#include "api/basins_job.hpp"
 #include "api/compare.hpp"
 #include "api/periodic_job.hpp"
 #include "api/run_record.hpp"
@@ -309,6 +310,114 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
   out["points"] = owning_array(std::move(table.points));
   out["wall_time_s"] = wall_time;
   out["threads"] = threads;
+  return out;
+}
+
+py::dict basins_binding(const Scene& scene, const std::string& x, const std::string& y,
+                        const std::string& section, double transient,
+                        std::uint64_t transient_impacts, std::uint64_t points, bool lyapunov,
+                        double period_tolerance, int max_period, double attractor_tolerance,
+                        int threads, py::object progress) {
+  if (threads < 1 || threads > 1024)
+    throw BadInput("threads", std::to_string(threads), "expected 1 to 1024");
+  if (max_period < 1 || max_period > 10000)
+    throw BadInput("max_period", std::to_string(max_period), "expected 1 to 10000");
+  if (!(period_tolerance > 0.0))
+    throw BadInput("period_tol", std::to_string(period_tolerance), "must be > 0");
+  BasinsSpec spec;
+  spec.x = x;
+  spec.y = y;
+  spec.section = section_request(section, transient, transient_impacts, points, false);
+  spec.lyapunov = lyapunov;
+  spec.period_tolerance = period_tolerance;
+  spec.max_period = max_period;
+  spec.attractor_tolerance = attractor_tolerance;
+  spec.x_key = "x";
+  spec.y_key = "y";
+  spec.grid_key = "x/y";
+  spec.attractor_tolerance_key = "attractor_tol";
+  const SweepTarget target = sweep_target(scene);
+  const SweepPlan plan = make_basins_plan(spec, scene, *target.schema);
+  const std::vector<SweepTask> tasks = sweep_tasks(plan);
+  std::vector<const SweepTask*> all_tasks;
+  for (const auto& task : tasks) all_tasks.push_back(&task);
+
+  ProgressRelay relay(std::move(progress));
+  SweepJobOptions job;
+  job.threads = threads;
+  job.progress = [&relay](double fraction) { relay(fraction); };
+  const auto start = std::chrono::steady_clock::now();
+  SweepOutput output = relay.run([&] { return run_sweep(scene, target, plan, all_tasks, job); });
+  const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  std::map<SweepRecordKey, SweepRecord> records;
+  std::uint64_t steps = 0, rhs = 0, stopped_points = 0;
+  for (auto& task_records : output.records)
+    for (auto& record : task_records) {
+      steps += record.result.steps;
+      rhs += record.result.rhs_evaluations;
+      if (record.result.termination != "completed") ++stopped_points;
+      records.emplace(SweepRecordKey{record.task, record.position}, std::move(record));
+    }
+  BasinsTable table = basins_table(plan, tasks, records);
+
+  // attractors.csv's rows: attractor 0 ("none found") first when a point has none
+  std::vector<int> id, period, contact, basin_points;
+  std::vector<double> impacts, q, qdot;
+  if (table.map.unclassified > 0) {
+    id.push_back(0);
+    period.push_back(0);
+    impacts.push_back(std::nan(""));
+    contact.push_back(0);
+    q.push_back(std::nan(""));
+    qdot.push_back(std::nan(""));
+    basin_points.push_back(table.map.unclassified);
+  }
+  for (const Attractor& a : table.map.attractors) {
+    id.push_back(a.id);
+    period.push_back(a.period);
+    impacts.push_back(a.impacts_per_period);
+    contact.push_back(a.contact ? 1 : 0);
+    q.push_back(a.point[0]);
+    qdot.push_back(a.point[1]);
+    basin_points.push_back(a.basin_points);
+  }
+
+  nlohmann::json section_record = {
+      {"section", section},
+      {"transient_periods", transient_impacts > 0 ? 0.0 : transient},
+      {"transient_impacts", transient_impacts},
+      {"points", points}};
+  const nlohmann::json meta = {
+      {"impactlab_version", IMPACTLAB_VERSION},
+      {"sweep", basins_definition(plan, scene, *target.schema, section_record)},
+      {"scene", scene_record(scene)},
+      {"run", {{"threads", threads}, {"tasks", tasks.size()}, {"wall_time_s", wall_time}}},
+      {"counts",
+       {{"points", records.size()},
+        {"points_stopped_early", stopped_points},
+        {"steps", steps},
+        {"rhs_evaluations", rhs}}}};
+  py::dict out;
+  out["meta"] = json_to_python(meta);
+  out["axes"] = py::cast(std::vector<std::string>{plan.axes[0].name, plan.axes[1].name});
+  out["counts"] = py::cast(std::vector<int>{plan.axes[0].count, plan.axes[1].count});
+  out["x"] = owning_array(std::move(table.x));
+  out["y"] = owning_array(std::move(table.y));
+  out["attractor"] = owning_array(std::move(table.attractor));
+  out["period"] = owning_array(std::move(table.period));
+  out["impacts_per_period"] = owning_array(std::move(table.impacts_per_period));
+  out["contact"] = owning_array(std::move(table.contact));
+  out["termination"] = py::cast(table.termination);
+  out["attractor_id"] = owning_array(std::move(id));
+  out["attractor_period"] = owning_array(std::move(period));
+  out["attractor_impacts_per_period"] = owning_array(std::move(impacts));
+  out["attractor_contact"] = owning_array(std::move(contact));
+  out["attractor_q"] = owning_array(std::move(q));
+  out["attractor_qdot"] = owning_array(std::move(qdot));
+  out["attractor_basin_points"] = owning_array(std::move(basin_points));
+  out["wall_time_s"] = wall_time;
   return out;
 }
 
@@ -632,6 +741,7 @@ PYBIND11_MODULE(_impactlab, m) {
   m.def("simulate", &simulate_binding);
   m.def("poincare", &poincare_binding);
   m.def("sweep", &sweep_binding);
+  m.def("basins", &basins_binding);
   m.def("periodic", &periodic_binding);
   m.def("compare", &compare_binding);
   m.def("bench", &bench_binding);

@@ -20,7 +20,7 @@ import numpy as np
 from . import _impactlab
 
 __all__ = [
-    "Scene", "scenes", "scene", "simulate", "poincare", "sweep", "periodic", "compare",
+    "Scene", "scenes", "scene", "simulate", "poincare", "sweep", "basins", "periodic", "compare",
     "bench", "continue_", "EventArray", "PhysicalDiagnosticWarning",
 ]
 
@@ -252,6 +252,48 @@ def sweep(scene_=None, *, param, direction="up", threads=1, chunks=1, section="s
         summary["points"] = raw["points"]
     return Result(scene=loaded, bifurcation=bifurcation, summary=summary,
                   definition=raw["definition"], wall_time_s=raw["wall_time_s"])
+
+
+def basins(scene_, *, x, y, threads=1, section="strobe", transient=100.0,
+           transient_impacts=0, points=50, lyapunov=False, period_tol=1e-6, max_period=16,
+           attractor_tol=1e-4, progress=None, **keys):
+    """Basins of attraction (the CLI's `basins`): every initial condition of
+    the grid x="KEY=FROM:TO:N" (fastest) by y="KEY=FROM:TO:N", run from the
+    scene's state with the two keys set, labelled by the attractor it settles
+    on. Returns labels (attractor ids, shape (Ny, Nx)), x and y (the axis
+    values), grid (the rows of basins.csv), attractors (a structured array:
+    the rows of attractors.csv) and meta."""
+    loaded = scene(scene_, **keys)
+    for key, value in (("x", x), ("y", y), ("section", section)):
+        if not isinstance(value, str):
+            raise ValueError("{} = {!r}: expected text such as KEY=FROM:TO:N".format(key, value))
+    if not isinstance(lyapunov, bool):
+        raise ValueError("lyapunov = {!r}: expected True or False".format(lyapunov))
+    raw = _run(lambda callback: _impactlab.basins(
+        loaded, x, y, section, _number("transient", transient),
+        _whole("transient_impacts", transient_impacts), _whole("points", points, 1), lyapunov,
+        _number("period_tol", period_tol, positive=True), _whole("max_period", max_period, 1),
+        _number("attractor_tol", attractor_tol, positive=True), _whole("threads", threads, 1),
+        callback), progress, "basins")
+    axes = raw["axes"]
+    nx, ny = raw["counts"]
+    grid = {axes[0]: raw["x"], axes[1]: raw["y"], "attractor": raw["attractor"],
+            "period": raw["period"], "impacts_per_period": raw["impacts_per_period"],
+            "contact": raw["contact"], "termination": raw["termination"]}
+    columns = [("attractor", "attractor_id", "<i4"), ("period", "attractor_period", "<i4"),
+               ("impacts_per_period", "attractor_impacts_per_period", "<f8"),
+               ("contact", "attractor_contact", "<i4"), ("q", "attractor_q", "<f8"),
+               ("qdot", "attractor_qdot", "<f8"),
+               ("basin_points", "attractor_basin_points", "<i4")]
+    attractors = np.empty(len(raw["attractor_id"]),
+                          dtype=[(name, kind) for name, _, kind in columns])
+    for name, source, _ in columns:
+        attractors[name] = raw[source]
+    result = Result(scene=loaded, axes=tuple(axes),
+                    x=raw["x"][:nx].copy(), y=raw["y"][::nx].copy(),
+                    labels=raw["attractor"].reshape(ny, nx), grid=grid, attractors=attractors,
+                    meta=raw["meta"], wall_time_s=raw["wall_time_s"])
+    return result
 
 
 def periodic(scene_=None, *, period="auto", phase=0.0, transient=100.0, max_iterations=30,

@@ -14,8 +14,8 @@
 
 #include <fmt/format.h>
 
-#include "analysis/basins.hpp"
 #include "analysis/sweep.hpp"
+#include "api/basins_job.hpp"
 #include "api/scene_jobs.hpp"
 #include "api/sweep_job.hpp"
 #include "cli/command.hpp"
@@ -71,28 +71,21 @@ std::map<RecordKey, SweepRecord> read_checkpoints(const std::filesystem::path& d
 // attractor's class, canonical section point and basin size)
 void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<SweepTask>& tasks,
                   const std::map<RecordKey, SweepRecord>& records, std::vector<std::string>& files) {
-  std::vector<const SweepRecord*> in_grid_order;
-  for (const auto& task : tasks)
-    for (std::size_t p = 0; p < task.points.size(); ++p)
-      in_grid_order.push_back(&records.at({task.id, static_cast<int>(p)}));
-  const BasinMap map = identify_attractors(in_grid_order, plan.attractor_tolerance);
+  const BasinsTable table = basins_table(plan, tasks, records);
   auto flag = [](bool value) { return value ? 1 : 0; };
   AtomicFile& basins = run_files.add("basins.csv");
   basins.stream() << plan.axes[0].name << ',' << plan.axes[1].name
                   << ",attractor,period,impacts_per_period,contact,termination\n";
-  for (std::size_t k = 0; k < in_grid_order.size(); ++k) {
-    const SweepRecord& r = *in_grid_order[k];
-    basins.stream() << number(plan.axes[0].value(r.index[0])) << ','
-                    << number(plan.axes[1].value(r.index[1])) << ',' << map.attractor[k] << ','
-                    << r.classification.period << ','
-                    << number(r.classification.impacts_per_period) << ','
-                    << flag(r.classification.contact) << ',' << r.result.termination << '\n';
-  }
+  for (std::size_t k = 0; k < table.x.size(); ++k)
+    basins.stream() << number(table.x[k]) << ',' << number(table.y[k]) << ','
+                    << table.attractor[k] << ',' << table.period[k] << ','
+                    << number(table.impacts_per_period[k]) << ',' << table.contact[k] << ','
+                    << table.termination[k] << '\n';
   AtomicFile& attractors = run_files.add("attractors.csv");
   attractors.stream() << "attractor,period,impacts_per_period,contact,q,qdot,basin_points\n";
-  if (map.unclassified > 0)
-    attractors.stream() << "0,0,nan,0,nan,nan," << map.unclassified << '\n';
-  for (const Attractor& a : map.attractors)
+  if (table.map.unclassified > 0)
+    attractors.stream() << "0,0,nan,0,nan,nan," << table.map.unclassified << '\n';
+  for (const Attractor& a : table.map.attractors)
     attractors.stream() << a.id << ',' << a.period << ',' << number(a.impacts_per_period) << ','
                         << flag(a.contact) << ',' << number(a.point[0]) << ','
                         << number(a.point[1]) << ',' << a.basin_points << '\n';
@@ -144,15 +137,23 @@ SweepSpec sweep_spec(const SweepOptions& options) {
   spec.section = options.section.request();
   if (options.lyapunov) spec.lyapunov = true;
   if (options.no_lyapunov) spec.lyapunov = false;
-  if (options.basins) {
-    spec.lyapunov = options.lyapunov;  // off unless asked for
-    spec.param_key = "--x/--y";
-  }
   spec.period_tolerance = options.period_tolerance;
   spec.max_period = options.max_period;
   return spec;
 }
 
+// The basins map the options describe (api/basins_job.hpp).
+BasinsSpec basins_spec(const SweepOptions& options) {
+  BasinsSpec spec;
+  spec.x = options.params.at(0);
+  spec.y = options.params.at(1);
+  spec.section = options.section.request();
+  spec.lyapunov = options.lyapunov;  // off unless asked for
+  spec.period_tolerance = options.period_tolerance;
+  spec.max_period = options.max_period;
+  spec.attractor_tolerance = options.attractor_tolerance;
+  return spec;
+}
 
 // This rank's checkpoint, opened for appending; one that is not this
 // sweep's (or any, without --resume) is started afresh with the header.
@@ -234,26 +235,8 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   const Scene scene = options.section.scene.load();
   const SweepTarget target = sweep_target(scene);
   const SceneSchema& schema = *target.schema;
-  if (options.basins) {
-    // the grid keys named by the options that gave them
-    for (const auto& [option, text] : {std::pair{"--x", options.params.at(0)},
-                                       std::pair{"--y", options.params.at(1)}}) {
-      const SweepAxis axis = parse_axis(text, option);
-      const auto spec = std::find_if(schema.keys.begin(), schema.keys.end(),
-                                     [&](const KeySpec& k) { return k.key == axis.name; });
-      if (spec == schema.keys.end() || spec->is_text)
-        throw BadInput(option, axis.name,
-                       fmt::format("not a numeric key of oscillator {}", schema.oscillator));
-    }
-    if (parse_axis(options.params[0], "--x").name == parse_axis(options.params[1], "--y").name)
-      throw BadInput("--y", parse_axis(options.params[1], "--y").name,
-                     "must differ from --x's key");
-  }
-  SweepPlan plan = make_sweep_plan(sweep_spec(options), scene, schema);
-  if (options.basins) {
-    plan.follow_attractor = false;  // every point from the scene's state
-    plan.attractor_tolerance = options.attractor_tolerance;
-  }
+  const SweepPlan plan = options.basins ? make_basins_plan(basins_spec(options), scene, schema)
+                                        : make_sweep_plan(sweep_spec(options), scene, schema);
   const auto directory = options.section.scene.output_directory();
   // the sweep's data files and meta.json, committed together by rank 0
   RunFiles run_files(directory);
@@ -261,11 +244,9 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   // status 2 on every rank alike, before any rank waits for another
   MpiSession mpi;
 
-  nlohmann::json definition = sweep_definition(plan, scene, schema, options.section.record());
-  if (options.basins) {
-    definition["basins"] = true;
-    definition["attractor_tolerance"] = plan.attractor_tolerance;
-  }
+  const nlohmann::json definition =
+      options.basins ? basins_definition(plan, scene, schema, options.section.record())
+                     : sweep_definition(plan, scene, schema, options.section.record());
   const std::string header = nlohmann::json{{"impactlab_sweep_checkpoint", definition}}.dump();
   std::map<RecordKey, SweepRecord> done;
   if (options.resume) done = read_checkpoints(directory, header);

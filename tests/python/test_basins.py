@@ -1,0 +1,76 @@
+"""impactlab.basins gives the numbers of the CLI's basins.csv and
+attractors.csv bit for bit, names the key of a bad grid, and can be cancelled
+from its progress callback."""
+import math
+
+import pytest
+
+import impactlab
+from conftest import read_csv, read_json, same_numbers
+
+# the bouncing ball of tests/basins_test.cpp (Γ = Aω²/g = 0.9): rest on the
+# table and a period-1 bouncing orbit coexist; a 6 x 4 grid of initial states
+GRID_X, GRID_Y = "initial.y=0:0.1:6", "initial.y_dot=-1:1:4"
+
+
+def test_basins_equal_cli_basins_and_attractors(cli):
+    out = cli("basins", "bouncing_ball", "--set", "A=0.00981", "--x", GRID_X, "--y", GRID_Y,
+              "--threads", "2")
+    result = impactlab.basins("bouncing_ball", x=GRID_X, y=GRID_Y, threads=2, A=0.00981)
+    grid = read_csv(out / "basins.csv")
+    assert len(grid["attractor"]) == 24
+    for column in ("initial.y", "initial.y_dot", "attractor", "period", "impacts_per_period",
+                   "contact"):
+        same_numbers(grid[column], result.grid[column])
+    assert result.grid["termination"] == grid["termination"]
+    attractors = read_csv(out / "attractors.csv")
+    assert len(attractors["attractor"]) == len(result.attractors) >= 2  # rest and bouncing
+    for column in result.attractors.dtype.names:
+        same_numbers(attractors[column], result.attractors[column])
+    # the labels as a (Ny, Nx) grid, the first key fastest, and the axes
+    assert result.labels.shape == (4, 6)
+    same_numbers(grid["attractor"], result.labels.ravel())
+    same_numbers(grid["initial.y"][:6], result.x)
+    same_numbers(grid["initial.y_dot"][::6], result.y)
+    assert result.x[0] == 0.0 and result.x[-1] == 0.1 and result.y[0] == -1.0 and result.y[-1] == 1.0
+    assert result.axes == ("initial.y", "initial.y_dot")
+    assert result.attractors["basin_points"].sum() == 24
+    meta = read_json(out / "meta.json")
+    assert result.meta["sweep"] == meta["sweep"]
+    assert result.meta["counts"] == meta["counts"]
+
+
+@pytest.mark.parametrize("x, named", [
+    ("colour=0:1:4", "x = colour"),             # no such key
+    ("initial.y=0:0.1:0", "x"),                 # N = 0
+    ("initial.y=nan:0.1:4", "x"),               # NaN
+    ("initial.y=0:0.1", "x"),                   # malformed
+    ("initial.y_dot=0:1:4", "y = initial.y_dot"),  # the same key as y
+])
+def test_bad_grid_raises_value_error_naming_the_key(x, named):
+    with pytest.raises(ValueError) as raised:
+        impactlab.basins("bouncing_ball", x=x, y="initial.y_dot=-1:1:4")
+    assert named in str(raised.value)
+
+
+@pytest.mark.parametrize("options, named", [
+    ({"attractor_tol": 0.0}, "attractor_tol"),
+    ({"attractor_tol": math.nan}, "attractor_tol"),
+    ({"threads": 0}, "threads"),
+    ({"x": 3}, "x"),
+])
+def test_bad_option_raises_value_error_naming_it(options, named):
+    arguments = {"x": GRID_X, "y": GRID_Y, **options}
+    with pytest.raises(ValueError, match=named):
+        impactlab.basins("bouncing_ball", **arguments)
+
+
+def test_basins_are_cancelled_by_their_progress_callback():
+    def interrupt(fraction):
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        impactlab.basins("bouncing_ball", x="initial.y=0:0.1:20", y=GRID_Y, threads=2,
+                         progress=interrupt)
+    assert impactlab.basins("bouncing_ball", x="initial.y=0:0.1:2", y="initial.y_dot=0:1:2",
+                            points=5, transient=5).labels.shape == (2, 2)
