@@ -244,4 +244,15 @@ TEST(LibraryErrors, NeverExitOne) {
   }
 }
 
+
+// A spectrum whose run stops early writes nothing, and leaves no output
+// directory behind (its files are one run's, committed together).
+TEST(RunAtomicity, StoppedSpectrumLeavesNoDirectory) {
+  const auto dir = scratch("spectrum_stopped");
+  const ProgramRun run =
+      run_binary({"spectrum", "jin2003", "--set", "V0=1e308", "--quiet", "--out", "o"}, dir, 60);
+  EXPECT_EQ(run.status, 3) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "o"));
+}
+
 }  // namespace

@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
-#include <optional>
 
 #include <fmt/format.h>
 
@@ -171,11 +170,11 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
   const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
-  prepare_output_directory(directory);
-  AtomicFile branch_file(directory / "branch.csv");
-  write_branch_csv(branch_file, range.name, result.branches);
-  AtomicFile points_file(directory / "points.csv");
-  write_points_csv(points_file, range.name, result.branches);
+  // branch.csv, points.csv, continuation.json (and the curve's files),
+  // committed together
+  RunFiles run_files(directory);
+  write_branch_csv(run_files.add("branch.csv"), range.name, result.branches);
+  write_points_csv(run_files.add("points.csv"), range.name, result.branches);
 
   nlohmann::json branches = nlohmann::json::array();
   for (const ContinuedBranch& branch : result.branches)
@@ -224,12 +223,9 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
       {"branches", branches},
       {"wall_time_s", wall_time},
   };
-  AtomicFile meta_file(directory / "continuation.json");
-  write_json(meta_file, document);
-  std::optional<AtomicFile> curve_file, curve_meta_file;
+  write_json(run_files.add("continuation.json"), document);
   if (two_parameter) {
-    curve_file.emplace(directory / "curve.csv");
-    write_curve_csv(*curve_file, range.name, range2.name, result.curve);
+    write_curve_csv(run_files.add("curve.csv"), range.name, range2.name, result.curve);
     const nlohmann::json curve_document = {
         {"impactlab_version", IMPACTLAB_VERSION},
         {"command", command_line},
@@ -266,14 +262,9 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
           {"impacts", "impacts per orbit period (a grazing point's touch not counted)"}}},
         {"wall_time_s", wall_time},
     };
-    curve_meta_file.emplace(directory / "curve.json");
-    write_json(*curve_meta_file, curve_document);
+    write_json(run_files.add("curve.json"), curve_document);
   }
-  branch_file.commit();
-  points_file.commit();
-  meta_file.commit();
-  if (curve_file) curve_file->commit();
-  if (curve_meta_file) curve_meta_file->commit();
+  run_files.commit();
 
   if (options.plot || !options.with_sweep.empty()) {
     std::vector<std::string> names = {range.name,

@@ -39,16 +39,15 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
   job.tolerance = options.tolerance;
   const PeriodicJobResult found = find_periodic_orbit(scene, job);
   const auto directory = options.scene.output_directory();
-  prepare_output_directory(directory);
+  RunFiles run_files(directory);
   const PeriodicRequest& request = found.request;
   const PeriodicResult& result = found.result;
   nlohmann::json document = periodic_record(scene, found);
   document["command"] = command_line;
   document["created_utc"] = utc_now();
   document["wall_time_s"] = found.wall_time;
-  AtomicFile file(directory / "periodic.json");
-  write_json(file, document);
-  file.commit();
+  write_json(run_files.add("periodic.json"), document);
+  run_files.commit();
   if (!options.scene.quiet)
     std::cout << fmt::format(
         "{}: period-{} orbit {} after {} iterations (residual {:.3g}); multipliers {:.9g}{:+.9g}i, "

@@ -3,6 +3,7 @@
 // that the harmonics kω/n of a period-n orbit fall on lines; writes
 // spectrum.csv (omega,amplitude) and meta.json.
 #include <cmath>
+#include <fstream>
 #include <iostream>
 #include <numbers>
 
@@ -35,7 +36,9 @@ int run_spectrum(const SpectrumOptions& options, const std::vector<std::string>&
   request.sample_step = period / options.samples_per_period;
   request.keep_events = false;
   const auto directory = options.scene.output_directory();
-  prepare_output_directory(directory);
+  // spectrum.csv and meta.json, committed together; a run stopped early
+  // leaves neither (nor a directory it created)
+  RunFiles run_files(directory);
   ProgressBar progress(!options.scene.quiet);
   request.progress = [&progress](double fraction) { progress.update(fraction); };
   const RunOutput output = simulate(scene, request);
@@ -54,10 +57,10 @@ int run_spectrum(const SpectrumOptions& options, const std::vector<std::string>&
   for (std::size_t j = 0; j < wanted; ++j) q[j] = output.samples[first + j].q;
   const auto lines = amplitude_spectrum(q, request.sample_step);
 
-  AtomicFile csv(directory / "spectrum.csv");
-  csv.stream() << "omega,amplitude,harmonic\n";
+  std::ofstream& csv = run_files.add("spectrum.csv").stream();
+  csv << "omega,amplitude,harmonic\n";
   for (const auto& line : lines)
-    csv.stream() << fmt::format("{},{},{}\n", line.angular_frequency, line.amplitude,
+    csv << fmt::format("{},{},{}\n", line.angular_frequency, line.amplitude,
                                 line.angular_frequency / omega);
   const SceneSchema& schema = scene_schema(scene);
   nlohmann::json meta = {
@@ -79,10 +82,8 @@ int run_spectrum(const SpectrumOptions& options, const std::vector<std::string>&
         {"harmonic", "omega over the forcing frequency: a period-n orbit has lines at k/n"}}},
       {"files", {"spectrum.csv", "meta.json"}},
   };
-  AtomicFile meta_file(directory / "meta.json");
-  write_json(meta_file, meta);
-  csv.commit();
-  meta_file.commit();
+  write_json(run_files.add("meta.json"), meta);
+  run_files.commit();
   if (!options.scene.quiet)
     std::cout << fmt::format("{}: {} lines from {} samples\nwrote {}\n", scene.name, lines.size(),
                              wanted, (directory / "spectrum.csv").string());
