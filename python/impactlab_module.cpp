@@ -239,6 +239,33 @@ py::dict poincare_binding(const Scene& scene, const std::string& section, double
   return out;
 }
 
+// A whole sweep plan run in this process (sweep and basins): every task over
+// `threads`, progress and Ctrl-C through the relay, the records by key.
+struct PlanRun {
+  std::vector<SweepTask> tasks;
+  std::map<SweepRecordKey, SweepRecord> records;
+  double wall_time = 0.0;  // s
+};
+
+PlanRun run_plan(const Scene& scene, const SweepTarget& target, const SweepPlan& plan,
+                 int threads, py::object progress) {
+  PlanRun run;
+  run.tasks = sweep_tasks(plan);
+  std::vector<const SweepTask*> all_tasks;
+  for (const auto& task : run.tasks) all_tasks.push_back(&task);
+  ProgressRelay relay(std::move(progress));
+  SweepJobOptions job;
+  job.threads = threads;
+  job.progress = [&relay](double fraction) { relay(fraction); };
+  const auto start = std::chrono::steady_clock::now();
+  SweepOutput output = relay.run([&] { return run_sweep(scene, target, plan, all_tasks, job); });
+  run.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (auto& task_records : output.records)
+    for (auto& record : task_records)
+      run.records.emplace(SweepRecordKey{record.task, record.position}, std::move(record));
+  return run;
+}
+
 py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& params,
                        const std::string& direction, int chunks, const std::string& section,
                        double transient, std::uint64_t transient_impacts, std::uint64_t points,
@@ -264,24 +291,9 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
   spec.direction_key = "direction";
   const SweepTarget target = sweep_target(scene);
   const SweepPlan plan = make_sweep_plan(spec, scene, *target.schema);
-  const std::vector<SweepTask> tasks = sweep_tasks(plan);
-  std::vector<const SweepTask*> all_tasks;
-  for (const auto& task : tasks) all_tasks.push_back(&task);
-
-  ProgressRelay relay(std::move(progress));
-  SweepJobOptions job;
-  job.threads = threads;
-  job.progress = [&relay](double fraction) { relay(fraction); };
-  const auto start = std::chrono::steady_clock::now();
-  SweepOutput output = relay.run([&] { return run_sweep(scene, target, plan, all_tasks, job); });
-  const double wall_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  std::map<SweepRecordKey, SweepRecord> records;
-  for (auto& task_records : output.records)
-    for (auto& record : task_records)
-      records.emplace(SweepRecordKey{record.task, record.position}, std::move(record));
-  SweepTable table = sweep_table(plan, tasks, records);
+  const PlanRun run = run_plan(scene, target, plan, threads, std::move(progress));
+  const double wall_time = run.wall_time;
+  SweepTable table = sweep_table(plan, run.tasks, run.records);
 
   nlohmann::json section_record = {
       {"section", section},
@@ -338,29 +350,15 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
   spec.attractor_tolerance_key = "attractor_tol";
   const SweepTarget target = sweep_target(scene);
   const SweepPlan plan = make_basins_plan(spec, scene, *target.schema);
-  const std::vector<SweepTask> tasks = sweep_tasks(plan);
-  std::vector<const SweepTask*> all_tasks;
-  for (const auto& task : tasks) all_tasks.push_back(&task);
-
-  ProgressRelay relay(std::move(progress));
-  SweepJobOptions job;
-  job.threads = threads;
-  job.progress = [&relay](double fraction) { relay(fraction); };
-  const auto start = std::chrono::steady_clock::now();
-  SweepOutput output = relay.run([&] { return run_sweep(scene, target, plan, all_tasks, job); });
-  const double wall_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  std::map<SweepRecordKey, SweepRecord> records;
+  const PlanRun run = run_plan(scene, target, plan, threads, std::move(progress));
+  const double wall_time = run.wall_time;
   std::uint64_t steps = 0, rhs = 0, stopped_points = 0;
-  for (auto& task_records : output.records)
-    for (auto& record : task_records) {
-      steps += record.result.steps;
-      rhs += record.result.rhs_evaluations;
-      if (record.result.termination != "completed") ++stopped_points;
-      records.emplace(SweepRecordKey{record.task, record.position}, std::move(record));
-    }
-  BasinsTable table = basins_table(plan, tasks, records);
+  for (const auto& [key, record] : run.records) {
+    steps += record.result.steps;
+    rhs += record.result.rhs_evaluations;
+    if (record.result.termination != "completed") ++stopped_points;
+  }
+  BasinsTable table = basins_table(plan, run.tasks, run.records);
 
   // attractors.csv's rows: attractor 0 ("none found") first when a point has none
   std::vector<int> id, period, contact, basin_points;
@@ -393,9 +391,9 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
       {"impactlab_version", IMPACTLAB_VERSION},
       {"sweep", basins_definition(plan, scene, *target.schema, section_record)},
       {"scene", scene_record(scene)},
-      {"run", {{"threads", threads}, {"tasks", tasks.size()}, {"wall_time_s", wall_time}}},
+      {"run", {{"threads", threads}, {"tasks", run.tasks.size()}, {"wall_time_s", wall_time}}},
       {"counts",
-       {{"points", records.size()},
+       {{"points", run.records.size()},
         {"points_stopped_early", stopped_points},
         {"steps", steps},
         {"rhs_evaluations", rhs}}}};
