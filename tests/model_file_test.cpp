@@ -4,7 +4,10 @@
 // multipliers as the hand-written C++ under the same numerical integrator;
 // the interpreted slow path agrees with the compiled code; the cache is
 // reused; every kind of bad model file is reported at its line and column.
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdlib>
 #include <complex>
 #include <filesystem>
 #include <fstream>
@@ -194,7 +197,7 @@ TEST(ModelFile, TheCacheIsReusedAndTheSlowPathSaysSo) {
   EXPECT_EQ(first->library, second->library);
 
   CompileOptions broken = test_options();
-  broken.compiler = "/nonexistent/cc";
+  broken.compiler = {"/nonexistent/cc"};
   broken.cache_directory += "_broken_compiler";
   std::filesystem::remove_all(broken.cache_directory);
   const auto slow = compiled("linear_impact_model.toml", broken);
@@ -215,6 +218,66 @@ TEST(ModelFile, TheCacheIsReusedAndTheSlowPathSaysSo) {
   const auto slow_events = run_events(ModelSystem<2>(slow, values(*slow, {}), AccumulationTolerance{}), {0.0, 0.0},
                                       ModelSystem<2>::free_mode, t_end);
   expect_same_events(fast_events, slow_events, 1e-12);
+}
+
+// The compiler runs from an argument vector, never a shell (issue 12, "no
+// shell string"): a cache directory whose path holds quotes, ';', command
+// substitutions and spaces compiles and loads, and none of the commands
+// written into it runs.
+TEST(ModelFile, ACacheDirectoryWithShellSyntaxCompilesAndRunsNoCommand) {
+  const std::filesystem::path base =
+      std::filesystem::path(testing::TempDir()) / ("impactlab_injection_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(base);
+  const std::filesystem::path marker = base / "injected";
+  CompileOptions hostile = test_options();
+  hostile.cache_directory = (base / ("it's a cache; touch " + marker.string() + "; $(touch " +
+                                     marker.string() + ") `touch " + marker.string() + "` end"))
+                                .string();
+  const auto model = compiled("linear_impact_model.toml", hostile);
+  ASSERT_TRUE(model->compiled) << model->slow_path_reason;
+  EXPECT_FALSE(model->from_cache);
+  EXPECT_EQ(model->library.rfind(hostile.cache_directory, 0), 0u) << model->library;
+  EXPECT_TRUE(std::filesystem::exists(model->library));
+  EXPECT_FALSE(std::filesystem::exists(marker));
+  // the loaded code is the model's: ẋ' = A cos ωt − 2ζẋ − x at the defaults
+  const std::vector<double> p = values(*model, {});
+  const double x[2] = {0.3, -0.7}, t = 0.4;
+  double rhs[2];
+  model->free_rhs(x, t, p.data(), rhs);
+  EXPECT_EQ(rhs[0], -0.7);
+  EXPECT_NEAR(rhs[1], 1.0 * std::cos(2.0 * t) - 2 * 0.05 * -0.7 - 0.3, 1e-15);
+  std::filesystem::remove_all(base);
+}
+
+// $IMPACTLAB_CC may carry flags of its own: split on spaces into the argument
+// vector; a compiler that starts but fails falls back with its first line.
+TEST(ModelFile, TheCompilerCommandMayCarryFlags) {
+  ASSERT_EQ(::setenv("IMPACTLAB_CC", "  cc  -O1 -g ", 1), 0);
+  const CompileOptions from_environment = compile_options_from_environment();
+  ::unsetenv("IMPACTLAB_CC");
+  EXPECT_EQ(from_environment.compiler, (std::vector<std::string>{"cc", "-O1", "-g"}));
+  CompileOptions with_flags = test_options();
+  with_flags.compiler = from_environment.compiler;
+  with_flags.cache_directory += "_with_flags";
+  std::filesystem::remove_all(with_flags.cache_directory);
+  const auto model = compiled("linear_impact_model.toml", with_flags);
+  EXPECT_TRUE(model->compiled) << model->slow_path_reason;
+  EXPECT_FALSE(model->from_cache);
+
+  CompileOptions failing = test_options();
+  failing.compiler = {"cc", "--impactlab-no-such-flag"};
+  failing.cache_directory += "_failing_compiler";
+  std::filesystem::remove_all(failing.cache_directory);
+  const auto slow = compiled("linear_impact_model.toml", failing);
+  EXPECT_FALSE(slow->compiled);
+  EXPECT_NE(slow->slow_path_reason.find("the C compiler 'cc --impactlab-no-such-flag' failed (status"),
+            std::string::npos)
+      << slow->slow_path_reason;
+  // the compiler's own first line, naming the flag again after the status
+  const std::string& reason = slow->slow_path_reason;
+  EXPECT_NE(reason.find("impactlab-no-such-flag", reason.find("(status")), std::string::npos) << reason;
+  // nothing left behind but the directory
+  EXPECT_TRUE(std::filesystem::is_empty(failing.cache_directory));
 }
 
 // --- bad model files: one line FILE:LINE:COL: message ---

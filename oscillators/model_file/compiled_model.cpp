@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -19,6 +20,7 @@
 #include <ginac/ginac.h>
 
 #include "oscillators/model_file/model_expression.hpp"
+#include "platform/run_program.hpp"
 
 namespace impactlab {
 
@@ -382,12 +384,6 @@ StackProgram program_of(const Expressions& outputs) {
 // ---------------------------------------------------------------------------
 // compilation and the cache
 
-std::string shell_quoted(const std::string& text) {
-  std::string quoted = "'";
-  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
 std::string first_line_of(const fs::path& path) {
   std::ifstream in(path);
   std::string line;
@@ -401,13 +397,16 @@ std::string unique_suffix() {
   return fmt::format("{}-{:08x}", static_cast<long>(::getpid()), device());
 }
 
-constexpr std::string_view compiler_flags = "-O2 -fno-math-errno -shared -fPIC";
+// impactlab's flags, after the compiler's own from CompileOptions
+constexpr std::array<std::string_view, 4> compiler_flags = {"-O2", "-fno-math-errno", "-shared", "-fPIC"};
 
 // The shared object for `source`, compiled if the cache does not hold it.
 // Returns the path, or an empty path and the reason in `why`.
 fs::path shared_object(const std::string& fingerprint, const std::string& source,
                        const CompileOptions& options, bool& from_cache, std::string& why) {
-  const std::string key = fmt::format("{}\n{} {}", fingerprint, options.compiler, compiler_flags);
+  std::vector<std::string> command = options.compiler;
+  for (const std::string_view flag : compiler_flags) command.emplace_back(flag);
+  const std::string key = fmt::format("{}\n{}", fingerprint, describe_program(command));
   const fs::path directory(options.cache_directory);
   const fs::path target = directory / fmt::format("model-{:016x}.so", fnv1a(key));
   std::error_code error;
@@ -434,15 +433,15 @@ fs::path shared_object(const std::string& fingerprint, const std::string& source
       return {};
     }
   }
-  const std::string command =
-      fmt::format("{} {} -o {} {} -lm > {} 2>&1", shell_quoted(options.compiler), compiler_flags,
-                  shell_quoted(temporary.string()), shell_quoted(source_file.string()),
-                  shell_quoted(log.string()));
-  const int status = std::system(command.c_str());
+  // an argument vector, no shell: the paths are data, whatever characters they hold
+  command.insert(command.end(), {"-o", temporary.string(), source_file.string(), "-lm"});
+  const int status = run_program_logged(command, log.string());
   if (status != 0) {
     const std::string detail = first_line_of(log);
-    why = fmt::format("the C compiler '{}' failed (status {}{}{})", options.compiler, status,
-                      detail.empty() ? "" : ": ", detail);
+    const std::string compiler = describe_program(options.compiler);
+    why = status < 0 ? fmt::format("the C compiler '{}' could not be started or was killed", compiler)
+                     : fmt::format("the C compiler '{}' failed (status {}{}{})", compiler, status,
+                                   detail.empty() ? "" : ": ", detail);
     for (const auto& path : {source_file, temporary, log}) fs::remove(path, error);
     return {};
   }
@@ -461,8 +460,10 @@ fs::path shared_object(const std::string& fingerprint, const std::string& source
 
 CompileOptions compile_options_from_environment() {
   CompileOptions options;
-  if (const char* compiler = std::getenv("IMPACTLAB_CC"); compiler && *compiler)
-    options.compiler = compiler;
+  if (const char* compiler = std::getenv("IMPACTLAB_CC"); compiler) {
+    std::vector<std::string> words = split_on_spaces(compiler);
+    if (!words.empty()) options.compiler = std::move(words);
+  }
   if (const char* cache = std::getenv("IMPACTLAB_CACHE_DIR"); cache && *cache) {
     options.cache_directory = cache;
   } else if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
