@@ -73,6 +73,11 @@ class CompiledModel {
   std::vector<Kernel> stick_state;     // per wall: the state on the wall (N)
   std::vector<Kernel> stick_force;     // per wall: F, Ḟ, F̈ along the sticking flow
   std::vector<Kernel> stick_force_gradient;  // per wall: ∂F/∂x (N)
+  // per wall: the damping c = −∂ḧ/∂ḣ (1/time) and stiffness κ = ∂ḧ/∂h
+  // (1/time²) of the gap's acceleration along the free flow, for the
+  // accumulation estimate (contact/accumulation.hpp), then the size of the
+  // gap's terms (the sticking table's gap_scale; 0 where not given)
+  std::vector<Kernel> chatter;
   // every free-flight expression as written (right-hand sides, witnesses,
   // restitutions, ω, max_step), for the check at the initial state
   Kernel written;
