@@ -40,6 +40,14 @@ namespace impactlab {
 // 0: free flight; 1 + k: resting on wall k.
 enum class ModelMode : std::uint8_t {};
 
+// A model system's parameter values and the forcing frequency they give: the
+// analyses read a system's forcing frequency as parameters().omega, as for
+// the built-in oscillators' parameter structs.
+struct ModelParameterView {
+  const std::vector<double>& values;  // in the model's order
+  double omega;                       // forcing frequency (rad per time unit)
+};
+
 template <std::size_t N>
 class ModelSystem {
  public:
@@ -65,7 +73,7 @@ class ModelSystem {
   }
 
   [[nodiscard]] const CompiledModel& model() const { return *model_; }
-  [[nodiscard]] const std::vector<double>& parameters() const { return p_; }
+  [[nodiscard]] ModelParameterView parameters() const { return {p_, omega_}; }
   [[nodiscard]] double forcing_frequency() const { return omega_; }
   [[nodiscard]] double max_step() const { return max_step_; }
   [[nodiscard]] std::string_view mode_name(Mode mode) const { return model_->mode_names[index(mode)]; }
