@@ -141,13 +141,15 @@ TEST(ModelFile, TheChatterCoefficientsAreThoseOfTheGapAcceleration) {
   duffing->chatter[0](x, 0.9, p.data(), out);
   EXPECT_NEAR(out[0], 2 * 0.07, 1e-15);
   EXPECT_NEAR(out[1], -(1 + 3 * 0.5 * 0.4 * 0.4), 1e-15);
-  EXPECT_EQ(out[2], 0.0);
+  // its gap_scale: the linear part's forced amplitude F/√((1 − ω²)² + (2ζω)²), ω = 1.5
+  EXPECT_NEAR(out[2], 1.3 / std::sqrt(1.25 * 1.25 + 0.21 * 0.21), 1e-15);
 
   const auto ball = compiled("bouncing_ball_model.toml");
   const std::vector<double> q = values(*ball, {});
   ball->chatter[0](x, 0.9, q.data(), out);
   EXPECT_EQ(out[0], 0.0);
   EXPECT_EQ(out[1], 0.0);
+  EXPECT_EQ(out[2], 0.0);  // no gap_scale given
 
   const auto linear = compiled("linear_impact_model.toml");
   const std::vector<double> l = values(*linear, {{"zeta", 0.05}, {"omega", 0.5}, {"A", 1.0}});
