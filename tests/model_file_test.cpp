@@ -368,6 +368,12 @@ TEST(ModelFileErrors, EachIsReportedAtItsLineAndColumn) {
   const std::string extra = error_of(with_rhs("-x") + "w = \"1\"\n");
   EXPECT_EQ(extra.substr(0, 6), "10:6: ") << extra;
   EXPECT_NE(extra.find("dimension mismatch"), std::string::npos) << extra;
+  // a sticking wall's optional gap_scale (line 18) is an expression like the others
+  const std::string sticking_wall =
+      wall_head + "direction = \"falling\"\nreset = { velocity = \"v\", restitution = \"0.8\" }\n"
+                  "[model.walls.sticking]\nrhs = { x = \"0\", v = \"0\" }\nstate = { x = \"1\", v = \"0\" }\n"
+                  "force = \"1\"\ngap_scale = \"2*q\"\n";
+  EXPECT_EQ(error_of(with_rhs("-x", sticking_wall)).substr(0, 26), "18:16: unknown symbol 'q' ");
   // malformed TOML itself
   EXPECT_EQ(error_of(good_head + "[model.rhs\n").substr(0, 2), "7:");
 }
