@@ -18,7 +18,7 @@
 #include "api/work_precision.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
-#include "cli/run_program.hpp"
+#include "platform/run_program.hpp"
 #include "integrate/stepper_dispatch.hpp"
 #include "io/bad_input.hpp"
 #include "io/output.hpp"

@@ -1,7 +1,7 @@
 // The scene binding of oscillators defined in a scene file's [model] section:
 // a schema built at run time from the model's parameters (defaults, units,
 // ranges: the scene keys and --set keys) and states (initial.<state>), and the
-// run, section and periodic-orbit hooks for 2 or 4 states.
+// run, section, periodic-orbit and continuation hooks for 2 or 4 states.
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "analysis/run_continuation.hpp"
 #include "analysis/run_periodic.hpp"
 #include "analysis/run_section.hpp"
 #include "io/bad_input.hpp"
@@ -51,7 +52,7 @@ typename ModelSystem<N>::State initial_state(const Scene& scene, const ModelSyst
     x[i] = scene.number("initial." + system.model().states[i]);
     values.push_back(x[i]);
   }
-  check_initial_values(system.model(), values, scene.number("t0"), system.parameters());
+  check_initial_values(system.model(), values, scene.number("t0"), system.parameters().values);
   if (!(system.forcing_frequency() > 0.0) || !(system.max_step() > 0.0))
     throw BadInput("model.forcing_frequency", fmt::format("{}", system.forcing_frequency()),
                    "the forcing frequency and max_step must be positive");
@@ -85,6 +86,18 @@ PeriodicResult periodic_states(const Scene& scene, const PeriodicRequest& reques
                       request, system.forcing_frequency());
 }
 
+// Continuation needs the Jacobians: a 2-state model has them; a 4-state one
+// gets run_continuation's "no Jacobians" note.
+template <std::size_t N>
+ContinuationJobResult continuation_states(const Scene& scene, const ContinuationJob& job) {
+  const ModelSystem<N> system = make_system<N>(scene);
+  // a given start replaces the scene's initial state (which a continued
+  // parameter may have put beyond a wall)
+  const auto x0 = job.has_start ? typename ModelSystem<N>::State{} : initial_state(scene, system);
+  return run_continuation<ModelSystem<N>>(&make_system<N>, ModelSystem<N>::free_mode, x0, scene,
+                                          job);
+}
+
 RunOutput run(const Scene& scene, const RunRequest& request) {
   return model_of(scene).states.size() == 2 ? run_states<2>(scene, request)
                                             : run_states<4>(scene, request);
@@ -98,6 +111,11 @@ SectionResult section(const Scene& scene, const SectionRequest& request) {
 PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request) {
   return model_of(scene).states.size() == 2 ? periodic_states<2>(scene, request)
                                             : periodic_states<4>(scene, request);
+}
+
+ContinuationJobResult continuation(const Scene& scene, const ContinuationJob& job) {
+  return model_of(scene).states.size() == 2 ? continuation_states<2>(scene, job)
+                                            : continuation_states<4>(scene, job);
 }
 
 // The schema: common keys (no closed-form flow: `exact` is not offered), the
@@ -153,7 +171,7 @@ void register_model_scene(std::string_view name_or_path) {
   auto oscillator = std::make_unique<RuntimeOscillator>();
   oscillator->name = name;
   build_schema(*oscillator, *model);
-  oscillator->entry = {&oscillator->schema, &run, &section, &periodic_orbit};
+  oscillator->entry = {&oscillator->schema, &run, &section, &periodic_orbit, &continuation};
   oscillator->data = model;
   register_runtime_oscillator(std::move(oscillator));
 }
