@@ -85,6 +85,7 @@ class PeriodOneOrbit {
 
   [[nodiscard]] bool found() const { return found_; }
   [[nodiscard]] double speed() const { return speed_; }
+  [[nodiscard]] double impact_time() const { return impact_time_; }  // in [0, T)
 
   // (x, ẋ) at time t of the orbit (t in [t*, t* + T])
   [[nodiscard]] std::array<double, 2> state(double t) const {
@@ -354,6 +355,146 @@ TEST(Continuation, StableBranchPointsAgreeWithTheSweepSectionAndPeriodic) {
     ++compared;
   }
   EXPECT_GE(compared, 3);
+}
+
+// The impact section of the stop: the same orbit as a fixed point of the map
+// from impact to impact, state (ω t* mod 2π, ẋ⁻). Multipliers of a Poincaré
+// map do not depend on the section (both sections cut the same flow in the
+// extended phase space (x, ẋ, ωt mod 2π) transversally), so the branch must
+// have the strobe's period doubling and, at every point, the closed form's
+// multipliers, the roots of λ² − tr M λ + det M of the monodromy S Φ.
+TEST(Continuation, LinearImpactOnTheImpactSectionHasTheStrobesPeriodDoublingAndMultipliers) {
+  ImpactOscillator o;
+  o.sigma = 0.2;
+  const Scene scene = linear_impact_scene(o);
+  ContinuationJob job;
+  job.parameter = "omega";
+  job.from = 2.0;
+  job.to = 2.4;  // below 2.448, where the impact itself grazes and the section degenerates
+  job.impact_wall = 1;
+  const auto result = impactlab::continue_orbit(scene, job);
+  const auto& branch = result.branches.at(0).result;
+  EXPECT_EQ(branch.stop_reason, "end_of_range") << branch.stop_detail;
+  const auto doublings = points_of_type(branch, "period_doubling");
+  ASSERT_EQ(doublings.size(), 1u);
+  const double expected = period_doubling(o, 2.24, 2.29);  // 2.2652971759636387
+  EXPECT_TRUE(doublings[0].located);
+  EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
+  EXPECT_LT(doublings[0].error_estimate, 1e-9 * expected);
+  // the strobe's branch over the same range: the same point
+  const auto strobe = continue_scene(scene, "omega", 2.0, 2.4);
+  const auto strobe_doublings = points_of_type(strobe.branches.at(0).result, "period_doubling");
+  ASSERT_EQ(strobe_doublings.size(), 1u);
+  EXPECT_NEAR(doublings[0].parameter, strobe_doublings[0].parameter, 1e-9 * expected);
+
+  ASSERT_GE(branch.branch.size(), 10u);
+  int compared_with_periodic = 0;
+  for (std::size_t k = 0; k < branch.branch.size(); ++k) {
+    const auto& point = branch.branch[k];
+    const PeriodOneOrbit closed(o, point.parameter);
+    ASSERT_TRUE(closed.found()) << point.parameter;
+    // the state: the impact's phase and speed
+    const double phase = std::fmod(point.parameter * closed.impact_time(), two_pi);
+    EXPECT_NEAR(std::remainder(point.state[0] - phase, two_pi), 0.0, 1e-9) << point.parameter;
+    EXPECT_NEAR(point.state[1], closed.speed(), 1e-9) << point.parameter;
+    EXPECT_EQ(point.impacts, 1);
+    // the multipliers against the closed form's
+    const auto tests = closed.test_functions();
+    const double trace = 0.5 * (tests[0] - tests[1]), determinant = 0.5 * (tests[0] + tests[1]) - 1.0;
+    const std::complex<double> root =
+        std::sqrt(std::complex<double>(0.25 * trace * trace - determinant));
+    const std::array<std::complex<double>, 2> exact = {0.5 * trace + root, 0.5 * trace - root};
+    for (const auto& multiplier : point.multipliers) {
+      const double nearest = std::min(std::abs(multiplier - exact[0]), std::abs(multiplier - exact[1]));
+      EXPECT_LT(nearest, 1e-9) << point.parameter << " " << multiplier;
+    }
+    // and against the strobe's (periodic: the stroboscopic map at the same ω)
+    if (k % 5 == 0) {
+      Scene at = scene;
+      at.values["omega"] = point.parameter;
+      const auto orbit = impactlab::periodic(at, impactlab::PeriodicRequest{});
+      if (!orbit.converged) continue;  // an unstable orbit the transient does not reach
+      for (const auto& multiplier : point.multipliers) {
+        const double nearest = std::min(std::abs(multiplier - orbit.multipliers[0]),
+                                        std::abs(multiplier - orbit.multipliers[1]));
+        EXPECT_LT(nearest, 1e-9) << point.parameter;
+      }
+      ++compared_with_periodic;
+    }
+  }
+  EXPECT_GE(compared_with_periodic, 1);
+}
+
+// The flight of ẍ + 2ζẋ + x = A cos ωt from (x0, v0) at t0, at t (closed form).
+std::array<double, 2> free_flight(const ImpactOscillator& o, double omega, double t0, double x0,
+                                  double v0, double t) {
+  const double denominator =
+      (1.0 - omega * omega) * (1.0 - omega * omega) + 4.0 * o.zeta * o.zeta * omega * omega;
+  const double P = o.A * (1.0 - omega * omega) / denominator;
+  const double Q = 2.0 * o.zeta * omega * o.A / denominator;
+  auto particular = [&](double s) {
+    return std::array<double, 2>{P * std::cos(omega * s) + Q * std::sin(omega * s),
+                                 omega * (Q * std::cos(omega * s) - P * std::sin(omega * s))};
+  };
+  const double wd = std::sqrt(1.0 - o.zeta * o.zeta);
+  const auto p0 = particular(t0), p = particular(t);
+  const double c1 = x0 - p0[0], c2 = (v0 - p0[1] + o.zeta * c1) / wd;
+  const double tau = t - t0, decay = std::exp(-o.zeta * tau);
+  const double c = std::cos(wd * tau), s = std::sin(wd * tau);
+  return {decay * (c1 * c + c2 * s) + p[0],
+          decay * ((wd * c2 - o.zeta * c1) * c - (wd * c1 + o.zeta * c2) * s) + p[1]};
+}
+
+// Sticking on the stop with r = 0 (a plastic impact: the mass arrives and
+// stays, x = σ, ẋ = 0, while the force on it at rest, A cos ωt − σ, pushes it
+// into the stop, and is released where that push falls through zero, at
+// ω t_r = arccos(σ/A) mod 2π). The period-1 orbit with one contact phase is
+// then fixed: released at t_r, it flies freely from (σ, 0) and returns to the
+// stop at t_i < t_r + T, where the push is positive, and sticks until t_r + T.
+// As ω rises the return comes later, and the contact phase ends where it
+// returns exactly at t_r + T: the root in ω of σ − x(t_r + T) on the free
+// flight from (σ, 0) at t_r. Beyond it the push at the return is negative and
+// the mass leaves the stop at once (no contact phase).
+TEST(Continuation, ContactEndOfTheStickingOrbitLocatedAtItsClosedForm) {
+  ImpactOscillator o;
+  o.sigma = 0.2;
+  o.r = 0.0;
+  Scene scene = linear_impact_scene(o);
+  auto return_gap = [&](double omega) {  // σ − x(t_r + T), the flight from (σ, 0) at t_r
+    const double release = std::acos(o.sigma / o.A) / omega;
+    return o.sigma - free_flight(o, omega, release, o.sigma, 0.0, release + two_pi / omega)[0];
+  };
+  const double expected = solve(return_gap, 1.6, 1.7);
+  {  // the flight does return there first: below the stop until t_r + T
+    const double release = std::acos(o.sigma / o.A) / expected, period = two_pi / expected;
+    for (int k = 1; k < 1000; ++k)
+      ASSERT_LT(free_flight(o, expected, release, o.sigma, 0.0, release + period * k / 1000.0)[0],
+                o.sigma);
+  }
+  const auto job = continue_scene(scene, "omega", 1.5, 1.8);
+  const auto& branch = job.branches.at(0).result;
+  EXPECT_EQ(branch.stop_reason, "end_of_range") << branch.stop_detail;
+  const auto ends = points_of_type(branch, "contact_end");
+  ASSERT_EQ(ends.size(), 1u);
+  EXPECT_TRUE(ends[0].located) << ends[0].note;
+  EXPECT_NEAR(ends[0].parameter, expected, 1e-9 * expected);
+  EXPECT_LT(ends[0].error_estimate, 1e-9 * expected);
+  EXPECT_GT(ends[0].error_estimate, 0.0);
+  // the monodromy vanishes there: zero on the sticking side (the release
+  // forgets the state), S Φ with S ∝ the push at the return on the other
+  EXPECT_LT(std::abs(ends[0].multipliers[0]), 1e-6);
+  // the state: the free flight from (σ, 0) at t_r on the section ωt ≡ 0
+  const double release = std::acos(o.sigma / o.A) / expected;
+  const auto x = free_flight(o, expected, release, o.sigma, 0.0, two_pi / expected);
+  EXPECT_NEAR(ends[0].state[0], x[0], 1e-8);
+  EXPECT_NEAR(ends[0].state[1], x[1], 1e-8);
+  // one contact phase before it, none after
+  for (const auto& point : branch.branch) {
+    if (std::fabs(point.parameter - expected) > 1e-6) {
+      EXPECT_EQ(point.contact_phases, point.parameter < expected ? 1 : 0) << point.parameter;
+    }
+  }
+  EXPECT_TRUE(points_of_type(branch, "contact_onset").empty());
 }
 
 // jin2003 (Model N, V0 = 1.5 m/s, g = 9.81 m/s²): the pivot's peak

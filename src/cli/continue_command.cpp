@@ -129,10 +129,6 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
     throw BadInput("--curve", options.curve, "needs --param2");
   if (two_parameter && options.switch_doubling)
     throw BadInput("--switch", "set", "a two-parameter curve (--param2) follows the first branch only");
-  const SectionSpec section = parse_section(options.section, "--section");
-  if (section.kind != SectionKind::strobe)
-    throw BadInput("--section", options.section,
-                   "continuation takes a stroboscopic section (strobe[:PHASE]) in this version");
   if (!options.with_sweep.empty() && !std::filesystem::is_regular_file(options.with_sweep))
     throw BadInput("--with-sweep", options.with_sweep,
                    two_parameter ? "no such file (a 2D sweep's classes.csv)"
@@ -146,7 +142,6 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
   job.from = range.from;
   job.to = range.to;
   job.period = options.period;
-  job.phase = section.phase;
   job.transient_periods = options.transient;
   job.doublings = options.switch_doubling ? doublings_followed : 0;
   if (two_parameter) {
@@ -155,6 +150,8 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
     job.second_to = range2.to;
     job.curve_type = options.curve;
   }
+  set_continuation_section(job, options.section, "--section");
+  const SectionSpec section = parse_section(options.section, "--section");
   if (!options.start.empty()) {
     job.has_start = true;
     job.start = {options.start[0], options.start[1]};
@@ -201,14 +198,18 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
         {"max_step", options.max_step},
         {"start", options.start}}},
       {"method",
-       "pseudo-arclength continuation of the fixed point of the n-fold stroboscopic map; "
+       "pseudo-arclength continuation of the fixed point of the n-fold stroboscopic map (or "
+       "of the impact map of one wall, state (impact phase, rate before the impact)); "
        "dF/dx from the saltation-corrected monodromy, dF/dp by a central difference; fold, "
        "period doubling and Neimark-Sacker located by TOMS 748 on the arclength; grazing "
        "solved as an extended system (zero gap, zero normal velocity)"},
       {"columns",
        {{"branch.csv",
          {{range.name, "the continued scene key (its unit in scene.units)"},
-          {"q, qdot", "the orbit's state on the section (main coordinate and its rate)"},
+          {"q, qdot", section.kind == SectionKind::impact
+                          ? "the orbit's state on the impact section: q the forcing phase "
+                            "omega t mod 2 pi of the impact (rad), qdot the rate just before it"
+                          : "the orbit's state on the section (main coordinate and its rate)"},
           {"period", "forcing periods of the orbit"},
           {"branch", "0: the first branch; k: the k-th doubled branch (--switch)"},
           {"impacts", "impacts per orbit period"},
@@ -327,12 +328,15 @@ Command add_continue_command(CLI::App& app) {
   command->add_option("--period", options->period, "n: the orbit's period in forcing periods")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  command->add_option("--section", options->section, "strobe[:PHASE]")->capture_default_str();
+  command->add_option("--section", options->section,
+                      "strobe[:PHASE], or impact:WALL (+1 or -1): the impact map, state (the "
+                      "impact's forcing phase, the rate before it)")
+      ->capture_default_str();
   command->add_flag("--switch", options->switch_doubling,
                     "at a period doubling, continue the doubled orbit (the cascade, up to 3 "
                     "doublings)");
   command->add_option("--start", options->start, "Q,QDOT: the start on the section (else the "
-                                                   "transient's end)")
+                                                   "transient's end); impact section: PHASE,QDOT")
       ->delimiter(',');
   command->add_option("--transient", options->transient, "forcing periods run for the start")
       ->check(CLI::Range(0.0, 1e9))
