@@ -495,6 +495,14 @@ TEST(Continuation, ContactEndOfTheStickingOrbitLocatedAtItsClosedForm) {
     }
   }
   EXPECT_TRUE(points_of_type(branch, "contact_onset").empty());
+
+  // run downwards, the same point is the onset of the contact phase
+  const auto down = continue_scene(scene, "omega", 1.8, 1.5);
+  const auto onsets = points_of_type(down.branches.at(0).result, "contact_onset");
+  ASSERT_EQ(onsets.size(), 1u) << down.branches[0].result.stop_detail;
+  EXPECT_TRUE(onsets[0].located) << onsets[0].note;
+  EXPECT_NEAR(onsets[0].parameter, expected, 1e-9 * expected);
+  EXPECT_LT(onsets[0].error_estimate, 1e-9 * expected);
 }
 
 // jin2003 (Model N, V0 = 1.5 m/s, g = 9.81 m/s²): the pivot's peak
