@@ -235,6 +235,15 @@ struct ContinuedBranch {
   ContinuationResult result;
 };
 
+// A two-parameter curve from one of the branches (job.second_parameter).
+struct BranchCurve {
+  int branch = 0;        // the branch it starts from (its index in branches)
+  int period = 1;        // that branch's period (forcing periods)
+  bool has_curve = false;  // the branch has a located point of the type to start from
+  CurveResult curve;
+  std::string note;      // why there is no curve
+};
+
 struct ContinuationJobResult {
   bool available = false;  // false: the oscillator/model has no Jacobians (see note)
   std::string note;
@@ -242,6 +251,10 @@ struct ContinuationJobResult {
   bool has_curve = false;                 // a curve was asked for and a point to start it found
   CurveResult curve;                      // the two-parameter curve (job.second_parameter)
   std::string curve_note;                 // why there is no curve, where one was asked for
+  // a curve with doublings (--switch): the curve of the same type from each
+  // doubled branch's first located point of it, doubled_curves[k] from
+  // branches[k + 1] (the cascade's boundaries in the plane)
+  std::vector<BranchCurve> doubled_curves;
 };
 
 // The eigenvector of M for the real multiplier nearest `multiplier`, unit length.

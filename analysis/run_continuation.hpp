@@ -642,13 +642,16 @@ std::optional<std::pair<std::size_t, double>> wall_witness(const System& system,
 }
 
 // The curve of the first located fold, period doubling or grazing point (of
-// job.curve_type where given) of the first branch, in (job.parameter,
-// job.second_parameter), into result.curve (result.curve_note says why not).
+// job.curve_type where given) of branch `index`, in (job.parameter,
+// job.second_parameter), into `curve`; false, with why in `note`, where the
+// branch has none.
 template <HasJacobian System, class SystemAt>
-void continue_curve_of(ContinuationJobResult& result, SystemAt system_at,
-                       typename System::Mode flight_mode, const Scene& scene,
-                       const ContinuationJob& job, const FlowSetup& setup, double omega) {
-  const ContinuationResult& branch = result.branches.front().result;
+bool continue_curve_of(const ContinuationJobResult& result, std::size_t index, CurveResult& curve,
+                       std::string& note, SystemAt system_at, typename System::Mode flight_mode,
+                       const Scene& scene, const ContinuationJob& job, const FlowSetup& setup,
+                       double omega) {
+  const ContinuationResult& branch = result.branches.at(index).result;
+  const int period = result.branches[index].period;
   const auto wanted = [&](const BifurcationPoint& p) {
     if (!p.located) return false;
     const std::string type = p.type == "branch_point" ? "fold" : p.type;
@@ -657,11 +660,11 @@ void continue_curve_of(ContinuationJobResult& result, SystemAt system_at,
   };
   const auto found = std::find_if(branch.points.begin(), branch.points.end(), wanted);
   if (found == branch.points.end()) {
-    result.curve_note = "no located " +
-                        (job.curve_type.empty() ? std::string("fold, period doubling or grazing")
-                                                : job.curve_type) +
-                        " point on the branch to start the curve from";
-    return;
+    note = "no located " +
+           (job.curve_type.empty() ? std::string("fold, period doubling or grazing")
+                                   : job.curve_type) +
+           " point on the branch to start the curve from";
+    return false;
   }
   CurveRequest request;
   request.type = found->type == "branch_point" ? "fold" : found->type;
@@ -678,18 +681,18 @@ void continue_curve_of(ContinuationJobResult& result, SystemAt system_at,
   // the branch's largest step, as a fraction of the first parameter's range
   if (job.numerics.max_step > 0.0) request.max_step = job.numerics.max_step / std::fabs(job.to - job.from);
   TwoParameterProblem problem;
-  problem.at = [scene, job, system_at, flight_mode, setup, omega](double p2) {
+  problem.at = [scene, job, system_at, flight_mode, setup, omega, period](double p2) {
     auto make_system = [scene, job, system_at, p2](double p1) {
       Scene at = scene;
       at.values[job.parameter] = p1;
       at.values[job.second_parameter] = p2;
       return system_at(at);
     };
-    return section_map_problem<System>(make_system, flight_mode, setup, job.phase, job.period,
+    return section_map_problem<System>(make_system, flight_mode, setup, job.phase, period,
                                        omega);
   };
-  result.curve = continue_curve(problem, request);
-  result.has_curve = true;
+  curve = continue_curve(problem, request);
+  return true;
 }
 
 // A boundary in terms of the scene (ParameterBoundary): `value(scene)` changes
@@ -833,8 +836,17 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
         for (BifurcationPoint& point : branch.result.points) reduce(point.state);
       }
     }
-    if (!job.second_parameter.empty())
-      continue_curve_of<System>(result, system_at, flight_mode, scene, job, setup, omega);
+    if (!job.second_parameter.empty()) {
+      result.has_curve = continue_curve_of<System>(result, 0, result.curve, result.curve_note,
+                                                   system_at, flight_mode, scene, job, setup, omega);
+      for (std::size_t b = 1; b < result.branches.size(); ++b) {
+        BranchCurve doubled{static_cast<int>(b), result.branches[b].period};
+        doubled.has_curve = continue_curve_of<System>(result, b, doubled.curve, doubled.note,
+                                                      system_at, flight_mode, scene, job, setup,
+                                                      omega);
+        result.doubled_curves.push_back(std::move(doubled));
+      }
+    }
     return result;
   }
 }

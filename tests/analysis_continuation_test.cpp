@@ -313,6 +313,36 @@ TEST(Continuation, BouncingBallPeriodDoublingMatchesTheClosedForm) {
   EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
 }
 
+// On the impact section of the table (wall −1), which moves: the impact
+// point slides along z = A sin ωt, the term ∂q_w/∂t of the map's Jacobian.
+// The period-1 orbit hits the table at cos φ = π(1 − r)/(Γ(1 + r)) with
+// ẏ⁻ = −gT/2; its period doubling is the closed form's.
+TEST(Continuation, BouncingBallOnTheImpactSectionOfTheMovingTable) {
+  const Scene scene = impactlab::load_scene("bouncing_ball");  // g 9.81, ω 30, r 0.8
+  const double g = 9.81, omega = 30.0, r = 0.8, period = two_pi / omega;
+  auto impact_phase = [&](double A) {
+    return std::acos(std::numbers::pi * (1.0 - r) / (A * omega * omega / g * (1.0 + r)));
+  };
+  ContinuationJob job;
+  job.parameter = "A";
+  job.from = 0.0112;
+  job.to = 0.0125;
+  job.impact_wall = -1;
+  job.has_start = true;
+  job.start = {impact_phase(0.0112), -0.5 * g * period};
+  const auto result = impactlab::continue_orbit(scene, job);
+  const auto& branch = result.branches.at(0).result;
+  EXPECT_EQ(branch.stop_reason, "end_of_range") << branch.stop_detail;
+  const auto doublings = points_of_type(branch, "period_doubling");
+  ASSERT_EQ(doublings.size(), 1u);
+  const double expected = bouncing_ball_period_doubling_amplitude(g, omega, r);
+  EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
+  for (const auto& point : branch.branch) {
+    EXPECT_NEAR(point.state[0], impact_phase(point.parameter), 1e-9) << point.parameter;
+    EXPECT_NEAR(point.state[1], -0.5 * g * period, 1e-9) << point.parameter;
+  }
+}
+
 TEST(Continuation, BouncingBallCascadeThroughTwoDoublings) {
   const Scene scene = impactlab::load_scene("bouncing_ball");
   const auto job = continue_scene(scene, "A", 0.0112, 0.0135, 2,
@@ -612,6 +642,93 @@ TEST(CurveContinuation, BouncingBallPeriodDoublingCurveInAmplitudeAndRestitution
     EXPECT_NEAR(point.p1, expected, 1e-9 * expected) << "r = " << point.p2;
     EXPECT_NEAR(point.multipliers[0].real(), -1.0, 1e-7) << "r = " << point.p2;
   }
+}
+
+// The bouncing ball's impact map written here from its closed-form flight,
+// independently of the toolkit: a ball leaving the table z = A sin ωt at
+// time t with speed v flies on y = z(t) + v (s − t) − g (s − t)²/2 until it
+// meets the table again (the first root of y − z after t, by a scan and TOMS
+// 748), where ẏ⁺ = (1 + r) ż − r ẏ⁻. State (t, v after the impact).
+struct BallImpactMap {
+  double g = 9.81, omega = 30.0, r = 0.8, A = 0.0;
+  [[nodiscard]] std::array<double, 2> operator()(const std::array<double, 2>& state) const {
+    const double t = state[0], v = state[1];
+    auto gap = [&](double s) {
+      return A * std::sin(omega * t) + v * (s - t) - 0.5 * g * (s - t) * (s - t) -
+             A * std::sin(omega * s);
+    };
+    const double dt = two_pi / omega / 4000.0;
+    double a = t + dt;
+    while (!(gap(a + dt) < 0.0)) a += dt;
+    const double s = solve(gap, a, a + dt);
+    const double table_rate = A * omega * std::cos(omega * s);
+    return {s, (1.0 + r) * table_rate - r * (v - g * (s - t))};
+  }
+};
+
+// With --switch and --param2, the curve of each doubled branch's point: the
+// ball's period-2 orbit's period doubling in (A, r). Checked point by point
+// on the independent impact map above: from the curve's state on the strobe
+// section, the next impact; P² returns to it two forcing periods later (a
+// period-2 orbit, not a period-1 one), and the Jacobian of P² (central
+// differences) has a multiplier −1: det(DP² + I) = (1 + λ₁)(1 + λ₂) = 0.
+TEST(CurveContinuation, BouncingBallPeriodTwoPeriodDoublingCurveWithSwitch) {
+  const Scene scene = impactlab::load_scene("bouncing_ball");  // g 9.81, ω 30, r 0.8
+  ContinuationJob job = curve_job("A", 0.0112, 0.025, "r", 0.8, 0.7, "period_doubling");
+  job.has_start = true;
+  job.start = bouncing_ball_start(9.81, 30.0, 0.8, 0.0112);
+  job.doublings = 1;
+  const auto result = impactlab::continue_orbit(scene, job);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  ASSERT_EQ(result.doubled_curves.size(), 1u);
+  const auto& doubled = result.doubled_curves[0];
+  ASSERT_TRUE(doubled.has_curve) << doubled.note;
+  EXPECT_EQ(doubled.branch, 1);
+  EXPECT_EQ(doubled.period, 2);
+  EXPECT_EQ(doubled.curve.type, "period_doubling");
+  EXPECT_EQ(doubled.curve.stop_reason, "end_of_range") << doubled.curve.stop_detail;
+  ASSERT_GE(doubled.curve.curve.size(), 5u);
+  const double period = two_pi / 30.0;
+  int compared = 0;
+  for (std::size_t k = 0; k < doubled.curve.curve.size(); k += 3) {
+    const auto& point = doubled.curve.curve[k];
+    // above the period-1 orbit's doubling at this r (the cascade's next step)
+    EXPECT_GT(point.p1, bouncing_ball_period_doubling_amplitude(9.81, 30.0, point.p2));
+    BallImpactMap map;
+    map.r = point.p2;
+    map.A = point.p1;
+    // the first impact after the section t = 0, from the curve's state
+    auto flight_gap = [&](double s) {
+      return point.state[0] + point.state[1] * s - 0.5 * map.g * s * s -
+             map.A * std::sin(map.omega * s);
+    };
+    double a = 0.0;
+    while (!(flight_gap(a + period / 4000.0) < 0.0)) a += period / 4000.0;
+    const double s = solve(flight_gap, a, a + period / 4000.0);
+    const std::array<double, 2> impact = {
+        s, (1.0 + map.r) * map.A * map.omega * std::cos(map.omega * s) -
+               map.r * (point.state[1] - map.g * s)};
+    auto twice = [&](const std::array<double, 2>& x) { return map(map(x)); };
+    const auto back = twice(impact);
+    EXPECT_NEAR(back[0] - impact[0], 2.0 * period, 1e-8) << "r = " << point.p2;
+    EXPECT_NEAR(back[1], impact[1], 1e-8) << "r = " << point.p2;
+    const auto once = map(impact);
+    EXPECT_GT(std::fabs(once[1] - impact[1]), 1e-3) << "r = " << point.p2;  // not period 1
+    std::array<std::array<double, 2>, 2> jacobian{};
+    const std::array<double, 2> h = {1e-7 * period, 1e-7 * (1.0 + std::fabs(impact[1]))};
+    for (int j = 0; j < 2; ++j) {
+      auto up = impact, down = impact;
+      up[j] += h[j];
+      down[j] -= h[j];
+      const auto a_up = twice(up), a_down = twice(down);
+      for (int i = 0; i < 2; ++i) jacobian[i][j] = (a_up[i] - a_down[i]) / (2.0 * h[j]);
+    }
+    const double det_plus =
+        (jacobian[0][0] + 1.0) * (jacobian[1][1] + 1.0) - jacobian[0][1] * jacobian[1][0];
+    EXPECT_NEAR(det_plus, 0.0, 1e-5) << "r = " << point.p2;
+    ++compared;
+  }
+  EXPECT_GE(compared, 2);
 }
 
 TEST(CurveContinuation, LinearImpactPeriodDoublingCurveInOmegaAndRestitution) {

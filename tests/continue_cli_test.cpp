@@ -105,6 +105,24 @@ TEST(ContinueCommand, TwoParameterCurveWritesTheCurveAndItsSidecar) {
   EXPECT_TRUE(fs::exists(out / "branch.csv"));
 }
 
+TEST(ContinueCommand, SwitchWithACurveWritesTheDoubledBranchsCurveToo) {
+  const auto dir = scratch("switch_curve");
+  const auto out = dir / "out";
+  const Outcome outcome = run("continue bouncing_ball --param A=0.0112:0.025 --start "
+                              "0.044286522498880876,-0.6269934342801218 --param2 r=0.8:0.75 "
+                              "--curve period_doubling --switch --quiet --out " + out.string(), dir);
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const std::string curve = slurp(out / "curve.csv");
+  EXPECT_NE(curve.find("newton_iterations,branch,period\n"), std::string::npos) << curve;
+  EXPECT_NE(curve.find(",1,2\n"), std::string::npos) << curve;  // rows of branch 1, period 2
+  const auto meta = nlohmann::json::parse(slurp(out / "curve.json"));
+  EXPECT_EQ(meta["request"]["switch"], true);
+  ASSERT_GE(meta["doubled_curves"].size(), 1u);
+  EXPECT_EQ(meta["doubled_curves"][0]["period"], 2);
+  EXPECT_EQ(meta["doubled_curves"][0]["type"], "period_doubling");
+  EXPECT_EQ(meta["doubled_curves"][0]["stop_reason"], "end_of_range");
+}
+
 TEST(ContinueCommand, BadInputExitsWithTwoAndOneLine) {
   const std::vector<std::string> bad = {
       "continue linear_impact --param omega=-1:2",       // outside the key's range
@@ -124,7 +142,6 @@ TEST(ContinueCommand, BadInputExitsWithTwoAndOneLine) {
       "continue linear_impact --param omega=2:2.5 --param2 zeta2=0:1",   // no such key
       "continue linear_impact --param omega=2:2.5 --curve fold",         // --curve without --param2
       "continue linear_impact --param omega=2:2.5 --param2 r=0.8:0.6 --curve torus",
-      "continue linear_impact --param omega=2:2.5 --param2 r=0.8:0.6 --switch",
   };
   for (const auto& arguments : bad) {
     const auto dir = scratch("bad");

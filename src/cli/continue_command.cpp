@@ -104,19 +104,23 @@ void write_points_csv(AtomicFile& file, const std::string& name,
           << csv_field(p.graze_time) << ',' << p.graze_witness << ",\"" << p.note << "\"\n";
 }
 
+// every curve, one row per point: the first branch's, then (--switch) each
+// doubled branch's, told apart by the branch and period columns
 void write_curve_csv(AtomicFile& file, const std::string& name1, const std::string& name2,
-                     const CurveResult& curve) {
+                     const std::vector<BranchCurve>& curves) {
   auto& out = file.stream();
   out << name1 << ',' << name2
       << ",q,qdot,multiplier1_re,multiplier1_im,multiplier2_re,multiplier2_im,multiplier1_abs,"
-         "multiplier2_abs,graze_time,impacts,newton_iterations\n";
-  for (const CurvePoint& p : curve.curve)
-    out << csv_field(p.p1) << ',' << csv_field(p.p2) << ',' << csv_field(p.state[0]) << ','
-        << csv_field(p.state[1]) << ',' << csv_field(p.multipliers[0].real()) << ','
-        << csv_field(p.multipliers[0].imag()) << ',' << csv_field(p.multipliers[1].real()) << ','
-        << csv_field(p.multipliers[1].imag()) << ',' << csv_field(std::abs(p.multipliers[0]))
-        << ',' << csv_field(std::abs(p.multipliers[1])) << ',' << csv_field(p.graze_time) << ','
-        << p.impacts << ',' << p.newton_iterations << '\n';
+         "multiplier2_abs,graze_time,impacts,newton_iterations,branch,period\n";
+  for (const BranchCurve& curve : curves)
+    for (const CurvePoint& p : curve.curve.curve)
+      out << csv_field(p.p1) << ',' << csv_field(p.p2) << ',' << csv_field(p.state[0]) << ','
+          << csv_field(p.state[1]) << ',' << csv_field(p.multipliers[0].real()) << ','
+          << csv_field(p.multipliers[0].imag()) << ',' << csv_field(p.multipliers[1].real()) << ','
+          << csv_field(p.multipliers[1].imag()) << ',' << csv_field(std::abs(p.multipliers[0]))
+          << ',' << csv_field(std::abs(p.multipliers[1])) << ',' << csv_field(p.graze_time) << ','
+          << p.impacts << ',' << p.newton_iterations << ',' << curve.branch << ',' << curve.period
+          << '\n';
 }
 
 int run_continue(const ContinueOptions& options, const std::vector<std::string>& command_line) {
@@ -127,8 +131,6 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
                                               : ParameterRange{};
   if (!options.curve.empty() && !two_parameter)
     throw BadInput("--curve", options.curve, "needs --param2");
-  if (two_parameter && options.switch_doubling)
-    throw BadInput("--switch", "set", "a two-parameter curve (--param2) follows the first branch only");
   if (!options.with_sweep.empty() && !std::filesystem::is_regular_file(options.with_sweep))
     throw BadInput("--with-sweep", options.with_sweep,
                    two_parameter ? "no such file (a 2D sweep's classes.csv)"
@@ -226,7 +228,22 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
   };
   write_json(run_files.add("continuation.json"), document);
   if (two_parameter) {
-    write_curve_csv(run_files.add("curve.csv"), range.name, range2.name, result.curve);
+    // the curves: the first branch's, then each doubled branch's (--switch)
+    std::vector<BranchCurve> curves = {
+        {0, options.period, result.has_curve, result.curve, result.curve_note}};
+    for (const BranchCurve& doubled : result.doubled_curves)
+      if (doubled.has_curve) curves.push_back(doubled);
+    nlohmann::json curve_list = nlohmann::json::array();
+    for (const BranchCurve& curve : result.doubled_curves)
+      curve_list.push_back({{"branch", curve.branch},
+                            {"period", curve.period},
+                            {"type", curve.has_curve ? curve.curve.type : ""},
+                            {"points", curve.curve.curve.size()},
+                            {"stop_reason", curve.has_curve ? curve.curve.stop_reason
+                                                            : "no_start_point"},
+                            {"stop_detail", curve.has_curve ? curve.curve.stop_detail : curve.note},
+                            {"map_evaluations", curve.curve.map_evaluations}});
+    write_curve_csv(run_files.add("curve.csv"), range.name, range2.name, curves);
     const nlohmann::json curve_document = {
         {"impactlab_version", IMPACTLAB_VERSION},
         {"command", command_line},
@@ -241,6 +258,7 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
           {"to2", range2.to},
           {"curve", options.curve.empty() ? "first located" : options.curve},
           {"period", options.period},
+          {"switch", options.switch_doubling},
           {"section", to_string(section)},
           {"tolerance", options.tolerance}}},
         {"type", result.has_curve ? result.curve.type : ""},
@@ -248,6 +266,7 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
         {"stop_reason", result.has_curve ? result.curve.stop_reason : "no_start_point"},
         {"stop_detail", result.has_curve ? result.curve.stop_detail : result.curve_note},
         {"map_evaluations", result.curve.map_evaluations},
+        {"doubled_curves", curve_list},
         {"method",
          "pseudo-arclength continuation in (q, qdot, p1, p2) of the orbit condition "
          "P^n(x) = x with det(M - I) = 0 (fold), det(M + I) = 0 (period doubling), or zero gap "
@@ -260,7 +279,10 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
           {"q, qdot", "the orbit's state on the section at the curve point"},
           {"multiplier*", "Floquet multipliers of the orbit at the point"},
           {"graze_time", "grazing: time after the section at which the wall is touched (s)"},
-          {"impacts", "impacts per orbit period (a grazing point's touch not counted)"}}},
+          {"impacts", "impacts per orbit period (a grazing point's touch not counted)"},
+          {"branch", "the branch the curve starts from: 0, then k for the k-th doubled one "
+                     "(--switch; doubled_curves)"},
+          {"period", "forcing periods of that branch's orbit"}}},
         {"wall_time_s", wall_time},
     };
     write_json(run_files.add("curve.json"), curve_document);
@@ -296,6 +318,15 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
                                  result.curve.stop_detail);
       else
         std::cout << "no curve: " << result.curve_note << '\n';
+      for (const BranchCurve& doubled : result.doubled_curves) {
+        if (doubled.has_curve)
+          std::cout << fmt::format("  period-{} branch's {} curve: {} points, stopped: {} ({})\n",
+                                   doubled.period, doubled.curve.type, doubled.curve.curve.size(),
+                                   doubled.curve.stop_reason, doubled.curve.stop_detail);
+        else
+          std::cout << fmt::format("  period-{} branch: no curve: {}\n", doubled.period,
+                                   doubled.note);
+      }
     }
     std::cout << "wrote " << (directory / "branch.csv").string() << ", points.csv, continuation.json"
               << (two_parameter ? ", curve.csv, curve.json" : "") << '\n';
@@ -320,8 +351,8 @@ Command add_continue_command(CLI::App& app) {
       ->required();
   command->add_option("--param2", options->param2,
                       "NAME=FROM:TO: follow the first located fold, period doubling or grazing "
-                      "point of the branch (run at NAME=FROM) in (--param, NAME) to NAME=TO; "
-                      "writes curve.csv");
+                      "point of the branch (run at NAME=FROM) in (--param, NAME) to NAME=TO "
+                      "(with --switch: of each doubled branch too); writes curve.csv");
   command->add_option("--curve", options->curve,
                       "fold|period_doubling|grazing: the bifurcation whose curve --param2 follows "
                       "(default: the first located)");
