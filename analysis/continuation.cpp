@@ -37,6 +37,21 @@ std::array<std::complex<double>, 2> multipliers_of(const TangentMatrix& m) {
   return {a, b};
 }
 
+// The walls hit, in order: the signature without its contact phases ("c+1"),
+// which may appear or end along a branch without stopping it.
+std::string walls_hit(const std::string& signature) {
+  std::string walls;
+  std::size_t begin = 0;
+  while (begin < signature.size()) {
+    std::size_t end = signature.find(' ', begin);
+    if (end == std::string::npos) end = signature.size();
+    if (end > begin && signature[begin] != 'c')
+      walls += (walls.empty() ? "" : " ") + signature.substr(begin, end - begin);
+    begin = end + 1;
+  }
+  return walls;
+}
+
 // A point on the branch, with what the next step needs.
 struct Node {
   Vec3 y = Vec3::Zero();
@@ -137,7 +152,7 @@ class Driver {
       c.y = y;
       c.iterations = iteration;
       if (!c.orbit.completed) return c;
-      if (signature && c.orbit.signature != *signature) {
+      if (signature && walls_hit(c.orbit.signature) != walls_hit(*signature)) {
         c.signature_changed = true;
         return c;
       }
@@ -234,7 +249,8 @@ class Driver {
   // carried there and corrected again. States are still reported on the
   // requested section.
   void move_section_off_events(Node& node) {
-    if (node.orbit.span <= 0.0 || clearance(node.orbit, 0.0) > 0.02) return;
+    if (!problem_.section_moves || node.orbit.span <= 0.0 || clearance(node.orbit, 0.0) > 0.02)
+      return;
     const double p = node.y[2] * scale_;
     double best_phase = phase_, best_clearance = clearance(node.orbit, 0.0);
     for (int j = 1; j < 16; ++j) {
@@ -376,16 +392,68 @@ class Driver {
       result_.points.push_back(point);
     }
     for (const ParameterBoundary& boundary : problem_.boundaries) locate_boundary(boundary, a, b);
-    if (a.orbit.contact_phases != b.orbit.contact_phases) {
-      BifurcationPoint point;
-      point.type = b.orbit.contact_phases > a.orbit.contact_phases ? "contact_onset" : "contact_end";
-      point.parameter = 0.5 * (a.y[2] + b.y[2]) * scale_;
-      point.state = reported_state(b.y);
-      point.multipliers = multipliers_of(b.orbit.monodromy);
-      point.error_estimate = 0.5 * std::fabs(b.y[2] - a.y[2]) * scale_;
-      point.note = "detected between two branch points";
+    if (a.orbit.contact_phases != b.orbit.contact_phases) locate_contact_change(a, b, step);
+  }
+
+  // The number of contact phases differs between nodes a and b (reached by
+  // the step `step` from a): bisection on the arclength s from a, each trial
+  // point corrected onto the branch (the hyperplane through a + s τ normal to
+  // τ, as the step itself), the side decided by the trial orbit's count, down
+  // to a bracket of 1e-10 of the range in p (or 1e-13 in s where the branch
+  // is nearly normal to p). The point is the corrected orbit at the middle of
+  // the last bracket; its error estimate is the bracket in p.
+  void locate_contact_change(const Node& a, const Node& b, double step) {
+    BifurcationPoint point;
+    point.type = b.orbit.contact_phases > a.orbit.contact_phases ? "contact_onset" : "contact_end";
+    point.parameter = 0.5 * (a.y[2] + b.y[2]) * scale_;
+    point.state = reported_state(b.y);
+    point.multipliers = multipliers_of(b.orbit.monodromy);
+    point.error_estimate = 0.5 * std::fabs(b.y[2] - a.y[2]) * scale_;
+    point.note = "detected between two branch points";
+    if (!request_.locate) {
       result_.points.push_back(point);
+      return;
     }
+    const Vec3& tau = a.tangent;
+    auto corrected_at = [&](double s) {
+      const Vec3 predicted = a.y + s * tau;
+      return correct(predicted, tau, predicted, {}, nullptr);
+    };
+    double low = 0.0, high = step;         // a's count at low, another at high
+    double p_low = a.y[2], p_high = b.y[2];  // the corrected ends' p (range units)
+    bool failed = false;
+    for (int bisection = 0; bisection < 80; ++bisection) {
+      if (std::fabs(p_high - p_low) <= 1e-10 || high - low <= 1e-13) break;
+      const double middle = 0.5 * (low + high);
+      const Correction c = corrected_at(middle);
+      if (!c.converged) {
+        failed = true;
+        break;
+      }
+      if (c.orbit.contact_phases == a.orbit.contact_phases) {
+        low = middle;
+        p_low = c.y[2];
+      } else {
+        high = middle;
+        p_high = c.y[2];
+      }
+    }
+    const Correction c = failed ? Correction{} : corrected_at(0.5 * (low + high));
+    if (c.converged) {
+      point.parameter = c.y[2] * scale_;
+      point.state = reported_state(c.y);
+      point.multipliers = multipliers_of(c.orbit.monodromy);
+      point.error_estimate = std::fabs(p_high - p_low) * scale_;
+      point.located = true;
+      point.note = contact_change_note(a.orbit.contact_phases, b.orbit.contact_phases);
+    } else {
+      point.note = "detected; the corrector failed while locating it";
+    }
+    result_.points.push_back(point);
+  }
+
+  static std::string contact_change_note(int before, int after) {
+    return "contact phases per orbit " + std::to_string(before) + " -> " + std::to_string(after);
   }
 
   // A parameter boundary crossed between nodes a and b: its root in p (TOMS

@@ -1,5 +1,6 @@
 // Pseudo-arclength continuation of a period-n orbit, seen as a fixed point of
-// the n-fold stroboscopic map Pⁿ(x; p), with its bifurcations located on the
+// the n-fold stroboscopic map Pⁿ(x; p) (or of the impact map of one wall,
+// state (impact phase, q̇⁻)), with its bifurcations located on the
 // branch: fold (a multiplier through +1), period doubling (through −1),
 // Neimark–Sacker (a complex pair through the unit circle) and grazing (a wall
 // touched with zero normal velocity: an interior flight extremum reaching a
@@ -16,14 +17,19 @@
 //    saltation-corrected monodromy M, ∂F/∂p by a central difference of Pⁿ in p;
 //  * Newton corrector; the step grows after easy corrections and is halved
 //    where Newton fails, where the tangent turns by more than 30°, or where
-//    the impact signature changes; the branch stops below the smallest step;
+//    the impact signature (the walls hit, in order) changes; the branch stops
+//    below the smallest step; a contact phase appearing or ending alone does
+//    not stop it;
 //  * bifurcations are detected by sign changes of test functions between two
 //    points (det(M − I), det(M + I), det M − 1, the smallest flight gap, the
 //    smallest impact speed) and located by a root finder (TOMS 748) on the
 //    arclength between them, each trial point corrected onto the branch;
 //  * a grazing point is then solved as an extended system in (q, q̇, p, t_g):
 //    F = 0 with the wall's contacts near t_g suppressed (the virtual orbit
-//    that passes through the graze), gap(t_g) = 0, gap rate(t_g) = 0.
+//    that passes through the graze), gap(t_g) = 0, gap rate(t_g) = 0;
+//  * a change of the number of contact phases between two points is located
+//    by bisection on the arclength between them (each trial point corrected
+//    onto the branch) down to a bracket of 1e-10 of the range in p.
 #pragma once
 
 #include <array>
@@ -104,6 +110,9 @@ struct ContinuationProblem {
   std::function<std::optional<OrbitPoint>(const OrbitPoint& x, double p, double from, double to)>
       transport;
   double phase = 0.0;                // rad: the requested section
+  // the driver may move a stroboscopic section off events (`transport`); an
+  // impact section lies on its events and stays
+  bool section_moves = true;
   double forcing_period_at_p = 0.0;  // nT at the start (s): the scale of the grazing window
   std::vector<ParameterBoundary> boundaries;  // reported where the branch crosses them
 };
@@ -152,8 +161,8 @@ struct ContinuationResult {
   std::vector<BranchPoint> branch;
   std::vector<BifurcationPoint> points;
   // end_of_range, branch_point (step below the smallest: a point the corrector
-  // cannot pass), signature_change (the impact signature changed: grazing or
-  // contact onset), max_points, start_not_converged, run_stopped
+  // cannot pass), signature_change (the impact signature changed: grazing),
+  // max_points, start_not_converged, run_stopped
   std::string stop_reason = "end_of_range";
   std::string stop_detail;
   int map_evaluations = 0;
@@ -202,8 +211,12 @@ struct ContinuationJob {
   double from = 0.0, to = 1.0;     // its range, run from `from` towards `to`
   int period = 1;                  // n: the orbit's period in forcing periods
   double phase = 0.0;              // rad: the stroboscopic section ωt ≡ phase (mod 2π)
+  // nonzero: the impact section of this wall (+1 / −1) instead, its state
+  // (φ, q̇⁻): the forcing phase ωt of an impact with it in [0, 2π), and the
+  // rate just before that impact
+  int impact_wall = 0;
   double transient_periods = 100;  // periods run from the scene's initial state for the start
-  bool has_start = false;          // start from `start` (q, q̇) instead of the transient's end
+  bool has_start = false;          // start from `start` (on the section) instead of the transient's end
   OrbitPoint start{};
   int doublings = 0;               // period doublings to switch at (the cascade followed)
   ContinuationRequest numerics;    // from, to and start are set from the fields above
@@ -222,6 +235,15 @@ struct ContinuedBranch {
   ContinuationResult result;
 };
 
+// A two-parameter curve from one of the branches (job.second_parameter).
+struct BranchCurve {
+  int branch = 0;        // the branch it starts from (its index in branches)
+  int period = 1;        // that branch's period (forcing periods)
+  bool has_curve = false;  // the branch has a located point of the type to start from
+  CurveResult curve;
+  std::string note;      // why there is no curve
+};
+
 struct ContinuationJobResult {
   bool available = false;  // false: the oscillator/model has no Jacobians (see note)
   std::string note;
@@ -229,6 +251,10 @@ struct ContinuationJobResult {
   bool has_curve = false;                 // a curve was asked for and a point to start it found
   CurveResult curve;                      // the two-parameter curve (job.second_parameter)
   std::string curve_note;                 // why there is no curve, where one was asked for
+  // a curve with doublings (--switch): the curve of the same type from each
+  // doubled branch's first located point of it, doubled_curves[k] from
+  // branches[k + 1] (the cascade's boundaries in the plane)
+  std::vector<BranchCurve> doubled_curves;
 };
 
 // The eigenvector of M for the real multiplier nearest `multiplier`, unit length.

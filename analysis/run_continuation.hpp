@@ -11,12 +11,15 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "analysis/continuation.hpp"
 #include "analysis/curve_continuation.hpp"
 #include "analysis/flow_setup.hpp"
+#include "analysis/saltation.hpp"
 #include "analysis/variational.hpp"
 #include "core/simulator.hpp"
 #include "integrate/stepper_dispatch.hpp"
@@ -136,6 +139,53 @@ class GapSampler {
   int count_, next_ = 0;
 };
 
+// The impacts, contact phases, signature and event times (since t0) of the
+// event records [begin, end) into `result`.
+template <class Records>
+void note_events(Records begin, Records end, double t0, OrbitEvaluation& result) {
+  for (auto event = begin; event != end; ++event) {
+    result.event_times.push_back(event->t - t0);
+    const std::string wall = event->wall > 0 ? "+" + std::to_string(event->wall)
+                                             : std::to_string(event->wall);
+    if (event->kind == EventKind::impact) {
+      ++result.impacts;
+      result.signature += (result.signature.empty() ? "" : " ") + wall;
+    } else if (event->kind == EventKind::contact_start) {
+      ++result.contact_phases;
+      result.signature += (result.signature.empty() ? "c" : " c") + wall;
+    }
+  }
+}
+
+// The lowest interior local minimum of each gap between samples in flight,
+// away from crossings, refined by the parabola through three samples.
+template <class System, class Samples>
+void note_lowest_flight_gap(const Samples& samples, const CrossingTrace& trace, double t0,
+                            OrbitEvaluation& result) {
+  for (std::size_t j = 1; j + 1 < samples.size(); ++j) {
+    if (!samples[j - 1].flight || !samples[j].flight || !samples[j + 1].flight) continue;
+    for (std::size_t k = 0; k < System::max_witnesses; ++k) {
+      const double a = samples[j - 1].gap[k], b = samples[j].gap[k], c = samples[j + 1].gap[k];
+      if (!(b <= a && b <= c) || !std::isfinite(a + b + c)) continue;
+      const bool crossed = std::any_of(
+          trace.crossings.begin(), trace.crossings.end(), [&](const auto& crossing) {
+            return crossing.witness == static_cast<int>(k) && crossing.t >= samples[j - 1].t &&
+                   crossing.t <= samples[j + 1].t;
+          });
+      if (crossed) continue;
+      // the parabola through the three samples
+      const double curvature = a - 2.0 * b + c;
+      const double offset = curvature > 0.0 ? 0.5 * (a - c) / curvature : 0.0;
+      const double lowest = b - 0.125 * (a - c) * offset;
+      if (lowest < result.min_flight_gap) {
+        result.min_flight_gap = lowest;
+        result.min_flight_gap_time = samples[j].t + offset * (samples[j + 1].t - samples[j].t) - t0;
+        result.min_flight_gap_witness = static_cast<int>(k);
+      }
+    }
+  }
+}
+
 // The problem for p ↦ make_system(p) (a System whose parameters().omega is
 // the forcing frequency), section ωt ≡ phase, period n, from flight mode.
 template <HasJacobian System, class MakeSystem>
@@ -191,18 +241,7 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
     result.monodromy = Tangent::fundamental_matrix(run.state);
     result.span = span;
     result.omega = omega;
-    for (const EventRecord& event : log.records()) {
-      result.event_times.push_back(event.t - t0);
-      const std::string wall = event.wall > 0 ? "+" + std::to_string(event.wall)
-                                              : std::to_string(event.wall);
-      if (event.kind == EventKind::impact) {
-        ++result.impacts;
-        result.signature += (result.signature.empty() ? "" : " ") + wall;
-      } else if (event.kind == EventKind::contact_start) {
-        ++result.contact_phases;
-        result.signature += (result.signature.empty() ? "c" : " c") + wall;
-      }
-    }
+    note_events(log.records().begin(), log.records().end(), t0, result);
     for (const auto& crossing : trace.crossings) {
       if (crossing.speed < result.min_impact_speed) {
         result.min_impact_speed = crossing.speed;
@@ -210,30 +249,7 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
         result.slowest_impact_witness = crossing.witness;
       }
     }
-    // interior local minima of each gap between samples in flight, away from crossings
-    const auto& samples = sampler.samples;
-    for (std::size_t j = 1; j + 1 < samples.size(); ++j) {
-      if (!samples[j - 1].flight || !samples[j].flight || !samples[j + 1].flight) continue;
-      for (std::size_t k = 0; k < System::max_witnesses; ++k) {
-        const double a = samples[j - 1].gap[k], b = samples[j].gap[k], c = samples[j + 1].gap[k];
-        if (!(b <= a && b <= c) || !std::isfinite(a + b + c)) continue;
-        const bool crossed = std::any_of(
-            trace.crossings.begin(), trace.crossings.end(), [&](const auto& crossing) {
-              return crossing.witness == static_cast<int>(k) && crossing.t >= samples[j - 1].t &&
-                     crossing.t <= samples[j + 1].t;
-            });
-        if (crossed) continue;
-        // the parabola through the three samples
-        const double curvature = a - 2.0 * b + c;
-        const double offset = curvature > 0.0 ? 0.5 * (a - c) / curvature : 0.0;
-        const double lowest = b - 0.125 * (a - c) * offset;
-        if (lowest < result.min_flight_gap) {
-          result.min_flight_gap = lowest;
-          result.min_flight_gap_time = samples[j].t + offset * (samples[j + 1].t - samples[j].t) - t0;
-          result.min_flight_gap_witness = static_cast<int>(k);
-        }
-      }
-    }
+    note_lowest_flight_gap<System>(sampler.samples, trace, t0, result);
     return result;
   };
   problem.gap_at = [shared](const OrbitPoint& x, double p, double section_phase,
@@ -286,14 +302,356 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
   return problem;
 }
 
+// --- the impact section: the map from one impact with a wall to a later one ---
+
+// What StopAtWallImpact saw of the impacts with its wall during one run.
+struct WallImpactTrace {
+  std::vector<double> times;     // every impact with the wall (s), in order
+  bool stopped = false;          // the run stopped at the target impact
+  double stop_time = 0.0;        // s
+  std::size_t stop_witness = 0;  // the witness whose crossing it was
+  std::size_t first_record = 0, stop_record = 0;  // log indices of the first and the target impact
+};
+
+// A system that stops the run just before the reset of its `target`-th impact
+// with wall `wall` (counted from 0), and notes the times of those impacts.
+// A run that starts on the wall, moving into it, has that impact as its 0th.
+// The log must keep its records (the wall of an impact is read from them).
+template <HasJacobian Base>
+class StopAtWallImpact {
+ public:
+  using State = typename Base::State;
+  using Mode = typename Base::Mode;
+  static constexpr std::size_t max_witnesses = Base::max_witnesses;
+  static constexpr bool affine_flow = affine_flow_of<Base>();
+
+  StopAtWallImpact(const Base& base, int wall, int target, WallImpactTrace* trace)
+      : base_(base), wall_(wall), target_(target), trace_(trace) {}
+
+  [[nodiscard]] double max_step() const { return base_.max_step(); }
+  void rhs(Mode mode, const State& x, State& dxdt, double t) const { base_.rhs(mode, x, dxdt, t); }
+  [[nodiscard]] std::size_t witness_count(Mode mode) const { return base_.witness_count(mode); }
+  [[nodiscard]] TriggerDirection trigger_direction(Mode mode, std::size_t k) const {
+    return base_.trigger_direction(mode, k);
+  }
+  [[nodiscard]] WitnessSample witness(Mode mode, std::size_t k, const State& x, double t) const {
+    return base_.witness(mode, k, x, t);
+  }
+  Transition<State, Mode> on_event(Mode mode, std::size_t k, CrossingKind crossing, const State& x,
+                                   double t, EventLog& log) const {
+    const std::size_t before = log.records().size();
+    auto after = base_.on_event(mode, k, crossing, x, t, log);
+    const auto& records = log.records();
+    for (std::size_t j = before; j < records.size(); ++j) {
+      if (records[j].kind != EventKind::impact || records[j].wall != wall_) continue;
+      const int index = static_cast<int>(trace_->times.size());
+      trace_->times.push_back(t);
+      if (index == 0) trace_->first_record = j;
+      if (index == target_) {
+        trace_->stopped = true;
+        trace_->stop_time = t;
+        trace_->stop_witness = k;
+        trace_->stop_record = j;
+        return {x, mode, t, true};  // the state just before the impact
+      }
+      break;
+    }
+    return after;
+  }
+  void exact_flow(Mode mode, const State& x0, double t0, double t, State& x) const
+    requires HasExactFlow<Base>
+  {
+    base_.exact_flow(mode, x0, t0, t, x);
+  }
+  void jacobian(Mode mode, const State& x, double t, TangentMatrix& j) const {
+    base_.jacobian(mode, x, t, j);
+  }
+  [[nodiscard]] TangentVector witness_gradient(Mode mode, std::size_t k, const State& x,
+                                               double t) const {
+    return base_.witness_gradient(mode, k, x, t);
+  }
+  [[nodiscard]] ResetJacobian reset_jacobian(Mode mode, std::size_t k, CrossingKind crossing,
+                                             const State& x, double t,
+                                             const Transition<State, Mode>& after) const {
+    return base_.reset_jacobian(mode, k, crossing, x, t, after);
+  }
+  [[nodiscard]] bool pinned(Mode mode) const { return base_.pinned(mode); }
+
+ private:
+  Base base_;
+  int wall_, target_;
+  WallImpactTrace* trace_;
+};
+
+// The state on witness k's zero at time t with rate qdot: q by Newton on the
+// gap from q_guess; none where it does not converge.
+template <HasJacobian System>
+std::optional<typename System::State> state_on_wall(const System& system,
+                                                    typename System::Mode flight_mode,
+                                                    std::size_t witness, double t, double qdot,
+                                                    double q_guess) {
+  typename System::State x{};
+  x[0] = q_guess;
+  x[1] = qdot;
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    const double gap = system.witness(flight_mode, witness, x, t).value;
+    const double slope = system.witness_gradient(flight_mode, witness, x, t)[0];
+    if (!(std::fabs(slope) > 0.0) || !std::isfinite(gap)) return std::nullopt;
+    const double dq = -gap / slope;
+    x[0] += dq;
+    if (std::fabs(dq) <= 4.0 * std::numeric_limits<double>::epsilon() * (1.0 + std::fabs(x[0])))
+      break;
+  }
+  const double gap = system.witness(flight_mode, witness, x, t).value;
+  if (!(std::fabs(gap) <= 1e-13 * (1.0 + std::fabs(x[0])))) return std::nullopt;
+  return x;
+}
+
+// Where the run from state x (in mode) at t0 first hits wall `wall` before
+// t_end: (time, the state just before, the witness); none if it does not.
+struct WallImpact {
+  double t = 0.0;
+  OrbitPoint state{};  // (q, q̇) just before the impact
+  std::size_t witness = 0;
+};
+template <HasJacobian System>
+std::optional<WallImpact> first_wall_impact(const System& system,
+                                            const typename System::State& x,
+                                            typename System::Mode mode, double t0, double t_end,
+                                            int wall, const FlowSetup& setup) {
+  WallImpactTrace impacts;
+  const SuppressedContacts<System> plain(system, mode, ContactWindow{}, nullptr);
+  const StopAtWallImpact<SuppressedContacts<System>> stopping(plain, wall, 0, &impacts);
+  EventLog log(true);
+  const auto run = with_stepper<StopAtWallImpact<SuppressedContacts<System>>>(
+      setup.method, stepper_settings(stopping, setup), [&](auto& stepper) {
+        return simulate(stopping, stepper, x, mode, t0, t_end, loop_options(setup), log);
+      });
+  if (!impacts.stopped) return std::nullopt;
+  return WallImpact{impacts.stop_time, {run.state[0], run.state[1]}, impacts.stop_witness};
+}
+
+// The impact map of wall `wall` as a ContinuationProblem: the state is
+// (φ, q̇⁻), φ = ω tᵢ the forcing phase of an impact with the wall and q̇⁻ the
+// rate just before it; the map runs from that impact (applied at the start)
+// to the `wall_impacts`-th next impact with the wall, the orbit's return
+// after `period` forcing periods, and its image is
+//     (φ + ω (tⱼ − tᵢ) − 2π·period, q̇⁻ at tⱼ),
+// so that a fixed point is a period-n orbit. Its Jacobian is
+//     M = L Φ S B:
+// B takes (δφ, δq̇⁻) to the perturbation at the fixed time tᵢ before the
+// impact (the impact point slides along the wall, q = q_w(t, q̇), and the
+// perturbed orbit reaches it δt = δφ/ω later: δx = (∂q_w/∂t δt + ∂q_w/∂q̇ δq̇,
+// δq̇) − f⁻ δt); S is the saltation matrix of the start impact and Φ the
+// saltation-corrected flow to tⱼ (both from the variational run, which
+// applies the start impact as its first event); L projects onto the section:
+// the perturbed orbit reaches the wall δtⱼ = −∇h·δx / ḣ later, so
+// δφ' = ω δtⱼ and δq̇' = δq̇ + f₂ δtⱼ.
+template <HasJacobian System, class MakeSystem>
+ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::Mode flight_mode,
+                                       const FlowSetup& setup, int wall, std::size_t witness,
+                                       double q_guess, int period, int wall_impacts,
+                                       double forcing_omega_at_start) {
+  using Mode = typename System::Mode;
+  using Suppressed = SuppressedContacts<System>;
+  using Stopping = StopAtWallImpact<Suppressed>;
+  using Tangent = Variational<Stopping>;
+  constexpr int samples_per_period = 96;
+  struct Shared {
+    MakeSystem make_system;
+    Mode flight_mode;
+    FlowSetup setup;
+    int wall;
+    std::size_t witness;
+    double q_guess;
+    int period, wall_impacts;
+  };
+  auto shared = std::make_shared<Shared>(
+      Shared{make_system, flight_mode, setup, wall, witness, q_guess, period, wall_impacts});
+
+  ContinuationProblem problem;
+  problem.forcing_period_at_p = period * 2.0 * std::numbers::pi / forcing_omega_at_start;
+  problem.phase = 0.0;
+  problem.section_moves = false;
+  problem.evaluate = [shared](const OrbitPoint& x, double p, double, bool detailed,
+                              const ContactWindow& suppressed) {
+    OrbitEvaluation result;
+    const System system = shared->make_system(p);
+    const double omega = system.parameters().omega;
+    const double forcing_period = 2.0 * std::numbers::pi / omega;
+    const double t0 = x[0] / omega;
+    const double span = shared->period * forcing_period;
+    const auto start = state_on_wall(system, shared->flight_mode, shared->witness, t0, x[1],
+                                     shared->q_guess);
+    if (!start) return result;
+    CrossingTrace trace;
+    WallImpactTrace impacts;
+    ContactWindow window = suppressed;
+    window.from += t0;
+    window.to += t0;
+    const Suppressed wrapped(system, shared->flight_mode, window, &trace);
+    const Stopping stopping(wrapped, shared->wall, shared->wall_impacts, &impacts);
+    const Tangent tangent(stopping);
+    EventLog log(true);
+    const int sample_count = detailed ? samples_per_period * shared->period - 1 : 0;
+    GapSampler<System> sampler(system, shared->flight_mode, t0, span / (sample_count + 1),
+                               sample_count);
+    const auto run = with_stepper<Tangent>(
+        shared->setup.method, stepper_settings(tangent, shared->setup), [&](auto& stepper) {
+          return simulate(tangent, stepper, tangent.start(*start, shared->flight_mode),
+                          shared->flight_mode, t0, t0 + span + 0.5 * forcing_period,
+                          loop_options(shared->setup), log, sampler);
+        });
+    // the run began with the impact at t0 and stopped at the target impact
+    if (!impacts.stopped || impacts.times.empty() || impacts.times.front() != t0 ||
+        run.mode != shared->flight_mode)
+      return result;
+    const auto end = Tangent::base_state(run.state);
+    const double t1 = impacts.stop_time;
+    // B: (δφ, δq̇⁻) to the perturbation before the impact at the fixed time t0
+    typename System::State f{};
+    system.rhs(shared->flight_mode, *start, f, t0);
+    const TangentVector gradient =
+        system.witness_gradient(shared->flight_mode, shared->witness, *start, t0);
+    const double gap_time_rate =
+        system.witness(shared->flight_mode, shared->witness, *start, t0).rate -
+        (gradient[0] * f[0] + gradient[1] * f[1]);
+    const double dq_dt = -gap_time_rate / gradient[0], dq_dqdot = -gradient[1] / gradient[0];
+    const TangentMatrix to_start{{{(dq_dt - f[0]) / omega, dq_dqdot}, {-f[1] / omega, 1.0}}};
+    // L: the perturbation at t1 onto the section
+    typename System::State f1{};
+    system.rhs(shared->flight_mode, end, f1, t1);
+    const TangentVector normal =
+        system.witness_gradient(shared->flight_mode, impacts.stop_witness, end, t1);
+    const double approach = system.witness(shared->flight_mode, impacts.stop_witness, end, t1).rate;
+    if (!(std::fabs(approach) > 0.0)) return result;  // a graze: the section is tangent
+    const TangentMatrix onto_section{
+        {{-omega * normal[0] / approach, -omega * normal[1] / approach},
+         {-f1[1] * normal[0] / approach, 1.0 - f1[1] * normal[1] / approach}}};
+    result.monodromy =
+        multiply(onto_section, multiply(Tangent::fundamental_matrix(run.state), to_start));
+    result.image = {x[0] + omega * (t1 - t0) - 2.0 * std::numbers::pi * shared->period, end[1]};
+    result.completed = std::isfinite(result.image[0]) && std::isfinite(result.image[1]);
+    result.span = span;
+    result.omega = omega;
+    // the orbit's events: after the start impact, up to the target impact
+    const auto& records = log.records();
+    note_events(records.begin() + static_cast<std::ptrdiff_t>(impacts.first_record) + 1,
+                records.begin() + static_cast<std::ptrdiff_t>(impacts.stop_record) + 1, t0,
+                result);
+    // the slowest impact; one with the section's own wall is no grazing
+    // candidate here (the section degenerates where its impact grazes)
+    for (const auto& crossing : trace.crossings) {
+      if (!(crossing.t > t0) || !(crossing.speed < result.min_impact_speed)) continue;
+      result.min_impact_speed = crossing.speed;
+      result.slowest_impact_time = crossing.t - t0;
+      result.slowest_impact_witness =
+          crossing.witness == static_cast<int>(shared->witness) ? -1 : crossing.witness;
+    }
+    note_lowest_flight_gap<System>(sampler.samples, trace, t0, result);
+    return result;
+  };
+  problem.gap_at = [shared](const OrbitPoint& x, double p, double, const ContactWindow& suppressed,
+                            double t) {
+    GapSample sample;
+    const System system = shared->make_system(p);
+    const double t0 = x[0] / system.parameters().omega;
+    const auto start = state_on_wall(system, shared->flight_mode, shared->witness, t0, x[1],
+                                     shared->q_guess);
+    if (!start || suppressed.witness < 0) return sample;
+    ContactWindow window = suppressed;
+    window.from += t0;
+    window.to += t0;
+    const Suppressed wrapped(system, shared->flight_mode, window, nullptr);
+    EventLog log(false);
+    const auto run = with_stepper<Suppressed>(
+        shared->setup.method, stepper_settings(wrapped, shared->setup), [&](auto& stepper) {
+          return simulate(wrapped, stepper, *start, shared->flight_mode, t0, t0 + t,
+                          loop_options(shared->setup), log);
+        });
+    if (run.termination != Termination::completed || run.mode != shared->flight_mode)
+      return sample;
+    const WitnessSample h =
+        system.witness(run.mode, static_cast<std::size_t>(suppressed.witness), run.state, t0 + t);
+    sample.completed = true;
+    sample.value = h.value;
+    sample.rate = h.rate;
+    return sample;
+  };
+  problem.transport = [](const OrbitPoint&, double, double, double) -> std::optional<OrbitPoint> {
+    return std::nullopt;  // the impact section does not move
+  };
+  return problem;
+}
+
+// The impacts with wall `wall` from one at (φ, q̇⁻) until (period + ½)
+// forcing periods later: the count whose last lands nearest `period`
+// periods on (the orbit's impacts with the wall per period), or 0.
+template <HasJacobian System>
+int wall_impacts_per_orbit(const System& system, typename System::Mode flight_mode,
+                           const FlowSetup& setup, int wall, std::size_t witness, double q_guess,
+                           const OrbitPoint& x, int period) {
+  const double omega = system.parameters().omega;
+  const double t0 = x[0] / omega, span = period * 2.0 * std::numbers::pi / omega;
+  const auto start = state_on_wall(system, flight_mode, witness, t0, x[1], q_guess);
+  if (!start) return 0;
+  WallImpactTrace impacts;
+  const SuppressedContacts<System> plain(system, flight_mode, ContactWindow{}, nullptr);
+  const StopAtWallImpact<SuppressedContacts<System>> counting(
+      plain, wall, std::numeric_limits<int>::max(), &impacts);
+  EventLog log(true);
+  with_stepper<StopAtWallImpact<SuppressedContacts<System>>>(
+      setup.method, stepper_settings(counting, setup), [&](auto& stepper) {
+        return simulate(counting, stepper, *start, flight_mode, t0,
+                        t0 + span + 0.5 * span / period, loop_options(setup), log);
+      });
+  if (impacts.times.size() < 2 || impacts.times.front() != t0) return 0;
+  int best = 0;
+  for (std::size_t j = 1; j < impacts.times.size(); ++j)
+    if (best == 0 || std::fabs(impacts.times[j] - t0 - span) <
+                         std::fabs(impacts.times[static_cast<std::size_t>(best)] - t0 - span))
+      best = static_cast<int>(j);
+  return best;
+}
+
+// The witness whose zero at (φ, q̇⁻) is an impact with wall `wall` (the run
+// from there begins with that impact), and q there; none if no witness is.
+template <HasJacobian System>
+std::optional<std::pair<std::size_t, double>> wall_witness(const System& system,
+                                                           typename System::Mode flight_mode,
+                                                           const FlowSetup& setup, int wall,
+                                                           const OrbitPoint& x, double q_guess) {
+  const double omega = system.parameters().omega;
+  const double t0 = x[0] / omega;
+  for (std::size_t k = 0; k < system.witness_count(flight_mode); ++k) {
+    const auto start = state_on_wall(system, flight_mode, k, t0, x[1], q_guess);
+    if (!start) continue;
+    WallImpactTrace impacts;
+    const SuppressedContacts<System> plain(system, flight_mode, ContactWindow{}, nullptr);
+    const StopAtWallImpact<SuppressedContacts<System>> stopping(plain, wall, 0, &impacts);
+    EventLog log(true);
+    with_stepper<StopAtWallImpact<SuppressedContacts<System>>>(
+        setup.method, stepper_settings(stopping, setup), [&](auto& stepper) {
+          return simulate(stopping, stepper, *start, flight_mode, t0, t0 + 1e-3 / omega,
+                          loop_options(setup), log);
+        });
+    if (impacts.stopped && impacts.stop_time == t0 && impacts.stop_witness == k)
+      return std::pair<std::size_t, double>{k, (*start)[0]};
+  }
+  return std::nullopt;
+}
+
 // The curve of the first located fold, period doubling or grazing point (of
-// job.curve_type where given) of the first branch, in (job.parameter,
-// job.second_parameter), into result.curve (result.curve_note says why not).
+// job.curve_type where given) of branch `index`, in (job.parameter,
+// job.second_parameter), into `curve`; false, with why in `note`, where the
+// branch has none.
 template <HasJacobian System, class SystemAt>
-void continue_curve_of(ContinuationJobResult& result, SystemAt system_at,
-                       typename System::Mode flight_mode, const Scene& scene,
-                       const ContinuationJob& job, const FlowSetup& setup, double omega) {
-  const ContinuationResult& branch = result.branches.front().result;
+bool continue_curve_of(const ContinuationJobResult& result, std::size_t index, CurveResult& curve,
+                       std::string& note, SystemAt system_at, typename System::Mode flight_mode,
+                       const Scene& scene, const ContinuationJob& job, const FlowSetup& setup,
+                       double omega) {
+  const ContinuationResult& branch = result.branches.at(index).result;
+  const int period = result.branches[index].period;
   const auto wanted = [&](const BifurcationPoint& p) {
     if (!p.located) return false;
     const std::string type = p.type == "branch_point" ? "fold" : p.type;
@@ -302,11 +660,11 @@ void continue_curve_of(ContinuationJobResult& result, SystemAt system_at,
   };
   const auto found = std::find_if(branch.points.begin(), branch.points.end(), wanted);
   if (found == branch.points.end()) {
-    result.curve_note = "no located " +
-                        (job.curve_type.empty() ? std::string("fold, period doubling or grazing")
-                                                : job.curve_type) +
-                        " point on the branch to start the curve from";
-    return;
+    note = "no located " +
+           (job.curve_type.empty() ? std::string("fold, period doubling or grazing")
+                                   : job.curve_type) +
+           " point on the branch to start the curve from";
+    return false;
   }
   CurveRequest request;
   request.type = found->type == "branch_point" ? "fold" : found->type;
@@ -323,18 +681,18 @@ void continue_curve_of(ContinuationJobResult& result, SystemAt system_at,
   // the branch's largest step, as a fraction of the first parameter's range
   if (job.numerics.max_step > 0.0) request.max_step = job.numerics.max_step / std::fabs(job.to - job.from);
   TwoParameterProblem problem;
-  problem.at = [scene, job, system_at, flight_mode, setup, omega](double p2) {
+  problem.at = [scene, job, system_at, flight_mode, setup, omega, period](double p2) {
     auto make_system = [scene, job, system_at, p2](double p1) {
       Scene at = scene;
       at.values[job.parameter] = p1;
       at.values[job.second_parameter] = p2;
       return system_at(at);
     };
-    return section_map_problem<System>(make_system, flight_mode, setup, job.phase, job.period,
+    return section_map_problem<System>(make_system, flight_mode, setup, job.phase, period,
                                        omega);
   };
-  result.curve = continue_curve(problem, request);
-  result.has_curve = true;
+  curve = continue_curve(problem, request);
+  return true;
 }
 
 // A boundary in terms of the scene (ParameterBoundary): `value(scene)` changes
@@ -343,6 +701,16 @@ struct SceneBoundary {
   std::string type, note;
   double (*value)(const Scene& scene) = nullptr;
 };
+
+// A job whose start was not found: one branch stopped at its start, with why.
+inline ContinuationJobResult no_start(ContinuationJobResult& result, const ContinuationJob& job,
+                                      const std::string& why) {
+  ContinuationResult stopped;
+  stopped.stop_reason = "start_not_converged";
+  stopped.stop_detail = why;
+  result.branches.push_back({job.period, stopped});
+  return result;
+}
 
 // A continuation from a scene: the start from a transient from the scene's
 // initial state at p = from (or the job's start), the branch, then, for each
@@ -368,6 +736,7 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
     const System start_system = system_at(start_scene);
     const double omega = start_system.parameters().omega;
     const FlowSetup setup = flow_setup(scene);
+    double wall_q = 0.0;  // the impact section: q on the wall at the start (a guess)
     ContinuationRequest request = job.numerics;
     request.from = job.from;
     request.to = job.to;
@@ -387,6 +756,30 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
                             loop_options(setup), log);
           });
       request.start = {transient.state[0], transient.state[1]};
+      if (job.impact_wall != 0) {
+        // on the impact section: the transient's next impact with the wall
+        const auto impact = first_wall_impact(start_system, transient.state, transient.mode,
+                                              t_section, t_section + 20.0 * job.period * forcing_period,
+                                              job.impact_wall, setup);
+        if (!impact) return no_start(result, job, "no impact with the wall after the transient");
+        request.start = {std::fmod(omega * impact->t, 2.0 * std::numbers::pi), impact->state[1]};
+        wall_q = impact->state[0];
+      }
+    }
+    // the impact section: the wall's witness and the impacts with it per orbit
+    std::size_t wall_witness_index = 0;
+    int wall_impacts = 0;
+    if (job.impact_wall != 0) {
+      const auto witness =
+          wall_witness(start_system, flight_mode, setup, job.impact_wall, request.start, wall_q);
+      if (!witness)
+        return no_start(result, job, "the start is not on the wall, moving into it");
+      wall_witness_index = witness->first;
+      wall_q = witness->second;
+      wall_impacts = wall_impacts_per_orbit(start_system, flight_mode, setup, job.impact_wall,
+                                            wall_witness_index, wall_q, request.start, job.period);
+      if (wall_impacts == 0)
+        return no_start(result, job, "no return to the wall within the orbit's period");
     }
     auto problem_for = [&](int period) {
       auto make_system = [scene, parameter = job.parameter, system_at](double p) {
@@ -394,8 +787,13 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
         at.values[parameter] = p;
         return system_at(at);
       };
-      ContinuationProblem problem = section_map_problem<System>(make_system, flight_mode, setup,
-                                                                job.phase, period, omega);
+      ContinuationProblem problem =
+          job.impact_wall != 0
+              ? impact_map_problem<System>(make_system, flight_mode, setup, job.impact_wall,
+                                           wall_witness_index, wall_q, period,
+                                           wall_impacts * period / job.period, omega)
+              : section_map_problem<System>(make_system, flight_mode, setup, job.phase, period,
+                                            omega);
       for (const SceneBoundary& boundary : boundaries)
         problem.boundaries.push_back(
             {boundary.type, boundary.note,
@@ -427,8 +825,28 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
           {period, continue_branch_from(problem_for(period), doubled, doubling_point.state,
                                         doubling_point.parameter, {v[0], v[1], 0.0})});
     }
-    if (!job.second_parameter.empty())
-      continue_curve_of<System>(result, system_at, flight_mode, scene, job, setup, omega);
+    if (job.impact_wall != 0) {
+      // the impact phase reported in [0, 2π) (the branch runs on it unreduced)
+      const auto reduce = [](OrbitPoint& state) {
+        state[0] = std::fmod(state[0], 2.0 * std::numbers::pi);
+        if (state[0] < 0.0) state[0] += 2.0 * std::numbers::pi;
+      };
+      for (ContinuedBranch& branch : result.branches) {
+        for (BranchPoint& point : branch.result.branch) reduce(point.state);
+        for (BifurcationPoint& point : branch.result.points) reduce(point.state);
+      }
+    }
+    if (!job.second_parameter.empty()) {
+      result.has_curve = continue_curve_of<System>(result, 0, result.curve, result.curve_note,
+                                                   system_at, flight_mode, scene, job, setup, omega);
+      for (std::size_t b = 1; b < result.branches.size(); ++b) {
+        BranchCurve doubled{static_cast<int>(b), result.branches[b].period};
+        doubled.has_curve = continue_curve_of<System>(result, b, doubled.curve, doubled.note,
+                                                      system_at, flight_mode, scene, job, setup,
+                                                      omega);
+        result.doubled_curves.push_back(std::move(doubled));
+      }
+    }
     return result;
   }
 }

@@ -556,10 +556,6 @@ py::dict continue_binding(const Scene& scene, const std::string& parameter, doub
                           int period, const std::string& section, bool switch_doubling,
                           std::optional<std::vector<double>> start, double transient,
                           int max_points, double tolerance, double max_step, py::object progress) {
-  const SectionSpec spec = parse_section(section, "section");
-  if (spec.kind != SectionKind::strobe)
-    throw BadInput("section", section,
-                   "continuation takes a stroboscopic section (strobe[:PHASE]) in this version");
   if (period < 1 || period > 1000)
     throw BadInput("period", std::to_string(period), "expected 1 to 1000");
   if (max_points < 2 || max_points > 1000000)
@@ -574,7 +570,7 @@ py::dict continue_binding(const Scene& scene, const std::string& parameter, doub
   job.from = from;
   job.to = to;
   job.period = period;
-  job.phase = spec.phase;
+  set_continuation_section(job, section, "section");
   job.transient_periods = transient;
   job.doublings = switch_doubling ? 3 : 0;  // the CLI's --switch: the cascade, up to 8n
   if (start) {

@@ -44,10 +44,17 @@ def main(argv):
             kind = json.load(handle).get("type") or kind
     curve = read(curve_csv)
     if len(curve) and curve.dtype.names and param1 in curve.dtype.names:
-        ax.plot(curve[param1], curve[param2], "-", color="black", linewidth=1.8,
-                label=f"{kind.replace('_', ' ')} curve (continuation)")
-        ax.plot(curve[param1][:1], curve[param2][:1], "o", color="black", markersize=6,
-                label="start (located on the branch)")
+        # one curve per branch (--switch: the doubled branches' curves too)
+        branches = curve["branch"] if "branch" in curve.dtype.names else np.zeros(len(curve))
+        colours = ["black", "tab:red", "tab:blue", "tab:green"]
+        for index, number in enumerate(np.unique(branches)):
+            piece = curve[branches == number]
+            period = f", period {int(piece['period'][0])}" if "period" in piece.dtype.names else ""
+            colour = colours[index % len(colours)]
+            ax.plot(piece[param1], piece[param2], "-", color=colour, linewidth=1.8,
+                    label=f"{kind.replace('_', ' ')} curve{period} (continuation)")
+            ax.plot(piece[param1][:1], piece[param2][:1], "o", color=colour, markersize=6,
+                    label="start (located on the branch)" if index == 0 else None)
         ax.legend(loc="best", fontsize=8)
     ax.set_xlabel(param1)
     ax.set_ylabel(param2)

@@ -88,6 +88,7 @@ class PeriodOneOrbit {
 
   [[nodiscard]] bool found() const { return found_; }
   [[nodiscard]] double speed() const { return speed_; }
+  [[nodiscard]] double impact_time() const { return impact_time_; }  // in [0, T)
 
   // (x, ẋ) at time t of the orbit (t in [t*, t* + T])
   [[nodiscard]] std::array<double, 2> state(double t) const {
@@ -350,6 +351,36 @@ TEST(Continuation, BouncingBallPeriodDoublingMatchesTheClosedForm) {
   EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
 }
 
+// On the impact section of the table (wall −1), which moves: the impact
+// point slides along z = A sin ωt, the term ∂q_w/∂t of the map's Jacobian.
+// The period-1 orbit hits the table at cos φ = π(1 − r)/(Γ(1 + r)) with
+// ẏ⁻ = −gT/2; its period doubling is the closed form's.
+TEST(Continuation, BouncingBallOnTheImpactSectionOfTheMovingTable) {
+  const Scene scene = impactlab::load_scene("bouncing_ball");  // g 9.81, ω 30, r 0.8
+  const double g = 9.81, omega = 30.0, r = 0.8, period = two_pi / omega;
+  auto impact_phase = [&](double A) {
+    return std::acos(std::numbers::pi * (1.0 - r) / (A * omega * omega / g * (1.0 + r)));
+  };
+  ContinuationJob job;
+  job.parameter = "A";
+  job.from = 0.0112;
+  job.to = 0.0125;
+  job.impact_wall = -1;
+  job.has_start = true;
+  job.start = {impact_phase(0.0112), -0.5 * g * period};
+  const auto result = impactlab::continue_orbit(scene, job);
+  const auto& branch = result.branches.at(0).result;
+  EXPECT_EQ(branch.stop_reason, "end_of_range") << branch.stop_detail;
+  const auto doublings = points_of_type(branch, "period_doubling");
+  ASSERT_EQ(doublings.size(), 1u);
+  const double expected = bouncing_ball_period_doubling_amplitude(g, omega, r);
+  EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
+  for (const auto& point : branch.branch) {
+    EXPECT_NEAR(point.state[0], impact_phase(point.parameter), 1e-9) << point.parameter;
+    EXPECT_NEAR(point.state[1], -0.5 * g * period, 1e-9) << point.parameter;
+  }
+}
+
 TEST(Continuation, BouncingBallCascadeThroughTwoDoublings) {
   const Scene scene = impactlab::load_scene("bouncing_ball");
   const auto job = continue_scene(scene, "A", 0.0112, 0.0135, 2,
@@ -392,6 +423,154 @@ TEST(Continuation, StableBranchPointsAgreeWithTheSweepSectionAndPeriodic) {
     ++compared;
   }
   EXPECT_GE(compared, 3);
+}
+
+// The impact section of the stop: the same orbit as a fixed point of the map
+// from impact to impact, state (ω t* mod 2π, ẋ⁻). Multipliers of a Poincaré
+// map do not depend on the section (both sections cut the same flow in the
+// extended phase space (x, ẋ, ωt mod 2π) transversally), so the branch must
+// have the strobe's period doubling and, at every point, the closed form's
+// multipliers, the roots of λ² − tr M λ + det M of the monodromy S Φ.
+TEST(Continuation, LinearImpactOnTheImpactSectionHasTheStrobesPeriodDoublingAndMultipliers) {
+  ImpactOscillator o;
+  o.sigma = 0.2;
+  const Scene scene = linear_impact_scene(o);
+  ContinuationJob job;
+  job.parameter = "omega";
+  job.from = 2.0;
+  job.to = 2.4;  // below 2.448, where the impact itself grazes and the section degenerates
+  job.impact_wall = 1;
+  const auto result = impactlab::continue_orbit(scene, job);
+  const auto& branch = result.branches.at(0).result;
+  EXPECT_EQ(branch.stop_reason, "end_of_range") << branch.stop_detail;
+  const auto doublings = points_of_type(branch, "period_doubling");
+  ASSERT_EQ(doublings.size(), 1u);
+  const double expected = period_doubling(o, 2.24, 2.29);  // 2.2652971759636387
+  EXPECT_TRUE(doublings[0].located);
+  EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
+  EXPECT_LT(doublings[0].error_estimate, 1e-9 * expected);
+  // the strobe's branch over the same range: the same point
+  const auto strobe = continue_scene(scene, "omega", 2.0, 2.4);
+  const auto strobe_doublings = points_of_type(strobe.branches.at(0).result, "period_doubling");
+  ASSERT_EQ(strobe_doublings.size(), 1u);
+  EXPECT_NEAR(doublings[0].parameter, strobe_doublings[0].parameter, 1e-9 * expected);
+
+  ASSERT_GE(branch.branch.size(), 10u);
+  int compared_with_periodic = 0;
+  for (std::size_t k = 0; k < branch.branch.size(); ++k) {
+    const auto& point = branch.branch[k];
+    const PeriodOneOrbit closed(o, point.parameter);
+    ASSERT_TRUE(closed.found()) << point.parameter;
+    // the state: the impact's phase and speed
+    const double phase = std::fmod(point.parameter * closed.impact_time(), two_pi);
+    EXPECT_NEAR(std::remainder(point.state[0] - phase, two_pi), 0.0, 1e-9) << point.parameter;
+    EXPECT_NEAR(point.state[1], closed.speed(), 1e-9) << point.parameter;
+    EXPECT_EQ(point.impacts, 1);
+    // the multipliers against the closed form's
+    const auto tests = closed.test_functions();
+    const double trace = 0.5 * (tests[0] - tests[1]), determinant = 0.5 * (tests[0] + tests[1]) - 1.0;
+    const std::complex<double> root =
+        std::sqrt(std::complex<double>(0.25 * trace * trace - determinant));
+    const std::array<std::complex<double>, 2> exact = {0.5 * trace + root, 0.5 * trace - root};
+    for (const auto& multiplier : point.multipliers) {
+      const double nearest = std::min(std::abs(multiplier - exact[0]), std::abs(multiplier - exact[1]));
+      EXPECT_LT(nearest, 1e-9) << point.parameter << " " << multiplier;
+    }
+    // and against the strobe's (periodic: the stroboscopic map at the same ω)
+    if (k % 5 == 0) {
+      Scene at = scene;
+      at.values["omega"] = point.parameter;
+      const auto orbit = impactlab::periodic(at, impactlab::PeriodicRequest{});
+      if (!orbit.converged) continue;  // an unstable orbit the transient does not reach
+      for (const auto& multiplier : point.multipliers) {
+        const double nearest = std::min(std::abs(multiplier - orbit.multipliers[0]),
+                                        std::abs(multiplier - orbit.multipliers[1]));
+        EXPECT_LT(nearest, 1e-9) << point.parameter;
+      }
+      ++compared_with_periodic;
+    }
+  }
+  EXPECT_GE(compared_with_periodic, 1);
+}
+
+// The flight of ẍ + 2ζẋ + x = A cos ωt from (x0, v0) at t0, at t (closed form).
+std::array<double, 2> free_flight(const ImpactOscillator& o, double omega, double t0, double x0,
+                                  double v0, double t) {
+  const double denominator =
+      (1.0 - omega * omega) * (1.0 - omega * omega) + 4.0 * o.zeta * o.zeta * omega * omega;
+  const double P = o.A * (1.0 - omega * omega) / denominator;
+  const double Q = 2.0 * o.zeta * omega * o.A / denominator;
+  auto particular = [&](double s) {
+    return std::array<double, 2>{P * std::cos(omega * s) + Q * std::sin(omega * s),
+                                 omega * (Q * std::cos(omega * s) - P * std::sin(omega * s))};
+  };
+  const double wd = std::sqrt(1.0 - o.zeta * o.zeta);
+  const auto p0 = particular(t0), p = particular(t);
+  const double c1 = x0 - p0[0], c2 = (v0 - p0[1] + o.zeta * c1) / wd;
+  const double tau = t - t0, decay = std::exp(-o.zeta * tau);
+  const double c = std::cos(wd * tau), s = std::sin(wd * tau);
+  return {decay * (c1 * c + c2 * s) + p[0],
+          decay * ((wd * c2 - o.zeta * c1) * c - (wd * c1 + o.zeta * c2) * s) + p[1]};
+}
+
+// Sticking on the stop with r = 0 (a plastic impact: the mass arrives and
+// stays, x = σ, ẋ = 0, while the force on it at rest, A cos ωt − σ, pushes it
+// into the stop, and is released where that push falls through zero, at
+// ω t_r = arccos(σ/A) mod 2π). The period-1 orbit with one contact phase is
+// then fixed: released at t_r, it flies freely from (σ, 0) and returns to the
+// stop at t_i < t_r + T, where the push is positive, and sticks until t_r + T.
+// As ω rises the return comes later, and the contact phase ends where it
+// returns exactly at t_r + T: the root in ω of σ − x(t_r + T) on the free
+// flight from (σ, 0) at t_r. Beyond it the push at the return is negative and
+// the mass leaves the stop at once (no contact phase).
+TEST(Continuation, ContactEndOfTheStickingOrbitLocatedAtItsClosedForm) {
+  ImpactOscillator o;
+  o.sigma = 0.2;
+  o.r = 0.0;
+  Scene scene = linear_impact_scene(o);
+  auto return_gap = [&](double omega) {  // σ − x(t_r + T), the flight from (σ, 0) at t_r
+    const double release = std::acos(o.sigma / o.A) / omega;
+    return o.sigma - free_flight(o, omega, release, o.sigma, 0.0, release + two_pi / omega)[0];
+  };
+  const double expected = solve(return_gap, 1.6, 1.7);
+  {  // the flight does return there first: below the stop until t_r + T
+    const double release = std::acos(o.sigma / o.A) / expected, period = two_pi / expected;
+    for (int k = 1; k < 1000; ++k)
+      ASSERT_LT(free_flight(o, expected, release, o.sigma, 0.0, release + period * k / 1000.0)[0],
+                o.sigma);
+  }
+  const auto job = continue_scene(scene, "omega", 1.5, 1.8);
+  const auto& branch = job.branches.at(0).result;
+  EXPECT_EQ(branch.stop_reason, "end_of_range") << branch.stop_detail;
+  const auto ends = points_of_type(branch, "contact_end");
+  ASSERT_EQ(ends.size(), 1u);
+  EXPECT_TRUE(ends[0].located) << ends[0].note;
+  EXPECT_NEAR(ends[0].parameter, expected, 1e-9 * expected);
+  EXPECT_LT(ends[0].error_estimate, 1e-9 * expected);
+  EXPECT_GT(ends[0].error_estimate, 0.0);
+  // the monodromy vanishes there: zero on the sticking side (the release
+  // forgets the state), S Φ with S ∝ the push at the return on the other
+  EXPECT_LT(std::abs(ends[0].multipliers[0]), 1e-6);
+  // the state: the free flight from (σ, 0) at t_r on the section ωt ≡ 0
+  const double release = std::acos(o.sigma / o.A) / expected;
+  const auto x = free_flight(o, expected, release, o.sigma, 0.0, two_pi / expected);
+  EXPECT_NEAR(ends[0].state[0], x[0], 1e-8);
+  EXPECT_NEAR(ends[0].state[1], x[1], 1e-8);
+  // one contact phase before it, none after
+  for (const auto& point : branch.branch) {
+    if (std::fabs(point.parameter - expected) > 1e-6) {
+      EXPECT_EQ(point.contact_phases, point.parameter < expected ? 1 : 0) << point.parameter;
+    }
+  }
+  EXPECT_TRUE(points_of_type(branch, "contact_onset").empty());
+
+  // run downwards, the same point is the onset of the contact phase
+  const auto down = continue_scene(scene, "omega", 1.8, 1.5);
+  const auto onsets = points_of_type(down.branches.at(0).result, "contact_onset");
+  ASSERT_EQ(onsets.size(), 1u) << down.branches[0].result.stop_detail;
+  EXPECT_TRUE(onsets[0].located) << onsets[0].note;
+  EXPECT_NEAR(onsets[0].parameter, expected, 1e-9 * expected);
+  EXPECT_LT(onsets[0].error_estimate, 1e-9 * expected);
 }
 
 // jin2003 (Model N, V0 = 1.5 m/s, g = 9.81 m/s²): the pivot's peak
@@ -501,6 +680,93 @@ TEST(CurveContinuation, BouncingBallPeriodDoublingCurveInAmplitudeAndRestitution
     EXPECT_NEAR(point.p1, expected, 1e-9 * expected) << "r = " << point.p2;
     EXPECT_NEAR(point.multipliers[0].real(), -1.0, 1e-7) << "r = " << point.p2;
   }
+}
+
+// The bouncing ball's impact map written here from its closed-form flight,
+// independently of the toolkit: a ball leaving the table z = A sin ωt at
+// time t with speed v flies on y = z(t) + v (s − t) − g (s − t)²/2 until it
+// meets the table again (the first root of y − z after t, by a scan and TOMS
+// 748), where ẏ⁺ = (1 + r) ż − r ẏ⁻. State (t, v after the impact).
+struct BallImpactMap {
+  double g = 9.81, omega = 30.0, r = 0.8, A = 0.0;
+  [[nodiscard]] std::array<double, 2> operator()(const std::array<double, 2>& state) const {
+    const double t = state[0], v = state[1];
+    auto gap = [&](double s) {
+      return A * std::sin(omega * t) + v * (s - t) - 0.5 * g * (s - t) * (s - t) -
+             A * std::sin(omega * s);
+    };
+    const double dt = two_pi / omega / 4000.0;
+    double a = t + dt;
+    while (!(gap(a + dt) < 0.0)) a += dt;
+    const double s = solve(gap, a, a + dt);
+    const double table_rate = A * omega * std::cos(omega * s);
+    return {s, (1.0 + r) * table_rate - r * (v - g * (s - t))};
+  }
+};
+
+// With --switch and --param2, the curve of each doubled branch's point: the
+// ball's period-2 orbit's period doubling in (A, r). Checked point by point
+// on the independent impact map above: from the curve's state on the strobe
+// section, the next impact; P² returns to it two forcing periods later (a
+// period-2 orbit, not a period-1 one), and the Jacobian of P² (central
+// differences) has a multiplier −1: det(DP² + I) = (1 + λ₁)(1 + λ₂) = 0.
+TEST(CurveContinuation, BouncingBallPeriodTwoPeriodDoublingCurveWithSwitch) {
+  const Scene scene = impactlab::load_scene("bouncing_ball");  // g 9.81, ω 30, r 0.8
+  ContinuationJob job = curve_job("A", 0.0112, 0.025, "r", 0.8, 0.7, "period_doubling");
+  job.has_start = true;
+  job.start = bouncing_ball_start(9.81, 30.0, 0.8, 0.0112);
+  job.doublings = 1;
+  const auto result = impactlab::continue_orbit(scene, job);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  ASSERT_EQ(result.doubled_curves.size(), 1u);
+  const auto& doubled = result.doubled_curves[0];
+  ASSERT_TRUE(doubled.has_curve) << doubled.note;
+  EXPECT_EQ(doubled.branch, 1);
+  EXPECT_EQ(doubled.period, 2);
+  EXPECT_EQ(doubled.curve.type, "period_doubling");
+  EXPECT_EQ(doubled.curve.stop_reason, "end_of_range") << doubled.curve.stop_detail;
+  ASSERT_GE(doubled.curve.curve.size(), 5u);
+  const double period = two_pi / 30.0;
+  int compared = 0;
+  for (std::size_t k = 0; k < doubled.curve.curve.size(); k += 3) {
+    const auto& point = doubled.curve.curve[k];
+    // above the period-1 orbit's doubling at this r (the cascade's next step)
+    EXPECT_GT(point.p1, bouncing_ball_period_doubling_amplitude(9.81, 30.0, point.p2));
+    BallImpactMap map;
+    map.r = point.p2;
+    map.A = point.p1;
+    // the first impact after the section t = 0, from the curve's state
+    auto flight_gap = [&](double s) {
+      return point.state[0] + point.state[1] * s - 0.5 * map.g * s * s -
+             map.A * std::sin(map.omega * s);
+    };
+    double a = 0.0;
+    while (!(flight_gap(a + period / 4000.0) < 0.0)) a += period / 4000.0;
+    const double s = solve(flight_gap, a, a + period / 4000.0);
+    const std::array<double, 2> impact = {
+        s, (1.0 + map.r) * map.A * map.omega * std::cos(map.omega * s) -
+               map.r * (point.state[1] - map.g * s)};
+    auto twice = [&](const std::array<double, 2>& x) { return map(map(x)); };
+    const auto back = twice(impact);
+    EXPECT_NEAR(back[0] - impact[0], 2.0 * period, 1e-8) << "r = " << point.p2;
+    EXPECT_NEAR(back[1], impact[1], 1e-8) << "r = " << point.p2;
+    const auto once = map(impact);
+    EXPECT_GT(std::fabs(once[1] - impact[1]), 1e-3) << "r = " << point.p2;  // not period 1
+    std::array<std::array<double, 2>, 2> jacobian{};
+    const std::array<double, 2> h = {1e-7 * period, 1e-7 * (1.0 + std::fabs(impact[1]))};
+    for (int j = 0; j < 2; ++j) {
+      auto up = impact, down = impact;
+      up[j] += h[j];
+      down[j] -= h[j];
+      const auto a_up = twice(up), a_down = twice(down);
+      for (int i = 0; i < 2; ++i) jacobian[i][j] = (a_up[i] - a_down[i]) / (2.0 * h[j]);
+    }
+    const double det_plus =
+        (jacobian[0][0] + 1.0) * (jacobian[1][1] + 1.0) - jacobian[0][1] * jacobian[1][0];
+    EXPECT_NEAR(det_plus, 0.0, 1e-5) << "r = " << point.p2;
+    ++compared;
+  }
+  EXPECT_GE(compared, 2);
 }
 
 TEST(CurveContinuation, LinearImpactPeriodDoublingCurveInOmegaAndRestitution) {

@@ -72,6 +72,21 @@ TEST(ContinueCommand, WritesTheBranchThePointsAndTheSidecar) {
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
 }
 
+TEST(ContinueCommand, ImpactSectionWritesThePhaseAndRateOfTheImpact) {
+  const auto dir = scratch("impact");
+  const auto out = dir / "out";
+  const Outcome outcome = run("continue linear_impact --param omega=2:2.4 --section impact:+1 "
+                              "--quiet --out " + out.string(), dir);
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const std::string points = slurp(out / "points.csv");
+  EXPECT_NE(points.find("period_doubling,2.265297"), std::string::npos) << points;
+  const auto meta = nlohmann::json::parse(slurp(out / "continuation.json"));
+  EXPECT_EQ(meta["request"]["section"], "impact:1");
+  EXPECT_EQ(meta["branches"][0]["stop_reason"], "end_of_range");
+  EXPECT_NE(meta["columns"]["branch.csv"]["q, qdot"].get<std::string>().find("phase"),
+            std::string::npos);
+}
+
 TEST(ContinueCommand, TwoParameterCurveWritesTheCurveAndItsSidecar) {
   const auto dir = scratch("curve");
   const auto out = dir / "out";
@@ -90,6 +105,24 @@ TEST(ContinueCommand, TwoParameterCurveWritesTheCurveAndItsSidecar) {
   EXPECT_TRUE(fs::exists(out / "branch.csv"));
 }
 
+TEST(ContinueCommand, SwitchWithACurveWritesTheDoubledBranchsCurveToo) {
+  const auto dir = scratch("switch_curve");
+  const auto out = dir / "out";
+  const Outcome outcome = run("continue bouncing_ball --param A=0.0112:0.025 --start "
+                              "0.044286522498880876,-0.6269934342801218 --param2 r=0.8:0.75 "
+                              "--curve period_doubling --switch --quiet --out " + out.string(), dir);
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const std::string curve = slurp(out / "curve.csv");
+  EXPECT_NE(curve.find("newton_iterations,branch,period\n"), std::string::npos) << curve;
+  EXPECT_NE(curve.find(",1,2\n"), std::string::npos) << curve;  // rows of branch 1, period 2
+  const auto meta = nlohmann::json::parse(slurp(out / "curve.json"));
+  EXPECT_EQ(meta["request"]["switch"], true);
+  ASSERT_GE(meta["doubled_curves"].size(), 1u);
+  EXPECT_EQ(meta["doubled_curves"][0]["period"], 2);
+  EXPECT_EQ(meta["doubled_curves"][0]["type"], "period_doubling");
+  EXPECT_EQ(meta["doubled_curves"][0]["stop_reason"], "end_of_range");
+}
+
 TEST(ContinueCommand, BadInputExitsWithTwoAndOneLine) {
   const std::vector<std::string> bad = {
       "continue linear_impact --param omega=-1:2",       // outside the key's range
@@ -98,7 +131,10 @@ TEST(ContinueCommand, BadInputExitsWithTwoAndOneLine) {
       "continue linear_impact --param omega=2:2.5 --period 0",     // no such period
       "continue jin2003 --set model=paper --param omega=6:7",      // no Jacobians (Model P)
       "continue jin2003 --set model=rigid --param omega=6:7",      // the rigid model
-      "continue linear_impact --param omega=2:2.5 --section impact:1",
+      "continue linear_impact --param omega=2:2.5 --section impact:0",   // no one wall
+      "continue linear_impact --param omega=2:2.5 --section impact:-1",  // a wall never hit
+      "continue linear_impact --param omega=2:2.5 --section q=0.1",      // not strobe or impact
+      "continue linear_impact --param omega=2:2.5 --section impact:1 --param2 r=0.8:0.6",
       "continue linear_impact --param omega=2:2.5 --period 3 --transient 0 --start 5,5",  // no start
       "continue linear_impact --param omega=2:2.5 --param2 omega=3:4",   // the same key twice
       "continue linear_impact --param omega=2:2.5 --param2 sigma=0.2",   // malformed range
@@ -106,7 +142,6 @@ TEST(ContinueCommand, BadInputExitsWithTwoAndOneLine) {
       "continue linear_impact --param omega=2:2.5 --param2 zeta2=0:1",   // no such key
       "continue linear_impact --param omega=2:2.5 --curve fold",         // --curve without --param2
       "continue linear_impact --param omega=2:2.5 --param2 r=0.8:0.6 --curve torus",
-      "continue linear_impact --param omega=2:2.5 --param2 r=0.8:0.6 --switch",
   };
   for (const auto& arguments : bad) {
     const auto dir = scratch("bad");

@@ -385,11 +385,14 @@ def continue_(scene_=None, *, param, period=1, section="strobe", switch=False, s
     """Pseudo-arclength continuation of a period-n orbit in one scene key (the
     CLI's `continue`): branches (per branch: the columns of branch.csv, its
     period and why it stopped) and points (the rows of points.csv: folds,
-    period doublings, Neimark-Sacker and grazing points)."""
+    period doublings, Neimark-Sacker, grazing points, contact onset and end).
+    section is strobe[:PHASE] or impact:WALL (WALL +1 or -1: the impact map,
+    where q is the impact's forcing phase omega t mod 2 pi and qdot the rate
+    just before it; start is then (phase, qdot))."""
     loaded = scene(scene_ if scene_ is not None else "linear_impact", **keys)
     name, low, high = _parameter_range(param)
     if not isinstance(section, str):
-        raise ValueError("section = {!r}: expected text such as strobe or strobe:PHASE".format(section))
+        raise ValueError("section = {!r}: expected text such as strobe, strobe:PHASE or impact:+1".format(section))
     if not isinstance(switch, bool):
         raise ValueError("switch = {!r}: expected True or False".format(switch))
     if start is not None:

@@ -57,10 +57,30 @@ ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& 
   if (!result.available) throw BadInput("oscillator", scene.oscillator, result.note);
   if (result.branches.empty() || result.branches[0].result.stop_reason == "start_not_converged")
     throw BadInput("--param", fmt::format("{}={}:{}", job.parameter, job.from, job.to),
-                   fmt::format("no period-{} orbit converged at {} = {} (try --period, --start "
+                   fmt::format("no period-{} orbit converged at {} = {}{} (try --period, --start "
                                "or --transient)",
-                               job.period, job.parameter, job.from));
+                               job.period, job.parameter, job.from,
+                               job.impact_wall != 0 && !result.branches.empty()
+                                   ? ": " + result.branches[0].result.stop_detail
+                                   : ""));
   return result;
+}
+
+void set_continuation_section(ContinuationJob& job, const std::string& text,
+                              const std::string& key) {
+  const SectionSpec section = parse_section(text, key);
+  if (section.kind == SectionKind::strobe) {
+    job.phase = section.phase;
+    job.impact_wall = 0;
+    return;
+  }
+  if (section.kind != SectionKind::impact)
+    throw BadInput(key, text, "continuation takes strobe[:PHASE] or impact:WALL");
+  if (section.wall == 0)
+    throw BadInput(key, text, "continuation on the impact section needs one wall: impact:+1 or impact:-1");
+  if (!job.second_parameter.empty())
+    throw BadInput(key, text, "a two-parameter curve (--param2) runs on the stroboscopic section");
+  job.impact_wall = section.wall;
 }
 
 SweepTarget sweep_target(const Scene& scene) {

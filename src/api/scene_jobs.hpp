@@ -32,6 +32,13 @@ PeriodicResult periodic(const Scene& scene, const PeriodicRequest& request);
 // `oscillator`), or no orbit converges at the start (key `--param`).
 ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& job);
 
+// The section of a continuation from its text (`strobe[:PHASE]` or
+// `impact:WALL`, WALL +1 or -1) into job.phase / job.impact_wall; BadInput
+// (key `key`) for another section, impact:0 (any wall), or an impact section
+// with a two-parameter curve (job.second_parameter set).
+void set_continuation_section(ContinuationJob& job, const std::string& text,
+                              const std::string& key);
+
 // What a sweep of the scene runs at each point: its schema and its section
 // binding. BadInput (key `oscillator`) when it has no section binding.
 SweepTarget sweep_target(const Scene& scene);

@@ -104,19 +104,23 @@ void write_points_csv(AtomicFile& file, const std::string& name,
           << csv_field(p.graze_time) << ',' << p.graze_witness << ",\"" << p.note << "\"\n";
 }
 
+// every curve, one row per point: the first branch's, then (--switch) each
+// doubled branch's, told apart by the branch and period columns
 void write_curve_csv(AtomicFile& file, const std::string& name1, const std::string& name2,
-                     const CurveResult& curve) {
+                     const std::vector<BranchCurve>& curves) {
   auto& out = file.stream();
   out << name1 << ',' << name2
       << ",q,qdot,multiplier1_re,multiplier1_im,multiplier2_re,multiplier2_im,multiplier1_abs,"
-         "multiplier2_abs,graze_time,impacts,newton_iterations\n";
-  for (const CurvePoint& p : curve.curve)
-    out << csv_field(p.p1) << ',' << csv_field(p.p2) << ',' << csv_field(p.state[0]) << ','
-        << csv_field(p.state[1]) << ',' << csv_field(p.multipliers[0].real()) << ','
-        << csv_field(p.multipliers[0].imag()) << ',' << csv_field(p.multipliers[1].real()) << ','
-        << csv_field(p.multipliers[1].imag()) << ',' << csv_field(std::abs(p.multipliers[0]))
-        << ',' << csv_field(std::abs(p.multipliers[1])) << ',' << csv_field(p.graze_time) << ','
-        << p.impacts << ',' << p.newton_iterations << '\n';
+         "multiplier2_abs,graze_time,impacts,newton_iterations,branch,period\n";
+  for (const BranchCurve& curve : curves)
+    for (const CurvePoint& p : curve.curve.curve)
+      out << csv_field(p.p1) << ',' << csv_field(p.p2) << ',' << csv_field(p.state[0]) << ','
+          << csv_field(p.state[1]) << ',' << csv_field(p.multipliers[0].real()) << ','
+          << csv_field(p.multipliers[0].imag()) << ',' << csv_field(p.multipliers[1].real()) << ','
+          << csv_field(p.multipliers[1].imag()) << ',' << csv_field(std::abs(p.multipliers[0]))
+          << ',' << csv_field(std::abs(p.multipliers[1])) << ',' << csv_field(p.graze_time) << ','
+          << p.impacts << ',' << p.newton_iterations << ',' << curve.branch << ',' << curve.period
+          << '\n';
 }
 
 int run_continue(const ContinueOptions& options, const std::vector<std::string>& command_line) {
@@ -127,12 +131,6 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
                                               : ParameterRange{};
   if (!options.curve.empty() && !two_parameter)
     throw BadInput("--curve", options.curve, "needs --param2");
-  if (two_parameter && options.switch_doubling)
-    throw BadInput("--switch", "set", "a two-parameter curve (--param2) follows the first branch only");
-  const SectionSpec section = parse_section(options.section, "--section");
-  if (section.kind != SectionKind::strobe)
-    throw BadInput("--section", options.section,
-                   "continuation takes a stroboscopic section (strobe[:PHASE]) in this version");
   if (!options.with_sweep.empty() && !std::filesystem::is_regular_file(options.with_sweep))
     throw BadInput("--with-sweep", options.with_sweep,
                    two_parameter ? "no such file (a 2D sweep's classes.csv)"
@@ -146,7 +144,6 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
   job.from = range.from;
   job.to = range.to;
   job.period = options.period;
-  job.phase = section.phase;
   job.transient_periods = options.transient;
   job.doublings = options.switch_doubling ? doublings_followed : 0;
   if (two_parameter) {
@@ -155,6 +152,8 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
     job.second_to = range2.to;
     job.curve_type = options.curve;
   }
+  set_continuation_section(job, options.section, "--section");
+  const SectionSpec section = parse_section(options.section, "--section");
   if (!options.start.empty()) {
     job.has_start = true;
     job.start = {options.start[0], options.start[1]};
@@ -201,14 +200,18 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
         {"max_step", options.max_step},
         {"start", options.start}}},
       {"method",
-       "pseudo-arclength continuation of the fixed point of the n-fold stroboscopic map; "
+       "pseudo-arclength continuation of the fixed point of the n-fold stroboscopic map (or "
+       "of the impact map of one wall, state (impact phase, rate before the impact)); "
        "dF/dx from the saltation-corrected monodromy, dF/dp by a central difference; fold, "
        "period doubling and Neimark-Sacker located by TOMS 748 on the arclength; grazing "
        "solved as an extended system (zero gap, zero normal velocity)"},
       {"columns",
        {{"branch.csv",
          {{range.name, "the continued scene key (its unit in scene.units)"},
-          {"q, qdot", "the orbit's state on the section (main coordinate and its rate)"},
+          {"q, qdot", section.kind == SectionKind::impact
+                          ? "the orbit's state on the impact section: q the forcing phase "
+                            "omega t mod 2 pi of the impact (rad), qdot the rate just before it"
+                          : "the orbit's state on the section (main coordinate and its rate)"},
           {"period", "forcing periods of the orbit"},
           {"branch", "0: the first branch; k: the k-th doubled branch (--switch)"},
           {"impacts", "impacts per orbit period"},
@@ -225,7 +228,22 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
   };
   write_json(run_files.add("continuation.json"), document);
   if (two_parameter) {
-    write_curve_csv(run_files.add("curve.csv"), range.name, range2.name, result.curve);
+    // the curves: the first branch's, then each doubled branch's (--switch)
+    std::vector<BranchCurve> curves = {
+        {0, options.period, result.has_curve, result.curve, result.curve_note}};
+    for (const BranchCurve& doubled : result.doubled_curves)
+      if (doubled.has_curve) curves.push_back(doubled);
+    nlohmann::json curve_list = nlohmann::json::array();
+    for (const BranchCurve& curve : result.doubled_curves)
+      curve_list.push_back({{"branch", curve.branch},
+                            {"period", curve.period},
+                            {"type", curve.has_curve ? curve.curve.type : ""},
+                            {"points", curve.curve.curve.size()},
+                            {"stop_reason", curve.has_curve ? curve.curve.stop_reason
+                                                            : "no_start_point"},
+                            {"stop_detail", curve.has_curve ? curve.curve.stop_detail : curve.note},
+                            {"map_evaluations", curve.curve.map_evaluations}});
+    write_curve_csv(run_files.add("curve.csv"), range.name, range2.name, curves);
     const nlohmann::json curve_document = {
         {"impactlab_version", IMPACTLAB_VERSION},
         {"command", command_line},
@@ -240,6 +258,7 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
           {"to2", range2.to},
           {"curve", options.curve.empty() ? "first located" : options.curve},
           {"period", options.period},
+          {"switch", options.switch_doubling},
           {"section", to_string(section)},
           {"tolerance", options.tolerance}}},
         {"type", result.has_curve ? result.curve.type : ""},
@@ -247,6 +266,7 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
         {"stop_reason", result.has_curve ? result.curve.stop_reason : "no_start_point"},
         {"stop_detail", result.has_curve ? result.curve.stop_detail : result.curve_note},
         {"map_evaluations", result.curve.map_evaluations},
+        {"doubled_curves", curve_list},
         {"method",
          "pseudo-arclength continuation in (q, qdot, p1, p2) of the orbit condition "
          "P^n(x) = x with det(M - I) = 0 (fold), det(M + I) = 0 (period doubling), or zero gap "
@@ -259,7 +279,10 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
           {"q, qdot", "the orbit's state on the section at the curve point"},
           {"multiplier*", "Floquet multipliers of the orbit at the point"},
           {"graze_time", "grazing: time after the section at which the wall is touched (s)"},
-          {"impacts", "impacts per orbit period (a grazing point's touch not counted)"}}},
+          {"impacts", "impacts per orbit period (a grazing point's touch not counted)"},
+          {"branch", "the branch the curve starts from: 0, then k for the k-th doubled one "
+                     "(--switch; doubled_curves)"},
+          {"period", "forcing periods of that branch's orbit"}}},
         {"wall_time_s", wall_time},
     };
     write_json(run_files.add("curve.json"), curve_document);
@@ -295,6 +318,15 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
                                  result.curve.stop_detail);
       else
         std::cout << "no curve: " << result.curve_note << '\n';
+      for (const BranchCurve& doubled : result.doubled_curves) {
+        if (doubled.has_curve)
+          std::cout << fmt::format("  period-{} branch's {} curve: {} points, stopped: {} ({})\n",
+                                   doubled.period, doubled.curve.type, doubled.curve.curve.size(),
+                                   doubled.curve.stop_reason, doubled.curve.stop_detail);
+        else
+          std::cout << fmt::format("  period-{} branch: no curve: {}\n", doubled.period,
+                                   doubled.note);
+      }
     }
     std::cout << "wrote " << (directory / "branch.csv").string() << ", points.csv, continuation.json"
               << (two_parameter ? ", curve.csv, curve.json" : "") << '\n';
@@ -319,20 +351,23 @@ Command add_continue_command(CLI::App& app) {
       ->required();
   command->add_option("--param2", options->param2,
                       "NAME=FROM:TO: follow the first located fold, period doubling or grazing "
-                      "point of the branch (run at NAME=FROM) in (--param, NAME) to NAME=TO; "
-                      "writes curve.csv");
+                      "point of the branch (run at NAME=FROM) in (--param, NAME) to NAME=TO "
+                      "(with --switch: of each doubled branch too); writes curve.csv");
   command->add_option("--curve", options->curve,
                       "fold|period_doubling|grazing: the bifurcation whose curve --param2 follows "
                       "(default: the first located)");
   command->add_option("--period", options->period, "n: the orbit's period in forcing periods")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  command->add_option("--section", options->section, "strobe[:PHASE]")->capture_default_str();
+  command->add_option("--section", options->section,
+                      "strobe[:PHASE], or impact:WALL (+1 or -1): the impact map, state (the "
+                      "impact's forcing phase, the rate before it)")
+      ->capture_default_str();
   command->add_flag("--switch", options->switch_doubling,
                     "at a period doubling, continue the doubled orbit (the cascade, up to 3 "
                     "doublings)");
   command->add_option("--start", options->start, "Q,QDOT: the start on the section (else the "
-                                                   "transient's end)")
+                                                   "transient's end); impact section: PHASE,QDOT")
       ->delimiter(',');
   command->add_option("--transient", options->transient, "forcing periods run for the start")
       ->check(CLI::Range(0.0, 1e9))

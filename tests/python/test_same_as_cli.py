@@ -204,3 +204,19 @@ def test_continue_equals_cli_branch_and_points(cli):
     for column in ("omega", "q", "qdot", "period", "branch", "error_estimate", "located",
                    "graze_time", "graze_witness"):
         same_numbers(points[column], result.points[column])
+
+
+def test_continue_on_the_impact_section_equals_cli(cli):
+    out = cli("continue", "linear_impact", "--set", "sigma=0.2", "--param", "omega=2:2.4",
+              "--section", "impact:+1")
+    result = impactlab.continue_("linear_impact", sigma=0.2, param="omega=2:2.4",
+                                 section="impact:+1")
+    branch = read_csv(out / "branch.csv")
+    (one,) = result.branches
+    for column in ("omega", "q", "qdot", "impacts", "stable", "newton_iterations"):
+        same_numbers(branch[column], one[column])
+    assert len(branch["omega"]) > 10 and one["stop_reason"] == "end_of_range"
+    points = read_csv(out / "points.csv")
+    assert points["type"] == result.points["type"] and "period_doubling" in points["type"]
+    for column in ("omega", "q", "qdot", "error_estimate"):
+        same_numbers(points[column], result.points[column])
