@@ -552,10 +552,49 @@ py::dict bench_binding(const Scene& scene, std::vector<std::string> methods,
 // Pseudo-arclength continuation of a period-n orbit (the CLI's `continue`):
 // per branch, the columns of branch.csv; all branches' bifurcation points as
 // the rows of points.csv.
+// One two-parameter curve as columns (the rows of curve.csv that carry its
+// branch number).
+py::dict curve_columns(const BranchCurve& curve, const std::string& parameter,
+                       const std::string& parameter2) {
+  std::vector<double> p1, p2, q, qdot, graze_time;
+  std::vector<std::complex<double>> multiplier1, multiplier2;
+  std::vector<int> impacts, newton_iterations;
+  for (const CurvePoint& p : curve.curve.curve) {
+    p1.push_back(p.p1);
+    p2.push_back(p.p2);
+    q.push_back(p.state[0]);
+    qdot.push_back(p.state[1]);
+    multiplier1.push_back(p.multipliers[0]);
+    multiplier2.push_back(p.multipliers[1]);
+    graze_time.push_back(p.graze_time);
+    impacts.push_back(p.impacts);
+    newton_iterations.push_back(p.newton_iterations);
+  }
+  py::dict one;
+  one["branch"] = curve.branch;
+  one["period"] = curve.period;
+  one["type"] = curve.curve.type;
+  one["stop_reason"] = curve.curve.stop_reason;
+  one["stop_detail"] = curve.curve.stop_detail;
+  one["map_evaluations"] = curve.curve.map_evaluations;
+  one[py::str(parameter)] = owning_array(std::move(p1));
+  one[py::str(parameter2)] = owning_array(std::move(p2));
+  one["q"] = owning_array(std::move(q));
+  one["qdot"] = owning_array(std::move(qdot));
+  one["multiplier1"] = owning_array(std::move(multiplier1));
+  one["multiplier2"] = owning_array(std::move(multiplier2));
+  one["graze_time"] = owning_array(std::move(graze_time));
+  one["impacts"] = owning_array(std::move(impacts));
+  one["newton_iterations"] = owning_array(std::move(newton_iterations));
+  return one;
+}
+
 py::dict continue_binding(const Scene& scene, const std::string& parameter, double from, double to,
                           int period, const std::string& section, bool switch_doubling,
                           std::optional<std::vector<double>> start, double transient,
-                          int max_points, double tolerance, double max_step, py::object progress) {
+                          int max_points, double tolerance, double max_step,
+                          const std::string& parameter2, double from2, double to2,
+                          const std::string& curve_type, py::object progress) {
   if (period < 1 || period > 1000)
     throw BadInput("period", std::to_string(period), "expected 1 to 1000");
   if (max_points < 2 || max_points > 1000000)
@@ -570,6 +609,15 @@ py::dict continue_binding(const Scene& scene, const std::string& parameter, doub
   job.from = from;
   job.to = to;
   job.period = period;
+  // before the section: the impact section refuses a second parameter
+  if (!curve_type.empty() && parameter2.empty())
+    throw BadInput("curve", curve_type, "needs param2");
+  if (!parameter2.empty()) {
+    job.second_parameter = parameter2;
+    job.second_from = from2;
+    job.second_to = to2;
+    job.curve_type = curve_type;
+  }
   set_continuation_section(job, section, "section");
   job.transient_periods = transient;
   job.doublings = switch_doubling ? 3 : 0;  // the CLI's --switch: the cascade, up to 8n
@@ -662,6 +710,18 @@ py::dict continue_binding(const Scene& scene, const std::string& parameter, doub
   out["note"] = result.note;
   out["branches"] = branches;
   out["points"] = points;
+  if (!parameter2.empty()) {
+    // the first branch's curve, then each doubled branch's (switch), as the
+    // CLI's curve.csv orders them
+    py::list curves;
+    if (result.has_curve)
+      curves.append(curve_columns({0, period, true, result.curve, result.curve_note}, parameter,
+                                  parameter2));
+    for (const BranchCurve& doubled : result.doubled_curves)
+      if (doubled.has_curve) curves.append(curve_columns(doubled, parameter, parameter2));
+    out["curves"] = curves;
+    out["curve_note"] = result.has_curve ? std::string() : result.curve_note;
+  }
   return out;
 }
 

@@ -361,7 +361,7 @@ def bench(scene_=None, *, methods=None, rtols=(1e-6, 1e-8, 1e-10), atol_ratio=1e
     return Result(scene=loaded, **raw)
 
 
-def _parameter_range(param):
+def _parameter_range(param, key="param"):
     """NAME=FROM:TO as (name, from, to); the key and its range are checked by the job."""
     if isinstance(param, str):
         name, equals, span = param.partition("=")
@@ -372,25 +372,36 @@ def _parameter_range(param):
             except ValueError:
                 low = high = math.nan
             if not (math.isfinite(low) and math.isfinite(high)):
-                raise ValueError("param = {!r}: FROM and TO must be finite numbers".format(param))
+                raise ValueError("{} = {!r}: FROM and TO must be finite numbers".format(key, param))
             if low == high:
-                raise ValueError("param = {!r}: FROM and TO must differ".format(param))
+                raise ValueError("{} = {!r}: FROM and TO must differ".format(key, param))
             return name, low, high
-    raise ValueError("param = {!r}: expected NAME=FROM:TO".format(param))
+    raise ValueError("{} = {!r}: expected NAME=FROM:TO".format(key, param))
 
 
 def continue_(scene_=None, *, param, period=1, section="strobe", switch=False, start=None,
-              transient=100.0, max_points=5000, tolerance=1e-10, max_step=0.0, progress=None,
-              **keys):
+              transient=100.0, max_points=5000, tolerance=1e-10, max_step=0.0, param2=None,
+              curve=None, progress=None, **keys):
     """Pseudo-arclength continuation of a period-n orbit in one scene key (the
     CLI's `continue`): branches (per branch: the columns of branch.csv, its
     period and why it stopped) and points (the rows of points.csv: folds,
     period doublings, Neimark-Sacker, grazing points, contact onset and end).
     section is strobe[:PHASE] or impact:WALL (WALL +1 or -1: the impact map,
     where q is the impact's forcing phase omega t mod 2 pi and qdot the rate
-    just before it; start is then (phase, qdot))."""
+    just before it; start is then (phase, qdot)).
+    param2="NAME=FROM:TO" (with curve= fold, period_doubling or grazing; else
+    the first located point's type) follows that bifurcation's curve in the
+    plane of the two keys from the point the branch located (the CLI's
+    --param2 and --curve): curves is then a list of dicts with the columns of
+    curve.csv, the first branch's curve first, then each doubled branch's
+    (switch=True); curve_note says why there is none."""
     loaded = scene(scene_ if scene_ is not None else "linear_impact", **keys)
     name, low, high = _parameter_range(param)
+    name2, low2, high2 = "", 0.0, 0.0
+    if param2 is not None:
+        name2, low2, high2 = _parameter_range(param2, "param2")
+    if curve is not None and not isinstance(curve, str):
+        raise ValueError("curve = {!r}: expected fold, period_doubling or grazing".format(curve))
     if not isinstance(section, str):
         raise ValueError("section = {!r}: expected text such as strobe, strobe:PHASE or impact:+1".format(section))
     if not isinstance(switch, bool):
@@ -403,6 +414,7 @@ def continue_(scene_=None, *, param, period=1, section="strobe", switch=False, s
         loaded, name, low, high, _whole("period", period, 1), section, switch, start,
         _number("transient", transient), _whole("max_points", max_points, 2),
         _number("tolerance", tolerance, positive=True),
-        _number("max_step", max_step, positive=True, allow_zero=True), callback),
+        _number("max_step", max_step, positive=True, allow_zero=True), name2, low2, high2,
+        curve or "", callback),
         progress, "continue")
     return Result(scene=loaded, parameter=name, **raw)

@@ -67,6 +67,16 @@ def test_unknown_scene_raises_value_error():
     (lambda: impactlab.continue_("linear_impact", param="nokey=2:3"), "nokey"),
     (lambda: impactlab.continue_("linear_impact", param="omega=2:3", section="impact"), "section"),
     (lambda: impactlab.continue_("linear_impact", param="omega=2:3", start=[0.1]), "start"),
+    (lambda: impactlab.continue_("linear_impact", param="omega=2:3", param2="sigma=0.2"),
+     "param2"),
+    (lambda: impactlab.continue_("linear_impact", param="omega=2:3", param2="omega=3:4"),
+     "param2"),
+    (lambda: impactlab.continue_("linear_impact", param="omega=2:3", param2="r=0.8:1.5"), "r"),
+    (lambda: impactlab.continue_("linear_impact", param="omega=2:3", curve="fold"), "curve"),
+    (lambda: impactlab.continue_("linear_impact", param="omega=2:3", param2="r=0.8:0.6",
+                                 curve="torus"), "curve"),
+    (lambda: impactlab.continue_("linear_impact", param="omega=2:3", param2="r=0.8:0.6",
+                                 section="impact:1"), "section"),
 ])
 def test_bad_option_raises_value_error_naming_it(call, named):
     with pytest.raises(ValueError) as raised:

@@ -206,6 +206,33 @@ def test_continue_equals_cli_branch_and_points(cli):
         same_numbers(points[column], result.points[column])
 
 
+def test_two_parameter_curves_equal_cli(cli):
+    # the ball's period-doubling curve in (A, r) and, with switch, the doubled
+    # branch's: curve.csv's rows, curve by curve, bit for bit
+    arguments = dict(param="A=0.0112:0.025", start=[0.044286522498880876, -0.6269934342801218],
+                     param2="r=0.8:0.75", curve="period_doubling", switch=True)
+    out = cli("continue", "bouncing_ball", "--param", arguments["param"], "--start",
+              "0.044286522498880876,-0.6269934342801218", "--param2", arguments["param2"],
+              "--curve", "period_doubling", "--switch")
+    result = impactlab.continue_("bouncing_ball", **arguments)
+    assert result.curve_note == ""
+    table = read_csv(out / "curve.csv")
+    assert len(result.curves) >= 2 and [c["period"] for c in result.curves][:2] == [1, 2]
+    rows = 0
+    for one in result.curves:
+        assert one["type"] == "period_doubling"
+        mine = [i for i, b in enumerate(table["branch"]) if b == one["branch"]]
+        rows += len(mine)
+        pick = lambda column: [table[column][i] for i in mine]  # noqa: E731
+        for column in ("A", "r", "q", "qdot", "graze_time", "impacts", "newton_iterations"):
+            same_numbers(pick(column), one[column])
+        same_numbers(pick("period"), [one["period"]] * len(mine))
+        for k in (1, 2):
+            same_numbers(pick("multiplier{}_re".format(k)), one["multiplier{}".format(k)].real)
+            same_numbers(pick("multiplier{}_im".format(k)), one["multiplier{}".format(k)].imag)
+    assert rows == len(table["A"]) > 10
+
+
 def test_continue_on_the_impact_section_equals_cli(cli):
     out = cli("continue", "linear_impact", "--set", "sigma=0.2", "--param", "omega=2:2.4",
               "--section", "impact:+1")
