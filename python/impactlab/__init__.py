@@ -385,7 +385,9 @@ def continue_(scene_=None, *, param, period=1, section="strobe", switch=False, s
     """Pseudo-arclength continuation of a period-n orbit in one scene key (the
     CLI's `continue`): branches (per branch: the columns of branch.csv, its
     period and why it stopped) and points (the rows of points.csv: folds,
-    period doublings, Neimark-Sacker and grazing points)."""
+    period doublings, Neimark-Sacker and grazing points). The states and
+    multipliers are N wide: N = 2 (q, qdot), or a model file's N states
+    (q, qdot, state3, ...; multiplier1 ... multiplierN)."""
     loaded = scene(scene_ if scene_ is not None else "linear_impact", **keys)
     name, low, high = _parameter_range(param)
     if not isinstance(section, str):
@@ -394,7 +396,7 @@ def continue_(scene_=None, *, param, period=1, section="strobe", switch=False, s
         raise ValueError("switch = {!r}: expected True or False".format(switch))
     if start is not None:
         if not isinstance(start, (list, tuple, np.ndarray)):
-            raise ValueError("start = {!r}: expected (q, qdot)".format(start))
+            raise ValueError("start = {!r}: expected (q, qdot), or a model file's N states".format(start))
         start = [_number("start", value) for value in start]
     raw = _run(lambda callback: _impactlab.continue_(
         loaded, name, low, high, _whole("period", period, 1), section, switch, start,

@@ -1,7 +1,7 @@
 // The scene binding of oscillators defined in a scene file's [model] section:
 // a schema built at run time from the model's parameters (defaults, units,
 // ranges: the scene keys and --set keys) and states (initial.<state>), and the
-// run, section and periodic-orbit hooks for 2 or 4 states.
+// run, section, periodic-orbit and continuation hooks for 2 or 4 states.
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "analysis/run_continuation.hpp"
 #include "analysis/run_periodic.hpp"
 #include "analysis/run_section.hpp"
 #include "io/bad_input.hpp"
@@ -58,6 +59,21 @@ typename ModelSystem<N>::State initial_state(const Scene& scene, const ModelSyst
   return x;
 }
 
+// Why a model has no linearisation the analyses may use, or empty. A
+// sticking mode pins the whole state (ModelSystem::pinned, the collapse at an
+// accumulation): right for one degree of freedom, wrong where other states
+// move on while one wall holds its mass.
+template <std::size_t N>
+std::string not_linearisable(const CompiledModel& model) {
+  if (N == 2) return {};
+  for (const auto& wall : model.walls)
+    if (wall.has_sticking)
+      return fmt::format("a model with {} states and a sticking wall has no linearisation of its "
+                         "contact phases (Floquet, Lyapunov, continuation need 2 states there)",
+                         N);
+  return {};
+}
+
 template <std::size_t N>
 RunOutput run_states(const Scene& scene, const RunRequest& request) {
   const ModelSystem<N> system = make_system<N>(scene);
@@ -74,6 +90,15 @@ SectionResult section_states(const Scene& scene, const SectionRequest& request) 
     mode = ModelSystem<N>::free_mode;
   };
   const auto x0 = initial_state(scene, system);
+  const std::string why_not = not_linearisable<N>(system.model());
+  if (request.lyapunov && !why_not.empty()) {
+    SectionRequest without = request;
+    without.lyapunov = false;
+    SectionResult result = run_section(system, x0, ModelSystem<N>::free_mode, scene, without,
+                                       system.forcing_frequency(), admissible);
+    result.lyapunov_note = why_not;
+    return result;
+  }
   return run_section(system, x0, ModelSystem<N>::free_mode, scene, request,
                      system.forcing_frequency(), admissible);
 }
@@ -81,8 +106,25 @@ SectionResult section_states(const Scene& scene, const SectionRequest& request) 
 template <std::size_t N>
 PeriodicResult periodic_states(const Scene& scene, const PeriodicRequest& request) {
   const ModelSystem<N> system = make_system<N>(scene);
+  if (std::string why_not = not_linearisable<N>(system.model()); !why_not.empty()) {
+    PeriodicResult result;
+    result.note = std::move(why_not);
+    return result;
+  }
   return run_periodic(system, initial_state(scene, system), ModelSystem<N>::free_mode, scene,
                       request, system.forcing_frequency());
+}
+
+template <std::size_t N>
+ContinuationJobResult continuation_states(const Scene& scene, const ContinuationJob& job) {
+  const ModelSystem<N> system = make_system<N>(scene);
+  if (std::string why_not = not_linearisable<N>(system.model()); !why_not.empty()) {
+    ContinuationJobResult result;
+    result.note = std::move(why_not);
+    return result;
+  }
+  return run_continuation<ModelSystem<N>>(&make_system<N>, ModelSystem<N>::free_mode,
+                                          initial_state(scene, system), scene, job);
 }
 
 RunOutput run(const Scene& scene, const RunRequest& request) {
@@ -98,6 +140,11 @@ SectionResult section(const Scene& scene, const SectionRequest& request) {
 PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request) {
   return model_of(scene).states.size() == 2 ? periodic_states<2>(scene, request)
                                             : periodic_states<4>(scene, request);
+}
+
+ContinuationJobResult continuation(const Scene& scene, const ContinuationJob& job) {
+  return model_of(scene).states.size() == 2 ? continuation_states<2>(scene, job)
+                                            : continuation_states<4>(scene, job);
 }
 
 // The schema: common keys (no closed-form flow: `exact` is not offered), the
@@ -153,7 +200,7 @@ void register_model_scene(std::string_view name_or_path) {
   auto oscillator = std::make_unique<RuntimeOscillator>();
   oscillator->name = name;
   build_schema(*oscillator, *model);
-  oscillator->entry = {&oscillator->schema, &run, &section, &periodic_orbit};
+  oscillator->entry = {&oscillator->schema, &run, &section, &periodic_orbit, &continuation};
   oscillator->data = model;
   register_runtime_oscillator(std::move(oscillator));
 }
