@@ -30,7 +30,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "analysis/continuation.hpp"
 #include "analysis/floquet.hpp"
+#include "api/scene_jobs.hpp"
+#include "api/scene_loading.hpp"
 #include "core/simulator.hpp"
 #include "integrate/stepper_dispatch.hpp"
 #include "linear_impact_closed_form.hpp"
@@ -74,6 +77,11 @@ x = 0.0
 x_dot = 0.0
 u = 0.0
 u_dot = 0.0
+
+[integrator]
+method = "rk8pd"
+rtol = 1e-12
+atol = 1e-13
 
 [model]
 states = ["x", "x_dot", "u", "u_dot"]
@@ -190,6 +198,51 @@ TEST(TangentDimension, FourStateLyapunovExponentIsTheClosedFormsLargestMultiplie
                                                   period, 400, 100);
   ASSERT_EQ(lyapunov.termination, Termination::completed);
   EXPECT_NEAR(lyapunov.exponent, std::log(std::abs(orbit_closed->multipliers[0])) / period, 1e-6);
+}
+
+TEST(TangentDimension, FourStateContinuationLocatesTheLinearImpactPeriodDoubling) {
+  // the closed form's period doubling: 1 + tr M + det M = 0 of its 2 × 2
+  // monodromy (ζ = 0.05, A = 1, σ = 0.2, r = 0.8), ω ≈ 2.26530
+  const double expected = impactlab::testing::root_by_toms748(
+      [](double omega) {
+        LinearImpactParameters p;
+        p.omega = omega;
+        const auto orbit = impactlab::testing::LinearImpactClosedForm(p).orbit();
+        return orbit ? 1.0 + orbit->trace + orbit->determinant : NAN;
+      },
+      2.24, 2.29);
+  composite();  // writes the scene file
+  const Scene scene = load_scene(
+      (fs::path(::testing::TempDir()) / "impactlab_tangent_dimension" / "composite" / "composite.toml")
+          .string());
+  ContinuationJob job;
+  job.parameter = "omega";
+  job.from = 2.2;
+  job.to = 2.32;
+  const auto result = continue_orbit(scene, job);
+  ASSERT_TRUE(result.available) << result.note;
+  EXPECT_EQ(result.dimension, 4u);
+  const auto& branch = result.branches.at(0).result;
+  EXPECT_EQ(branch.stop_reason, "end_of_range") << branch.stop_detail;
+  std::vector<BifurcationPoint> doublings;
+  for (const auto& point : branch.points) {
+    EXPECT_NE(point.type, "fold");
+    if (point.type == "period_doubling") doublings.push_back(point);
+  }
+  ASSERT_EQ(doublings.size(), 1u);
+  EXPECT_TRUE(doublings[0].located);
+  EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
+  ASSERT_EQ(doublings[0].multipliers.size(), 4u);
+  ASSERT_EQ(doublings[0].state.size(), 4u);
+  EXPECT_NEAR(doublings[0].multipliers[0].real(), -1.0, 1e-7);
+  EXPECT_NEAR(doublings[0].state[2], 0.0, 1e-10);  // the free pair at rest
+  EXPECT_NEAR(doublings[0].state[3], 0.0, 1e-10);
+  // stable before the doubling, unstable after it
+  for (const auto& point : branch.branch) {
+    ASSERT_EQ(point.multipliers.size(), 4u);
+    if (std::fabs(point.parameter - expected) > 1e-6)
+      EXPECT_EQ(point.stable, point.parameter < expected) << point.parameter;
+  }
 }
 
 // --- the impact damper ---
