@@ -8,7 +8,9 @@
 //   impact oscillator (tests/linear_impact_closed_form.hpp) and
 //   exp((−ζ₂ ± i√(1 − ζ₂²)) T) of the free pair, to 1e-10; its largest
 //   Lyapunov exponent just below the period doubling is log |μ_max| / T of
-//   that closed form;
+//   that closed form; `continue` in ω (the dynamic-size driver) locates the
+//   closed form's period doubling to 1e-9 relative; with a sticking wall the
+//   model is refused the analyses (its contact linearisation pins all states);
 // * the impact damper (oscillators/model_file/examples/impact_damper.toml):
 //   the monodromy matrix of a periodic orbit against central finite
 //   differences of the full event-driven return map (the base system alone,
@@ -34,6 +36,7 @@
 #include "analysis/floquet.hpp"
 #include "api/scene_jobs.hpp"
 #include "api/scene_loading.hpp"
+#include "io/bad_input.hpp"
 #include "core/simulator.hpp"
 #include "integrate/stepper_dispatch.hpp"
 #include "linear_impact_closed_form.hpp"
@@ -242,6 +245,36 @@ TEST(TangentDimension, FourStateContinuationLocatesTheLinearImpactPeriodDoubling
     ASSERT_EQ(point.multipliers.size(), 4u);
     if (std::fabs(point.parameter - expected) > 1e-6)
       EXPECT_EQ(point.stable, point.parameter < expected) << point.parameter;
+  }
+}
+
+// A sticking mode pins the whole state (ModelSystem::pinned, the collapse at
+// an accumulation): right for one degree of freedom only, so a 4-state model
+// with a sticking wall is offered no analysis that would use it.
+TEST(TangentDimension, FourStateModelWithAStickingWallIsRefusedTheAnalyses) {
+  std::string text = composite_model;
+  text.replace(text.find("name = \"linear_impact_beside_free_oscillator\""),
+               std::string("name = \"linear_impact_beside_free_oscillator\"").size(),
+               "name = \"linear_impact_sticking_beside_free_oscillator\"");
+  text += "sticking = { rhs = { x = \"0\", x_dot = \"0\", u = \"u_dot\", "
+          "u_dot = \"-2*zeta2*u_dot - u\" }, state = { x = \"sigma\", x_dot = \"0\", u = \"u\", "
+          "u_dot = \"u_dot\" }, "
+          "force = \"A*cos(omega*t) - sigma\" }\n";
+  const fs::path file = scratch("sticking") / "sticking.toml";
+  std::ofstream(file) << text;
+  const Scene scene = load_scene(file.string());
+  const PeriodicResult periodic_result = periodic(scene, PeriodicRequest{});
+  EXPECT_FALSE(periodic_result.available);
+  EXPECT_NE(periodic_result.note.find("sticking"), std::string::npos) << periodic_result.note;
+  ContinuationJob job;
+  job.parameter = "omega";
+  job.from = 2.0;
+  job.to = 2.1;
+  try {
+    continue_orbit(scene, job);
+    ADD_FAILURE() << "continue_orbit ran on a 4-state model with a sticking wall";
+  } catch (const BadInput& error) {
+    EXPECT_NE(std::string(error.what()).find("sticking"), std::string::npos) << error.what();
   }
 }
 
