@@ -68,8 +68,8 @@ std::string not_linearisable(const CompiledModel& model) {
   if (N == 2) return {};
   for (const auto& wall : model.walls)
     if (wall.has_sticking)
-      return fmt::format("a model with {} states and a sticking wall has no linearisation of its "
-                         "contact phases (Floquet, Lyapunov, continuation need 2 states there)",
+      return fmt::format("a {}-state model with a sticking wall: its contact phases have no "
+                         "linearisation (Floquet, Lyapunov, continuation)",
                          N);
   return {};
 }
