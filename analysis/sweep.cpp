@@ -184,6 +184,7 @@ std::string to_json_line(const SweepRecord& record) {
       {"q", q},
       {"qdot", qdot},
       {"wall", wall},
+      {"point_count", std::max<std::uint64_t>(r.point_count, r.points.size())},
       {"period", record.classification.period},
       {"impacts_per_period", record.classification.impacts_per_period},
       {"contact", record.classification.contact},
@@ -218,6 +219,8 @@ std::optional<SweepRecord> from_json_line(std::string_view text) {
     const auto& t = line.at("t");
     for (std::size_t k = 0; k < t.size(); ++k)
       r.points.push_back({t[k], line.at("q")[k], line.at("qdot")[k], line.at("wall")[k]});
+    // a record written without its points (drop_points) keeps their count
+    r.point_count = line.value("point_count", static_cast<std::uint64_t>(r.points.size()));
     if (line.contains("final_state"))
       r.final_state = ContinuationState{line.at("final_state"), line.at("final_mode")};
     record.classification.period = line.at("period");
@@ -233,13 +236,14 @@ std::vector<SweepRecord> run_sweep_task(
     const Scene& base, const SweepTarget& target, const SweepPlan& plan, const SweepTask& task,
     const std::function<const SweepRecord*(int position)>& done,
     const std::function<void(const SweepRecord&)>& on_record,
-    const std::function<bool()>& keep_going) {
+    const std::function<bool()>& keep_going, bool keep_points) {
   std::vector<SweepRecord> records;
   std::optional<ContinuationState> previous;
   for (std::size_t position = 0; position < task.points.size(); ++position) {
     const int pos = static_cast<int>(position);
     if (const SweepRecord* finished = done(pos)) {
       records.push_back(*finished);
+      if (!keep_points) drop_points(records.back());
       previous = finished->result.final_state;
       continue;
     }
@@ -256,9 +260,17 @@ std::vector<SweepRecord> run_sweep_task(
     record.classification = classify(record.result, plan);
     previous = record.result.final_state;
     on_record(record);
+    if (!keep_points) drop_points(record);
     records.push_back(std::move(record));
   }
   return records;
+}
+
+void drop_points(SweepRecord& record) {
+  record.result.point_count =
+      std::max<std::uint64_t>(record.result.point_count, record.result.points.size());
+  // a swap, not `= {}`: assigning an empty list keeps the capacity
+  std::vector<SectionPoint>().swap(record.result.points);
 }
 
 }  // namespace impactlab

@@ -102,11 +102,17 @@ Scene scene_at(const Scene& base, const SceneSchema& schema, const SweepPlan& pl
 
 // Runs one task. `done(position)` returns a finished record to reuse (resume)
 // or nullptr; `on_record` receives each new record; `keep_going()` false stops
-// the task before its next new point. Returns the task's records in order.
+// the task before its next new point. Returns the task's records in order;
+// with `keep_points` false they carry no section points (their count stays in
+// result.point_count): a front end that wrote the points out in `on_record`
+// then holds one point's worth of them at a time, not the whole sweep's.
 std::vector<SweepRecord> run_sweep_task(
     const Scene& base, const SweepTarget& target, const SweepPlan& plan, const SweepTask& task,
     const std::function<const SweepRecord*(int position)>& done,
     const std::function<void(const SweepRecord&)>& on_record,
-    const std::function<bool()>& keep_going);
+    const std::function<bool()>& keep_going, bool keep_points = true);
+
+// The record without its section points (their count kept).
+void drop_points(SweepRecord& record);
 
 }  // namespace impactlab

@@ -4,7 +4,7 @@
 Layers, bottom to top (docs/architecture.md); a file may include headers of
 its own layer and of the layers below it:
 
-  1 engine      src/core, src/integrate, src/contact, src/rigidbody
+  1 engine      src/core, src/integrate, src/contact, src/rigidbody, src/platform
   2 io          src/io
   3 physics     oscillators/
   4 analysis    analysis/
@@ -25,6 +25,7 @@ FOLDER_LAYERS = [
     ("src/integrate/", 1, "engine"),
     ("src/contact/", 1, "engine"),
     ("src/rigidbody/", 1, "engine"),
+    ("src/platform/", 1, "engine"),
     ("src/io/", 2, "io"),
     ("oscillators/", 3, "physics"),
     ("analysis/", 4, "analysis"),
@@ -39,6 +40,7 @@ INCLUDE_PREFIXES = [
     ("integrate/", "src/integrate/"),
     ("contact/", "src/contact/"),
     ("rigidbody/", "src/rigidbody/"),
+    ("platform/", "src/platform/"),
     ("io/", "src/io/"),
     ("oscillators/", "oscillators/"),
     ("analysis/", "analysis/"),

@@ -9,7 +9,10 @@ cd "$(dirname "$0")/.."
 scripts/deps.sh
 jobs="$(nproc)"
 if [ "${1:-}" = "--sanitize" ]; then
-  cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIMPACTLAB_SANITIZE=ON \
+  # -O1 -g1: what the sanitizers' authors advise (fast enough to run, line
+  # numbers in reports) at a fraction of -O2 -g's compile time on 2 cores
+  cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DIMPACTLAB_SANITIZE=ON \
     -DIMPACTLAB_BUILD_BENCHMARKS=OFF -DIMPACTLAB_BUILD_PYTHON=OFF > build-sanitize.log 2>&1 || { cat build-sanitize.log; exit 1; }
   cmake --build build-sanitize -j"$jobs" >> build-sanitize.log 2>&1 || { tail -50 build-sanitize.log; exit 1; }
   echo "build-sanitize: ok (log in build-sanitize.log)"

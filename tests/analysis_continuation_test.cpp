@@ -18,7 +18,10 @@
 // point against the same closed forms: the ball's period-doubling amplitude
 // as a function of r, the linear oscillator's period doubling in (ω, r), and
 // its impact-velocity grazing A/√((1 − ω²)² + (2ζω)²) = σ in (ω, σ).
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdlib>
 #include <array>
 #include <cmath>
 #include <complex>
@@ -281,6 +284,41 @@ TEST(Continuation, LinearImpactSecondParameterSetEndsWhereTheImpactSpeedVanishes
       2.3, 2.6);
   EXPECT_NEAR(grazings[0].parameter, omega_graze, 1e-9 * omega_graze);
   EXPECT_EQ(grazings[0].note, "an impact velocity goes to zero");
+}
+
+// The same oscillator written as a model file (no C++, compiled at run time:
+// oscillators/model_file/examples/linear_impact_model.toml): its continuation
+// finds the closed form's period doubling and grazing as the built-in does.
+TEST(Continuation, LinearImpactModelFileFindsTheClosedFormsPeriodDoublingAndGrazing) {
+  const std::string cache = testing::TempDir() + "impactlab_continuation_model_cache";
+  ASSERT_EQ(::setenv("IMPACTLAB_CACHE_DIR", cache.c_str(), 1), 0);
+  ImpactOscillator o;
+  o.sigma = 0.2;
+  Scene scene = impactlab::load_scene(std::string(IMPACTLAB_SOURCE_DIR) +
+                                      "/oscillators/model_file/examples/linear_impact_model.toml");
+  ::unsetenv("IMPACTLAB_CACHE_DIR");
+  scene.values["zeta"] = o.zeta;
+  scene.values["r"] = o.r;
+  scene.values["sigma"] = o.sigma;
+  scene.values["A"] = o.A;
+  const auto job = continue_scene(scene, "omega", 2.0, 2.5);
+  ASSERT_TRUE(job.available) << job.note;
+  const auto& branch = job.branches.at(0).result;
+  EXPECT_EQ(branch.stop_reason, "signature_change") << branch.stop_detail;
+  const auto doublings = points_of_type(branch, "period_doubling");
+  ASSERT_EQ(doublings.size(), 1u);
+  const double expected = period_doubling(o, 2.24, 2.29);
+  EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
+  EXPECT_NEAR(doublings[0].multipliers[0].real(), -1.0, 1e-7);
+  const auto grazings = points_of_type(branch, "grazing");
+  ASSERT_EQ(grazings.size(), 1u);
+  const double omega_graze = solve(
+      [&](double w) {
+        const double detuning = 1.0 - w * w;
+        return detuning * detuning + 4.0 * o.zeta * o.zeta * w * w - (o.A / o.sigma) * (o.A / o.sigma);
+      },
+      2.3, 2.6);
+  EXPECT_NEAR(grazings[0].parameter, omega_graze, 1e-9 * omega_graze);
 }
 
 // The bouncing ball's period-doubling amplitude from Γ_pd.

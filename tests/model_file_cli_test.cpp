@@ -1,8 +1,9 @@
-// Model-file scenes through the command line: simulate, poincare, sweep and
-// periodic run them with no rebuild; the first run compiles into the cache and
-// later runs load it; a bad model file exits 2 with one FILE:LINE:COL line; a
-// broken compiler says it falls back to the slow path; two sweeps started at
-// once on the same new model both succeed (the cache's atomic rename).
+// Model-file scenes through the command line: simulate, poincare, sweep,
+// periodic and continue run them with no rebuild; the first run compiles
+// into the cache and later runs load it; a bad model file exits 2 with one
+// FILE:LINE:COL line; a broken compiler says it falls back to the slow path;
+// two sweeps started at once on the same new model both succeed (the cache's
+// atomic rename).
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -65,16 +66,22 @@ TEST(ModelFileCli, EveryCommandRunsAModelFileAndTheCacheIsReused) {
   EXPECT_TRUE(fs::exists(out / "a" / "meta.json"));
   EXPECT_NE(slurp(out / "a" / "events.csv").find("impact"), std::string::npos);
   // a second run and the other commands load the same shared object
-  for (const std::string command :
+  for (const std::string& command :
        {"simulate " + scene + " --periods 5 --set r=0.5 --quiet --out " + (out / "b").string(),
         "poincare " + scene + " --section impact --transient 10 --points 5 --quiet --out " + (out / "c").string(),
-        "periodic " + scene + " --period 1 --quiet --out " + (out / "d").string()}) {
+        "periodic " + scene + " --period 1 --quiet --out " + (out / "d").string(),
+        "continue " + scene + " --param omega=2:2.5 --quiet --out " + (out / "e").string()}) {
     const Outcome outcome = run(command, cache, "b");
     EXPECT_EQ(outcome.status, 0) << command << ": " << outcome.err;
   }
   shared_objects = 0;
   for (const auto& entry : fs::directory_iterator(cache)) shared_objects += entry.path().extension() == ".so";
   EXPECT_EQ(shared_objects, 1);
+  // continue: the branch's period doubling and grazing (their closed forms are
+  // checked in tests/analysis_continuation_test.cpp)
+  const std::string points = slurp(out / "e" / "points.csv");
+  EXPECT_NE(points.find("period_doubling,2.265"), std::string::npos) << points;
+  EXPECT_NE(points.find("grazing,2.44"), std::string::npos) << points;
 }
 
 TEST(ModelFileCli, ABadModelFileExitsTwoWithOneLine) {

@@ -218,5 +218,28 @@ TEST(PoincareFiles, PeakMemoryDoesNotGrowWithThePointCount) {
       << " KiB at 3e5";
 }
 
+// A 1D sweep writes bifurcation.csv from its checkpoint lines record by
+// record: 30 times more parameter values (and section points) must not raise
+// the peak memory, and every point must reach the file.
+TEST(SweepFiles, PeakMemoryDoesNotGrowWithTheNumberOfValues) {
+  const auto short_dir = scratch("sweep_memory_short");
+  const auto long_dir = scratch("sweep_memory_long");
+  const ChildRun short_run =
+      run_program({"sweep", "linear_impact", "--param", "omega=2.0:2.2:4", "--points", "3000",
+                   "--transient", "10", "--quiet", "--out", short_dir.string()});
+  const ChildRun long_run =
+      run_program({"sweep", "linear_impact", "--param", "omega=2.0:2.2:120", "--points", "3000",
+                   "--transient", "10", "--quiet", "--out", long_dir.string()});
+  ASSERT_EQ(short_run.status, 0);
+  ASSERT_EQ(long_run.status, 0);
+  std::ifstream in(long_dir / "bifurcation.csv");
+  std::uint64_t rows = 0;
+  for (std::string line; std::getline(in, line);) ++rows;
+  EXPECT_EQ(rows, 120u * 3000u + 1);
+  EXPECT_LE(static_cast<double>(long_run.max_rss_kb), 1.10 * static_cast<double>(short_run.max_rss_kb))
+      << "peak memory " << short_run.max_rss_kb << " KiB at 4 values, " << long_run.max_rss_kb
+      << " KiB at 120";
+}
+
 }  // namespace
 }  // namespace impactlab

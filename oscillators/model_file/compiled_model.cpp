@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -19,6 +20,7 @@
 #include <ginac/ginac.h>
 
 #include "oscillators/model_file/model_expression.hpp"
+#include "platform/run_program.hpp"
 
 namespace impactlab {
 
@@ -118,6 +120,7 @@ struct KernelLayout {
   std::size_t free_rhs = 0, free_jacobian = 0, scalars = 0, written = 0;
   std::vector<std::size_t> gap, gap_gradient, reset, reset_jacobian;
   std::vector<std::size_t> stick_rhs, stick_jacobian, stick_state, stick_force, stick_force_gradient;
+  std::vector<std::size_t> chatter;
 };
 
 constexpr std::size_t no_kernel = static_cast<std::size_t>(-1);
@@ -145,6 +148,38 @@ Expressions newton_reset(SymbolicModel& symbols, const ModelWall& wall, const Gi
     after[q] = symbols.state(q) - gap / slope;
   }
   return after;
+}
+
+// The gap's acceleration ḧ along the free flow, linearised in the gap and its
+// rate as the accumulation estimate's local model has it
+// (contact/accumulation.hpp: z̈ = −a − c ż + κ z): c = −∂ḧ/∂ḣ and κ = ∂ḧ/∂h,
+// each holding the other and every state that neither moves fixed. ḣ is moved
+// by the reset's velocity v alone (h is a function of positions: it does not
+// depend on v), so c = −(∂ḧ/∂v)/(∂ḣ/∂v); h is moved by a position q (the
+// reset's `position`, else the first state h depends on other than v), with v
+// moved along to hold ḣ, so κ = (∂ḧ/∂q − (∂ḧ/∂v) (∂ḣ/∂q)/(∂ḣ/∂v))/(∂h/∂q).
+// For the linear impact oscillator's gap σ − x: c = 2ζ, κ = −1.
+// Returns c, κ, then the wall's gap_scale (0 where not given).
+Expressions chatter_coefficients(SymbolicModel& symbols, const ModelWall& wall,
+                                 const GiNaC::ex& gap, const GiNaC::ex& gap_rate,
+                                 const Expressions& f) {
+  const GiNaC::ex scale =
+      wall.sticking.gap_scale.text.empty() ? GiNaC::ex(0) : symbols.parse(wall.sticking.gap_scale);
+  const GiNaC::ex gap_acceleration = symbols.rate(gap_rate, f);
+  const std::size_t v = symbols.state_index(wall.reset.velocity);
+  const GiNaC::ex rate_by_velocity = gap_rate.diff(symbols.state(v));  // nonzero (newton_reset)
+  const GiNaC::ex acceleration_by_velocity = gap_acceleration.diff(symbols.state(v));
+  const GiNaC::ex damping = (-acceleration_by_velocity / rate_by_velocity).normal();
+  std::size_t q = wall.reset.position.empty() ? symbols.size() : symbols.state_index(wall.reset.position);
+  for (std::size_t i = 0; i < symbols.size() && q == symbols.size(); ++i)
+    if (i != v && !gap.diff(symbols.state(i)).expand().is_zero()) q = i;
+  if (q == symbols.size()) return {damping, 0, scale};  // h depends on no position
+  const GiNaC::ex stiffness =
+      ((gap_acceleration.diff(symbols.state(q)) -
+        acceleration_by_velocity * gap_rate.diff(symbols.state(q)) / rate_by_velocity) /
+       gap.diff(symbols.state(q)))
+          .normal();
+  return {damping, stiffness, scale};
 }
 
 // All kernels of the model, in the order of `layout`.
@@ -205,7 +240,7 @@ std::vector<Expressions> build_kernels(const ModelDefinition& model, KernelLayou
 
     if (!wall.has_sticking) {
       for (auto* slot : {&layout.stick_rhs, &layout.stick_jacobian, &layout.stick_state,
-                         &layout.stick_force, &layout.stick_force_gradient})
+                         &layout.stick_force, &layout.stick_force_gradient, &layout.chatter})
         slot->push_back(no_kernel);
       continue;
     }
@@ -219,6 +254,7 @@ std::vector<Expressions> build_kernels(const ModelDefinition& model, KernelLayou
     layout.stick_state.push_back(add(stuck_state));
     layout.stick_force.push_back(add({force, force_rate, symbols.rate(force_rate, stuck_f)}));
     layout.stick_force_gradient.push_back(add(symbols.gradient(force)));
+    layout.chatter.push_back(add(chatter_coefficients(symbols, wall, h, h_rate, f)));
   }
   layout.written = add(written);
   return kernels;
@@ -258,7 +294,8 @@ std::uint64_t fnv1a(std::string_view text) {
 // generator's version. (The source itself is not: GiNaC orders the terms of a
 // sum by the serial numbers of its symbols, which differ between two models
 // built in one process, though not between two runs of the program.)
-constexpr std::string_view generator_version = "impactlab model generator 1";
+// (2: the chatter coefficients c, κ of each sticking wall)
+constexpr std::string_view generator_version = "impactlab model generator 2";
 
 std::string model_fingerprint(const ModelDefinition& model) {
   std::string text(generator_version);
@@ -293,6 +330,7 @@ std::string model_fingerprint(const ModelDefinition& model) {
     add_expressions(wall.sticking.rhs);
     add_expressions(wall.sticking.state);
     add(wall.sticking.force.text);
+    add(wall.sticking.gap_scale.text);
   }
   return text;
 }
@@ -382,12 +420,6 @@ StackProgram program_of(const Expressions& outputs) {
 // ---------------------------------------------------------------------------
 // compilation and the cache
 
-std::string shell_quoted(const std::string& text) {
-  std::string quoted = "'";
-  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
 std::string first_line_of(const fs::path& path) {
   std::ifstream in(path);
   std::string line;
@@ -401,13 +433,16 @@ std::string unique_suffix() {
   return fmt::format("{}-{:08x}", static_cast<long>(::getpid()), device());
 }
 
-constexpr std::string_view compiler_flags = "-O2 -fno-math-errno -shared -fPIC";
+// impactlab's flags, after the compiler's own from CompileOptions
+constexpr std::array<std::string_view, 4> compiler_flags = {"-O2", "-fno-math-errno", "-shared", "-fPIC"};
 
 // The shared object for `source`, compiled if the cache does not hold it.
 // Returns the path, or an empty path and the reason in `why`.
 fs::path shared_object(const std::string& fingerprint, const std::string& source,
                        const CompileOptions& options, bool& from_cache, std::string& why) {
-  const std::string key = fmt::format("{}\n{} {}", fingerprint, options.compiler, compiler_flags);
+  std::vector<std::string> command = options.compiler;
+  for (const std::string_view flag : compiler_flags) command.emplace_back(flag);
+  const std::string key = fmt::format("{}\n{}", fingerprint, describe_program(command));
   const fs::path directory(options.cache_directory);
   const fs::path target = directory / fmt::format("model-{:016x}.so", fnv1a(key));
   std::error_code error;
@@ -434,15 +469,15 @@ fs::path shared_object(const std::string& fingerprint, const std::string& source
       return {};
     }
   }
-  const std::string command =
-      fmt::format("{} {} -o {} {} -lm > {} 2>&1", shell_quoted(options.compiler), compiler_flags,
-                  shell_quoted(temporary.string()), shell_quoted(source_file.string()),
-                  shell_quoted(log.string()));
-  const int status = std::system(command.c_str());
+  // an argument vector, no shell: the paths are data, whatever characters they hold
+  command.insert(command.end(), {"-o", temporary.string(), source_file.string(), "-lm"});
+  const int status = run_program_logged(command, log.string());
   if (status != 0) {
     const std::string detail = first_line_of(log);
-    why = fmt::format("the C compiler '{}' failed (status {}{}{})", options.compiler, status,
-                      detail.empty() ? "" : ": ", detail);
+    const std::string compiler = describe_program(options.compiler);
+    why = status < 0 ? fmt::format("the C compiler '{}' could not be started or was killed", compiler)
+                     : fmt::format("the C compiler '{}' failed (status {}{}{})", compiler, status,
+                                   detail.empty() ? "" : ": ", detail);
     for (const auto& path : {source_file, temporary, log}) fs::remove(path, error);
     return {};
   }
@@ -461,8 +496,10 @@ fs::path shared_object(const std::string& fingerprint, const std::string& source
 
 CompileOptions compile_options_from_environment() {
   CompileOptions options;
-  if (const char* compiler = std::getenv("IMPACTLAB_CC"); compiler && *compiler)
-    options.compiler = compiler;
+  if (const char* compiler = std::getenv("IMPACTLAB_CC"); compiler) {
+    std::vector<std::string> words = split_on_spaces(compiler);
+    if (!words.empty()) options.compiler = std::move(words);
+  }
   if (const char* cache = std::getenv("IMPACTLAB_CACHE_DIR"); cache && *cache) {
     options.cache_directory = cache;
   } else if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
@@ -548,6 +585,7 @@ std::shared_ptr<const CompiledModel> compile_model(const ModelDefinition& defini
   model->stick_state = kernel_list(layout.stick_state);
   model->stick_force = kernel_list(layout.stick_force);
   model->stick_force_gradient = kernel_list(layout.stick_force_gradient);
+  model->chatter = kernel_list(layout.chatter);
   model->build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return model;

@@ -6,9 +6,13 @@
 // says so (slow_path_reason).
 //
 // The cache directory: $IMPACTLAB_CACHE_DIR, else $XDG_CACHE_HOME/impactlab,
-// else ~/.cache/impactlab. The compiler: $IMPACTLAB_CC, else `cc`. A shared
-// object is written under a temporary name and renamed into place, so runs
-// started at once on the same new model each see a whole file or none.
+// else ~/.cache/impactlab. The compiler: $IMPACTLAB_CC, else `cc`;
+// $IMPACTLAB_CC may hold the compiler and flags of its own separated by spaces
+// ("gcc -march=native"), split into an argument vector: the compiler runs
+// from that vector (platform/run_program.hpp), never through a shell, so no
+// path or flag is parsed as shell text. A shared object is written under a
+// temporary name and renamed into place, so runs started at once on the same
+// new model each see a whole file or none.
 #pragma once
 
 #include <memory>
@@ -23,7 +27,9 @@ namespace impactlab {
 
 struct CompileOptions {
   std::string cache_directory;   // where the shared objects are kept
-  std::string compiler = "cc";   // the C compiler's command
+  // the C compiler and flags of its own, as an argument vector (no shell);
+  // impactlab adds its flags, the output and the source after them
+  std::vector<std::string> compiler = {"cc"};
   bool use_compiler = true;      // false: go straight to the interpreted evaluator
 };
 
@@ -67,6 +73,11 @@ class CompiledModel {
   std::vector<Kernel> stick_state;     // per wall: the state on the wall (N)
   std::vector<Kernel> stick_force;     // per wall: F, Ḟ, F̈ along the sticking flow
   std::vector<Kernel> stick_force_gradient;  // per wall: ∂F/∂x (N)
+  // per wall: the damping c = −∂ḧ/∂ḣ (1/time) and stiffness κ = ∂ḧ/∂h
+  // (1/time²) of the gap's acceleration along the free flow, for the
+  // accumulation estimate (contact/accumulation.hpp), then the size of the
+  // gap's terms (the sticking table's gap_scale; 0 where not given)
+  std::vector<Kernel> chatter;
   // every free-flight expression as written (right-hand sides, witnesses,
   // restitutions, ω, max_step), for the check at the initial state
   Kernel written;

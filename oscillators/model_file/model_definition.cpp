@@ -255,7 +255,7 @@ ModelSticking read_sticking(const toml::node& node, const std::string& wall_path
   const toml::table& table = wall.subtable(node, "sticking");
   const std::string path = wall_path + ".sticking";
   TableReader reader(table, path, file);
-  reader.only_keys({"rhs", "state", "force"});
+  reader.only_keys({"rhs", "state", "force", "gap_scale"});
   ModelSticking sticking;
   sticking.where = position_of(node.source(), file);
   for (auto [name, target] : {std::pair{"rhs", &sticking.rhs}, std::pair{"state", &sticking.state}}) {
@@ -268,6 +268,8 @@ ModelSticking read_sticking(const toml::node& node, const std::string& wall_path
     *target = in_state_order(*target, model.states);
   }
   sticking.force = reader.required_expression("force", "the push into the wall; contact ends where it falls to zero");
+  if (reader.find("gap_scale"))
+    sticking.gap_scale = reader.required_expression("gap_scale", "the size of the gap's terms");
   return sticking;
 }
 

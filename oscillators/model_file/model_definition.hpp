@@ -17,7 +17,7 @@
 //     name, side (+1 / -1: events.csv's wall), witness (a gap, falling to zero),
 //     direction ("falling" | "rising"), reset = { velocity, restitution[, position] }
 //     or reset = { map = { state = "expression", ... } },
-//     sticking = { rhs = {...}, state = {...}, force = "..." } (optional)
+//     sticking = { rhs = {...}, state = {...}, force = "..."[, gap_scale = "..."] } (optional)
 #pragma once
 
 #include <string>
@@ -64,6 +64,10 @@ struct ModelSticking {
   StateExpressions rhs;    // the vector field while stuck
   StateExpressions state;  // the state on the wall (entering and leaving the mode)
   ExpressionText force;    // the push into the wall per unit mass (> 0 keeps contact)
+  // optional: the size of the terms the gap is computed from (wall coordinate
+  // units); the gap's round-off, below which a chatter cannot be resolved, is
+  // 4 ulps of it (contact/accumulation.hpp's ρ). Empty: not given.
+  ExpressionText gap_scale;
   SourcePosition where;
 };
 

@@ -10,7 +10,8 @@
 //   free flight, the witness h_k crosses zero in its direction: an impact,
 //     x⁺ from the wall's reset; with a sticking mode, the impacts that follow
 //     are summed into their accumulation point (contact/accumulation.hpp) when
-//     the push F into the wall is nearly constant over them, and the state
+//     the push F into the wall is nearly constant over them (with the gap's
+//     damping and stiffness, derived symbolically, in the estimate), and the state
 //     rests on the wall (the sticking state) while F > 0;
 //   resting on wall k, F falls through zero: release into free flight from
 //     the sticking state.
@@ -22,6 +23,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string_view>
@@ -38,6 +40,14 @@ namespace impactlab {
 // 0: free flight; 1 + k: resting on wall k.
 enum class ModelMode : std::uint8_t {};
 
+// A model system's parameter values and the forcing frequency they give: the
+// analyses read a system's forcing frequency as parameters().omega, as for
+// the built-in oscillators' parameter structs.
+struct ModelParameterView {
+  const std::vector<double>& values;  // in the model's order
+  double omega;                       // forcing frequency (rad per time unit)
+};
+
 template <std::size_t N>
 class ModelSystem {
  public:
@@ -50,7 +60,8 @@ class ModelSystem {
   // parameters: values in the model's order; accumulation: what an
   // accumulation estimate is held to, with the gap's resolution per unit of
   // the wall coordinate (contact/accumulation.hpp; its apex and round-off
-  // terms are scaled by the wall coordinate at each impact)
+  // terms are scaled by the wall coordinate at each impact; a wall's
+  // gap_scale raises the round-off to 4 ulps of the terms it names)
   ModelSystem(std::shared_ptr<const CompiledModel> model, std::vector<double> parameters,
               AccumulationTolerance accumulation = {})
       : model_(std::move(model)), p_(std::move(parameters)), accumulation_(accumulation) {
@@ -63,7 +74,7 @@ class ModelSystem {
   }
 
   [[nodiscard]] const CompiledModel& model() const { return *model_; }
-  [[nodiscard]] const std::vector<double>& parameters() const { return p_; }
+  [[nodiscard]] ModelParameterView parameters() const { return {p_, omega_}; }
   [[nodiscard]] double forcing_frequency() const { return omega_; }
   [[nodiscard]] double max_step() const { return max_step_; }
   [[nodiscard]] std::string_view mode_name(Mode mode) const { return model_->mode_names[index(mode)]; }
@@ -176,18 +187,26 @@ class ModelSystem {
     // good? The separation speed is r |ḣ⁻| (Newton's law), not ḣ evaluated
     // after the impact: that difference of nearly equal velocities would lose
     // digits in a chatter, where the speeds are small.
-    double gap[2], push[3];
+    double gap[2], push[3], chatter[3];
     model_->gap[k](x.data(), t, p_.data(), gap);
+    model_->chatter[k](after.data(), t, p_.data(), chatter);  // c, κ, gap_scale
     const State resting = sticking_state(k, after, t);
     model_->stick_force[k](resting.data(), t, p_.data(), push);
     const double restitution = reset[N];
-    // the gap's resolution where this wall is: scaled by its coordinate
+    // the gap's resolution where this wall is: scaled by its coordinate; its
+    // round-off at least 4 ulps of the terms the gap is computed from (the
+    // wall coordinate and the model's gap_scale), as a built-in oscillator
+    // takes its own (linear_impact.hpp: σ and the forced response's amplitude)
     AccumulationTolerance tolerance = accumulation_;
     const double wall_coordinate = std::max(1.0, std::fabs(after[0]));
     tolerance.unresolved_apex *= wall_coordinate;
-    tolerance.gap_roundoff *= wall_coordinate;
+    tolerance.gap_roundoff =
+        std::max(tolerance.gap_roundoff * wall_coordinate,
+                 4.0 * std::numeric_limits<double>::epsilon() * (std::fabs(after[0]) + chatter[2]));
     const auto estimate = accept_accumulation(
-        {restitution * std::fabs(gap[1]), push[0], push[1], restitution, push[2]}, tolerance);
+        {restitution * std::fabs(gap[1]), push[0], push[1], restitution, push[2], chatter[0],
+         chatter[1]},
+        tolerance);
     if (!estimate) return {after, free_mode, t, false};
     return enter_stuck(k, after, t + estimate->remaining, estimate->error_bound, log);
   }

@@ -329,8 +329,7 @@ std::string markdown_report(const Jin2003Results& results, const Jin2003Settings
 
 void write_jin2003_outputs(const Jin2003Results& results, const Jin2003Settings& settings,
                            const Scene& scene, const nlohmann::json& provenance,
-                           const std::filesystem::path& directory) {
-  prepare_output_directory(directory);
+                           RunFiles& run_files) {
   const PaperRanges paper;
 
   // derived ranges, for report.json and the sidecars
@@ -380,11 +379,7 @@ void write_jin2003_outputs(const Jin2003Results& results, const Jin2003Settings&
                           {"fixed", {{panel.fixed, panel.fixed_value}}}};
   };
 
-  std::vector<std::unique_ptr<AtomicFile>> files;
-  auto open = [&](const std::string& name) -> AtomicFile& {
-    files.push_back(std::make_unique<AtomicFile>(directory / name));
-    return *files.back();
-  };
+  auto open = [&](const std::string& name) -> AtomicFile& { return run_files.add(name); };
 
   for (const ResidualPanel* panel : {&results.fig4a, &results.fig4b}) {
     const std::string figure = panel == &results.fig4a ? "fig4a" : "fig4b";
@@ -429,7 +424,7 @@ void write_jin2003_outputs(const Jin2003Results& results, const Jin2003Settings&
   write_json(open("report.json"), report);
   open("REPORT.md").stream() << markdown_report(results, settings, scene, provenance);
 
-  for (auto& file : files) file->commit();
+  run_files.commit();
 }
 
 }  // namespace impactlab

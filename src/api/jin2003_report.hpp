@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "api/jin2003_reproduction.hpp"
+#include "io/output.hpp"
 
 namespace impactlab {
 
@@ -21,9 +22,10 @@ struct PaperRanges {
 };
 
 // provenance: command line, version, time, scene record; written into every
-// sidecar.
+// sidecar. Every file goes into `run_files` and is committed with the others:
+// all of them appear, or none.
 void write_jin2003_outputs(const Jin2003Results& results, const Jin2003Settings& settings,
                            const Scene& scene, const nlohmann::json& provenance,
-                           const std::filesystem::path& directory);
+                           RunFiles& run_files);
 
 }  // namespace impactlab

@@ -103,7 +103,8 @@ SweepOutput run_sweep(const Scene& scene, const SweepTarget& target, const Sweep
               return false;
             }
             return true;
-          });
+          },
+          options.keep_points);
     } catch (...) {
       std::lock_guard lock(mutex);
       if (!failure) failure = std::current_exception();
@@ -123,54 +124,65 @@ void add_summary(SweepTable& table, const SweepRecord& r) {
   table.contact.push_back(r.classification.contact ? 1 : 0);
   table.lyapunov.push_back(r.result.lyapunov);
   table.termination.push_back(r.result.termination);
-  table.points.push_back(static_cast<int>(r.result.points.size()));
+  table.points.push_back(static_cast<int>(
+      std::max<std::uint64_t>(r.result.point_count, r.result.points.size())));
 }
 
 }  // namespace
 
-SweepTable sweep_table(const SweepPlan& plan, const std::vector<SweepTask>& tasks,
-                       const std::map<SweepRecordKey, SweepRecord>& records) {
-  SweepTable table;
+std::vector<SweepRecordKey> sweep_row_order(const SweepPlan& plan,
+                                            const std::vector<SweepTask>& tasks) {
+  std::vector<SweepRecordKey> order;
   if (plan.axes.size() == 1) {
-    const SweepAxis& axis = plan.axes[0];
     for (int direction : {1, -1}) {
-      // this direction's records by grid index, in the sweep's order
-      std::map<int, const SweepRecord*> by_index;
+      // this direction's records by grid index
+      std::map<int, SweepRecordKey> by_index;
       for (const auto& task : tasks)
         if (task.direction == direction)
           for (std::size_t p = 0; p < task.points.size(); ++p)
-            by_index[task.points[p][0]] = &records.at({task.id, static_cast<int>(p)});
-      auto add = [&](const SweepRecord& r) {
-        const double value = axis.value(r.index[0]);
-        for (std::size_t k = 0; k < r.result.points.size(); ++k) {
-          const SectionPoint& p = r.result.points[k];
-          table.point_value.push_back(value);
-          table.point_k.push_back(static_cast<int>(k));
-          table.point_t.push_back(p.t);
-          table.point_q.push_back(p.q);
-          table.point_qdot.push_back(p.qdot);
-          table.point_wall.push_back(p.wall);
-          table.point_direction.push_back(direction);
-        }
-        table.value.push_back(value);
-        table.direction.push_back(direction);
-        add_summary(table, r);
-      };
+            by_index[task.points[p][0]] = {task.id, static_cast<int>(p)};
       if (direction > 0)
-        for (const auto& [index, record] : by_index) add(*record);
+        for (const auto& [index, key] : by_index) order.push_back(key);
       else
-        for (auto it = by_index.rbegin(); it != by_index.rend(); ++it) add(*it->second);
+        for (auto it = by_index.rbegin(); it != by_index.rend(); ++it) order.push_back(it->second);
     }
-    return table;
+    return order;
   }
   for (const auto& task : tasks)
-    for (std::size_t p = 0; p < task.points.size(); ++p) {
-      const SweepRecord& r = records.at({task.id, static_cast<int>(p)});
-      table.value.push_back(plan.axes[0].value(r.index[0]));
+    for (std::size_t p = 0; p < task.points.size(); ++p)
+      order.push_back({task.id, static_cast<int>(p)});
+  return order;
+}
+
+void add_bifurcation_rows(SweepTable& table, const SweepPlan& plan, const SweepRecord& record) {
+  const double value = plan.axes[0].value(record.index[0]);
+  for (std::size_t k = 0; k < record.result.points.size(); ++k) {
+    const SectionPoint& p = record.result.points[k];
+    table.point_value.push_back(value);
+    table.point_k.push_back(static_cast<int>(k));
+    table.point_t.push_back(p.t);
+    table.point_q.push_back(p.q);
+    table.point_qdot.push_back(p.qdot);
+    table.point_wall.push_back(p.wall);
+    table.point_direction.push_back(record.direction);
+  }
+}
+
+SweepTable sweep_table(const SweepPlan& plan, const std::vector<SweepTask>& tasks,
+                       const std::map<SweepRecordKey, SweepRecord>& records) {
+  SweepTable table;
+  for (const SweepRecordKey& key : sweep_row_order(plan, tasks)) {
+    const SweepRecord& r = records.at(key);
+    table.value.push_back(plan.axes[0].value(r.index[0]));
+    if (plan.axes.size() == 1) {
+      add_bifurcation_rows(table, plan, r);
+      table.direction.push_back(r.direction);
+    } else {
       table.value2.push_back(plan.axes[1].value(r.index[1]));
       table.direction.push_back(1);
-      add_summary(table, r);
     }
+    add_summary(table, r);
+  }
   return table;
 }
 

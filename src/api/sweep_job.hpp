@@ -53,6 +53,9 @@ struct SweepJobOptions {
   // to cancel the sweep (the exception comes out of run_sweep)
   std::function<void(double)> progress{};
   long stop_after = 0;  // > 0: stop after this many new points (tests of resume)
+  // false: the records kept (SweepOutput) carry no section points, only their
+  // count; for a front end that streams the points out in on_record
+  bool keep_points = true;
 };
 
 struct SweepOutput {
@@ -83,5 +86,15 @@ struct SweepTable {
 
 SweepTable sweep_table(const SweepPlan& plan, const std::vector<SweepTask>& tasks,
                        const std::map<SweepRecordKey, SweepRecord>& records);
+
+// The records in the order of the table's rows: a 1D sweep's upward records
+// by increasing value, then its downward ones by decreasing value; a 2D map's
+// task by task. A front end that streams bifurcation rows reads the records'
+// points in this order.
+std::vector<SweepRecordKey> sweep_row_order(const SweepPlan& plan,
+                                            const std::vector<SweepTask>& tasks);
+
+// A 1D sweep's bifurcation rows of one record (its section points).
+void add_bifurcation_rows(SweepTable& table, const SweepPlan& plan, const SweepRecord& record);
 
 }  // namespace impactlab

@@ -18,7 +18,7 @@
 #include "api/work_precision.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
-#include "cli/run_program.hpp"
+#include "platform/run_program.hpp"
 #include "integrate/stepper_dispatch.hpp"
 #include "io/bad_input.hpp"
 #include "io/output.hpp"
@@ -211,7 +211,10 @@ int run_bench(const BenchOptions& options, const std::vector<std::string>& comma
   const BenchPlan plan = plan_for(options.quick);
   const int repetitions = options.repetitions > 0 ? options.repetitions : options.quick ? 1 : 3;
   const std::filesystem::path directory = options.out;
-  prepare_output_directory(directory);
+  // the data file and its sidecar, committed together at the end; the
+  // directory (created now, so that a bad --out is refused before the run)
+  // goes again if the run fails before that
+  RunFiles run_files(directory);
 
   // the references first: they set N for every case
   std::vector<CaseResult> results;
@@ -342,7 +345,7 @@ int run_bench(const BenchOptions& options, const std::vector<std::string>& comma
   }
 
   // the data file
-  AtomicFile csv(directory / "work_precision.csv");
+  AtomicFile& csv = run_files.add("work_precision.csv");
   csv.stream() << "case,oscillator,tool,method,rtol,atol,impacts,seconds_per_impact,"
                   "impacts_per_second,wall_seconds_per_impact,rhs_per_impact,steps_per_impact,compared_impacts,"
                   "reference_impacts,max_time_error,max_velocity_error,"
@@ -412,10 +415,8 @@ int run_bench(const BenchOptions& options, const std::vector<std::string>& comma
         {"termination", "of the timed run"}}},
       {"files", {"work_precision.csv", "work_precision.json"}},
   };
-  AtomicFile meta_file(directory / "work_precision.json");
-  write_json(meta_file, meta);
-  csv.commit();
-  meta_file.commit();
+  write_json(run_files.add("work_precision.json"), meta);
+  run_files.commit();
 
   if (options.plots) {
     const std::string script = std::string(IMPACTLAB_SOURCE_DIR) + "/scripts/plot_bench.py";

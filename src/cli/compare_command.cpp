@@ -14,7 +14,7 @@
 #include "api/scene_loading.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
-#include "cli/run_program.hpp"
+#include "platform/run_program.hpp"
 #include "io/bad_input.hpp"
 #include "io/output.hpp"
 

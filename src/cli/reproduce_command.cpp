@@ -13,7 +13,7 @@
 #include "api/scene_loading.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
-#include "cli/run_program.hpp"
+#include "platform/run_program.hpp"
 #include "io/bad_input.hpp"
 #include "io/output.hpp"
 
@@ -74,7 +74,9 @@ int run_reproduce(const ReproduceOptions& options, const std::vector<std::string
     settings.history_periods = 3.0;
   }
   const std::filesystem::path directory = options.out;
-  prepare_output_directory(directory);
+  // created now, so that a bad --out is refused before the run; removed again
+  // if the run fails before its files are committed
+  RunFiles run_files(directory);
 
   ProgressBar progress(!options.quiet);
   settings.progress = [&progress](double fraction) { progress.update(fraction); };
@@ -91,7 +93,7 @@ int run_reproduce(const ReproduceOptions& options, const std::vector<std::string
                                      {"quick", options.quick},
                                      {"source", "Jin, Hu & Bishop (2003), Acta Mechanica Sinica "
                                                 "19(6), Fig. 4"}};
-  write_jin2003_outputs(results, settings, scene, provenance, directory);
+  write_jin2003_outputs(results, settings, scene, provenance, run_files);
   if (!options.no_plot) draw_plots(directory, options.quiet);
   if (!options.quiet)
     std::cout << fmt::format("jin2003: Fig. 4 reproduced in {:.1f} s on {} thread(s)\nwrote {}\n",

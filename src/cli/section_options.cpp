@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include "api/scene_jobs.hpp"
-#include "cli/run_program.hpp"
+#include "platform/run_program.hpp"
 #include "io/bad_input.hpp"
 
 namespace impactlab::cli {

@@ -17,6 +17,7 @@
 #include "analysis/sweep.hpp"
 #include "api/basins_job.hpp"
 #include "api/scene_jobs.hpp"
+#include "api/sweep_checkpoints.hpp"
 #include "api/sweep_job.hpp"
 #include "cli/command.hpp"
 #include "cli/commands.hpp"
@@ -48,25 +49,6 @@ std::string number(double value) { return fmt::format("{}", value); }
 
 using RecordKey = SweepRecordKey;
 
-std::string checkpoint_name(int rank) { return fmt::format("checkpoint-{}.jsonl", rank); }
-
-// finished points from every checkpoint file in `directory` whose first line is `header`
-std::map<RecordKey, SweepRecord> read_checkpoints(const std::filesystem::path& directory,
-                                                  const std::string& header) {
-  std::map<RecordKey, SweepRecord> done;
-  for (const auto& entry : std::filesystem::directory_iterator(directory)) {
-    const std::string name = entry.path().filename().string();
-    if (!name.starts_with("checkpoint-") || !name.ends_with(".jsonl")) continue;
-    std::ifstream in(entry.path());
-    std::string line;
-    if (!std::getline(in, line) || line != header) continue;
-    while (std::getline(in, line))
-      if (auto record = from_json_line(line))
-        done.emplace(RecordKey{record->task, record->position}, std::move(*record));
-  }
-  return done;
-}
-
 // basins.csv (each grid point's attractor) and attractors.csv (each
 // attractor's class, canonical section point and basin size)
 void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<SweepTask>& tasks,
@@ -92,8 +74,12 @@ void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<
   files = {"basins.csv", "attractors.csv"};
 }
 
-void write_outputs(RunFiles& run_files, const SweepPlan& plan,
-                   const SweepTable& table, std::vector<std::string>& files) {
+// bifurcation.csv and summary.csv (1D) or classes.csv (2D). `table` holds the
+// summary rows; a 1D sweep's section points are read back from the
+// checkpoints record by record, in the rows' order.
+void write_outputs(RunFiles& run_files, const SweepPlan& plan, const std::vector<SweepTask>& tasks,
+                   const SweepTable& table, const SweepCheckpoints& checkpoints,
+                   std::vector<std::string>& files) {
   auto summary_fields = [&](std::size_t row) {
     return fmt::format("{},{},{},{},{}", table.period[row], number(table.impacts_per_period[row]),
                        table.contact[row], number(table.lyapunov[row]), table.termination[row]);
@@ -107,12 +93,16 @@ void write_outputs(RunFiles& run_files, const SweepPlan& plan,
     summary.stream() << axis.name
                      << ",direction,period,impacts_per_period,contact,lyapunov,termination,"
                         "points\n";
-    for (std::size_t row = 0; row < table.point_value.size(); ++row)
-      bifurcation.stream() << number(table.point_value[row]) << ',' << table.point_k[row] << ','
-                           << number(table.point_t[row]) << ',' << number(table.point_q[row])
-                           << ',' << number(table.point_qdot[row]) << ','
-                           << table.point_wall[row] << ','
-                           << direction_name(table.point_direction[row]) << '\n';
+    for (const SweepRecordKey& key : sweep_row_order(plan, tasks)) {
+      SweepTable rows;
+      add_bifurcation_rows(rows, plan, checkpoints.load(key));
+      for (std::size_t row = 0; row < rows.point_value.size(); ++row)
+        bifurcation.stream() << number(rows.point_value[row]) << ',' << rows.point_k[row] << ','
+                             << number(rows.point_t[row]) << ',' << number(rows.point_q[row])
+                             << ',' << number(rows.point_qdot[row]) << ','
+                             << rows.point_wall[row] << ','
+                             << direction_name(rows.point_direction[row]) << '\n';
+    }
     for (std::size_t row = 0; row < table.value.size(); ++row)
       summary.stream() << number(table.value[row]) << ',' << direction_name(table.direction[row])
                        << ',' << summary_fields(row) << ',' << table.points[row] << '\n';
@@ -248,10 +238,13 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
       options.basins ? basins_definition(plan, scene, schema, options.section.record())
                      : sweep_definition(plan, scene, schema, options.section.record());
   const std::string header = nlohmann::json{{"impactlab_sweep_checkpoint", definition}}.dump();
+  // basins tell attractors apart by their section points: their records keep
+  // them; a sweep's records shed them once they are in the checkpoint
+  const bool keep_points = options.basins;
   std::map<RecordKey, SweepRecord> done;
-  if (options.resume) done = read_checkpoints(directory, header);
+  if (options.resume) done = SweepCheckpoints(directory, header, keep_points).records();
   std::ofstream checkpoint =
-      open_checkpoint(directory / checkpoint_name(mpi.rank()), header, options.resume);
+      open_checkpoint(directory / sweep_checkpoint_name(mpi.rank()), header, options.resume);
 
   // this rank's share: task id mod ranks
   const std::vector<SweepTask> tasks = sweep_tasks(plan);
@@ -271,7 +264,10 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   };
   job.progress = [&progress](double fraction) { progress.update(fraction); };
   job.stop_after = options.stop_after;
+  job.keep_points = keep_points;
   const SweepOutput work = run_sweep(scene, target, plan, mine, job);
+  // every line flushed and the file closed before rank 0 reads it back
+  checkpoint.close();
   const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -294,7 +290,8 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   if (options.basins)
     write_basins(run_files, plan, tasks, all, files);
   else
-    write_outputs(run_files, plan, sweep_table(plan, tasks, all), files);
+    write_outputs(run_files, plan, tasks, sweep_table(plan, tasks, all),
+                  SweepCheckpoints(directory, header, false), files);
   write_meta(run_files, definition, scene, *target.schema, all,
              {{"threads", options.threads},
               {"mpi_ranks", mpi.size()},

@@ -52,7 +52,7 @@ typename ModelSystem<N>::State initial_state(const Scene& scene, const ModelSyst
     x[i] = scene.number("initial." + system.model().states[i]);
     values.push_back(x[i]);
   }
-  check_initial_values(system.model(), values, scene.number("t0"), system.parameters());
+  check_initial_values(system.model(), values, scene.number("t0"), system.parameters().values);
   if (!(system.forcing_frequency() > 0.0) || !(system.max_step() > 0.0))
     throw BadInput("model.forcing_frequency", fmt::format("{}", system.forcing_frequency()),
                    "the forcing frequency and max_step must be positive");
@@ -115,6 +115,8 @@ PeriodicResult periodic_states(const Scene& scene, const PeriodicRequest& reques
                       request, system.forcing_frequency());
 }
 
+// Continuation on every state of the model (the tangent space is all N);
+// refused where a sticking wall would need a contact linearisation of N > 2.
 template <std::size_t N>
 ContinuationJobResult continuation_states(const Scene& scene, const ContinuationJob& job) {
   const ModelSystem<N> system = make_system<N>(scene);
@@ -123,8 +125,11 @@ ContinuationJobResult continuation_states(const Scene& scene, const Continuation
     result.note = std::move(why_not);
     return result;
   }
-  return run_continuation<ModelSystem<N>>(&make_system<N>, ModelSystem<N>::free_mode,
-                                          initial_state(scene, system), scene, job);
+  // a given start replaces the scene's initial state (which a continued
+  // parameter may have put beyond a wall)
+  const auto x0 = job.has_start ? typename ModelSystem<N>::State{} : initial_state(scene, system);
+  return run_continuation<ModelSystem<N>>(&make_system<N>, ModelSystem<N>::free_mode, x0, scene,
+                                          job);
 }
 
 RunOutput run(const Scene& scene, const RunRequest& request) {

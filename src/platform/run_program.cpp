@@ -1,0 +1,84 @@
+#include "platform/run_program.hpp"
+
+#include <cerrno>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char** environ;
+
+namespace impactlab {
+
+namespace {
+
+// Spawns argv with the file actions set up by the caller, waits, returns the
+// exit status (-1: not started, or ended on a signal).
+int spawn_and_wait(const std::vector<std::string>& arguments, posix_spawn_file_actions_t& actions) {
+  std::vector<std::string> owned = arguments;
+  std::vector<char*> argv;
+  argv.reserve(owned.size() + 1);
+  for (auto& argument : owned) argv.push_back(argument.data());
+  argv.push_back(nullptr);
+
+  pid_t child = 0;
+  const int spawned = ::posix_spawnp(&child, argv[0], &actions, nullptr, argv.data(), environ);
+  if (spawned != 0) return -1;
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0) {
+    if (errno != EINTR) return -1;
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
+int run_program(const std::vector<std::string>& arguments, ProgramOutput output) {
+  if (arguments.empty()) return -1;
+  posix_spawn_file_actions_t actions;
+  ::posix_spawn_file_actions_init(&actions);
+  if (output != ProgramOutput::inherit)
+    ::posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  if (output == ProgramOutput::discard)
+    ::posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  const int status = spawn_and_wait(arguments, actions);
+  ::posix_spawn_file_actions_destroy(&actions);
+  return status;
+}
+
+int run_program_logged(const std::vector<std::string>& arguments, const std::string& log_path) {
+  if (arguments.empty()) return -1;
+  // opened here rather than by the file actions, so that a log that cannot be
+  // written is reported as such and not as the program failing to start
+  const int log = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (log < 0) return -1;
+  posix_spawn_file_actions_t actions;
+  ::posix_spawn_file_actions_init(&actions);
+  ::posix_spawn_file_actions_adddup2(&actions, log, STDOUT_FILENO);
+  ::posix_spawn_file_actions_adddup2(&actions, log, STDERR_FILENO);
+  const int status = spawn_and_wait(arguments, actions);
+  ::posix_spawn_file_actions_destroy(&actions);
+  ::close(log);
+  return status;
+}
+
+std::string describe_program(const std::vector<std::string>& arguments) {
+  std::string text;
+  for (const auto& argument : arguments) text += (text.empty() ? "" : " ") + argument;
+  return text;
+}
+
+std::vector<std::string> split_on_spaces(std::string_view command) {
+  std::vector<std::string> words;
+  std::size_t start = 0;
+  while (start < command.size()) {
+    const std::size_t space = command.find(' ', start);
+    const std::size_t end = space == std::string_view::npos ? command.size() : space;
+    if (end > start) words.emplace_back(command.substr(start, end - start));
+    start = end + 1;
+  }
+  return words;
+}
+
+}  // namespace impactlab
