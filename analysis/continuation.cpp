@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Dense>
 #include <boost/math/tools/roots.hpp>
@@ -15,26 +18,44 @@ namespace impactlab {
 
 namespace {
 
-using Vec3 = Eigen::Vector3d;  // (q, q̇, p)
+// The driver's vectors for N state components: y = (x, p), N + 1 of them,
+// and the grazing system's (x, p, t_g); fixed-size for N = 2 (Size = 3),
+// dynamic otherwise.
+template <int Size>
+struct Spaces {
+  static constexpr bool fixed = Size != Eigen::Dynamic;
+  using Vec = Eigen::Matrix<double, Size, 1>;                                   // (x, p)
+  using StateVec = Eigen::Matrix<double, fixed ? Size - 1 : Eigen::Dynamic, 1>;  // x
+  using Jacobian = Eigen::Matrix<double, fixed ? Size - 1 : Eigen::Dynamic, Size>;  // [M − I | F_p]
+  using Square = Eigen::Matrix<double, Size, Size>;
+  using Extended = Eigen::Matrix<double, fixed ? Size + 1 : Eigen::Dynamic, 1>;  // (x, p, t_g)
+  using ExtendedSquare =
+      Eigen::Matrix<double, fixed ? Size + 1 : Eigen::Dynamic, fixed ? Size + 1 : Eigen::Dynamic>;
+};
 
-double det_minus_identity(const TangentMatrix& m) {  // (1 − λ₁)(1 − λ₂)
-  return (m[0][0] - 1.0) * (m[1][1] - 1.0) - m[0][1] * m[1][0];
-}
-double det_plus_identity(const TangentMatrix& m) {  // (1 + λ₁)(1 + λ₂)
-  return (m[0][0] + 1.0) * (m[1][1] + 1.0) - m[0][1] * m[1][0];
-}
-double det_minus_one(const TangentMatrix& m) {  // λ₁λ₂ − 1
-  return m[0][0] * m[1][1] - m[0][1] * m[1][0] - 1.0;
+// |x| of the first n components (std::hypot for n = 2)
+double state_norm(const double* x, int n) {
+  if (n == 2) return std::hypot(x[0], x[1]);
+  return Eigen::Map<const Eigen::VectorXd>(x, n).norm();
 }
 
-std::array<std::complex<double>, 2> multipliers_of(const TangentMatrix& m) {
-  const double half_trace = 0.5 * (m[0][0] + m[1][1]);
-  const double determinant = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-  const std::complex<double> root =
-      std::sqrt(std::complex<double>(half_trace * half_trace - determinant));
-  std::complex<double> a = half_trace + root, b = half_trace - root;
-  if (std::abs(b) > std::abs(a)) std::swap(a, b);
-  return {a, b};
+// λᵢλⱼ − 1 over the pairs i < j: det M − 1 for N = 2; zero where a complex
+// pair crosses the unit circle (a Neimark–Sacker point) whatever N
+double det_minus_one(const MonodromyMatrix& m) {
+  if (m.size() == 2) return m[0][0] * m[1][1] - m[0][1] * m[1][0] - 1.0;
+  const auto lambda = multipliers_of(m);
+  std::complex<double> product = 1.0;
+  for (std::size_t i = 0; i < lambda.size(); ++i)
+    for (std::size_t j = i + 1; j < lambda.size(); ++j) product *= lambda[i] * lambda[j] - 1.0;
+  return product.real();
+}
+
+Eigen::MatrixXd dense(const MonodromyMatrix& m) {
+  const auto n = static_cast<Eigen::Index>(m.size());
+  Eigen::MatrixXd a(n, n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j) a(i, j) = m[i][j];
+  return a;
 }
 
 // The walls hit, in order: the signature without its contact phases ("c+1"),
@@ -53,34 +74,43 @@ std::string walls_hit(const std::string& signature) {
 }
 
 // A point on the branch, with what the next step needs.
-struct Node {
-  Vec3 y = Vec3::Zero();
-  Vec3 tangent = Vec3::Zero();  // unit, pointing along the run
-  OrbitEvaluation orbit;        // detailed evaluation at y
+template <int Size>
+struct BranchNode {
+  typename Spaces<Size>::Vec y;
+  typename Spaces<Size>::Vec tangent;  // unit, pointing along the run
+  OrbitEvaluation orbit;               // detailed evaluation at y
   int iterations = 0;
-  double step = 0.0;            // the arclength from the previous node
+  double step = 0.0;                   // the arclength from the previous node
 };
 
-struct Correction {
+template <int Size>
+struct NodeCorrection {
   bool converged = false;
   bool signature_changed = false;
-  Vec3 y = Vec3::Zero();
+  typename Spaces<Size>::Vec y;
   OrbitEvaluation orbit;
-  Eigen::Matrix<double, 2, 3> jacobian = Eigen::Matrix<double, 2, 3>::Zero();  // [M − I | F_p]
+  typename Spaces<Size>::Jacobian jacobian;  // [M − I | F_p]
   bool has_jacobian = false;
   int iterations = 0;
 };
 
+template <int Size>
 class Driver {
+  using Vec = typename Spaces<Size>::Vec;
+  using Node = BranchNode<Size>;
+  using Correction = NodeCorrection<Size>;
+
  public:
   Driver(const ContinuationProblem& problem, const ContinuationRequest& request)
       : problem_(problem), request_(request) {
+    n_ = static_cast<int>(problem.dimension);
+    solved_point = Vec::Zero(n_ + 1);
     const double range = std::fabs(request.to - request.from);
     const double scale = range > 0.0 ? range : 1.0;
     h_initial_ = request.initial_step > 0.0 ? request.initial_step : scale / 100.0;
     h_min_ = request.min_step > 0.0 ? request.min_step : scale * 1e-7;
     h_max_ = request.max_step > 0.0 ? request.max_step : scale / 50.0;
-    // the branch runs in (q, q̇, p / scale): the range is one unit of arclength
+    // the branch runs in (x, p / scale): the range is one unit of arclength
     scale_ = scale;
     h_initial_ /= scale;
     h_min_ /= scale;
@@ -91,7 +121,13 @@ class Driver {
   }
 
   ContinuationResult run_from_start() {
-    Correction start = correct(point(request_.start, from_), Vec3(0.0, 0.0, 1.0),
+    if (request_.start.size() != problem_.dimension) {
+      result_.stop_reason = "start_not_converged";
+      result_.stop_detail = "the start has " + std::to_string(request_.start.size()) +
+                            " components, the orbit's state " + std::to_string(n_);
+      return finish();
+    }
+    Correction start = correct(point(request_.start, from_), along_parameter(1.0),
                                point(request_.start, from_), {}, nullptr);
     if (!start.converged) {
       result_.stop_reason = "start_not_converged";
@@ -99,14 +135,20 @@ class Driver {
       return finish();
     }
     const double direction = request_.to >= request_.from ? 1.0 : -1.0;
-    return run(start, Vec3(0.0, 0.0, direction));
+    return run(start, along_parameter(direction));
   }
 
-  ContinuationResult run_from(const OrbitPoint& x, double p, const std::array<double, 3>& d) {
-    const Vec3 direction(d[0], d[1], d[2]);
-    const Vec3 y0 = point(x, p / scale_);
-    const double offset = std::max(h_initial_ * 0.1, 1e-3 * (1.0 + std::hypot(x[0], x[1])));
-    const Vec3 predicted = y0 + offset * direction.normalized();
+  ContinuationResult run_from(const OrbitPoint& x, double p, const std::vector<double>& d) {
+    if (x.size() != problem_.dimension || d.size() != problem_.dimension + 1) {
+      result_.stop_reason = "start_not_converged";
+      result_.stop_detail = "the switching point or direction does not match the orbit's state";
+      return finish();
+    }
+    Vec direction(n_ + 1);
+    for (int i = 0; i <= n_; ++i) direction[i] = d[i];
+    const Vec y0 = point(x, p / scale_);
+    const double offset = std::max(h_initial_ * 0.1, 1e-3 * (1.0 + state_norm(x.data(), n_)));
+    const Vec predicted = y0 + offset * direction.normalized();
     Correction start = correct(predicted, direction.normalized(), predicted, {}, nullptr);
     if (!start.converged) {
       result_.stop_reason = "start_not_converged";
@@ -117,12 +159,26 @@ class Driver {
   }
 
  private:
-  static Vec3 point(const OrbitPoint& x, double p) { return Vec3(x[0], x[1], p); }
-  static OrbitPoint state_of(const Vec3& y) { return {y[0], y[1]}; }
+  Vec point(const OrbitPoint& x, double p) const {
+    Vec y(n_ + 1);
+    for (int i = 0; i < n_; ++i) y[i] = x[i];
+    y[n_] = p;
+    return y;
+  }
+  template <class Vector>
+  OrbitPoint state_of(const Vector& y) const {
+    return OrbitPoint(y.data(), y.data() + n_);
+  }
+  // the direction (0, value) in (x, p)
+  Vec along_parameter(double value) const {
+    Vec d = Vec::Zero(n_ + 1);
+    d[n_] = value;
+    return d;
+  }
 
-  OrbitEvaluation evaluate(const Vec3& y, bool detailed, const ContactWindow& window) {
+  OrbitEvaluation evaluate(const Vec& y, bool detailed, const ContactWindow& window) {
     ++result_.map_evaluations;
-    return problem_.evaluate(state_of(y), y[2] * scale_, phase_, detailed, window);
+    return problem_.evaluate(state_of(y), y[n_] * scale_, phase_, detailed, window);
   }
 
   double parameter_step(double p) const {
@@ -131,19 +187,35 @@ class Driver {
   }
 
   // ∂F/∂p ≈ (Pⁿ(x; p + h) − Pⁿ(x; p − h)) / 2h (F = Pⁿ − x, x held)
-  std::optional<Eigen::Vector2d> parameter_derivative(const Vec3& y, const ContactWindow& window) {
-    const double h = parameter_step(y[2] * scale_) / scale_;
-    const OrbitEvaluation up = evaluate(Vec3(y[0], y[1], y[2] + h), false, window);
-    const OrbitEvaluation down = evaluate(Vec3(y[0], y[1], y[2] - h), false, window);
+  std::optional<typename Spaces<Size>::StateVec> parameter_derivative(
+      const Vec& y, const ContactWindow& window) {
+    const double h = parameter_step(y[n_] * scale_) / scale_;
+    Vec shifted_up = y, shifted_down = y;
+    shifted_up[n_] = y[n_] + h;
+    shifted_down[n_] = y[n_] - h;
+    const OrbitEvaluation up = evaluate(shifted_up, false, window);
+    const OrbitEvaluation down = evaluate(shifted_down, false, window);
     if (!up.completed || !down.completed) return std::nullopt;
-    return Eigen::Vector2d((up.image[0] - down.image[0]) / (2.0 * h),
-                           (up.image[1] - down.image[1]) / (2.0 * h));
+    typename Spaces<Size>::StateVec derivative(n_);
+    for (int i = 0; i < n_; ++i) derivative[i] = (up.image[i] - down.image[i]) / (2.0 * h);
+    return derivative;
+  }
+
+  // c.jacobian = [M − I | F_p]
+  static void set_jacobian(Correction& c, const typename Spaces<Size>::StateVec& fp, int n) {
+    const MonodromyMatrix& m = c.orbit.monodromy;
+    c.jacobian.resize(n, n + 1);
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) c.jacobian(i, j) = m[i][j] - (i == j ? 1.0 : 0.0);
+      c.jacobian(i, n) = fp[i];
+    }
+    c.has_jacobian = true;
   }
 
   // Newton on F(y) = 0, τ·(y − y_pred) = 0 from y. A run that does not
   // complete, or (with `signature`) an orbit whose impact signature differs,
   // stops it.
-  Correction correct(Vec3 y, const Vec3& tau, const Vec3& y_pred, const ContactWindow& window,
+  Correction correct(Vec y, const Vec& tau, const Vec& y_pred, const ContactWindow& window,
                      const std::string* signature) {
     Correction c;
     double last_step = INFINITY;
@@ -156,9 +228,10 @@ class Driver {
         c.signature_changed = true;
         return c;
       }
-      const Eigen::Vector2d residual(c.orbit.image[0] - y[0], c.orbit.image[1] - y[1]);
+      typename Spaces<Size>::StateVec residual(n_);
+      for (int i = 0; i < n_; ++i) residual[i] = c.orbit.image[i] - y[i];
       const double arc = tau.dot(y - y_pred);
-      const double size = 1.0 + std::hypot(y[0], y[1]);
+      const double size = 1.0 + state_norm(y.data(), n_);
       const double norm = residual.norm();
       if ((norm <= request_.tolerance * size ||
            (last_step <= 1e-11 * (1.0 + y.norm()) && norm <= 100.0 * request_.tolerance * size)) &&
@@ -169,13 +242,14 @@ class Driver {
       if (iteration == request_.max_newton_iterations) return c;
       const auto fp = parameter_derivative(y, window);
       if (!fp) return c;
-      const TangentMatrix& m = c.orbit.monodromy;
-      c.jacobian << m[0][0] - 1.0, m[0][1], (*fp)[0], m[1][0], m[1][1] - 1.0, (*fp)[1];
-      c.has_jacobian = true;
-      Eigen::Matrix3d system;
-      system.topRows<2>() = c.jacobian;
-      system.row(2) = tau.transpose();
-      const Vec3 step = system.fullPivLu().solve(-Vec3(residual[0], residual[1], arc));
+      set_jacobian(c, *fp, n_);
+      typename Spaces<Size>::Square system(n_ + 1, n_ + 1);
+      system.topRows(n_) = c.jacobian;
+      system.row(n_) = tau.transpose();
+      Vec right(n_ + 1);
+      right.head(n_) = -residual;
+      right[n_] = -arc;
+      const Vec step = system.fullPivLu().solve(right);
       if (!step.allFinite()) return c;
       y += step;
       last_step = step.norm();
@@ -183,16 +257,23 @@ class Driver {
   }
 
   // The branch's unit tangent at a corrected point, oriented along `along`.
-  std::optional<Vec3> tangent_at(Correction& c, const Vec3& along) {
+  // The null vector of the N × (N + 1) Jacobian: for N = 2 the cross product
+  // of its rows, otherwise the last right singular vector.
+  std::optional<Vec> tangent_at(Correction& c, const Vec& along) {
     if (!c.has_jacobian) {
       const auto fp = parameter_derivative(c.y, {});
       if (!fp) return std::nullopt;
-      const TangentMatrix& m = c.orbit.monodromy;
-      c.jacobian << m[0][0] - 1.0, m[0][1], (*fp)[0], m[1][0], m[1][1] - 1.0, (*fp)[1];
-      c.has_jacobian = true;
+      set_jacobian(c, *fp, n_);
     }
-    const Vec3 first = c.jacobian.row(0).transpose(), second = c.jacobian.row(1).transpose();
-    Vec3 t = first.cross(second);
+    Vec t;
+    if constexpr (Size == 3) {
+      const Vec first = c.jacobian.row(0).transpose(), second = c.jacobian.row(1).transpose();
+      t = first.cross(second);
+    } else {
+      if (!c.jacobian.allFinite()) return std::nullopt;
+      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(c.jacobian, Eigen::ComputeFullV);
+      t = svd.matrixV().col(n_);
+    }
     if (!(t.norm() > 0.0) || !t.allFinite()) return std::nullopt;
     t.normalize();
     if (t.dot(along) < 0.0) t = -t;
@@ -201,13 +282,14 @@ class Driver {
 
   BranchPoint branch_point(const Node& node, double step) const {
     BranchPoint b;
-    b.parameter = node.y[2] * scale_;
+    b.parameter = node.y[n_] * scale_;
     b.state = reported_state(node.y);
     b.phase = problem_.phase;
     b.impacts = node.orbit.impacts;
     b.contact_phases = node.orbit.contact_phases;
     b.multipliers = multipliers_of(node.orbit.monodromy);
-    b.stable = std::abs(b.multipliers[0]) < 1.0 && std::abs(b.multipliers[1]) < 1.0;
+    b.stable = std::all_of(b.multipliers.begin(), b.multipliers.end(),
+                           [](const std::complex<double>& m) { return std::abs(m) < 1.0; });
     b.min_impact_speed = node.orbit.min_impact_speed;
     b.min_flight_gap = node.orbit.min_flight_gap;
     b.newton_iterations = node.iterations;
@@ -215,7 +297,7 @@ class Driver {
     return b;
   }
 
-  bool accept(Correction& c, const Vec3& along, double step) {
+  bool accept(Correction& c, const Vec& along, double step) {
     const auto tangent = tangent_at(c, along);
     if (!tangent) return false;
     Node node;
@@ -251,7 +333,7 @@ class Driver {
   void move_section_off_events(Node& node) {
     if (!problem_.section_moves || node.orbit.span <= 0.0 || clearance(node.orbit, 0.0) > 0.02)
       return;
-    const double p = node.y[2] * scale_;
+    const double p = node.y[n_] * scale_;
     double best_phase = phase_, best_clearance = clearance(node.orbit, 0.0);
     for (int j = 1; j < 16; ++j) {
       const double shift = 2.0 * std::numbers::pi * j / 16.0;
@@ -266,9 +348,10 @@ class Driver {
     if (!moved) return;
     const double old_phase = phase_;
     phase_ = best_phase;
-    const Vec3 y(( *moved)[0], (*moved)[1], node.y[2]);
-    Correction c = correct(y, Vec3(0.0, 0.0, 1.0), y, {}, nullptr);
-    const auto tangent = c.converged ? tangent_at(c, Vec3(0.0, 0.0, node.tangent[2])) : std::nullopt;
+    const Vec y = point(*moved, node.y[n_]);
+    Correction c = correct(y, along_parameter(1.0), y, {}, nullptr);
+    const auto tangent =
+        c.converged ? tangent_at(c, along_parameter(node.tangent[n_])) : std::nullopt;
     OrbitEvaluation orbit = c.converged ? evaluate(c.y, true, {}) : OrbitEvaluation{};
     if (!tangent || !orbit.completed) {
       phase_ = old_phase;
@@ -288,13 +371,13 @@ class Driver {
   }
 
   // the state on the requested section
-  OrbitPoint reported_state(const Vec3& y) const {
+  OrbitPoint reported_state(const Vec& y) const {
     if (phase_ == problem_.phase) return state_of(y);
-    const auto moved = problem_.transport(state_of(y), y[2] * scale_, phase_, problem_.phase);
+    const auto moved = problem_.transport(state_of(y), y[n_] * scale_, phase_, problem_.phase);
     return moved ? *moved : state_of(y);
   }
 
-  ContinuationResult run(Correction& start, const Vec3& along) {
+  ContinuationResult run(Correction& start, const Vec& along) {
     if (!accept(start, along, 0.0)) {
       result_.stop_reason = "start_not_converged";
       result_.stop_detail = "no branch tangent at the start";
@@ -305,25 +388,25 @@ class Driver {
     const double direction = to_ >= from_ ? 1.0 : -1.0;
     while (static_cast<int>(nodes_.size()) < request_.max_points) {
       const Node& last = nodes_.back();
-      const Vec3 tau = last.tangent;
+      const Vec tau = last.tangent;
       // the end of the range: land on p = to exactly
-      const double remaining = (to_ - last.y[2]) * direction;
+      const double remaining = (to_ - last.y[n_]) * direction;
       if (remaining <= 1e-12 * (1.0 + std::fabs(to_))) return finish();
-      if ((last.y[2] - from_) * direction < -1e-3 * std::fabs(to_ - from_))
+      if ((last.y[n_] - from_) * direction < -1e-3 * std::fabs(to_ - from_))
         return stop("left_range", "the branch turned back past the start of the range");
-      const double toward_end = tau[2] * direction;
+      const double toward_end = tau[n_] * direction;
       if (toward_end > 0.0 && h * toward_end >= remaining) {
         const double h_end = remaining / toward_end;
-        Vec3 predicted = last.y + h_end * tau;
-        predicted[2] = to_;
-        Correction c = correct(predicted, Vec3(0.0, 0.0, 1.0), predicted, {}, &signature_);
+        Vec predicted = last.y + h_end * tau;
+        predicted[n_] = to_;
+        Correction c = correct(predicted, along_parameter(1.0), predicted, {}, &signature_);
         if (c.converged && accept(c, tau, h_end)) return finish();
         if (c.signature_changed && end_at_signature_change(h_end)) return finish();
         h = 0.5 * std::min(h, h_end);
         if (h < h_min_) return stop("branch_point", "the corrector fails before the end of the range");
         continue;
       }
-      const Vec3 predicted = last.y + h * tau;
+      const Vec predicted = last.y + h * tau;
       Correction c = correct(predicted, tau, predicted, {}, &signature_);
       bool ok = c.converged;
       if (ok) {
@@ -372,7 +455,7 @@ class Driver {
   void detect(const Node& a, const Node& b, double step) {
     struct Test {
       const char* type;
-      double (*function)(const TangentMatrix&);
+      double (*function)(const MonodromyMatrix&);
     };
     static constexpr Test tests[] = {{"fold", &det_minus_identity},
                                      {"period_doubling", &det_plus_identity},
@@ -383,12 +466,16 @@ class Driver {
       if (std::string(test.type) == "neimark_sacker") {
         // a complex pair on the unit circle, not a real pair with product 1
         const auto ma = multipliers_of(a.orbit.monodromy), mb = multipliers_of(b.orbit.monodromy);
-        if (ma[0].imag() == 0.0 && mb[0].imag() == 0.0) continue;
+        const auto real = [](const std::vector<std::complex<double>>& m) {
+          return std::all_of(m.begin(), m.end(),
+                             [](const std::complex<double>& z) { return z.imag() == 0.0; });
+        };
+        if (real(ma) && real(mb)) continue;
       }
       BifurcationPoint point = locate(test.type, test.function, a, step, fa, fb);
       // a multiplier through +1 where the branch does not turn back in p: a
       // branch point (a symmetry-breaking pitchfork or a transcritical point)
-      if (point.type == "fold" && a.tangent[2] * b.tangent[2] > 0.0) point.type = "branch_point";
+      if (point.type == "fold" && a.tangent[n_] * b.tangent[n_] > 0.0) point.type = "branch_point";
       result_.points.push_back(point);
     }
     for (const ParameterBoundary& boundary : problem_.boundaries) locate_boundary(boundary, a, b);
@@ -405,22 +492,22 @@ class Driver {
   void locate_contact_change(const Node& a, const Node& b, double step) {
     BifurcationPoint point;
     point.type = b.orbit.contact_phases > a.orbit.contact_phases ? "contact_onset" : "contact_end";
-    point.parameter = 0.5 * (a.y[2] + b.y[2]) * scale_;
+    point.parameter = 0.5 * (a.y[n_] + b.y[n_]) * scale_;
     point.state = reported_state(b.y);
     point.multipliers = multipliers_of(b.orbit.monodromy);
-    point.error_estimate = 0.5 * std::fabs(b.y[2] - a.y[2]) * scale_;
+    point.error_estimate = 0.5 * std::fabs(b.y[n_] - a.y[n_]) * scale_;
     point.note = "detected between two branch points";
     if (!request_.locate) {
       result_.points.push_back(point);
       return;
     }
-    const Vec3& tau = a.tangent;
+    const Vec& tau = a.tangent;
     auto corrected_at = [&](double s) {
-      const Vec3 predicted = a.y + s * tau;
+      const Vec predicted = a.y + s * tau;
       return correct(predicted, tau, predicted, {}, nullptr);
     };
     double low = 0.0, high = step;         // a's count at low, another at high
-    double p_low = a.y[2], p_high = b.y[2];  // the corrected ends' p (range units)
+    double p_low = a.y[n_], p_high = b.y[n_];  // the corrected ends' p (range units)
     bool failed = false;
     for (int bisection = 0; bisection < 80; ++bisection) {
       if (std::fabs(p_high - p_low) <= 1e-10 || high - low <= 1e-13) break;
@@ -432,15 +519,15 @@ class Driver {
       }
       if (c.orbit.contact_phases == a.orbit.contact_phases) {
         low = middle;
-        p_low = c.y[2];
+        p_low = c.y[n_];
       } else {
         high = middle;
-        p_high = c.y[2];
+        p_high = c.y[n_];
       }
     }
     const Correction c = failed ? Correction{} : corrected_at(0.5 * (low + high));
     if (c.converged) {
-      point.parameter = c.y[2] * scale_;
+      point.parameter = c.y[n_] * scale_;
       point.state = reported_state(c.y);
       point.multipliers = multipliers_of(c.orbit.monodromy);
       point.error_estimate = std::fabs(p_high - p_low) * scale_;
@@ -460,7 +547,7 @@ class Driver {
   // 748 on the boundary's own function), and the orbit corrected there at
   // fixed p from the point of the secant a–b at that p.
   void locate_boundary(const ParameterBoundary& boundary, const Node& a, const Node& b) {
-    const double pa = a.y[2] * scale_, pb = b.y[2] * scale_;
+    const double pa = a.y[n_] * scale_, pb = b.y[n_] * scale_;
     const double fa = boundary.value(pa), fb = boundary.value(pb);
     if (!(fa * fb < 0.0)) return;
     BifurcationPoint point;
@@ -474,9 +561,9 @@ class Driver {
     point.parameter = 0.5 * (bracket.first + bracket.second);
     point.error_estimate = bracket.second - bracket.first;
     const double fraction = (point.parameter - pa) / (pb - pa);
-    Vec3 guess = a.y + fraction * (b.y - a.y);
-    guess[2] = point.parameter / scale_;
-    Correction c = correct(guess, Vec3(0.0, 0.0, 1.0), guess, {}, nullptr);
+    Vec guess = a.y + fraction * (b.y - a.y);
+    guess[n_] = point.parameter / scale_;
+    Correction c = correct(guess, along_parameter(1.0), guess, {}, nullptr);
     if (c.converged) {
       point.state = reported_state(c.y);
       point.multipliers = multipliers_of(c.orbit.monodromy);
@@ -490,13 +577,13 @@ class Driver {
 
   // The root of a test function on the arclength from node a, each trial
   // point corrected onto the branch (TOMS 748).
-  BifurcationPoint locate(const char* type, double (*function)(const TangentMatrix&),
+  BifurcationPoint locate(const char* type, double (*function)(const MonodromyMatrix&),
                           const Node& a, double step, double fa, double fb) {
     BifurcationPoint point;
     point.type = type;
     std::optional<Correction> last;
     auto on_branch = [&](double s) -> double {
-      const Vec3 predicted = a.y + s * a.tangent;
+      const Vec predicted = a.y + s * a.tangent;
       Correction c = correct(predicted, a.tangent, predicted, {}, nullptr);
       if (!c.converged) throw std::runtime_error("corrector failed");
       const double value = function(c.orbit.monodromy);
@@ -505,8 +592,8 @@ class Driver {
     };
     if (!request_.locate) {
       point.note = "detected (location off)";
-      point.error_estimate = std::fabs(step * a.tangent[2]) * scale_;
-      point.parameter = (a.y[2] + 0.5 * step * a.tangent[2]) * scale_;
+      point.error_estimate = std::fabs(step * a.tangent[n_]) * scale_;
+      point.parameter = (a.y[n_] + 0.5 * step * a.tangent[n_]) * scale_;
       return point;
     }
     try {
@@ -515,14 +602,14 @@ class Driver {
           on_branch, 0.0, step, fa, fb, boost::math::tools::eps_tolerance<double>(42), iterations);
       const double s = 0.5 * (bracket.first + bracket.second);
       on_branch(s);
-      point.parameter = last->y[2] * scale_;
+      point.parameter = last->y[n_] * scale_;
       point.state = reported_state(last->y);
       point.multipliers = multipliers_of(last->orbit.monodromy);
-      point.error_estimate = std::fabs(a.tangent[2]) * (bracket.second - bracket.first) * scale_;
+      point.error_estimate = std::fabs(a.tangent[n_]) * (bracket.second - bracket.first) * scale_;
       point.located = true;
     } catch (const std::exception&) {
-      point.parameter = (a.y[2] + 0.5 * step * a.tangent[2]) * scale_;
-      point.error_estimate = std::fabs(step * a.tangent[2]) * scale_;
+      point.parameter = (a.y[n_] + 0.5 * step * a.tangent[n_]) * scale_;
+      point.error_estimate = std::fabs(step * a.tangent[n_]) * scale_;
       point.note = "detected; the corrector failed while locating it";
     }
     return point;
@@ -586,49 +673,55 @@ class Driver {
     return true;
   }
 
-  // Newton on (q, q̇, p, t_g): Pⁿ(x; p) = x with the wall's contacts near t_g
+  // Newton on (x, p, t_g): Pⁿ(x; p) = x with the wall's contacts near t_g
   // suppressed, gap(t_g) = 0, gap rate(t_g) = 0; finite-difference Jacobian.
   std::optional<BifurcationPoint> solve_grazing(const Node& last, int witness, double time,
                                                 double h) {
-    using Vec4 = Eigen::Vector4d;
+    using Vec4 = typename Spaces<Size>::Extended;
     const double span = problem_.forcing_period_at_p;
     const double half_width = span > 0.0 ? 0.1 * span : 0.1;
     const ContactWindow window{witness, time - half_width, time + half_width};
     auto residual_of = [&](const Vec4& z, OrbitEvaluation* orbit) -> std::optional<Vec4> {
-      const Vec3 y(z[0], z[1], z[2]);
+      const Vec y = z.head(n_ + 1);
       OrbitEvaluation e = evaluate(y, false, window);
       if (!e.completed) return std::nullopt;
-      const GapSample gap = problem_.gap_at(state_of(y), z[2] * scale_, phase_, window, z[3]);
+      const GapSample gap = problem_.gap_at(state_of(y), z[n_] * scale_, phase_, window, z[n_ + 1]);
       if (!gap.completed) return std::nullopt;
       if (orbit) *orbit = e;
-      return Vec4(e.image[0] - z[0], e.image[1] - z[1], gap.value, gap.rate);
+      Vec4 r(n_ + 2);
+      for (int i = 0; i < n_; ++i) r[i] = e.image[i] - z[i];
+      r[n_] = gap.value;
+      r[n_ + 1] = gap.rate;
+      return r;
     };
     // the guess: the last point moved half the failed step along the branch
-    Vec4 z(last.y[0], last.y[1], last.y[2], time);
-    z.head<3>() += 0.5 * h * last.tangent;
+    Vec4 z(n_ + 2);
+    z.head(n_ + 1) = last.y;
+    z[n_ + 1] = time;
+    z.head(n_ + 1) += 0.5 * h * last.tangent;
     double last_parameter_step = INFINITY;
     for (int iteration = 0; iteration < 25; ++iteration) {
       OrbitEvaluation orbit;
       const auto r = residual_of(z, &orbit);
       if (!r) return std::nullopt;
-      const double size = 1.0 + std::hypot(z[0], z[1]);
+      const double size = 1.0 + state_norm(z.data(), n_);
       if (r->norm() <= request_.tolerance * size && iteration > 0 &&
-          std::fabs(last_parameter_step) <= 1e-11 * (1.0 + std::fabs(z[2]))) {
+          std::fabs(last_parameter_step) <= 1e-11 * (1.0 + std::fabs(z[n_]))) {
         BifurcationPoint point;
         point.type = "grazing";
-        point.parameter = z[2] * scale_;
-        point.state = reported_state(Vec3(z[0], z[1], z[2]));
+        point.parameter = z[n_] * scale_;
+        point.state = reported_state(z.head(n_ + 1));
         point.multipliers = multipliers_of(orbit.monodromy);
         point.error_estimate = std::max(std::fabs(last_parameter_step) * scale_,
-                                        request_.tolerance * (1.0 + std::fabs(z[2] * scale_)));
-        point.graze_time = time_since_requested_section(z[3], orbit);
+                                        request_.tolerance * (1.0 + std::fabs(z[n_] * scale_)));
+        point.graze_time = time_since_requested_section(z[n_ + 1], orbit);
         point.graze_witness = witness;
         point.located = true;
-        solved_point = Vec3(z[0], z[1], z[2]);
+        solved_point = z.head(n_ + 1);
         return point;
       }
-      Eigen::Matrix4d jacobian;
-      for (int j = 0; j < 4; ++j) {
+      typename Spaces<Size>::ExtendedSquare jacobian(n_ + 2, n_ + 2);
+      for (int j = 0; j < n_ + 2; ++j) {
         const double dz = 1e-7 * (1.0 + std::fabs(z[j]));
         Vec4 up = z, down = z;
         up[j] += dz;
@@ -640,8 +733,8 @@ class Driver {
       const Vec4 step = jacobian.fullPivLu().solve(-*r);
       if (!step.allFinite()) return std::nullopt;
       z += step;
-      last_parameter_step = step[2];
-      if (std::fabs(z[3] - time) > half_width) return std::nullopt;  // left the window
+      last_parameter_step = step[n_];
+      if (std::fabs(z[n_ + 1] - time) > half_width) return std::nullopt;  // left the window
     }
     return std::nullopt;
   }
@@ -653,7 +746,8 @@ class Driver {
   double from_ = 0.0, to_ = 1.0;  // the range in that unit
   int stalled_ = 0;           // consecutive points reached by tiny steps
   double phase_ = 0.0;        // rad: the section the branch is computed on (moved off impacts)
-  Vec3 solved_point = Vec3::Zero();  // the last grazing solution, in branch units
+  int n_ = 2;                 // N: the state's components on the section
+  Vec solved_point;           // the last grazing solution, in branch units
   std::vector<Node> nodes_;
   std::string signature_;
   ContinuationResult result_;
@@ -663,17 +757,62 @@ class Driver {
 
 ContinuationResult continue_branch(const ContinuationProblem& problem,
                                    const ContinuationRequest& request) {
-  return Driver(problem, request).run_from_start();
+  if (problem.dimension == 2) return Driver<3>(problem, request).run_from_start();
+  return Driver<Eigen::Dynamic>(problem, request).run_from_start();
 }
 
 ContinuationResult continue_branch_from(const ContinuationProblem& problem,
                                         const ContinuationRequest& request,
                                         const OrbitPoint& x, double p,
-                                        const std::array<double, 3>& direction) {
-  return Driver(problem, request).run_from(x, p, direction);
+                                        const std::vector<double>& direction) {
+  if (problem.dimension == 2) return Driver<3>(problem, request).run_from(x, p, direction);
+  return Driver<Eigen::Dynamic>(problem, request).run_from(x, p, direction);
 }
 
-OrbitPoint eigenvector_for(const TangentMatrix& m, double multiplier) {
+std::vector<std::complex<double>> multipliers_of(const MonodromyMatrix& m) {
+  if (m.size() == 2) {
+    const double half_trace = 0.5 * (m[0][0] + m[1][1]);
+    const double determinant = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    const std::complex<double> root =
+        std::sqrt(std::complex<double>(half_trace * half_trace - determinant));
+    std::complex<double> a = half_trace + root, b = half_trace - root;
+    if (std::abs(b) > std::abs(a)) std::swap(a, b);
+    return {a, b};
+  }
+  const Eigen::MatrixXd a = dense(m);
+  std::vector<std::complex<double>> values(m.size(), {std::numeric_limits<double>::quiet_NaN(), 0.0});
+  if (!a.allFinite()) return values;
+  const Eigen::EigenSolver<Eigen::MatrixXd> solver(a, false);
+  if (solver.info() != Eigen::Success) return values;
+  for (std::size_t i = 0; i < m.size(); ++i) values[i] = solver.eigenvalues()[static_cast<Eigen::Index>(i)];
+  std::sort(values.begin(), values.end(), [](const auto& x, const auto& y) {
+    if (std::abs(x) != std::abs(y)) return std::abs(x) > std::abs(y);
+    return x.imag() > y.imag();
+  });
+  return values;
+}
+
+double det_minus_identity(const MonodromyMatrix& m) {
+  if (m.size() == 2) return (m[0][0] - 1.0) * (m[1][1] - 1.0) - m[0][1] * m[1][0];
+  const Eigen::MatrixXd a = dense(m);
+  return (a - Eigen::MatrixXd::Identity(a.rows(), a.cols())).fullPivLu().determinant();
+}
+
+double det_plus_identity(const MonodromyMatrix& m) {
+  if (m.size() == 2) return (m[0][0] + 1.0) * (m[1][1] + 1.0) - m[0][1] * m[1][0];
+  const Eigen::MatrixXd a = dense(m);
+  return (a + Eigen::MatrixXd::Identity(a.rows(), a.cols())).fullPivLu().determinant();
+}
+
+OrbitPoint eigenvector_for(const MonodromyMatrix& m, double multiplier) {
+  if (m.size() != 2) {
+    // the right singular vector of M − λI of the smallest singular value
+    Eigen::MatrixXd a = dense(m);
+    a.diagonal().array() -= multiplier;
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeFullV);
+    const Eigen::VectorXd v = svd.matrixV().col(a.cols() - 1);
+    return OrbitPoint(v.data(), v.data() + v.size());
+  }
   // (M − λI) v = 0: v ⟂ the larger row of M − λI
   const double a = m[0][0] - multiplier, b = m[0][1];
   const double c = m[1][0], d = m[1][1] - multiplier;

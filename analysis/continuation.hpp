@@ -8,11 +8,13 @@
 //
 // The driver (continue_branch) knows no oscillator: it works on a
 // ContinuationProblem, the section map and its probes as functions of the
-// state on the section (q, q̇) and of one parameter p. The scene bindings
+// state on the section (its N tangent components: (q, q̇), or a model file's N
+// states) and of one parameter p. The scene bindings
 // build one for a concrete system (analysis/run_continuation.hpp).
 //
 // Method (docs/analysis.md, "Continuation"):
-//  * unknowns y = (q, q̇, p); equations F(x, p) = Pⁿ(x; p) − x = 0 and the
+//  * unknowns y = (x, p), x the N components of the state on the section
+//    ((q, q̇) below); equations F(x, p) = Pⁿ(x; p) − x = 0 and the
 //    arclength condition τ·(y − y_pred) = 0; ∂F/∂x = M − I from the
 //    saltation-corrected monodromy M, ∂F/∂p by a central difference of Pⁿ in p;
 //  * Newton corrector; the step grows after easy corrections and is halved
@@ -21,7 +23,8 @@
 //    below the smallest step; a contact phase appearing or ending alone does
 //    not stop it;
 //  * bifurcations are detected by sign changes of test functions between two
-//    points (det(M − I), det(M + I), det M − 1, the smallest flight gap, the
+//    points (det(M − I), det(M + I), det M − 1 (for N > 2: ∏ᵢ<ⱼ (λᵢλⱼ − 1)),
+//    the smallest flight gap, the
 //    smallest impact speed) and located by a root finder (TOMS 748) on the
 //    arclength between them, each trial point corrected onto the branch;
 //  * a grazing point is then solved as an extended system in (q, q̇, p, t_g):
@@ -32,7 +35,7 @@
 //    onto the branch) down to a bracket of 1e-10 of the range in p.
 #pragma once
 
-#include <array>
+#include <cstddef>
 #include <complex>
 #include <functional>
 #include <limits>
@@ -40,11 +43,21 @@
 #include <string>
 #include <vector>
 
-#include "core/has_jacobian.hpp"
-
 namespace impactlab {
 
-using OrbitPoint = std::array<double, 2>;  // (q, q̇) on the section
+// The state on the section: its N tangent components ((q, q̇), or a model
+// file's N states).
+using OrbitPoint = std::vector<double>;
+// ∂Pⁿ/∂x, N × N, row-major: m[row][column].
+using MonodromyMatrix = std::vector<std::vector<double>>;
+
+// The Floquet multipliers (eigenvalues of M), largest modulus first (of a
+// complex pair, the one with the positive imaginary part first).
+std::vector<std::complex<double>> multipliers_of(const MonodromyMatrix& m);
+// The test functions of a fold, det(M − I) = ∏ (λᵢ − 1), and of a period
+// doubling, det(M + I) = ∏ (λᵢ + 1).
+double det_minus_identity(const MonodromyMatrix& m);
+double det_plus_identity(const MonodromyMatrix& m);
 
 // Contacts of one wall suppressed in a time window: the virtual orbit through
 // a grazing point. Times are measured from the section (s).
@@ -57,7 +70,7 @@ struct ContactWindow {
 struct OrbitEvaluation {
   bool completed = false;      // the run reached the section again
   OrbitPoint image{};        // Pⁿ(x; p)
-  TangentMatrix monodromy{};   // ∂Pⁿ/∂x, saltation matrices included
+  MonodromyMatrix monodromy;   // ∂Pⁿ/∂x, saltation matrices included
   int impacts = 0;             // impacts over the n periods
   int contact_phases = 0;      // contact phases (sticking) over the n periods
   std::string signature;       // the walls of the events in order ("+1 +1 -1", "+1 c+1": contact)
@@ -114,6 +127,7 @@ struct ContinuationProblem {
   // impact section lies on its events and stays
   bool section_moves = true;
   double forcing_period_at_p = 0.0;  // nT at the start (s): the scale of the grazing window
+  std::size_t dimension = 2;         // N: the components of an OrbitPoint
   std::vector<ParameterBoundary> boundaries;  // reported where the branch crosses them
 };
 
@@ -135,8 +149,8 @@ struct BranchPoint {
   OrbitPoint state{};
   int impacts = 0;
   int contact_phases = 0;
-  std::array<std::complex<double>, 2> multipliers{};  // largest modulus first
-  bool stable = false;  // both multipliers strictly inside the unit circle
+  std::vector<std::complex<double>> multipliers;  // all N, largest modulus first
+  bool stable = false;  // every multiplier strictly inside the unit circle
   double min_impact_speed = 0.0;
   double min_flight_gap = 0.0;
   int newton_iterations = 0;
@@ -149,7 +163,7 @@ struct BifurcationPoint {
   std::string type;        // fold, period_doubling, neimark_sacker, grazing, impact_grazing, contact_onset, contact_end
   double parameter = 0.0;
   OrbitPoint state{};
-  std::array<std::complex<double>, 2> multipliers{};
+  std::vector<std::complex<double>> multipliers;
   double error_estimate = 0.0;  // bound on the parameter's error (the final bracket, or Newton's last step)
   double graze_time = std::numeric_limits<double>::quiet_NaN();  // s since the section (grazing)
   int graze_witness = -1;
@@ -173,7 +187,7 @@ struct ContinuationResult {
 struct CurvePoint {
   double p1 = 0.0, p2 = 0.0;
   OrbitPoint state{};                                  // on the requested section
-  std::array<std::complex<double>, 2> multipliers{};   // largest modulus first
+  std::vector<std::complex<double>> multipliers;       // largest modulus first
   double graze_time = std::numeric_limits<double>::quiet_NaN();  // s since the requested section
   int impacts = 0;
   int newton_iterations = 0;
@@ -199,10 +213,11 @@ ContinuationResult continue_branch(const ContinuationProblem& problem,
 // Starts a branch from a point (x, p) along a given direction (dx, dp) of
 // unit size instead of the branch's own tangent: the branch switch at a
 // period doubling (the doubled orbit leaves along the −1 eigenvector, dp = 0).
+// direction: N + 1 components.
 ContinuationResult continue_branch_from(const ContinuationProblem& problem,
                                         const ContinuationRequest& request,
                                         const OrbitPoint& x, double p,
-                                        const std::array<double, 3>& direction);
+                                        const std::vector<double>& direction);
 
 // A continuation from a scene (OscillatorEntry::continuation): the scene key
 // continued, the orbit, where the branch starts, and the cascade to follow.
@@ -216,7 +231,7 @@ struct ContinuationJob {
   // rate just before that impact
   int impact_wall = 0;
   double transient_periods = 100;  // periods run from the scene's initial state for the start
-  bool has_start = false;          // start from `start` (on the section) instead of the transient's end
+  bool has_start = false;          // start from `start` (N numbers on the section) instead of the transient's end
   OrbitPoint start{};
   int doublings = 0;               // period doublings to switch at (the cascade followed)
   ContinuationRequest numerics;    // from, to and start are set from the fields above
@@ -247,6 +262,7 @@ struct BranchCurve {
 struct ContinuationJobResult {
   bool available = false;  // false: the oscillator/model has no Jacobians (see note)
   std::string note;
+  std::size_t dimension = 2;  // N: the components of the states, the multipliers per point
   std::vector<ContinuedBranch> branches;  // the first, then each doubled one
   bool has_curve = false;                 // a curve was asked for and a point to start it found
   CurveResult curve;                      // the two-parameter curve (job.second_parameter)
@@ -258,6 +274,6 @@ struct ContinuationJobResult {
 };
 
 // The eigenvector of M for the real multiplier nearest `multiplier`, unit length.
-OrbitPoint eigenvector_for(const TangentMatrix& monodromy, double multiplier);
+OrbitPoint eigenvector_for(const MonodromyMatrix& monodromy, double multiplier);
 
 }  // namespace impactlab

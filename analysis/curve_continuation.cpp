@@ -7,8 +7,6 @@
 
 #include <Eigen/Dense>
 
-#include "analysis/floquet.hpp"
-
 namespace impactlab {
 
 namespace {
@@ -16,17 +14,10 @@ namespace {
 using Vector = Eigen::VectorXd;
 using Matrix = Eigen::MatrixXd;
 
-double det_minus_identity(const TangentMatrix& m) {  // (1 − λ₁)(1 − λ₂)
-  return (m[0][0] - 1.0) * (m[1][1] - 1.0) - m[0][1] * m[1][0];
-}
-double det_plus_identity(const TangentMatrix& m) {  // (1 + λ₁)(1 + λ₂)
-  return (m[0][0] + 1.0) * (m[1][1] + 1.0) - m[0][1] * m[1][0];
-}
-
 // The residual of the defining system at one point, and the orbit it ran.
 struct Evaluation {
   bool completed = false;
-  Vector residual;  // F (2), then det(M ∓ I) or gap and gap rate
+  Vector residual;  // F (N), then det(M ∓ I) or gap and gap rate
   OrbitEvaluation orbit;
 };
 
@@ -43,7 +34,12 @@ class CurveDriver {
   CurveDriver(const TwoParameterProblem& problem, const CurveRequest& request)
       : problem_(problem), request_(request) {
     grazing_ = request.type == "grazing";
-    size_ = grazing_ ? 5 : 4;
+    at_start_ = problem.at(request.from2);
+    n_ = static_cast<int>(at_start_.dimension);
+    p1_ = n_;
+    p2_ = n_ + 1;
+    tg_ = n_ + 2;
+    size_ = grazing_ ? n_ + 3 : n_ + 2;
     scale1_ = std::fabs(request.to1 - request.from1);
     scale2_ = std::fabs(request.to2 - request.from2);
     if (!(scale1_ > 0.0)) scale1_ = 1.0;
@@ -51,7 +47,6 @@ class CurveDriver {
     h_initial_ = request.initial_step > 0.0 ? request.initial_step : 0.01;
     h_min_ = request.min_step > 0.0 ? request.min_step : 1e-7;
     h_max_ = request.max_step > 0.0 ? request.max_step : 0.02;
-    at_start_ = problem.at(request.from2);
     requested_phase_ = at_start_.phase;
     phase_ = requested_phase_;
     // the scale of t_g in the arclength: the orbit's span at the start
@@ -61,25 +56,28 @@ class CurveDriver {
 
   CurveResult run() {
     result_.type = request_.type;
-    Vector z(size_);
-    z << request_.state[0], request_.state[1], request_.p1 / scale1_, request_.from2 / scale2_,
-        0.0;
+    if (request_.state.size() != at_start_.dimension)
+      return stop("start_not_converged", "the start's state does not match the orbit's");
+    Vector z = Vector::Zero(size_);
+    for (int i = 0; i < n_; ++i) z[i] = request_.state[i];
+    z[p1_] = request_.p1 / scale1_;
+    z[p2_] = request_.from2 / scale2_;
     if (grazing_) {
       if (request_.graze_witness < 0 || !std::isfinite(request_.graze_time))
         return stop("start_not_converged", "a grazing curve needs the graze time and wall");
-      z[4] = request_.graze_time / time_scale_;
+      z[tg_] = request_.graze_time / time_scale_;
       window_center_ = request_.graze_time;
     }
     choose_section(z);
     // the start: corrected at p₂ = from2
     Vector fixed_p2 = Vector::Zero(size_);
-    fixed_p2[3] = 1.0;
+    fixed_p2[p2_] = 1.0;
     Corrected start = correct(z, fixed_p2, z);
     if (!start.converged)
       return stop("start_not_converged", "Newton at the located point did not converge");
     const double direction2 = request_.to2 >= request_.from2 ? 1.0 : -1.0;
     Vector along = Vector::Zero(size_);
-    along[3] = direction2;
+    along[p2_] = direction2;
     auto tangent = tangent_of(start.jacobian, along);
     if (!tangent) return stop("start_not_converged", "no curve tangent at the start");
     accept(start, *tangent, 0.0);
@@ -91,15 +89,15 @@ class CurveDriver {
     while (static_cast<int>(result_.curve.size()) < request_.max_points) {
       const Vector last = z_;
       const Vector tau = tangent_;
-      const double remaining = (to2 - last[3]) * direction2;
+      const double remaining = (to2 - last[p2_]) * direction2;
       if (remaining <= 1e-12 * (1.0 + std::fabs(to2))) return finish();
-      if (last[2] < low1 - 1e-9 || last[2] > high1 + 1e-9)
+      if (last[p1_] < low1 - 1e-9 || last[p1_] > high1 + 1e-9)
         return stop("left_range", "the curve left the first parameter's range");
-      const double toward_end = tau[3] * direction2;
+      const double toward_end = tau[p2_] * direction2;
       if (toward_end > 0.0 && h * toward_end >= remaining) {
         const double h_end = remaining / toward_end;
         Vector predicted = last + h_end * tau;
-        predicted[3] = to2;
+        predicted[p2_] = to2;
         Corrected c = correct(predicted, fixed_p2, predicted);
         if (c.converged) {
           const auto t = tangent_of(c.jacobian, tau);
@@ -130,9 +128,9 @@ class CurveDriver {
   }
 
  private:
-  double p1_of(const Vector& z) const { return z[2] * scale1_; }
-  double p2_of(const Vector& z) const { return z[3] * scale2_; }
-  static OrbitPoint state_of(const Vector& z) { return {z[0], z[1]}; }
+  double p1_of(const Vector& z) const { return z[p1_] * scale1_; }
+  double p2_of(const Vector& z) const { return z[p2_] * scale2_; }
+  OrbitPoint state_of(const Vector& z) const { return OrbitPoint(z.data(), z.data() + n_); }
 
   ContactWindow window() const {
     if (!grazing_) return {};
@@ -147,17 +145,16 @@ class CurveDriver {
     e.orbit = at.evaluate(state_of(z), p1_of(z), phase_, false, window());
     if (!e.orbit.completed) return e;
     e.residual.resize(size_ - 1);
-    e.residual[0] = e.orbit.image[0] - z[0];
-    e.residual[1] = e.orbit.image[1] - z[1];
+    for (int i = 0; i < n_; ++i) e.residual[i] = e.orbit.image[i] - z[i];
     if (grazing_) {
-      const GapSample gap = at.gap_at(state_of(z), p1_of(z), phase_, window(), z[4] * time_scale_);
+      const GapSample gap = at.gap_at(state_of(z), p1_of(z), phase_, window(), z[tg_] * time_scale_);
       if (!gap.completed) return e;
-      e.residual[2] = gap.value;
-      e.residual[3] = gap.rate;
+      e.residual[n_] = gap.value;
+      e.residual[n_ + 1] = gap.rate;
     } else if (request_.type == "period_doubling") {
-      e.residual[2] = det_plus_identity(e.orbit.monodromy);
+      e.residual[n_] = det_plus_identity(e.orbit.monodromy);
     } else {
-      e.residual[2] = det_minus_identity(e.orbit.monodromy);
+      e.residual[n_] = det_minus_identity(e.orbit.monodromy);
     }
     e.completed = e.residual.allFinite();
     return e;
@@ -168,7 +165,7 @@ class CurveDriver {
   std::optional<Matrix> jacobian(const Vector& z, const Evaluation& at) {
     Matrix j(size_ - 1, size_);
     for (int k = 0; k < size_; ++k) {
-      const double dz = (k < 2 || k == 4 ? 1e-7 : 1e-6) * (1.0 + std::fabs(z[k]));
+      const double dz = (k < n_ || k == tg_ ? 1e-7 : 1e-6) * (1.0 + std::fabs(z[k]));
       Vector up = z, down = z;
       up[k] += dz;
       down[k] -= dz;
@@ -176,11 +173,10 @@ class CurveDriver {
       if (!eu.completed || !ed.completed) return std::nullopt;
       j.col(k) = (eu.residual - ed.residual) / (2.0 * dz);
     }
-    const TangentMatrix& m = at.orbit.monodromy;
-    j(0, 0) = m[0][0] - 1.0;
-    j(0, 1) = m[0][1];
-    j(1, 0) = m[1][0];
-    j(1, 1) = m[1][1] - 1.0;
+    const MonodromyMatrix& m = at.orbit.monodromy;
+    for (int row = 0; row < n_; ++row)
+      for (int column = 0; column < n_; ++column)
+        j(row, column) = m[row][column] - (row == column ? 1.0 : 0.0);
     return j;
   }
 
@@ -193,10 +189,10 @@ class CurveDriver {
       c.z = z;
       c.iterations = iteration;
       if (!c.at.completed) return c;
-      const double size = 1.0 + std::hypot(z[0], z[1]);
+      const double size = 1.0 + (n_ == 2 ? std::hypot(z[0], z[1]) : z.head(n_).norm());
       const double arc = tau.dot(z - z_pred);
-      const double orbit_residual = c.at.residual.head<2>().norm();
-      const double condition_residual = c.at.residual.tail(size_ - 3).norm();
+      const double orbit_residual = c.at.residual.head(n_).norm();
+      const double condition_residual = c.at.residual.tail(size_ - 1 - n_).norm();
       const bool small_step = last_step <= 1e-11 * (1.0 + z.norm());
       if (c.jacobian.size() > 0 && std::fabs(arc) <= 1e-9 * (1.0 + z.norm()) &&
           ((orbit_residual <= request_.tolerance * size &&
@@ -219,7 +215,7 @@ class CurveDriver {
       if (!step.allFinite()) return c;
       z += step;
       last_step = step.norm();
-      if (grazing_ && std::fabs(z[4] * time_scale_ - window_center_) > window_half_width_)
+      if (grazing_ && std::fabs(z[tg_] * time_scale_ - window_center_) > window_half_width_)
         return c;  // the graze left the suppression window
     }
   }
@@ -241,7 +237,7 @@ class CurveDriver {
     CurvePoint point;
     point.p1 = p1_of(c.z);
     point.p2 = p2_of(c.z);
-    point.multipliers = eigenvalues(c.at.orbit.monodromy);
+    point.multipliers = multipliers_of(c.at.orbit.monodromy);
     point.impacts = c.at.orbit.impacts;
     point.newton_iterations = c.iterations;
     point.step = step;
@@ -249,8 +245,8 @@ class CurveDriver {
     const double shift = std::remainder(phase_ - requested_phase_, 2.0 * std::numbers::pi);
     const double delay = (shift < 0.0 ? shift + 2.0 * std::numbers::pi : shift) / omega;
     if (grazing_) {
-      point.graze_time = std::fmod(c.z[4] * time_scale_ + delay, c.at.orbit.span);
-      window_center_ = c.z[4] * time_scale_;
+      point.graze_time = std::fmod(c.z[tg_] * time_scale_ + delay, c.at.orbit.span);
+      window_center_ = c.z[tg_] * time_scale_;
     }
     point.state = state_of(c.z);
     if (phase_ != requested_phase_) {
@@ -283,7 +279,7 @@ class CurveDriver {
     const OrbitEvaluation orbit =
         at_start_.evaluate(state_of(z), p1_of(z), phase_, false, window());
     if (!orbit.completed || orbit.span <= 0.0) return;
-    const double graze = grazing_ ? z[4] * time_scale_ : 0.0;
+    const double graze = grazing_ ? z[tg_] * time_scale_ : 0.0;
     if (clearance(orbit, 0.0, graze) > 0.02) return;
     double best_shift = 0.0, best = clearance(orbit, 0.0, graze);
     for (int j = 1; j < 16; ++j) {
@@ -299,12 +295,11 @@ class CurveDriver {
     const auto moved = at_start_.transport(state_of(z), p1_of(z), phase_, phase);
     if (!moved) return;
     phase_ = phase;
-    z[0] = (*moved)[0];
-    z[1] = (*moved)[1];
+    for (int i = 0; i < n_; ++i) z[i] = (*moved)[i];
     if (grazing_) {
-      double t = std::fmod(z[4] * time_scale_ - best_shift / orbit.omega, orbit.span);
+      double t = std::fmod(z[tg_] * time_scale_ - best_shift / orbit.omega, orbit.span);
       if (t < 0.0) t += orbit.span;
-      z[4] = t / time_scale_;
+      z[tg_] = t / time_scale_;
       window_center_ = t;
     }
   }
@@ -320,7 +315,9 @@ class CurveDriver {
   const CurveRequest& request_;
   ContinuationProblem at_start_;
   bool grazing_ = false;
-  int size_ = 4;                          // unknowns: (q, q̇, p₁, p₂ [, t_g])
+  int n_ = 2;                             // N: the state's components on the section
+  int p1_ = 2, p2_ = 3, tg_ = 4;          // the indices of p₁, p₂ and t_g in z
+  int size_ = 4;                          // unknowns: (x, p₁, p₂ [, t_g])
   double scale1_ = 1.0, scale2_ = 1.0;    // the parameters' units of arclength (their ranges)
   double time_scale_ = 1.0;               // t_g's unit of arclength: nT at the start (s)
   double window_center_ = 0.0;            // s since the working section

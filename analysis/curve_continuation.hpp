@@ -9,7 +9,9 @@
 //                      wall's contacts suppressed near t_g (the virtual orbit
 //                      through the graze, as the one-parameter driver solves
 //                      it)                   unknowns (q, q̇, p₁, p₂, t_g)
-// M is the saltation-corrected monodromy; the other derivatives are central
+// (q, q̇) stands for the N components of the state on the section (a model
+// file's N states). M is the saltation-corrected monodromy; the other
+// derivatives are central
 // differences. Newton corrector with the arclength condition
 // τ·(z − z_pred) = 0 in (q, q̇, p₁/|range₁|, p₂/|range₂| [, t_g/T]); the curve
 // runs from p₂ = from₂ towards to₂ and ends there exactly, where p₁ leaves its

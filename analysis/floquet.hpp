@@ -6,15 +6,20 @@
 //
 // A period-n orbit of a system forced with period T is a fixed point of the
 // n-th iterate of the stroboscopic map P: x(t0) ↦ x(t0 + nT). Its monodromy
-// matrix M = ∂Pⁿ/∂x on (q, q̇); the eigenvalues of M are the Floquet
+// matrix M = ∂Pⁿ/∂x on the system's N-dimensional tangent space ((q, q̇), or a
+// model file's N states); the N eigenvalues of M are the Floquet
 // multipliers: a multiplier through −1 is a period doubling, through +1 a fold.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <complex>
 #include <cstdint>
 #include <limits>
+#include <optional>
+
+#include <Eigen/Dense>
 
 #include "analysis/flow_setup.hpp"
 #include "analysis/variational.hpp"
@@ -23,18 +28,19 @@
 
 namespace impactlab {
 
-template <class State, class Mode>
+template <class State, class Mode, std::size_t N = default_tangent_dimension>
 struct FlowWithJacobian {
-  State state{};             // the base system's state at t
-  Mode mode{};               // and its mode
-  TangentMatrix jacobian{};  // ∂x(t)/∂x(t0) on (q, q̇)
+  State state{};                  // the base system's state at t
+  Mode mode{};                    // and its mode
+  TangentMatrixOf<N> jacobian{};  // ∂x(t)/∂x(t0) on the tangent space
   Termination termination = Termination::completed;
   std::uint64_t impacts = 0;
 };
 
 // The flow from (t0, x0) to t1 and its Jacobian.
 template <HasJacobian System>
-FlowWithJacobian<typename System::State, typename System::Mode> flow_with_jacobian(
+FlowWithJacobian<typename System::State, typename System::Mode, tangent_dimension_of<System>>
+flow_with_jacobian(
     const System& system, const FlowSetup& setup, const typename System::State& x0,
     typename System::Mode mode, double t0, double t1) {
   using Tangent = Variational<System>;
@@ -49,44 +55,121 @@ FlowWithJacobian<typename System::State, typename System::Mode> flow_with_jacobi
           run.termination, log.count(EventKind::impact)};
 }
 
-// Eigenvalues of a 2 × 2 matrix, largest modulus first.
-inline std::array<std::complex<double>, 2> eigenvalues(const TangentMatrix& m) {
-  const double half_trace = 0.5 * (m[0][0] + m[1][1]);
-  const double determinant = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-  const std::complex<double> root = std::sqrt(std::complex<double>(half_trace * half_trace - determinant));
-  std::complex<double> a = half_trace + root, b = half_trace - root;
-  if (std::abs(b) > std::abs(a)) std::swap(a, b);
-  return {a, b};
+// Eigenvalues of an N × N matrix, largest modulus first (of a complex pair,
+// the one with the positive imaginary part first): for N = 2 from the trace
+// and determinant, otherwise from Eigen's real Schur form.
+template <std::size_t N>
+std::array<std::complex<double>, N> eigenvalues(const TangentMatrixOf<N>& m) {
+  if constexpr (N == 2) {
+    const double half_trace = 0.5 * (m[0][0] + m[1][1]);
+    const double determinant = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    const std::complex<double> root =
+        std::sqrt(std::complex<double>(half_trace * half_trace - determinant));
+    std::complex<double> a = half_trace + root, b = half_trace - root;
+    if (std::abs(b) > std::abs(a)) std::swap(a, b);
+    return {a, b};
+  } else {
+    Eigen::Matrix<double, N, N> matrix;
+    for (std::size_t i = 0; i < N; ++i)
+      for (std::size_t j = 0; j < N; ++j) matrix(i, j) = m[i][j];
+    std::array<std::complex<double>, N> values;
+    const Eigen::EigenSolver<Eigen::Matrix<double, N, N>> solver(matrix, false);
+    if (solver.info() != Eigen::Success) {
+      values.fill({std::numeric_limits<double>::quiet_NaN(), 0.0});
+      return values;
+    }
+    for (std::size_t i = 0; i < N; ++i) values[i] = solver.eigenvalues()[i];
+    std::sort(values.begin(), values.end(), [](const auto& a, const auto& b) {
+      if (std::abs(a) != std::abs(b)) return std::abs(a) > std::abs(b);
+      return a.imag() > b.imag();
+    });
+    return values;
+  }
 }
 
-template <class State, class Mode>
+// |v| on the tangent space (std::hypot for N = 2)
+template <std::size_t N>
+double tangent_norm(const TangentVectorOf<N>& v) {
+  if constexpr (N == 2) {
+    return std::hypot(v[0], v[1]);
+  } else {
+    double sum = 0.0;
+    for (double component : v) sum += component * component;
+    return std::sqrt(sum);
+  }
+}
+
+// The tangent-space part of a state: its first N components.
+template <std::size_t N, class State>
+TangentVectorOf<N> tangent_part(const State& x) {
+  TangentVectorOf<N> v;
+  std::copy_n(x.begin(), N, v.begin());
+  return v;
+}
+
+// δ solving (M − I) δ = −r; none where M − I is singular: Cramer's rule for
+// N = 2, a fully pivoted LU decomposition otherwise.
+template <std::size_t N>
+std::optional<TangentVectorOf<N>> newton_step(const TangentMatrixOf<N>& monodromy,
+                                              const TangentVectorOf<N>& residual) {
+  if constexpr (N == 2) {
+    const double r0 = residual[0], r1 = residual[1];
+    const double a = monodromy[0][0] - 1.0, b = monodromy[0][1];
+    const double c = monodromy[1][0], d = monodromy[1][1] - 1.0;
+    const double determinant = a * d - b * c;
+    if (determinant == 0.0 || !std::isfinite(determinant)) return std::nullopt;
+    return TangentVectorOf<N>{(-r0 * d + r1 * b) / determinant, (-a * r1 + c * r0) / determinant};
+  } else {
+    Eigen::Matrix<double, N, N> matrix;
+    Eigen::Matrix<double, N, 1> right;
+    for (std::size_t i = 0; i < N; ++i) {
+      for (std::size_t j = 0; j < N; ++j) matrix(i, j) = monodromy[i][j] - (i == j ? 1.0 : 0.0);
+      right[i] = -residual[i];
+    }
+    if (!matrix.allFinite()) return std::nullopt;
+    const Eigen::FullPivLU<Eigen::Matrix<double, N, N>> lu(matrix);
+    if (!lu.isInvertible()) return std::nullopt;
+    const Eigen::Matrix<double, N, 1> solution = lu.solve(right);
+    TangentVectorOf<N> step;
+    for (std::size_t i = 0; i < N; ++i) step[i] = solution[i];
+    return step;
+  }
+}
+
+template <class State, class Mode, std::size_t N = default_tangent_dimension>
 struct PeriodicOrbit {
-  State state{};               // a point of the orbit on the section t0 (mod nT)
+  State state{};                   // a point of the orbit on the section t0 (mod nT)
   Mode mode{};
-  TangentMatrix monodromy{};   // ∂Pⁿ/∂x on (q, q̇)
-  std::array<std::complex<double>, 2> multipliers{};  // eigenvalues of M, largest modulus first
+  TangentMatrixOf<N> monodromy{};  // ∂Pⁿ/∂x on the tangent space
+  std::array<std::complex<double>, N> multipliers{};  // eigenvalues of M, largest modulus first
   bool converged = false;
   int iterations = 0;
-  double residual = std::numeric_limits<double>::quiet_NaN();  // |Pⁿ(x) − x| on (q, q̇)
+  double residual = std::numeric_limits<double>::quiet_NaN();  // |Pⁿ(x) − x| on the tangent space
   Termination termination = Termination::completed;
 };
 
-// Newton's method on Pⁿ(x) − x = 0 over (q, q̇), with (M − I) δ = −(Pⁿ(x) − x),
-// from `guess` on the section t0; span = nT (s). A step that makes the
+// Newton's method on Pⁿ(x) − x = 0 over the tangent space's N components,
+// with (M − I) δ = −(Pⁿ(x) − x), from `guess` on the section t0; span = nT (s). A step that makes the
 // residual grow, or leaves the admissible states (the run stops), is halved,
 // up to 20 times. Stops when the residual is below tolerance × (1 + |x|), or
 // after max_iterations.
 template <HasJacobian System>
-PeriodicOrbit<typename System::State, typename System::Mode> locate_periodic_orbit(
-    const System& system, const FlowSetup& setup, typename System::State guess,
-    typename System::Mode mode, double t0, double span, int max_iterations = 30,
-    double tolerance = 1e-11) {
+PeriodicOrbit<typename System::State, typename System::Mode, tangent_dimension_of<System>>
+locate_periodic_orbit(const System& system, const FlowSetup& setup, typename System::State guess,
+                      typename System::Mode mode, double t0, double span,
+                      int max_iterations = 30, double tolerance = 1e-11) {
   using State = typename System::State;
-  PeriodicOrbit<State, typename System::Mode> orbit;
+  constexpr std::size_t n = tangent_dimension_of<System>;
+  PeriodicOrbit<State, typename System::Mode, n> orbit;
   orbit.state = guess;
   orbit.mode = mode;
-  auto residual_of = [](const State& x, const State& image) {
-    return std::hypot(image[0] - x[0], image[1] - x[1]);
+  auto difference = [](const State& x, const State& image) {
+    TangentVectorOf<n> r;
+    for (std::size_t i = 0; i < n; ++i) r[i] = image[i] - x[i];
+    return r;
+  };
+  auto residual_of = [&](const State& x, const State& image) {
+    return tangent_norm<n>(difference(x, image));
   };
   auto image = flow_with_jacobian(system, setup, orbit.state, orbit.mode, t0, t0 + span);
   orbit.termination = image.termination;
@@ -95,25 +178,17 @@ PeriodicOrbit<typename System::State, typename System::Mode> locate_periodic_orb
     orbit.iterations = iteration;
     orbit.residual = residual_of(orbit.state, image.state);
     if (image.termination != Termination::completed) break;
-    if (orbit.residual <= tolerance * (1.0 + std::hypot(orbit.state[0], orbit.state[1]))) {
+    if (orbit.residual <= tolerance * (1.0 + tangent_norm<n>(tangent_part<n>(orbit.state)))) {
       orbit.converged = true;
       break;
     }
     if (iteration == max_iterations) break;
-    // (M − I) δ = −r by Cramer's rule (2 × 2)
-    const double r0 = image.state[0] - orbit.state[0];
-    const double r1 = image.state[1] - orbit.state[1];
-    const double a = orbit.monodromy[0][0] - 1.0, b = orbit.monodromy[0][1];
-    const double c = orbit.monodromy[1][0], d = orbit.monodromy[1][1] - 1.0;
-    const double determinant = a * d - b * c;
-    if (determinant == 0.0 || !std::isfinite(determinant)) break;
-    const double step_q = (-r0 * d + r1 * b) / determinant;
-    const double step_qdot = (-a * r1 + c * r0) / determinant;
+    const auto step = newton_step<n>(orbit.monodromy, difference(orbit.state, image.state));
+    if (!step) break;
     bool accepted = false;
     for (double fraction = 1.0; fraction > 1e-6 && !accepted; fraction *= 0.5) {
       State trial = orbit.state;
-      trial[0] += fraction * step_q;
-      trial[1] += fraction * step_qdot;
+      for (std::size_t i = 0; i < n; ++i) trial[i] += fraction * (*step)[i];
       auto trial_image = flow_with_jacobian(system, setup, trial, orbit.mode, t0, t0 + span);
       if (trial_image.termination == Termination::completed &&
           residual_of(trial, trial_image.state) < orbit.residual) {
@@ -145,8 +220,10 @@ LyapunovResult largest_lyapunov_exponent(const System& system, const FlowSetup& 
                                          typename System::State x, typename System::Mode mode,
                                          double t0, double period, int periods,
                                          int alignment_periods) {
+  constexpr std::size_t n = tangent_dimension_of<System>;
   LyapunovResult result;
-  TangentVector v{std::sqrt(0.5), std::sqrt(0.5)};
+  TangentVectorOf<n> v;
+  v.fill(std::sqrt(1.0 / n));
   double log_growth = 0.0;
   for (int k = 0; k < alignment_periods + periods; ++k) {
     const double ta = t0 + k * period;
@@ -157,9 +234,10 @@ LyapunovResult largest_lyapunov_exponent(const System& system, const FlowSetup& 
     }
     x = step.state;
     mode = step.mode;
-    const TangentVector w{step.jacobian[0][0] * v[0] + step.jacobian[0][1] * v[1],
-                          step.jacobian[1][0] * v[0] + step.jacobian[1][1] * v[1]};
-    const double norm = std::hypot(w[0], w[1]);
+    TangentVectorOf<n> w{};
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j) w[i] += step.jacobian[i][j] * v[j];
+    const double norm = tangent_norm<n>(w);
     if (k >= alignment_periods) log_growth += std::log(norm);
     if (!(norm > 0.0) || !std::isfinite(norm)) {
       result.exponent = norm > 0.0 ? std::numeric_limits<double>::quiet_NaN()
@@ -167,7 +245,7 @@ LyapunovResult largest_lyapunov_exponent(const System& system, const FlowSetup& 
       result.periods = k + 1 - alignment_periods;
       return result;
     }
-    v = {w[0] / norm, w[1] / norm};
+    for (std::size_t i = 0; i < n; ++i) v[i] = w[i] / norm;
   }
   result.periods = periods;
   result.exponent = log_growth / (periods * period);

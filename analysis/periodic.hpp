@@ -3,13 +3,10 @@
 // a concrete system with Jacobians).
 #pragma once
 
-#include <array>
 #include <complex>
 #include <limits>
 #include <string>
 #include <vector>
-
-#include "core/has_jacobian.hpp"
 
 namespace impactlab {
 
@@ -28,8 +25,10 @@ struct PeriodicResult {
   int mode = 0;
   double t_section = 0.0;         // the section time the point belongs to
   double orbit_period = 0.0;      // nT
-  TangentMatrix monodromy{};
-  std::array<std::complex<double>, 2> multipliers{};
+  // on the system's tangent space: N × N, row-major (N = 2: (q, q̇); a model
+  // file: its N states), and its N eigenvalues, largest modulus first
+  std::vector<std::vector<double>> monodromy;
+  std::vector<std::complex<double>> multipliers;
   bool converged = false;
   int iterations = 0;
   double residual = std::numeric_limits<double>::quiet_NaN();

@@ -23,6 +23,7 @@
 #include "analysis/variational.hpp"
 #include "core/simulator.hpp"
 #include "integrate/stepper_dispatch.hpp"
+#include "io/bad_input.hpp"
 #include "io/scene.hpp"
 
 namespace impactlab {
@@ -36,6 +37,16 @@ struct CrossingTrace {
   };
   std::vector<Crossing> crossings;
 };
+
+// The forcing frequency of a system (rad/s): parameters().omega of the
+// built-in oscillators, forcing_frequency() of a model file's.
+template <class System>
+double forcing_omega_of(const System& system) {
+  if constexpr (requires { system.forcing_frequency(); })
+    return system.forcing_frequency();
+  else
+    return system.parameters().omega;
+}
 
 template <class Base>
 constexpr bool affine_flow_of() {
@@ -53,6 +64,7 @@ class SuppressedContacts {
   using Mode = typename Base::Mode;
   static constexpr std::size_t max_witnesses = Base::max_witnesses;
   static constexpr bool affine_flow = affine_flow_of<Base>();
+  static constexpr std::size_t tangent_dimension = tangent_dimension_of<Base>;
 
   SuppressedContacts(const Base& base, Mode flight_mode, ContactWindow window, CrossingTrace* trace)
       : base_(base), flight_mode_(flight_mode), window_(window), trace_(trace) {}
@@ -83,17 +95,18 @@ class SuppressedContacts {
   {
     base_.exact_flow(mode, x0, t0, t, x);
   }
-  void jacobian(Mode mode, const State& x, double t, TangentMatrix& j) const {
+  void jacobian(Mode mode, const State& x, double t, TangentMatrixOf<tangent_dimension>& j) const {
     base_.jacobian(mode, x, t, j);
   }
-  [[nodiscard]] TangentVector witness_gradient(Mode mode, std::size_t k, const State& x,
-                                               double t) const {
-    if (suppressed(mode, k, t)) return {0.0, 0.0};
+  [[nodiscard]] TangentVectorOf<tangent_dimension> witness_gradient(Mode mode, std::size_t k,
+                                                                    const State& x,
+                                                                    double t) const {
+    if (suppressed(mode, k, t)) return {};
     return base_.witness_gradient(mode, k, x, t);
   }
-  [[nodiscard]] ResetJacobian reset_jacobian(Mode mode, std::size_t k, CrossingKind crossing,
-                                             const State& x, double t,
-                                             const Transition<State, Mode>& after) const {
+  [[nodiscard]] ResetJacobianOf<tangent_dimension> reset_jacobian(
+      Mode mode, std::size_t k, CrossingKind crossing, const State& x, double t,
+      const Transition<State, Mode>& after) const {
     return base_.reset_jacobian(mode, k, crossing, x, t, after);
   }
   [[nodiscard]] bool pinned(Mode mode) const { return base_.pinned(mode); }
@@ -186,8 +199,8 @@ void note_lowest_flight_gap(const Samples& samples, const CrossingTrace& trace, 
   }
 }
 
-// The problem for p ↦ make_system(p) (a System whose parameters().omega is
-// the forcing frequency), section ωt ≡ phase, period n, from flight mode.
+// The problem for p ↦ make_system(p) (forcing_omega_of gives its forcing
+// frequency), section ωt ≡ phase, period n, from flight mode.
 template <HasJacobian System, class MakeSystem>
 ContinuationProblem section_map_problem(MakeSystem make_system, typename System::Mode flight_mode,
                                         const FlowSetup& setup, double phase, int period,
@@ -195,6 +208,7 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
   using Mode = typename System::Mode;
   using Wrapped = SuppressedContacts<System>;
   using Tangent = Variational<Wrapped>;
+  constexpr std::size_t n = tangent_dimension_of<System>;  // the OrbitPoint's components
   constexpr int samples_per_period = 96;
   struct Shared {
     MakeSystem make_system;
@@ -208,11 +222,12 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
   ContinuationProblem problem;
   problem.forcing_period_at_p = period * 2.0 * std::numbers::pi / forcing_omega_at_start;
   problem.phase = phase;
+  problem.dimension = n;
   problem.evaluate = [shared](const OrbitPoint& x, double p, double section_phase, bool detailed,
                               const ContactWindow& suppressed) {
     OrbitEvaluation result;
     const System system = shared->make_system(p);
-    const double omega = system.parameters().omega;
+    const double omega = forcing_omega_of(system);
     const double t0 = section_phase / omega;
     const double span = shared->period * 2.0 * std::numbers::pi / omega;
     CrossingTrace trace;
@@ -222,8 +237,7 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
     const Wrapped wrapped(system, shared->flight_mode, window, &trace);
     const Tangent tangent(wrapped);
     typename System::State x0{};
-    x0[0] = x[0];
-    x0[1] = x[1];
+    std::copy_n(x.begin(), n, x0.begin());
     EventLog log(true);
     const int sample_count = detailed ? samples_per_period * shared->period - 1 : 0;
     GapSampler<System> sampler(system, shared->flight_mode, t0, span / (sample_count + 1),
@@ -236,9 +250,11 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
         });
     if (run.termination != Termination::completed || run.mode != shared->flight_mode) return result;
     const auto state = Tangent::base_state(run.state);
-    result.completed = std::isfinite(state[0]) && std::isfinite(state[1]);
-    result.image = {state[0], state[1]};
-    result.monodromy = Tangent::fundamental_matrix(run.state);
+    result.completed = std::all_of(state.begin(), state.begin() + n,
+                                   [](double component) { return std::isfinite(component); });
+    result.image.assign(state.begin(), state.begin() + n);
+    for (const auto& row : Tangent::fundamental_matrix(run.state))
+      result.monodromy.emplace_back(row.begin(), row.end());
     result.span = span;
     result.omega = omega;
     note_events(log.records().begin(), log.records().end(), t0, result);
@@ -256,14 +272,13 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
                             const ContactWindow& suppressed, double t) {
     GapSample sample;
     const System system = shared->make_system(p);
-    const double t0 = section_phase / system.parameters().omega;
+    const double t0 = section_phase / forcing_omega_of(system);
     ContactWindow window = suppressed;
     window.from += t0;
     window.to += t0;
     const Wrapped wrapped(system, shared->flight_mode, window, nullptr);
     typename System::State x0{};
-    x0[0] = x[0];
-    x0[1] = x[1];
+    std::copy_n(x.begin(), n, x0.begin());
     EventLog log(false);
     const auto run = with_stepper<Wrapped>(
         shared->setup.method, stepper_settings(wrapped, shared->setup), [&](auto& stepper) {
@@ -283,13 +298,12 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
   problem.transport = [shared](const OrbitPoint& x, double p, double from,
                                double to) -> std::optional<OrbitPoint> {
     const System system = shared->make_system(p);
-    const double omega = system.parameters().omega;
+    const double omega = forcing_omega_of(system);
     const double shift = std::remainder(to - from, 2.0 * std::numbers::pi);
     const double t0 = from / omega;
     const double t1 = t0 + (shift < 0.0 ? shift + 2.0 * std::numbers::pi : shift) / omega;
     typename System::State x0{};
-    x0[0] = x[0];
-    x0[1] = x[1];
+    std::copy_n(x.begin(), n, x0.begin());
     EventLog log(false);
     const auto run = with_stepper<System>(
         shared->setup.method, stepper_settings(system, shared->setup), [&](auto& stepper) {
@@ -297,7 +311,7 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
                           loop_options(shared->setup), log);
         });
     if (run.termination != Termination::completed) return std::nullopt;
-    return OrbitPoint{run.state[0], run.state[1]};
+    return OrbitPoint(run.state.begin(), run.state.begin() + n);
   };
   return problem;
 }
@@ -734,13 +748,23 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
     Scene start_scene = scene;
     start_scene.values[job.parameter] = job.from;
     const System start_system = system_at(start_scene);
-    const double omega = start_system.parameters().omega;
+    const double omega = forcing_omega_of(start_system);
     const FlowSetup setup = flow_setup(scene);
     double wall_q = 0.0;  // the impact section: q on the wall at the start (a guess)
     ContinuationRequest request = job.numerics;
     request.from = job.from;
     request.to = job.to;
+    constexpr std::size_t n = tangent_dimension_of<System>;
+    result.dimension = n;
+    // the impact section's state is (phase, rate before the impact): one
+    // degree of freedom
+    if (job.impact_wall != 0 && n != 2)
+      throw BadInput("--section", "impact:" + std::to_string(job.impact_wall),
+                     "the impact section takes a one-degree-of-freedom orbit; use the strobe");
     if (job.has_start) {
+      if (job.start.size() != n)
+        throw BadInput("start", std::to_string(job.start.size()) + " numbers",
+                       "expected " + std::to_string(n) + " (the orbit's state on the section)");
       request.start = job.start;
     } else {
       const double forcing_period = 2.0 * std::numbers::pi / omega;
@@ -755,7 +779,7 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
             return simulate(start_system, stepper, initial_state, flight_mode, t0, t_section,
                             loop_options(setup), log);
           });
-      request.start = {transient.state[0], transient.state[1]};
+      request.start.assign(transient.state.begin(), transient.state.begin() + n);
       if (job.impact_wall != 0) {
         // on the impact section: the transient's next impact with the wall
         const auto impact = first_wall_impact(start_system, transient.state, transient.mode,
@@ -817,13 +841,14 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
       const ContinuationProblem problem = problem_for(period);
       const OrbitEvaluation at = problem.evaluate(doubling_point.state, doubling_point.parameter,
                                                   job.phase, false, {});
-      const OrbitPoint v = eigenvector_for(at.monodromy, -1.0);
+      std::vector<double> direction = eigenvector_for(at.monodromy, -1.0);
+      direction.push_back(0.0);  // dp = 0
       period *= 2;
       ContinuationRequest doubled = request;
       doubled.from = doubling_point.parameter;
       result.branches.push_back(
           {period, continue_branch_from(problem_for(period), doubled, doubling_point.state,
-                                        doubling_point.parameter, {v[0], v[1], 0.0})});
+                                        doubling_point.parameter, direction)});
     }
     if (job.impact_wall != 0) {
       // the impact phase reported in [0, 2π) (the branch runs on it unreduced)

@@ -52,8 +52,8 @@ PeriodicResult run_periodic(const System& system, const typename System::State& 
                                              request.max_iterations, request.tolerance);
     result.state.assign(orbit.state.begin(), orbit.state.end());
     result.mode = static_cast<int>(orbit.mode);
-    result.monodromy = orbit.monodromy;
-    result.multipliers = orbit.multipliers;
+    for (const auto& row : orbit.monodromy) result.monodromy.emplace_back(row.begin(), row.end());
+    result.multipliers.assign(orbit.multipliers.begin(), orbit.multipliers.end());
     result.converged = orbit.converged;
     result.iterations = orbit.iterations;
     result.residual = orbit.residual;

@@ -6,7 +6,8 @@
 // For an event h(x, t) = 0 with reset x⁺ = g(x⁻, t):
 //     S = G + (f⁺ − G f⁻ − ∂g/∂t) ∇hᵀ / ḣ,    ḣ = ∇h · f⁻ + ∂h/∂t
 // with G = ∂g/∂x, f⁻ and f⁺ the vector fields of the modes before and after,
-// all on the tangent space (q, q̇). ḣ is the witness's rate along the flow
+// all on the system's tangent space (core/has_jacobian.hpp: (q, q̇), or a
+// model file's N states). ḣ is the witness's rate along the flow
 // (WitnessSample::rate), so the explicit time dependence of a moving wall is
 // in it. References: Aizerman & Gantmacher (1958); Müller (1995), Chaos,
 // Solitons & Fractals 5(9); Leine & Nijmeijer, Dynamics and Bifurcations of
@@ -25,39 +26,42 @@
 namespace impactlab {
 
 template <HasJacobian System>
-TangentMatrix saltation_matrix(const System& system, typename System::Mode mode_before,
+TangentMatrixOf<tangent_dimension_of<System>> saltation_matrix(const System& system, typename System::Mode mode_before,
                                std::size_t witness, CrossingKind crossing,
                                const typename System::State& x_before, double t,
                                const Transition<typename System::State, typename System::Mode>&
                                    after) {
-  const TangentMatrix identity{{{1.0, 0.0}, {0.0, 1.0}}};
-  if (crossing == CrossingKind::grazing || after.stop) return identity;
-  const ResetJacobian reset =
+  constexpr std::size_t n = tangent_dimension_of<System>;
+  using Matrix = TangentMatrixOf<n>;
+  if (crossing == CrossingKind::grazing || after.stop) return identity_reset<n>().state;
+  const ResetJacobianOf<n> reset =
       system.reset_jacobian(mode_before, witness, crossing, x_before, t, after);
-  if (reset.collapses) return TangentMatrix{};
+  if (reset.collapses) return Matrix{};
 
   const WitnessSample h = system.witness(mode_before, witness, x_before, t);
   if (h.rate == 0.0) return reset.state;
   typename System::State f_before{}, f_after{};
   system.rhs(mode_before, x_before, f_before, t);
   system.rhs(after.mode, after.state, f_after, t);
-  const TangentVector gradient = system.witness_gradient(mode_before, witness, x_before, t);
+  const TangentVectorOf<n> gradient =
+      system.witness_gradient(mode_before, witness, x_before, t);
 
-  TangentMatrix s = reset.state;
-  for (std::size_t i = 0; i < tangent_dimension; ++i) {
+  Matrix s = reset.state;
+  for (std::size_t i = 0; i < n; ++i) {
     // (f⁺ − G f⁻ − ∂g/∂t)_i
     double jump = f_after[i] - reset.time[i];
-    for (std::size_t j = 0; j < tangent_dimension; ++j) jump -= reset.state[i][j] * f_before[j];
-    for (std::size_t j = 0; j < tangent_dimension; ++j) s[i][j] += jump * gradient[j] / h.rate;
+    for (std::size_t j = 0; j < n; ++j) jump -= reset.state[i][j] * f_before[j];
+    for (std::size_t j = 0; j < n; ++j) s[i][j] += jump * gradient[j] / h.rate;
   }
   return s;
 }
 
-inline TangentMatrix multiply(const TangentMatrix& a, const TangentMatrix& b) {
-  TangentMatrix c{};
-  for (std::size_t i = 0; i < tangent_dimension; ++i)
-    for (std::size_t j = 0; j < tangent_dimension; ++j)
-      for (std::size_t k = 0; k < tangent_dimension; ++k) c[i][j] += a[i][k] * b[k][j];
+template <std::size_t N>
+TangentMatrixOf<N> multiply(const TangentMatrixOf<N>& a, const TangentMatrixOf<N>& b) {
+  TangentMatrixOf<N> c{};
+  for (std::size_t i = 0; i < N; ++i)
+    for (std::size_t j = 0; j < N; ++j)
+      for (std::size_t k = 0; k < N; ++k) c[i][j] += a[i][k] * b[k][j];
   return c;
 }
 

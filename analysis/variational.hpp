@@ -1,8 +1,9 @@
 // The variational equations of a hybrid system as a hybrid system itself, so
 // that the one event loop (core/simulator.hpp) integrates them unchanged.
 //
-// State: the base system's state, then Φ, the 2 × 2 fundamental matrix on the
-// tangent space (q, q̇), row-major. Between events Φ' = J(x, t) Φ with J the
+// State: the base system's state, then Φ, the N × N fundamental matrix on the
+// base's tangent space (core/has_jacobian.hpp: (q, q̇), or a model file's N
+// states), row-major. Between events Φ' = J(x, t) Φ with J the
 // mode's Jacobian; at an event Φ⁺ = S Φ⁻ with S the saltation matrix
 // (analysis/saltation.hpp) of the base system's transition. Starting from
 // Φ = I at t0, Φ at t is the Jacobian of the event-driven flow from t0 to t.
@@ -24,7 +25,9 @@ class Variational {
   using BaseState = typename Base::State;
   using Mode = typename Base::Mode;
   static constexpr std::size_t base_size = std::tuple_size_v<BaseState>;
-  static constexpr std::size_t matrix_size = tangent_dimension * tangent_dimension;
+  static constexpr std::size_t dimension = tangent_dimension_of<Base>;  // N
+  using Matrix = TangentMatrixOf<dimension>;
+  static constexpr std::size_t matrix_size = dimension * dimension;
   using State = std::array<double, base_size + matrix_size>;
   static constexpr std::size_t max_witnesses = Base::max_witnesses;
 
@@ -38,8 +41,7 @@ class Variational {
     State v{};
     std::copy(x.begin(), x.end(), v.begin());
     const double identity = base_.pinned(mode) ? 0.0 : 1.0;
-    v[base_size] = identity;
-    v[base_size + 3] = identity;
+    for (std::size_t i = 0; i < dimension; ++i) v[base_size + i * dimension + i] = identity;
     return v;
   }
   static BaseState base_state(const State& v) {
@@ -47,8 +49,11 @@ class Variational {
     std::copy_n(v.begin(), base_size, x.begin());
     return x;
   }
-  static TangentMatrix fundamental_matrix(const State& v) {
-    return {{{v[base_size], v[base_size + 1]}, {v[base_size + 2], v[base_size + 3]}}};
+  static Matrix fundamental_matrix(const State& v) {
+    Matrix phi;
+    for (std::size_t i = 0; i < dimension; ++i)
+      for (std::size_t j = 0; j < dimension; ++j) phi[i][j] = v[base_size + i * dimension + j];
+    return phi;
   }
 
   [[nodiscard]] double max_step() const { return base_.max_step(); }
@@ -58,14 +63,9 @@ class Variational {
     BaseState dxdt;
     base_.rhs(mode, x, dxdt, t);
     std::copy(dxdt.begin(), dxdt.end(), dvdt.begin());
-    TangentMatrix j;
+    Matrix j;
     base_.jacobian(mode, x, t, j);
-    const TangentMatrix phi = fundamental_matrix(v);
-    const TangentMatrix rate = multiply(j, phi);
-    dvdt[base_size] = rate[0][0];
-    dvdt[base_size + 1] = rate[0][1];
-    dvdt[base_size + 2] = rate[1][0];
-    dvdt[base_size + 3] = rate[1][1];
+    put_matrix(multiply(j, fundamental_matrix(v)), dvdt);
   }
 
   [[nodiscard]] std::size_t witness_count(Mode mode) const { return base_.witness_count(mode); }
@@ -80,7 +80,7 @@ class Variational {
                                    const State& v, double t, EventLog& log) const {
     const BaseState x = base_state(v);
     const auto after = base_.on_event(mode, k, crossing, x, t, log);
-    const TangentMatrix phi =
+    const Matrix phi =
         multiply(saltation_matrix(base_, mode, k, crossing, x, t, after), fundamental_matrix(v));
     return {with_matrix(after.state, phi), after.mode, after.time, after.stop};
   }
@@ -92,25 +92,28 @@ class Variational {
     requires HasExactFlow<Base> && Base::affine_flow
   {
     const BaseState x0 = base_state(v0);
-    BaseState x, shifted_q = x0, shifted_qdot = x0, moved_q, moved_qdot;
-    shifted_q[0] += 1.0;
-    shifted_qdot[1] += 1.0;
+    BaseState x;
     base_.exact_flow(mode, x0, t0, t, x);
-    base_.exact_flow(mode, shifted_q, t0, t, moved_q);
-    base_.exact_flow(mode, shifted_qdot, t0, t, moved_qdot);
-    const TangentMatrix flow_jacobian{{{moved_q[0] - x[0], moved_qdot[0] - x[0]},
-                                       {moved_q[1] - x[1], moved_qdot[1] - x[1]}}};
+    Matrix flow_jacobian;
+    for (std::size_t column = 0; column < dimension; ++column) {
+      BaseState shifted = x0, moved;
+      shifted[column] += 1.0;
+      base_.exact_flow(mode, shifted, t0, t, moved);
+      for (std::size_t row = 0; row < dimension; ++row)
+        flow_jacobian[row][column] = moved[row] - x[row];
+    }
     v = with_matrix(x, multiply(flow_jacobian, fundamental_matrix(v0)));
   }
 
  private:
-  static State with_matrix(const BaseState& x, const TangentMatrix& phi) {
+  static void put_matrix(const Matrix& phi, State& v) {
+    for (std::size_t i = 0; i < dimension; ++i)
+      for (std::size_t j = 0; j < dimension; ++j) v[base_size + i * dimension + j] = phi[i][j];
+  }
+  static State with_matrix(const BaseState& x, const Matrix& phi) {
     State v{};
     std::copy(x.begin(), x.end(), v.begin());
-    v[base_size] = phi[0][0];
-    v[base_size + 1] = phi[0][1];
-    v[base_size + 2] = phi[1][0];
-    v[base_size + 3] = phi[1][1];
+    put_matrix(phi, v);
     return v;
   }
 

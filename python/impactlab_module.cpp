@@ -553,19 +553,21 @@ py::dict bench_binding(const Scene& scene, std::vector<std::string> methods,
 // per branch, the columns of branch.csv; all branches' bifurcation points as
 // the rows of points.csv.
 // One two-parameter curve as columns (the rows of curve.csv that carry its
-// branch number).
+// branch number); states and multipliers N = `dimension` wide.
 py::dict curve_columns(const BranchCurve& curve, const std::string& parameter,
-                       const std::string& parameter2) {
-  std::vector<double> p1, p2, q, qdot, graze_time;
-  std::vector<std::complex<double>> multiplier1, multiplier2;
+                       const std::string& parameter2, std::size_t dimension) {
+  std::vector<double> p1, p2, graze_time;
+  std::vector<std::vector<double>> states(dimension);
+  std::vector<std::vector<std::complex<double>>> multipliers(dimension);
   std::vector<int> impacts, newton_iterations;
   for (const CurvePoint& p : curve.curve.curve) {
     p1.push_back(p.p1);
     p2.push_back(p.p2);
-    q.push_back(p.state[0]);
-    qdot.push_back(p.state[1]);
-    multiplier1.push_back(p.multipliers[0]);
-    multiplier2.push_back(p.multipliers[1]);
+    for (std::size_t k = 0; k < dimension; ++k) {
+      states[k].push_back(k < p.state.size() ? p.state[k] : NAN);
+      multipliers[k].push_back(k < p.multipliers.size() ? p.multipliers[k]
+                                                        : std::complex<double>(NAN, NAN));
+    }
     graze_time.push_back(p.graze_time);
     impacts.push_back(p.impacts);
     newton_iterations.push_back(p.newton_iterations);
@@ -579,10 +581,11 @@ py::dict curve_columns(const BranchCurve& curve, const std::string& parameter,
   one["map_evaluations"] = curve.curve.map_evaluations;
   one[py::str(parameter)] = owning_array(std::move(p1));
   one[py::str(parameter2)] = owning_array(std::move(p2));
-  one["q"] = owning_array(std::move(q));
-  one["qdot"] = owning_array(std::move(qdot));
-  one["multiplier1"] = owning_array(std::move(multiplier1));
-  one["multiplier2"] = owning_array(std::move(multiplier2));
+  for (std::size_t k = 0; k < dimension; ++k) {
+    const std::string state = k == 0 ? "q" : k == 1 ? "qdot" : "state" + std::to_string(k + 1);
+    one[py::str(state)] = owning_array(std::move(states[k]));
+    one[py::str("multiplier" + std::to_string(k + 1))] = owning_array(std::move(multipliers[k]));
+  }
   one["graze_time"] = owning_array(std::move(graze_time));
   one["impacts"] = owning_array(std::move(impacts));
   one["newton_iterations"] = owning_array(std::move(newton_iterations));
@@ -601,9 +604,9 @@ py::dict continue_binding(const Scene& scene, const std::string& parameter, doub
     throw BadInput("max_points", std::to_string(max_points), "expected 2 to 1000000");
   if (!(transient >= 0.0 && transient <= 1e9))
     throw BadInput("transient", std::to_string(transient), "expected 0 to 1e9");
-  if (start && start->size() != 2)
+  if (start && start->size() < 2)
     throw BadInput("start", std::to_string(start->size()) + " numbers",
-                   "expected Q,QDOT (two numbers)");
+                   "expected Q,QDOT (a model file: its N states)");
   ContinuationJob job;
   job.parameter = parameter;
   job.from = from;
@@ -623,7 +626,7 @@ py::dict continue_binding(const Scene& scene, const std::string& parameter, doub
   job.doublings = switch_doubling ? 3 : 0;  // the CLI's --switch: the cascade, up to 8n
   if (start) {
     job.has_start = true;
-    job.start = {(*start)[0], (*start)[1]};
+    job.start = *start;
   }
   job.numerics.max_points = max_points;
   job.numerics.tolerance = tolerance;
@@ -634,25 +637,43 @@ py::dict continue_binding(const Scene& scene, const std::string& parameter, doub
   const ContinuationJobResult result = relay.run([&] { return continue_orbit(scene, job); });
   relay(1.0);
 
+  // the columns of the states (q, qdot, state3 ... stateN) and of the N
+  // multipliers (multiplier1 ... multiplierN), as in the CLI's CSV files
+  const std::size_t dimension = result.dimension;
+  const auto state_name = [](std::size_t k) {
+    return k == 0 ? std::string("q") : k == 1 ? std::string("qdot") : "state" + std::to_string(k + 1);
+  };
+  using Columns = std::vector<std::vector<double>>;
+  using ComplexColumns = std::vector<std::vector<std::complex<double>>>;
+  const auto put_states = [&](const OrbitPoint& state, Columns& columns) {
+    for (std::size_t k = 0; k < dimension; ++k)
+      columns[k].push_back(k < state.size() ? state[k] : NAN);
+  };
+  const auto put_multipliers = [&](const std::vector<std::complex<double>>& multipliers,
+                                   ComplexColumns& columns) {
+    for (std::size_t k = 0; k < dimension; ++k)
+      columns[k].push_back(k < multipliers.size() ? multipliers[k]
+                                                  : std::complex<double>(NAN, NAN));
+  };
   py::list branches;
   std::vector<std::string> type, note;
-  std::vector<double> point_parameter, point_q, point_qdot, error_estimate, graze_time;
-  std::vector<std::complex<double>> point_multiplier1, point_multiplier2;
+  std::vector<double> point_parameter, error_estimate, graze_time;
+  Columns point_states(dimension);
+  ComplexColumns point_multipliers(dimension);
   std::vector<int> point_period, point_branch, located, graze_witness;
   for (std::size_t b = 0; b < result.branches.size(); ++b) {
     const ContinuedBranch& continued = result.branches[b];
-    std::vector<double> value, q, qdot, min_impact_speed, min_flight_gap;
+    std::vector<double> value, min_impact_speed, min_flight_gap;
+    Columns states(dimension);
     std::vector<int> impacts, contact_phases, stable, newton_iterations;
-    std::vector<std::complex<double>> multiplier1, multiplier2;
+    ComplexColumns multipliers(dimension);
     for (const BranchPoint& p : continued.result.branch) {
       value.push_back(p.parameter);
-      q.push_back(p.state[0]);
-      qdot.push_back(p.state[1]);
+      put_states(p.state, states);
       impacts.push_back(p.impacts);
       contact_phases.push_back(p.contact_phases);
       stable.push_back(p.stable ? 1 : 0);
-      multiplier1.push_back(p.multipliers[0]);
-      multiplier2.push_back(p.multipliers[1]);
+      put_multipliers(p.multipliers, multipliers);
       // branch.csv leaves an undefined speed or gap empty (NaN here)
       min_impact_speed.push_back(std::isfinite(p.min_impact_speed) ? p.min_impact_speed : NAN);
       min_flight_gap.push_back(std::isfinite(p.min_flight_gap) ? p.min_flight_gap : NAN);
@@ -664,13 +685,13 @@ py::dict continue_binding(const Scene& scene, const std::string& parameter, doub
     one["stop_detail"] = continued.result.stop_detail;
     one["map_evaluations"] = continued.result.map_evaluations;
     one[py::str(parameter)] = owning_array(std::move(value));
-    one["q"] = owning_array(std::move(q));
-    one["qdot"] = owning_array(std::move(qdot));
+    for (std::size_t k = 0; k < dimension; ++k)
+      one[py::str(state_name(k))] = owning_array(std::move(states[k]));
     one["impacts"] = owning_array(std::move(impacts));
     one["contact_phases"] = owning_array(std::move(contact_phases));
     one["stable"] = owning_array(std::move(stable));
-    one["multiplier1"] = owning_array(std::move(multiplier1));
-    one["multiplier2"] = owning_array(std::move(multiplier2));
+    for (std::size_t k = 0; k < dimension; ++k)
+      one[py::str("multiplier" + std::to_string(k + 1))] = owning_array(std::move(multipliers[k]));
     one["min_impact_speed"] = owning_array(std::move(min_impact_speed));
     one["min_flight_gap"] = owning_array(std::move(min_flight_gap));
     one["newton_iterations"] = owning_array(std::move(newton_iterations));
@@ -678,12 +699,10 @@ py::dict continue_binding(const Scene& scene, const std::string& parameter, doub
     for (const BifurcationPoint& p : continued.result.points) {
       type.push_back(p.type);
       point_parameter.push_back(p.parameter);
-      point_q.push_back(p.state[0]);
-      point_qdot.push_back(p.state[1]);
+      put_states(p.state, point_states);
       point_period.push_back(continued.period);
       point_branch.push_back(static_cast<int>(b));
-      point_multiplier1.push_back(p.multipliers[0]);
-      point_multiplier2.push_back(p.multipliers[1]);
+      put_multipliers(p.multipliers, point_multipliers);
       error_estimate.push_back(p.error_estimate);
       located.push_back(p.located ? 1 : 0);
       graze_time.push_back(p.graze_time);
@@ -694,12 +713,13 @@ py::dict continue_binding(const Scene& scene, const std::string& parameter, doub
   py::dict points;
   points["type"] = py::cast(type);
   points[py::str(parameter)] = owning_array(std::move(point_parameter));
-  points["q"] = owning_array(std::move(point_q));
-  points["qdot"] = owning_array(std::move(point_qdot));
+  for (std::size_t k = 0; k < dimension; ++k)
+    points[py::str(state_name(k))] = owning_array(std::move(point_states[k]));
   points["period"] = owning_array(std::move(point_period));
   points["branch"] = owning_array(std::move(point_branch));
-  points["multiplier1"] = owning_array(std::move(point_multiplier1));
-  points["multiplier2"] = owning_array(std::move(point_multiplier2));
+  for (std::size_t k = 0; k < dimension; ++k)
+    points[py::str("multiplier" + std::to_string(k + 1))] =
+        owning_array(std::move(point_multipliers[k]));
   points["error_estimate"] = owning_array(std::move(error_estimate));
   points["located"] = owning_array(std::move(located));
   points["graze_time"] = owning_array(std::move(graze_time));
@@ -716,9 +736,10 @@ py::dict continue_binding(const Scene& scene, const std::string& parameter, doub
     py::list curves;
     if (result.has_curve)
       curves.append(curve_columns({0, period, true, result.curve, result.curve_note}, parameter,
-                                  parameter2));
+                                  parameter2, dimension));
     for (const BranchCurve& doubled : result.doubled_curves)
-      if (doubled.has_curve) curves.append(curve_columns(doubled, parameter, parameter2));
+      if (doubled.has_curve)
+        curves.append(curve_columns(doubled, parameter, parameter2, dimension));
     out["curves"] = curves;
     out["curve_note"] = result.has_curve ? std::string() : result.curve_note;
   }

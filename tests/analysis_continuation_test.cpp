@@ -180,7 +180,7 @@ ContinuationJobResult continue_scene(const Scene& scene, const std::string& key,
   job.doublings = doublings;
   if (start) {
     job.has_start = true;
-    job.start = *start;
+    job.start.assign(start->begin(), start->end());
   }
   return impactlab::continue_orbit(scene, job);
 }
@@ -616,8 +616,8 @@ TEST(Continuation, NeimarkSackerOfARotatingMapAtItsClosedForm) {
     e.completed = true;
     e.image = {c[0] + rho * (std::cos(theta) * u - std::sin(theta) * v),
                c[1] + rho * (std::sin(theta) * u + std::cos(theta) * v)};
-    e.monodromy = {{{rho * std::cos(theta), -rho * std::sin(theta)},
-                    {rho * std::sin(theta), rho * std::cos(theta)}}};
+    e.monodromy = {{rho * std::cos(theta), -rho * std::sin(theta)},
+                   {rho * std::sin(theta), rho * std::cos(theta)}};
     e.span = two_pi;
     e.omega = 1.0;
     return e;
@@ -667,7 +667,8 @@ TEST(CurveContinuation, BouncingBallPeriodDoublingCurveInAmplitudeAndRestitution
   const Scene scene = impactlab::load_scene("bouncing_ball");  // g 9.81, ω 30, r 0.8
   ContinuationJob job = curve_job("A", 0.0112, 0.02, "r", 0.8, 0.5, "period_doubling");
   job.has_start = true;
-  job.start = bouncing_ball_start(9.81, 30.0, 0.8, 0.0112);
+  const auto start = bouncing_ball_start(9.81, 30.0, 0.8, 0.0112);
+  job.start.assign(start.begin(), start.end());
   const auto result = impactlab::continue_orbit(scene, job);
   ASSERT_TRUE(result.has_curve) << result.curve_note;
   const auto& curve = result.curve;
@@ -819,7 +820,8 @@ TEST(CurveContinuation, NoPointOfTheTypeOnTheBranchGivesNoCurve) {
   const Scene scene = linear_impact_scene(o);
   ContinuationJob job = curve_job("omega", 3.0, 4.0, "r", 0.8, 0.6, "fold");  // no fold up to 7
   job.has_start = true;
-  job.start = PeriodOneOrbit(o, 3.0).section_state();
+  const auto start = PeriodOneOrbit(o, 3.0).section_state();
+  job.start.assign(start.begin(), start.end());
   const auto result = impactlab::continue_orbit(scene, job);
   ASSERT_EQ(result.branches.at(0).result.stop_reason, "end_of_range");
   EXPECT_FALSE(result.has_curve);

@@ -1,12 +1,11 @@
 // A model section's hybrid system (core/hybrid_system.hpp): the compiled
 // functions of oscillators/model_file/compiled_model.hpp behind the same
 // interface as a hand-written oscillator, so that the event loop, sections,
-// sweeps and (for one degree of freedom) saltation, Floquet and Lyapunov run
-// it unchanged.
+// sweeps, saltation, Floquet, Lyapunov and continuation run it unchanged.
 //
 // N, the number of states, is fixed at compile time so that the state is a
 // std::array and the loop allocates nothing; the binding instantiates N = 2
-// and N = 4. Modes: free flight, and one sticking mode per wall that has one.
+// and N = 4. The tangent space of the analyses is all N states. Modes: free flight, and one sticking mode per wall that has one.
 // Events per wall k:
 //   free flight, the witness h_k crosses zero in its direction: an impact,
 //     x⁺ from the wall's reset; with a sticking mode, the impacts that follow
@@ -19,6 +18,7 @@
 // events.csv's q and qdot are the first two states.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -54,6 +54,7 @@ class ModelSystem {
   using State = std::array<double, N>;
   using Mode = ModelMode;
   static constexpr std::size_t max_witnesses = 6;
+  static constexpr std::size_t tangent_dimension = N;  // core/has_jacobian.hpp: every state
   static constexpr Mode free_mode{0};
 
   // parameters: values in the model's order; accumulation: what an
@@ -117,51 +118,43 @@ class ModelSystem {
     return {released, free_mode, t, false};
   }
 
-  // --- linearisation (core/has_jacobian.hpp), one degree of freedom only:
-  // the analyses' tangent space is (q, q̇) ---
+  // --- linearisation (core/has_jacobian.hpp) on all N states. A sticking
+  // mode pins the whole state, and an accumulation into it collapses nearby
+  // states: right for one degree of freedom only (the binding offers no
+  // analyses on N > 2 models with sticking walls) ---
 
-  void jacobian(Mode mode, const State& x, double t, TangentMatrix& j) const
-    requires(N == tangent_dimension)
-  {
+  void jacobian(Mode mode, const State& x, double t, TangentMatrixOf<N>& j) const {
     const std::size_t m = index(mode);
-    double out[N * N];
+    double out[N * N];  // row-major
     const Kernel& field = m == 0 ? model_->free_jacobian : model_->stick_jacobian[m - 1];
     field(x.data(), t, p_.data(), out);
-    j = {{{out[0], out[1]}, {out[2], out[3]}}};
+    for (std::size_t row = 0; row < N; ++row) std::copy_n(out + row * N, N, j[row].begin());
   }
 
-  [[nodiscard]] TangentVector witness_gradient(Mode mode, std::size_t k, const State& x,
-                                               double t) const
-    requires(N == tangent_dimension)
-  {
+  [[nodiscard]] TangentVectorOf<N> witness_gradient(Mode mode, std::size_t k, const State& x,
+                                                    double t) const {
     const std::size_t m = index(mode);
-    TangentVector g{};
+    TangentVectorOf<N> g{};
     const Kernel& gradient = m == 0 ? model_->gap_gradient[k] : model_->stick_force_gradient[m - 1];
     gradient(x.data(), t, p_.data(), g.data());
     return g;
   }
 
-  [[nodiscard]] bool pinned(Mode mode) const
-    requires(N == tangent_dimension)
-  {
-    return index(mode) != 0;
-  }
+  [[nodiscard]] bool pinned(Mode mode) const { return index(mode) != 0; }
 
   // An impact: ∂x⁺/∂x and ∂x⁺/∂t of the wall's reset, differentiated
   // symbolically. A grazing touch leaves the state alone; an accumulation and
   // a release collapse nearby states into one.
-  [[nodiscard]] ResetJacobian reset_jacobian(Mode mode, std::size_t k, CrossingKind crossing,
-                                             const State& x, double t,
-                                             const Transition<State, Mode>& after) const
-    requires(N == tangent_dimension)
-  {
-    if (crossing == CrossingKind::grazing) return identity_reset();
-    if (index(mode) != 0 || index(after.mode) != 0 || after.time > t) return collapsed_reset();
-    double out[N * N + N];
+  [[nodiscard]] ResetJacobianOf<N> reset_jacobian(Mode mode, std::size_t k,
+                                                  CrossingKind crossing, const State& x, double t,
+                                                  const Transition<State, Mode>& after) const {
+    if (crossing == CrossingKind::grazing) return identity_reset<N>();
+    if (index(mode) != 0 || index(after.mode) != 0 || after.time > t) return collapsed_reset<N>();
+    double out[N * N + N];  // ∂x⁺/∂x row-major, then ∂x⁺/∂t
     model_->reset_jacobian[k](x.data(), t, p_.data(), out);
-    ResetJacobian reset;
-    reset.state = {{{out[0], out[1]}, {out[2], out[3]}}};
-    reset.time = {out[4], out[5]};
+    ResetJacobianOf<N> reset;
+    for (std::size_t row = 0; row < N; ++row) std::copy_n(out + row * N, N, reset.state[row].begin());
+    std::copy_n(out + N * N, N, reset.time.begin());
     return reset;
   }
 
@@ -244,6 +237,6 @@ class ModelSystem {
 static_assert(HybridSystem<ModelSystem<2>>);
 static_assert(HasJacobian<ModelSystem<2>>);
 static_assert(HybridSystem<ModelSystem<4>>);
-static_assert(!HasJacobian<ModelSystem<4>>);
+static_assert(HasJacobian<ModelSystem<4>>);
 
 }  // namespace impactlab

@@ -388,7 +388,9 @@ def continue_(scene_=None, *, param, period=1, section="strobe", switch=False, s
     period doublings, Neimark-Sacker, grazing points, contact onset and end).
     section is strobe[:PHASE] or impact:WALL (WALL +1 or -1: the impact map,
     where q is the impact's forcing phase omega t mod 2 pi and qdot the rate
-    just before it; start is then (phase, qdot)).
+    just before it; start is then (phase, qdot)). The states and multipliers
+    are N wide: N = 2 (q, qdot), or a model file's N states (q, qdot, state3,
+    ...; multiplier1 ... multiplierN).
     param2="NAME=FROM:TO" (with curve= fold, period_doubling or grazing; else
     the first located point's type) follows that bifurcation's curve in the
     plane of the two keys from the point the branch located (the CLI's
@@ -408,7 +410,7 @@ def continue_(scene_=None, *, param, period=1, section="strobe", switch=False, s
         raise ValueError("switch = {!r}: expected True or False".format(switch))
     if start is not None:
         if not isinstance(start, (list, tuple, np.ndarray)):
-            raise ValueError("start = {!r}: expected (q, qdot)".format(start))
+            raise ValueError("start = {!r}: expected (q, qdot), or a model file's N states".format(start))
         start = [_number("start", value) for value in start]
     raw = _run(lambda callback: _impactlab.continue_(
         loaded, name, low, high, _whole("period", period, 1), section, switch, start,

@@ -57,7 +57,8 @@ PeriodicJobResult find_periodic_orbit(const Scene& scene, const PeriodicJob& job
 nlohmann::json periodic_record(const Scene& scene, const PeriodicJobResult& job) {
   const PeriodicRequest& request = job.request;
   const PeriodicResult& result = job.result;
-  const auto& m = result.monodromy;
+  nlohmann::json multipliers = nlohmann::json::array();
+  for (const auto& multiplier : result.multipliers) multipliers.push_back(complex_record(multiplier));
   return {
       {"impactlab_version", IMPACTLAB_VERSION},
       {"scene", scene_record(scene)},
@@ -76,9 +77,8 @@ nlohmann::json periodic_record(const Scene& scene, const PeriodicJobResult& job)
       {"orbit_period", result.orbit_period},
       {"state", result.state},
       {"mode", result.mode},
-      {"monodromy", {{m[0][0], m[0][1]}, {m[1][0], m[1][1]}}},
-      {"floquet_multipliers",
-       {complex_record(result.multipliers[0]), complex_record(result.multipliers[1])}},
+      {"monodromy", result.monodromy},
+      {"floquet_multipliers", multipliers},
   };
 }
 

@@ -32,7 +32,7 @@ struct ContinueOptions {
   int period = 1;
   std::string section = "strobe";
   bool switch_doubling = false;
-  std::vector<double> start;  // q,qdot
+  std::vector<double> start;  // q,qdot (a model file: its N states)
   double transient = 100.0;
   int max_points = 5000;
   double tolerance = 1e-10;
@@ -68,38 +68,68 @@ ParameterRange parse_range(const std::string& text, const std::string& option) {
   return range;
 }
 
-void write_branch_csv(AtomicFile& file, const std::string& name,
+// The columns of an orbit's state: q,qdot, then state3 ... stateN (a model
+// file's further states, in its order).
+std::string state_header(std::size_t dimension) {
+  std::string header = "q,qdot";
+  for (std::size_t k = 3; k <= dimension; ++k) header += fmt::format(",state{}", k);
+  return header;
+}
+std::string state_fields(const OrbitPoint& state, std::size_t dimension) {
+  std::string fields;
+  for (std::size_t k = 0; k < dimension; ++k)
+    fields += (k == 0 ? "" : ",") + csv_field(k < state.size() ? state[k] : NAN);
+  return fields;
+}
+// multiplier1_re,multiplier1_im,...,multiplierN_im[,multiplier1_abs,...,multiplierN_abs]
+std::string multiplier_header(std::size_t dimension, bool with_modulus) {
+  std::string header;
+  for (std::size_t k = 1; k <= dimension; ++k)
+    header += fmt::format("{}multiplier{}_re,multiplier{}_im", k == 1 ? "" : ",", k, k);
+  if (with_modulus)
+    for (std::size_t k = 1; k <= dimension; ++k) header += fmt::format(",multiplier{}_abs", k);
+  return header;
+}
+std::string multiplier_fields(const std::vector<std::complex<double>>& multipliers,
+                              std::size_t dimension, bool with_modulus) {
+  std::string fields;
+  const auto at = [&](std::size_t k) {
+    return k < multipliers.size() ? multipliers[k] : std::complex<double>(NAN, NAN);
+  };
+  for (std::size_t k = 0; k < dimension; ++k)
+    fields += (k == 0 ? "" : ",") + csv_field(at(k).real()) + ',' + csv_field(at(k).imag());
+  if (with_modulus)
+    for (std::size_t k = 0; k < dimension; ++k) fields += ',' + csv_field(std::abs(at(k)));
+  return fields;
+}
+
+void write_branch_csv(AtomicFile& file, const std::string& name, std::size_t dimension,
                       const std::vector<ContinuedBranch>& branches) {
   auto& out = file.stream();
-  out << name
-      << ",q,qdot,period,branch,impacts,contact_phases,stable,multiplier1_re,multiplier1_im,"
-         "multiplier2_re,multiplier2_im,multiplier1_abs,multiplier2_abs,min_impact_speed,"
-         "min_flight_gap,newton_iterations\n";
+  out << name << ',' << state_header(dimension)
+      << ",period,branch,impacts,contact_phases,stable," << multiplier_header(dimension, true)
+      << ",min_impact_speed,min_flight_gap,newton_iterations\n";
   for (std::size_t b = 0; b < branches.size(); ++b)
     for (const BranchPoint& p : branches[b].result.branch)
-      out << csv_field(p.parameter) << ',' << csv_field(p.state[0]) << ','
-          << csv_field(p.state[1]) << ',' << branches[b].period << ',' << b << ',' << p.impacts
-          << ',' << p.contact_phases << ',' << (p.stable ? 1 : 0) << ','
-          << csv_field(p.multipliers[0].real()) << ',' << csv_field(p.multipliers[0].imag()) << ','
-          << csv_field(p.multipliers[1].real()) << ',' << csv_field(p.multipliers[1].imag()) << ','
-          << csv_field(std::abs(p.multipliers[0])) << ',' << csv_field(std::abs(p.multipliers[1]))
+      out << csv_field(p.parameter) << ',' << state_fields(p.state, dimension) << ','
+          << branches[b].period << ',' << b << ',' << p.impacts << ',' << p.contact_phases << ','
+          << (p.stable ? 1 : 0) << ',' << multiplier_fields(p.multipliers, dimension, true)
           << ',' << csv_field(std::isfinite(p.min_impact_speed) ? p.min_impact_speed : NAN) << ','
           << csv_field(std::isfinite(p.min_flight_gap) ? p.min_flight_gap : NAN) << ','
           << p.newton_iterations << '\n';
 }
 
-void write_points_csv(AtomicFile& file, const std::string& name,
+void write_points_csv(AtomicFile& file, const std::string& name, std::size_t dimension,
                       const std::vector<ContinuedBranch>& branches) {
   auto& out = file.stream();
-  out << "type," << name
-      << ",q,qdot,period,branch,multiplier1_re,multiplier1_im,multiplier2_re,multiplier2_im,"
-         "error_estimate,located,graze_time,graze_witness,note\n";
+  out << "type," << name << ',' << state_header(dimension) << ",period,branch,"
+      << multiplier_header(dimension, false)
+      << ",error_estimate,located,graze_time,graze_witness,note\n";
   for (std::size_t b = 0; b < branches.size(); ++b)
     for (const BifurcationPoint& p : branches[b].result.points)
-      out << p.type << ',' << csv_field(p.parameter) << ',' << csv_field(p.state[0]) << ','
-          << csv_field(p.state[1]) << ',' << branches[b].period << ',' << b << ','
-          << csv_field(p.multipliers[0].real()) << ',' << csv_field(p.multipliers[0].imag()) << ','
-          << csv_field(p.multipliers[1].real()) << ',' << csv_field(p.multipliers[1].imag()) << ','
+      out << p.type << ',' << csv_field(p.parameter) << ',' << state_fields(p.state, dimension)
+          << ',' << branches[b].period << ',' << b << ','
+          << multiplier_fields(p.multipliers, dimension, false) << ','
           << csv_field(p.error_estimate) << ',' << (p.located ? 1 : 0) << ','
           << csv_field(p.graze_time) << ',' << p.graze_witness << ",\"" << p.note << "\"\n";
 }
@@ -107,20 +137,17 @@ void write_points_csv(AtomicFile& file, const std::string& name,
 // every curve, one row per point: the first branch's, then (--switch) each
 // doubled branch's, told apart by the branch and period columns
 void write_curve_csv(AtomicFile& file, const std::string& name1, const std::string& name2,
-                     const std::vector<BranchCurve>& curves) {
+                     std::size_t dimension, const std::vector<BranchCurve>& curves) {
   auto& out = file.stream();
-  out << name1 << ',' << name2
-      << ",q,qdot,multiplier1_re,multiplier1_im,multiplier2_re,multiplier2_im,multiplier1_abs,"
-         "multiplier2_abs,graze_time,impacts,newton_iterations,branch,period\n";
+  out << name1 << ',' << name2 << ',' << state_header(dimension) << ','
+      << multiplier_header(dimension, true)
+      << ",graze_time,impacts,newton_iterations,branch,period\n";
   for (const BranchCurve& curve : curves)
     for (const CurvePoint& p : curve.curve.curve)
-      out << csv_field(p.p1) << ',' << csv_field(p.p2) << ',' << csv_field(p.state[0]) << ','
-          << csv_field(p.state[1]) << ',' << csv_field(p.multipliers[0].real()) << ','
-          << csv_field(p.multipliers[0].imag()) << ',' << csv_field(p.multipliers[1].real()) << ','
-          << csv_field(p.multipliers[1].imag()) << ',' << csv_field(std::abs(p.multipliers[0]))
-          << ',' << csv_field(std::abs(p.multipliers[1])) << ',' << csv_field(p.graze_time) << ','
-          << p.impacts << ',' << p.newton_iterations << ',' << curve.branch << ',' << curve.period
-          << '\n';
+      out << csv_field(p.p1) << ',' << csv_field(p.p2) << ',' << state_fields(p.state, dimension)
+          << ',' << multiplier_fields(p.multipliers, dimension, true) << ','
+          << csv_field(p.graze_time) << ',' << p.impacts << ',' << p.newton_iterations << ','
+          << curve.branch << ',' << curve.period << '\n';
 }
 
 int run_continue(const ContinueOptions& options, const std::vector<std::string>& command_line) {
@@ -135,9 +162,6 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
     throw BadInput("--with-sweep", options.with_sweep,
                    two_parameter ? "no such file (a 2D sweep's classes.csv)"
                                  : "no such file (a sweep's bifurcation.csv)");
-  if (!options.start.empty() && options.start.size() != 2)
-    throw BadInput("--start", fmt::format("{} numbers", options.start.size()),
-                   "expected Q,QDOT (two numbers)");
 
   ContinuationJob job;
   job.parameter = range.name;
@@ -156,7 +180,7 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
   const SectionSpec section = parse_section(options.section, "--section");
   if (!options.start.empty()) {
     job.has_start = true;
-    job.start = {options.start[0], options.start[1]};
+    job.start = options.start;
   }
   job.numerics.max_points = options.max_points;
   job.numerics.tolerance = options.tolerance;
@@ -172,8 +196,8 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
   // branch.csv, points.csv, continuation.json (and the curve's files),
   // committed together
   RunFiles run_files(directory);
-  write_branch_csv(run_files.add("branch.csv"), range.name, result.branches);
-  write_points_csv(run_files.add("points.csv"), range.name, result.branches);
+  write_branch_csv(run_files.add("branch.csv"), range.name, result.dimension, result.branches);
+  write_points_csv(run_files.add("points.csv"), range.name, result.dimension, result.branches);
 
   nlohmann::json branches = nlohmann::json::array();
   for (const ContinuedBranch& branch : result.branches)
@@ -212,10 +236,13 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
                           ? "the orbit's state on the impact section: q the forcing phase "
                             "omega t mod 2 pi of the impact (rad), qdot the rate just before it"
                           : "the orbit's state on the section (main coordinate and its rate)"},
+          {"state3...", "a model file with more states: its further states, in its order"},
           {"period", "forcing periods of the orbit"},
           {"branch", "0: the first branch; k: the k-th doubled branch (--switch)"},
           {"impacts", "impacts per orbit period"},
-          {"stable", "1 if both Floquet multipliers lie inside the unit circle"},
+          {"stable", "1 if every Floquet multiplier lies inside the unit circle"},
+          {"multiplier*", "the N Floquet multipliers (N = 2, or a model file's states), "
+                          "largest modulus first"},
           {"min_flight_gap", "smallest wall gap in flight between impacts (q's unit)"},
           {"min_impact_speed", "smallest normal approach speed of an impact"}}},
         {"points.csv",
@@ -243,7 +270,8 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
                                                             : "no_start_point"},
                             {"stop_detail", curve.has_curve ? curve.curve.stop_detail : curve.note},
                             {"map_evaluations", curve.curve.map_evaluations}});
-    write_curve_csv(run_files.add("curve.csv"), range.name, range2.name, curves);
+    write_curve_csv(run_files.add("curve.csv"), range.name, range2.name, result.dimension,
+                    curves);
     const nlohmann::json curve_document = {
         {"impactlab_version", IMPACTLAB_VERSION},
         {"command", command_line},
@@ -366,8 +394,9 @@ Command add_continue_command(CLI::App& app) {
   command->add_flag("--switch", options->switch_doubling,
                     "at a period doubling, continue the doubled orbit (the cascade, up to 3 "
                     "doublings)");
-  command->add_option("--start", options->start, "Q,QDOT: the start on the section (else the "
-                                                   "transient's end); impact section: PHASE,QDOT")
+  command->add_option("--start", options->start,
+                      "Q,QDOT (a model file: its N states): the start on the section (else the "
+                      "transient's end); impact section: PHASE,QDOT")
       ->delimiter(',');
   command->add_option("--transient", options->transient, "forcing periods run for the start")
       ->check(CLI::Range(0.0, 1e9))

@@ -48,14 +48,16 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
   document["wall_time_s"] = found.wall_time;
   write_json(run_files.add("periodic.json"), document);
   run_files.commit();
-  if (!options.scene.quiet)
+  if (!options.scene.quiet) {
+    std::string multipliers;
+    for (const auto& multiplier : result.multipliers)
+      multipliers += fmt::format("{}{:.9g}{:+.9g}i", multipliers.empty() ? "" : ", ",
+                                 multiplier.real(), multiplier.imag());
     std::cout << fmt::format(
-        "{}: period-{} orbit {} after {} iterations (residual {:.3g}); multipliers {:.9g}{:+.9g}i, "
-        "{:.9g}{:+.9g}i\nwrote {}\n",
+        "{}: period-{} orbit {} after {} iterations (residual {:.3g}); multipliers {}\nwrote {}\n",
         scene.name, request.period, result.converged ? "converged" : "NOT converged",
-        result.iterations, result.residual, result.multipliers[0].real(),
-        result.multipliers[0].imag(), result.multipliers[1].real(), result.multipliers[1].imag(),
-        (directory / "periodic.json").string());
+        result.iterations, result.residual, multipliers, (directory / "periodic.json").string());
+  }
   if (result.termination != "completed")
     std::cerr << fmt::format("impactlab: run stopped early ({}) at the section time {} s\n",
                              result.termination, result.t_section);

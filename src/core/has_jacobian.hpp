@@ -2,52 +2,78 @@
 // equations, saltation matrices, Floquet multipliers and Lyapunov exponents
 // (analysis/variational.hpp, analysis/saltation.hpp).
 //
-// The tangent space is that of the mechanical state: the first two state
-// components (q, q̇). Further components (the pendulum's friction work) are
-// bookkeeping that never feeds back into the motion, so they are left out: a
-// neutral bookkeeping direction would otherwise pin the largest Lyapunov
-// exponent at zero.
+// The tangent space is that of the mechanical state: the first N state
+// components, N = S::tangent_dimension where the system declares it (a model
+// file's N states), 2 otherwise (q, q̇). Further components (the pendulum's
+// friction work) are bookkeeping that never feeds back into the motion, so
+// they are left out: a neutral bookkeeping direction would otherwise pin the
+// largest Lyapunov exponent at zero.
 #pragma once
 
 #include <array>
+#include <concepts>
 #include <cstddef>
+#include <tuple>
 
 #include "core/hybrid_system.hpp"
 
 namespace impactlab {
 
-// dimension of the tangent space (q, q̇)
-inline constexpr std::size_t tangent_dimension = 2;
+// the tangent space of a system that does not declare its own: (q, q̇)
+inline constexpr std::size_t default_tangent_dimension = 2;
 
-// A 2 × 2 matrix on the tangent space, row-major: m[row][column].
-using TangentMatrix = std::array<std::array<double, tangent_dimension>, tangent_dimension>;
-using TangentVector = std::array<double, tangent_dimension>;
+// An N × N matrix on the tangent space, row-major: m[row][column].
+template <std::size_t N>
+using TangentMatrixOf = std::array<std::array<double, N>, N>;
+template <std::size_t N>
+using TangentVectorOf = std::array<double, N>;
+// the 2-state spelling (q, q̇)
+using TangentMatrix = TangentMatrixOf<default_tangent_dimension>;
+using TangentVector = TangentVectorOf<default_tangent_dimension>;
+
+namespace detail {
+template <class S>
+constexpr std::size_t declared_tangent_dimension() {
+  if constexpr (requires { S::tangent_dimension; })
+    return S::tangent_dimension;
+  else
+    return default_tangent_dimension;
+}
+}  // namespace detail
+
+// N of a system: S::tangent_dimension, or 2.
+template <class S>
+inline constexpr std::size_t tangent_dimension_of = detail::declared_tangent_dimension<S>();
 
 // The linearisation of one event's transition x⁺ = g(x⁻, t).
-struct ResetJacobian {
-  TangentMatrix state{};  // ∂g/∂x on (q, q̇)
-  TangentVector time{};   // ∂g/∂t (the reset's explicit time dependence: a moving table)
+template <std::size_t N>
+struct ResetJacobianOf {
+  TangentMatrixOf<N> state{};  // ∂g/∂x on the tangent space
+  TangentVectorOf<N> time{};   // ∂g/∂t (the reset's explicit time dependence: a moving table)
   // The state after the event does not depend on the state before it: an
   // accumulation of impacts ending at rest on a wall, a release at a time set
   // by the forcing alone. Nearby states merge, so the saltation matrix is zero.
   bool collapses = false;
 };
+using ResetJacobian = ResetJacobianOf<default_tangent_dimension>;
 
 // The resets every impact oscillator here is made of:
 // a grazing touch (or a run stopped at the event) leaves the state alone;
-inline ResetJacobian identity_reset() {
-  ResetJacobian reset;
-  reset.state = {{{1.0, 0.0}, {0.0, 1.0}}};
+template <std::size_t N = default_tangent_dimension>
+ResetJacobianOf<N> identity_reset() {
+  ResetJacobianOf<N> reset;
+  for (std::size_t i = 0; i < N; ++i) reset.state[i][i] = 1.0;
   return reset;
 }
 // an accumulation or a release at a time set by the forcing merges nearby states;
-inline ResetJacobian collapsed_reset() {
-  ResetJacobian reset;
+template <std::size_t N = default_tangent_dimension>
+ResetJacobianOf<N> collapsed_reset() {
+  ResetJacobianOf<N> reset;
   reset.collapses = true;
   return reset;
 }
 // an impact that puts q on the constraint and sets q̇⁺ = −r q̇⁻ (+ terms in t
-// alone): ∂g/∂x = [[0, 0], [0, −r]].
+// alone): ∂g/∂x = [[0, 0], [0, −r]] (one degree of freedom).
 inline ResetJacobian restitution_reset(double restitution) {
   ResetJacobian reset;
   reset.state = {{{0.0, 0.0}, {0.0, -restitution}}};
@@ -55,16 +81,22 @@ inline ResetJacobian restitution_reset(double restitution) {
 }
 
 template <class S>
-concept HasJacobian = HybridSystem<S> &&
+concept HasJacobian =
+    HybridSystem<S> && tangent_dimension_of<S> >= 1 &&
+    tangent_dimension_of<S> <= std::tuple_size_v<typename S::State> &&
     requires(const S& system, typename S::Mode mode, std::size_t k, const typename S::State& x,
-             double t, TangentMatrix& jacobian, CrossingKind crossing,
+             double t, TangentMatrixOf<tangent_dimension_of<S>>& jacobian, CrossingKind crossing,
              const Transition<typename S::State, typename S::Mode>& after) {
-      // ∂f/∂x of the mode's vector field on (q, q̇)
+      // ∂f/∂x of the mode's vector field on the tangent space
       { system.jacobian(mode, x, t, jacobian) };
-      // ∂h/∂x of witness k on (q, q̇); its ∂h/∂t is WitnessSample::rate − ∂h/∂x · f
-      { system.witness_gradient(mode, k, x, t) } -> std::same_as<TangentVector>;
+      // ∂h/∂x of witness k on the tangent space; its ∂h/∂t is WitnessSample::rate − ∂h/∂x · f
+      {
+        system.witness_gradient(mode, k, x, t)
+      } -> std::same_as<TangentVectorOf<tangent_dimension_of<S>>>;
       // the linearisation of the transition that on_event returned as `after`
-      { system.reset_jacobian(mode, k, crossing, x, t, after) } -> std::same_as<ResetJacobian>;
+      {
+        system.reset_jacobian(mode, k, crossing, x, t, after)
+      } -> std::same_as<ResetJacobianOf<tangent_dimension_of<S>>>;
       // whether the mode pins the state to a constraint (resting on a wall or
       // table): nearby states in it are the same state, tangent vectors are zero
       { system.pinned(mode) } -> std::convertible_to<bool>;

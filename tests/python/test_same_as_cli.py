@@ -124,6 +124,28 @@ def test_periodic_equals_cli(cli):
     assert orbit.multipliers.shape == (2,)
 
 
+IMPACT_DAMPER = os.path.join(os.path.dirname(__file__), "..", "..", "oscillators", "model_file",
+                             "examples", "impact_damper.toml")
+
+
+def test_four_state_model_periodic_and_continue_equal_cli(cli):
+    # a model file's tangent space is all its states: 4 multipliers, 4 x 4 monodromy
+    out = cli("periodic", IMPACT_DAMPER, "--set", "omega=1.5")
+    orbit = impactlab.periodic(IMPACT_DAMPER, omega=1.5)
+    assert without(read_json(out / "periodic.json"), FILE_ONLY) == without(orbit.meta, FILE_ONLY)
+    assert orbit.multipliers.shape == (4,) and orbit.monodromy.shape == (4, 4)
+    out = cli("continue", IMPACT_DAMPER, "--param", "omega=1.5:1.6", "--max-points", "12")
+    result = impactlab.continue_(IMPACT_DAMPER, param="omega=1.5:1.6", max_points=12)
+    branch = read_csv(out / "branch.csv")
+    one = result.branches[0]
+    assert len(branch["omega"]) == len(one["omega"]) >= 2
+    for column in ("omega", "q", "qdot", "state3", "state4", "stable", "newton_iterations"):
+        same_numbers(branch[column], one[column])
+    for k in (1, 2, 3, 4):
+        same_numbers(branch["multiplier{}_re".format(k)], one["multiplier{}".format(k)].real)
+        same_numbers(branch["multiplier{}_im".format(k)], one["multiplier{}".format(k)].imag)
+
+
 def test_compare_equals_cli(cli):
     out = cli("compare", "jin2003", "--models", "newton,rigid", "--periods", "10")
     comparison = impactlab.compare("jin2003", models=["newton", "rigid"], periods=10)

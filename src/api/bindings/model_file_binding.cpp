@@ -59,6 +59,21 @@ typename ModelSystem<N>::State initial_state(const Scene& scene, const ModelSyst
   return x;
 }
 
+// Why a model has no linearisation the analyses may use, or empty. A
+// sticking mode pins the whole state (ModelSystem::pinned, the collapse at an
+// accumulation): right for one degree of freedom, wrong where other states
+// move on while one wall holds its mass.
+template <std::size_t N>
+std::string not_linearisable(const CompiledModel& model) {
+  if (N == 2) return {};
+  for (const auto& wall : model.walls)
+    if (wall.has_sticking)
+      return fmt::format("a {}-state model with a sticking wall: its contact phases have no "
+                         "linearisation (Floquet, Lyapunov, continuation)",
+                         N);
+  return {};
+}
+
 template <std::size_t N>
 RunOutput run_states(const Scene& scene, const RunRequest& request) {
   const ModelSystem<N> system = make_system<N>(scene);
@@ -75,6 +90,15 @@ SectionResult section_states(const Scene& scene, const SectionRequest& request) 
     mode = ModelSystem<N>::free_mode;
   };
   const auto x0 = initial_state(scene, system);
+  const std::string why_not = not_linearisable<N>(system.model());
+  if (request.lyapunov && !why_not.empty()) {
+    SectionRequest without = request;
+    without.lyapunov = false;
+    SectionResult result = run_section(system, x0, ModelSystem<N>::free_mode, scene, without,
+                                       system.forcing_frequency(), admissible);
+    result.lyapunov_note = why_not;
+    return result;
+  }
   return run_section(system, x0, ModelSystem<N>::free_mode, scene, request,
                      system.forcing_frequency(), admissible);
 }
@@ -82,15 +106,25 @@ SectionResult section_states(const Scene& scene, const SectionRequest& request) 
 template <std::size_t N>
 PeriodicResult periodic_states(const Scene& scene, const PeriodicRequest& request) {
   const ModelSystem<N> system = make_system<N>(scene);
+  if (std::string why_not = not_linearisable<N>(system.model()); !why_not.empty()) {
+    PeriodicResult result;
+    result.note = std::move(why_not);
+    return result;
+  }
   return run_periodic(system, initial_state(scene, system), ModelSystem<N>::free_mode, scene,
                       request, system.forcing_frequency());
 }
 
-// Continuation needs the Jacobians: a 2-state model has them; a 4-state one
-// gets run_continuation's "no Jacobians" note.
+// Continuation on every state of the model (the tangent space is all N);
+// refused where a sticking wall would need a contact linearisation of N > 2.
 template <std::size_t N>
 ContinuationJobResult continuation_states(const Scene& scene, const ContinuationJob& job) {
   const ModelSystem<N> system = make_system<N>(scene);
+  if (std::string why_not = not_linearisable<N>(system.model()); !why_not.empty()) {
+    ContinuationJobResult result;
+    result.note = std::move(why_not);
+    return result;
+  }
   // a given start replaces the scene's initial state (which a continued
   // parameter may have put beyond a wall)
   const auto x0 = job.has_start ? typename ModelSystem<N>::State{} : initial_state(scene, system);
