@@ -542,8 +542,9 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
     const TangentMatrix onto_section{
         {{-omega * normal[0] / approach, -omega * normal[1] / approach},
          {-f1[1] * normal[0] / approach, 1.0 - f1[1] * normal[1] / approach}}};
-    result.monodromy =
-        multiply(onto_section, multiply(Tangent::fundamental_matrix(run.state), to_start));
+    for (const auto& row :
+         multiply(onto_section, multiply(Tangent::fundamental_matrix(run.state), to_start)))
+      result.monodromy.emplace_back(row.begin(), row.end());
     result.image = {x[0] + omega * (t1 - t0) - 2.0 * std::numbers::pi * shared->period, end[1]};
     result.completed = std::isfinite(result.image[0]) && std::isfinite(result.image[1]);
     result.span = span;
@@ -750,7 +751,7 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
     const System start_system = system_at(start_scene);
     const double omega = forcing_omega_of(start_system);
     const FlowSetup setup = flow_setup(scene);
-    double wall_q = 0.0;  // the impact section: q on the wall at the start (a guess)
+    [[maybe_unused]] double wall_q = 0.0;  // the impact section: q on the wall at the start (a guess)
     ContinuationRequest request = job.numerics;
     request.from = job.from;
     request.to = job.to;
@@ -780,30 +781,35 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
                             loop_options(setup), log);
           });
       request.start.assign(transient.state.begin(), transient.state.begin() + n);
-      if (job.impact_wall != 0) {
-        // on the impact section: the transient's next impact with the wall
-        const auto impact = first_wall_impact(start_system, transient.state, transient.mode,
-                                              t_section, t_section + 20.0 * job.period * forcing_period,
-                                              job.impact_wall, setup);
-        if (!impact) return no_start(result, job, "no impact with the wall after the transient");
-        request.start = {std::fmod(omega * impact->t, 2.0 * std::numbers::pi), impact->state[1]};
-        wall_q = impact->state[0];
+      // (the impact section is built for one degree of freedom only, n = 2)
+      if constexpr (n == 2) {
+        if (job.impact_wall != 0) {
+          // on the impact section: the transient's next impact with the wall
+          const auto impact = first_wall_impact(
+              start_system, transient.state, transient.mode, t_section,
+              t_section + 20.0 * job.period * forcing_period, job.impact_wall, setup);
+          if (!impact) return no_start(result, job, "no impact with the wall after the transient");
+          request.start = {std::fmod(omega * impact->t, 2.0 * std::numbers::pi), impact->state[1]};
+          wall_q = impact->state[0];
+        }
       }
     }
     // the impact section: the wall's witness and the impacts with it per orbit
-    std::size_t wall_witness_index = 0;
-    int wall_impacts = 0;
-    if (job.impact_wall != 0) {
-      const auto witness =
-          wall_witness(start_system, flight_mode, setup, job.impact_wall, request.start, wall_q);
-      if (!witness)
-        return no_start(result, job, "the start is not on the wall, moving into it");
-      wall_witness_index = witness->first;
-      wall_q = witness->second;
-      wall_impacts = wall_impacts_per_orbit(start_system, flight_mode, setup, job.impact_wall,
-                                            wall_witness_index, wall_q, request.start, job.period);
-      if (wall_impacts == 0)
-        return no_start(result, job, "no return to the wall within the orbit's period");
+    [[maybe_unused]] std::size_t wall_witness_index = 0;
+    [[maybe_unused]] int wall_impacts = 0;
+    if constexpr (n == 2) {
+      if (job.impact_wall != 0) {
+        const auto witness =
+            wall_witness(start_system, flight_mode, setup, job.impact_wall, request.start, wall_q);
+        if (!witness)
+          return no_start(result, job, "the start is not on the wall, moving into it");
+        wall_witness_index = witness->first;
+        wall_q = witness->second;
+        wall_impacts = wall_impacts_per_orbit(start_system, flight_mode, setup, job.impact_wall,
+                                              wall_witness_index, wall_q, request.start, job.period);
+        if (wall_impacts == 0)
+          return no_start(result, job, "no return to the wall within the orbit's period");
+      }
     }
     auto problem_for = [&](int period) {
       auto make_system = [scene, parameter = job.parameter, system_at](double p) {
@@ -811,13 +817,16 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
         at.values[parameter] = p;
         return system_at(at);
       };
-      ContinuationProblem problem =
-          job.impact_wall != 0
-              ? impact_map_problem<System>(make_system, flight_mode, setup, job.impact_wall,
-                                           wall_witness_index, wall_q, period,
-                                           wall_impacts * period / job.period, omega)
-              : section_map_problem<System>(make_system, flight_mode, setup, job.phase, period,
-                                            omega);
+      ContinuationProblem problem = [&] {
+        if constexpr (n == 2) {
+          if (job.impact_wall != 0)
+            return impact_map_problem<System>(make_system, flight_mode, setup, job.impact_wall,
+                                              wall_witness_index, wall_q, period,
+                                              wall_impacts * period / job.period, omega);
+        }
+        return section_map_problem<System>(make_system, flight_mode, setup, job.phase, period,
+                                           omega);
+      }();
       for (const SceneBoundary& boundary : boundaries)
         problem.boundaries.push_back(
             {boundary.type, boundary.note,

@@ -715,7 +715,8 @@ TEST(CurveContinuation, BouncingBallPeriodTwoPeriodDoublingCurveWithSwitch) {
   const Scene scene = impactlab::load_scene("bouncing_ball");  // g 9.81, ω 30, r 0.8
   ContinuationJob job = curve_job("A", 0.0112, 0.025, "r", 0.8, 0.7, "period_doubling");
   job.has_start = true;
-  job.start = bouncing_ball_start(9.81, 30.0, 0.8, 0.0112);
+  const auto ball_start = bouncing_ball_start(9.81, 30.0, 0.8, 0.0112);
+  job.start.assign(ball_start.begin(), ball_start.end());
   job.doublings = 1;
   const auto result = impactlab::continue_orbit(scene, job);
   ASSERT_TRUE(result.has_curve) << result.curve_note;

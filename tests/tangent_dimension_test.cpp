@@ -448,6 +448,20 @@ TEST(TangentDimension, PeriodicAndContinueRunOnTheImpactDamperFromTheCommandLine
     ASSERT_TRUE(std::getline(points, header));
     EXPECT_NE(header.find("multiplier4_im"), std::string::npos);
   }
+  {
+    // the impact section's state (phase, rate) is one degree of freedom's:
+    // a 4-state model is refused it with exit 2, one line naming --section,
+    // and no output directory
+    const auto out = dir / "impact_section";
+    const auto run = impactlab::testing::run_binary(
+        {"continue", scene, "--param", "omega=1.5:1.6", "--section", "impact:1", "--quiet",
+         "--out", out.string()},
+        dir / "run-impact-section", 300.0);
+    EXPECT_EQ(run.status, 2) << run.err;
+    EXPECT_NE(run.err.find("--section"), std::string::npos) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
 }
 
 }  // namespace
