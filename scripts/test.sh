@@ -9,6 +9,11 @@ cd "$(dirname "$0")/.."
 scripts/deps.sh
 jobs="$(nproc)"
 if [ "${1:-}" = "--sanitize" ]; then
+  # set before the build too: gtest_discover_tests runs every test program
+  # at build time to list its tests
+  export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1"
+  export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan_suppressions.txt:print_suppressions=0"
+  export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
   # -O1 -g1: what the sanitizers' authors advise (fast enough to run, line
   # numbers in reports) at a fraction of -O2 -g's compile time on 2 cores
   cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo \
@@ -16,9 +21,6 @@ if [ "${1:-}" = "--sanitize" ]; then
     -DIMPACTLAB_BUILD_BENCHMARKS=OFF -DIMPACTLAB_BUILD_PYTHON=OFF > build-sanitize.log 2>&1 || { cat build-sanitize.log; exit 1; }
   cmake --build build-sanitize -j"$jobs" >> build-sanitize.log 2>&1 || { tail -50 build-sanitize.log; exit 1; }
   echo "build-sanitize: ok (log in build-sanitize.log)"
-  export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1"
-  export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan_suppressions.txt:print_suppressions=0"
-  export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
   cd build-sanitize
   # sanitized code runs several times slower: a longer per-test limit
   ctest --output-on-failure -j"$jobs" --timeout 900
