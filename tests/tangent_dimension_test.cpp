@@ -18,6 +18,8 @@
 //   orbit against log |μ_max| / T of its multipliers;
 // * `periodic` and `continue` from the command line on impact_damper.toml:
 //   exit 0 and four multipliers in periodic.json, branch.csv and points.csv.
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -57,8 +59,15 @@ static_assert(tangent_dimension_of<System4> == 4);
 static_assert(tangent_dimension_of<ModelSystem<2>> == 2);
 static_assert(tangent_dimension_of<LinearImpact> == 2);
 
+// this process's scratch directories: CTest runs the cases of this file as
+// parallel processes, which must not clear each other's files
+fs::path scratch_root() {
+  return fs::path(::testing::TempDir()) /
+         ("impactlab_tangent_dimension_" + std::to_string(::getpid()));
+}
+
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "impactlab_tangent_dimension" / name;
+  const fs::path dir = scratch_root() / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -216,8 +225,7 @@ TEST(TangentDimension, FourStateContinuationLocatesTheLinearImpactPeriodDoubling
       2.24, 2.29);
   composite();  // writes the scene file
   const Scene scene = load_scene(
-      (fs::path(::testing::TempDir()) / "impactlab_tangent_dimension" / "composite" / "composite.toml")
-          .string());
+      (scratch_root() / "composite" / "composite.toml").string());
   ContinuationJob job;
   job.parameter = "omega";
   job.from = 2.2;
