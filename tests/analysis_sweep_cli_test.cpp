@@ -18,6 +18,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "mpi_launch.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -186,10 +188,8 @@ TEST(Sweep, MpiRunWritesTheSameFileAsTheSerialRun) {
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "no mpirun";
   const auto serial = scratch("mpi_serial"), parallel = scratch("mpi_parallel");
   ASSERT_EQ(run(sweep_2d + " --out " + serial.string()).status, 0);
-  // OpenMPI refuses to run as root unless told; the variables do nothing otherwise
-  const Outcome o = run(sweep_2d + " --out " + parallel.string(),
-                        "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
-                        "OMPI_MCA_rmaps_base_oversubscribe=1 mpirun -n 2 --oversubscribe ");
+  const Outcome o =
+      run(sweep_2d + " --out " + parallel.string(), impactlab::test::mpirun_two_ranks());
   if (o.err.find("built without MPI") != std::string::npos) GTEST_SKIP() << "built without MPI";
   ASSERT_EQ(o.status, 0) << o.err;
   EXPECT_EQ(slurp(serial / "classes.csv"), slurp(parallel / "classes.csv"));

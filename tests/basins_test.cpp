@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/basins.hpp"
+#include "mpi_launch.hpp"
 
 namespace {
 
@@ -162,9 +163,8 @@ TEST(Basins, SerialThreadedMpiAndResumedRunsWriteIdenticalFiles) {
   for (const char* file : {"basins.csv", "attractors.csv"})
     EXPECT_EQ(slurp(dir / "serial" / file), slurp(dir / "resumed" / file)) << file;
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "no mpirun";
-  const Outcome mpi = run(basins + " --out " + (dir / "mpi").string(), dir,
-                          "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
-                          "OMPI_MCA_rmaps_base_oversubscribe=1 mpirun -n 2 --oversubscribe ");
+  const Outcome mpi =
+      run(basins + " --out " + (dir / "mpi").string(), dir, impactlab::test::mpirun_two_ranks());
   if (mpi.err.find("built without MPI") != std::string::npos) GTEST_SKIP() << "built without MPI";
   ASSERT_EQ(mpi.status, 0) << mpi.err;
   for (const char* file : {"basins.csv", "attractors.csv"})

@@ -448,7 +448,9 @@ TEST(TangentDimension, PeriodicAndContinueRunOnTheImpactDamperFromTheCommandLine
       for (int k = 1; k <= 4; ++k) {
         const std::string m = "multiplier" + std::to_string(k);
         EXPECT_NEAR(at(m + "_abs"), std::hypot(at(m + "_re"), at(m + "_im")), 1e-12 * (1.0 + at(m + "_abs")));
-        if (k > 1) EXPECT_LE(at(m + "_abs"), at("multiplier" + std::to_string(k - 1) + "_abs"));
+        if (k > 1) {
+          EXPECT_LE(at(m + "_abs"), at("multiplier" + std::to_string(k - 1) + "_abs"));
+        }
       }
     }
     EXPECT_GE(rows, 2);
