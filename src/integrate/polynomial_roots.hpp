@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 
@@ -42,16 +43,13 @@ class PolynomialRoots {
   // the absolute time at h (s), for the root's stopping tolerance
   PolynomialRoots(const Real* p, int degree, const Real& t_scale)
       : degree_(degree), t_scale_(t_scale) {
-    // derivative m's coefficients: d_m[j] = c_{j+m} (j+m)! / j!
     for (int j = 0; j <= degree; ++j) derivative_[0][j] = p[j];
-    for (int m = 1; m <= degree; ++m)
-      for (int j = 0; j + m <= degree; ++j)
-        derivative_[m][j] = derivative_[m - 1][j + 1] * (j + 1);
   }
 
   // P⁽ᵐ⁾(h)
   [[nodiscard]] Real value(int m, const Real& h) const {
     if (m > degree_) return Real(0);
+    differentiate(m);
     Real sum = 0;
     for (int j = degree_ - m; j >= 0; --j) sum = sum * h + derivative_[m][j];
     return sum;
@@ -63,6 +61,7 @@ class PolynomialRoots {
     Points out;
     if (m >= degree_ || !(hi > lo)) return out;  // a constant has none
     const int n = degree_ - m;
+    differentiate(m);
     // re-expansion at the centre by repeated synthetic division
     const Real centre = (lo + hi) / 2, radius = (hi - lo) / 2;
     std::array<Real, max_degree + 1> e{};
@@ -115,9 +114,22 @@ class PolynomialRoots {
     if ((f_lo < 0 && f_hi > 0) || (f_lo > 0 && f_hi < 0)) out.push(root(m, lo, hi, false));
   }
 
-  // filled up to the degree in the constructor (no zero-initialisation: it
-  // runs once per witness in every step that the exclusion test keeps)
-  std::array<std::array<Real, max_degree + 1>, max_degree + 1> derivative_;
+  // derivative m's coefficients, d_m[j] = c_{j+m} (j+m)! / j!, computed
+  // when first asked for (most steps that the exclusion test keeps need
+  // only P, P' and P'': the full table is degree² multiplications)
+  void differentiate(int m) const {
+    const auto degree = static_cast<std::size_t>(std::clamp(degree_, 0, max_degree));
+    const auto last = std::min(static_cast<std::size_t>(std::max(m, 0)), degree);
+    for (; ready_ < last; ++ready_)
+      for (std::size_t j = 0; j + ready_ < degree; ++j)
+        derivative_[ready_ + 1][j] = derivative_[ready_][j + 1] * static_cast<int>(j + 1);
+  }
+
+  // rows 0..ready_ filled up to the degree (no zero-initialisation: the
+  // object is made once per witness in every step that the exclusion test
+  // keeps); a cache of the polynomial's derivatives, hence mutable
+  mutable std::array<std::array<Real, max_degree + 1>, max_degree + 1> derivative_;
+  mutable std::size_t ready_ = 0;
   int degree_;
   Real t_scale_;
 };

@@ -17,6 +17,16 @@
 // degree, and the sums of the recurrences stop there: cos ωt costs O(1) per
 // coefficient, its closed form. The tape has a fixed capacity and the stepper
 // holds the coefficients, so nothing is allocated after construction.
+//
+// Compilation (TaylorTape::compile, when a recording finishes): the live
+// nodes become a short list of instructions with their rows resolved, in
+// three phases. Only the nodes between the state and its derivatives must
+// go order by order; the functions of t alone (ωt, cos ωt, g_e(t)) before
+// them and the witnesses after them go node by node, each instruction's
+// recurrence a loop over all orders. Sums, scalings and products used once
+// by a sum fold into one linear instruction, so the pendulum's free flight
+// is two instructions per order (sin/cos of θ, and θ̈ = c1 θ̇ + c2 g_e sin θ)
+// instead of twelve nodes.
 #pragma once
 
 #include <algorithm>
@@ -25,6 +35,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
+#include <type_traits>
 
 namespace impactlab {
 
@@ -69,6 +80,42 @@ struct TaylorNode {
   int degree = 0;      // degree in h when the node is a polynomial in h, else unbounded
   bool live = false;   // reaches a derivative or a witness
   double c1 = 1.0;     // the factor of affine
+};
+
+// The recurrences of the compiled tape (TaylorTape::compile): one per kind
+// of node, the sums and scalings fused into linear combinations.
+enum class TaylorKernel : std::uint8_t {
+  constant,  // c, then zeros
+  time,      // t0, 1, then zeros
+  linear,    // shift + Σ factor_i · term_i (add, subtract, affine and their chains)
+  multiply,  // Cauchy product, truncated at the operands' degrees
+  divide,    // quotient recurrence
+  sin_cos,   // the coupled recurrence of sin a and cos a
+  sign,      // the sign of a just after t0, then zeros
+};
+
+// A term of a linear instruction: factor · a, or factor · a · b (a product
+// used by this sum only, folded into it); a and b are where their rows start
+// in the coefficient array.
+struct TaylorTerm {
+  int a = -1, b = -1;
+  int a_degree = 0, b_degree = 0;  // degrees in h of a and b (products)
+  double factor = 0.0;
+};
+
+// One instruction of the compiled tape: a node's recurrence with its operand
+// rows resolved (out, a, b, scratch, rate: where the rows start in the
+// node-major coefficient array, so that no index is multiplied while
+// evaluating).
+struct TaylorInstruction {
+  TaylorKernel kernel = TaylorKernel::constant;
+  int out = -1;                    // the node's row (sin_cos: the sin row)
+  int a = -1, b = -1;              // operand rows (sin_cos: a the argument, b the cos row)
+  int a_degree = 0, b_degree = 0;  // their degrees in h (TaylorTape::unbounded if not polynomials)
+  int scratch = -1;                // sin_cos: the row of j · a_j
+  int rate = -1;                   // sin_cos of a state component: its derivative's row
+  int first_term = 0, term_count = 0;  // linear: its terms in the tape's term list
+  double shift = 0.0;              // linear: added at order 0; constant: the value
 };
 
 class TaylorTape {
@@ -138,11 +185,7 @@ class TaylorTape {
           node.op == TaylorOp::sin || node.op == TaylorOp::cos)
         nodes_[node.b].live = true;
     }
-    // the nodes evaluated per order, in recording order (operands first); a
-    // cos node is computed with its sin node
-    sweep_count_ = 0;
-    for (int n = dimension_; n < node_count_; ++n)
-      if (nodes_[n].live && nodes_[n].op != TaylorOp::cos) sweep_[sweep_count_++] = n;
+    compile();
     recorded_ = true;
   }
 
@@ -180,87 +223,28 @@ class TaylorTape {
   // round-off of a zero (|a0| <= 1e-9 s · |a1|) takes the sign of a1, the
   // side the argument moves to, from the coefficients of the previous
   // evaluation at the same point (see signs_need_slope).
+  //
+  // The compiled program (compile()) runs in three phases: the functions of
+  // t alone (ωt, cos ωt, constants) node by node, all orders of one before
+  // the next; the nodes between the state and its derivatives order by order
+  // (coefficient k of each needs the state's k, which needs the
+  // derivatives' k − 1); the rest (witnesses) node by node again. Node by
+  // node, an instruction is dispatched once per step and its recurrence is
+  // a loop over the orders.
   template <class Real>
   void evaluate(const Real* x0, const Real& t0, int order, CoefficientsOf<Real>& c,
                 bool signs_from_slope = false) const {
-    using std::cos;
-    using std::sin;
     constexpr int stride = max_order + 1;
     for (int i = 0; i < dimension_; ++i) c[i * stride] = x0[i];
+    const Context<Real> context{c.data(), t0, signs_from_slope};
+    for (int i = 0; i < phase_end_[0]; ++i) run(program_[i], 0, order, context);
     for (int k = 0; k <= order; ++k) {
-      for (int i = 0; i < sweep_count_; ++i) {
-        const int n = sweep_[i];
-        const TaylorNode& node = nodes_[n];
-        Real* out = &c[n * stride];
-        const Real* a = node.a >= 0 ? &c[node.a * stride] : nullptr;
-        const Real* b = node.b >= 0 ? &c[node.b * stride] : nullptr;
-        switch (node.op) {
-          case TaylorOp::state:
-            break;
-          case TaylorOp::constant:
-            out[k] = k == 0 ? Real(node.c) : Real(0);
-            break;
-          case TaylorOp::time:
-            out[k] = k == 0 ? t0 : k == 1 ? Real(1) : Real(0);
-            break;
-          case TaylorOp::add:
-            out[k] = a[k] + b[k];
-            break;
-          case TaylorOp::subtract:
-            out[k] = a[k] - b[k];
-            break;
-          case TaylorOp::affine:
-            out[k] = k == 0 ? Real(node.c1 * a[0] + node.c) : Real(node.c1 * a[k]);
-            break;
-          case TaylorOp::multiply: {
-            const int da = nodes_[node.a].degree, db = nodes_[node.b].degree;
-            Real sum = 0;
-            for (int j = std::max(0, k - db); j <= std::min(k, da); ++j) sum += a[j] * b[k - j];
-            out[k] = sum;
-            break;
-          }
-          case TaylorOp::divide: {
-            // q = a / b: b0 q_k = a_k − Σ_{j=1..k} b_j q_{k−j}
-            const int db = nodes_[node.b].degree;
-            Real sum = a[k];
-            for (int j = 1; j <= std::min(k, db); ++j) sum -= b[j] * out[k - j];
-            out[k] = sum / b[0];
-            break;
-          }
-          case TaylorOp::sin: {
-            // s' = c a', c' = −s a': k s_k = Σ j a_j c_{k−j}, k c_k = −Σ j a_j s_{k−j}
-            Real* cos_out = &c[node.b * stride];
-            Real* ja = &c[(max_nodes + n) * stride];  // j · a_j
-            if (k == 0) {
-              out[0] = sin(a[0]);
-              cos_out[0] = cos(a[0]);
-              break;
-            }
-            ja[k] = k * a[k];
-            const int da = nodes_[node.a].degree;
-            Real s_sum = 0, c_sum = 0;
-            for (int j = 1; j <= std::min(k, da); ++j) {
-              s_sum += ja[j] * cos_out[k - j];
-              c_sum += ja[j] * out[k - j];
-            }
-            out[k] = s_sum / k;
-            cos_out[k] = -c_sum / k;
-            break;
-          }
-          case TaylorOp::cos:
-            break;  // computed with its sin node, which comes first
-          case TaylorOp::sign:
-            if (k > 0)
-              out[k] = 0;
-            else
-              out[0] = signs_from_slope && near_zero(a) ? sign_of(a[1]) : sign_of(a[0]);
-            break;
-        }
-      }
+      for (int i = phase_end_[0]; i < phase_end_[1]; ++i) run(program_[i], k, k, context);
       if (k < order)
         for (int i = 0; i < dimension_; ++i)
-          c[i * stride + k + 1] = c[derivative_[i] * stride + k] / (k + 1);
+          c[i * stride + k + 1] = c[derivative_offset_[i] + k] * reciprocal<Real>(k + 1);
     }
+    for (int i = phase_end_[1]; i < program_count_; ++i) run(program_[i], 0, order, context);
   }
 
   // Whether a sign node of the last evaluation sits at a zero of its argument
@@ -285,6 +269,370 @@ class TaylorTape {
   [[nodiscard]] int witness_node(int j) const { return witness_[j]; }
 
  private:
+  // what the kernels of one evaluation share: the coefficients (node-major,
+  // max_order + 1 per row), the step's start time
+  template <class Real>
+  struct Context {
+    Real* c;
+    Real t0;
+    bool signs_from_slope;
+    [[nodiscard]] Real* row(int offset) const { return c + offset; }
+  };
+
+  // The operands of a node (none, a, or a and b); sin and cos: the argument.
+  static int operand_count(TaylorOp op) {
+    switch (op) {
+      case TaylorOp::constant:
+      case TaylorOp::state:
+      case TaylorOp::time:
+        return 0;
+      case TaylorOp::affine:
+      case TaylorOp::sin:
+      case TaylorOp::cos:
+      case TaylorOp::sign:
+        return 1;
+      default:
+        return 2;
+    }
+  }
+  // where node n's row starts in the coefficient array (−1: no node)
+  static int offset(int n) { return n >= 0 ? n * (max_order + 1) : -1; }
+  static bool is_linear(TaylorOp op) {
+    return op == TaylorOp::add || op == TaylorOp::subtract || op == TaylorOp::affine;
+  }
+
+  // Compiles the live nodes into program_: phase 0, the nodes that do not
+  // depend on the state; phase 1, the nodes the derivatives need that do;
+  // phase 2, the others (witnesses). A sum, scaling or product used once, by
+  // a sum or scaling of the same phase, and neither a derivative nor a
+  // witness, is folded into its user (so −(d x1 + m l g_e sin x0) / (m l²)
+  // is one instruction of two terms, one a product, not four nodes), and its
+  // row is not written.
+  void compile() {
+    std::array<bool, max_nodes> on_state{}, needed{}, kept{};
+    std::array<int, max_nodes> phase{}, uses{};
+    for (int n = 0; n < node_count_; ++n) {
+      const TaylorNode& node = nodes_[n];
+      const int operands = operand_count(node.op);
+      on_state[n] = node.op == TaylorOp::state || (operands >= 1 && on_state[node.a]) ||
+                    (operands == 2 && on_state[node.b]);
+    }
+    for (int i = 0; i < dimension_; ++i) needed[derivative_[i]] = true;
+    for (int n = node_count_ - 1; n >= 0; --n) {
+      if (!needed[n]) continue;
+      const TaylorNode& node = nodes_[n];
+      if (node.op == TaylorOp::cos) needed[node.b] = true;  // computed with its sin node
+      const int operands = operand_count(node.op);
+      if (operands >= 1) needed[node.a] = true;
+      if (operands == 2) needed[node.b] = true;
+    }
+    for (int n = 0; n < node_count_; ++n) {
+      const TaylorNode& node = nodes_[n];
+      phase[n] = !on_state[n] ? 0 : needed[n] ? 1 : 2;
+      if (!node.live || node.op == TaylorOp::state || node.op == TaylorOp::cos) continue;
+      const int operands = operand_count(node.op);
+      if (operands >= 1) ++uses[node.a];
+      if (operands == 2) ++uses[node.b];
+    }
+    for (int i = 0; i < dimension_; ++i) uses[derivative_[i]] += 2;  // never folded
+    for (int j = 0; j < witness_count_; ++j) uses[witness_[j]] += 2;
+    auto folded = [&](int operand, int user) {
+      const TaylorOp op = nodes_[operand].op;
+      return (is_linear(op) || op == TaylorOp::multiply) && uses[operand] == 1 &&
+             phase[operand] == phase[user];
+    };
+    for (int n = dimension_; n < node_count_; ++n) {
+      const TaylorNode& node = nodes_[n];
+      kept[n] = node.live && node.op != TaylorOp::cos;
+      if (node.live && is_linear(node.op)) {
+        if (folded(node.a, n)) kept[node.a] = false;
+        if (node.op != TaylorOp::affine && folded(node.b, n)) kept[node.b] = false;
+      }
+    }
+    for (int i = 0; i < dimension_; ++i) derivative_offset_[i] = offset(derivative_[i]);
+    program_count_ = 0;
+    term_count_ = 0;
+    for (int p = 0; p < 3; ++p) {
+      for (int n = dimension_; n < node_count_; ++n)
+        if (kept[n] && phase[n] == p) program_[program_count_++] = instruction(n, kept);
+      if (p < 2) phase_end_[p] = program_count_;
+    }
+  }
+
+  TaylorInstruction instruction(int n, const std::array<bool, max_nodes>& kept) {
+    const TaylorNode& node = nodes_[n];
+    TaylorInstruction in;
+    in.out = offset(n);
+    in.a = offset(node.a);
+    in.b = offset(node.b);
+    in.a_degree = node.a >= 0 ? nodes_[node.a].degree : 0;
+    in.b_degree = node.b >= 0 ? nodes_[node.b].degree : 0;
+    switch (node.op) {
+      case TaylorOp::constant:
+        in.kernel = TaylorKernel::constant;
+        in.shift = node.c;
+        break;
+      case TaylorOp::time:
+        in.kernel = TaylorKernel::time;
+        break;
+      case TaylorOp::multiply:
+        in.kernel = TaylorKernel::multiply;
+        break;
+      case TaylorOp::divide:
+        in.kernel = TaylorKernel::divide;
+        break;
+      case TaylorOp::sin:
+        in.kernel = TaylorKernel::sin_cos;
+        in.scratch = offset(max_nodes + n);
+        if (node.a < dimension_) in.rate = offset(derivative_[node.a]);
+        break;
+      case TaylorOp::sign:
+        in.kernel = TaylorKernel::sign;
+        break;
+      default:  // add, subtract, affine
+        in.kernel = TaylorKernel::linear;
+        in.first_term = term_count_;
+        add_terms(n, 1.0, true, kept, in);
+        // products last: they hold this order's newest coefficients
+        std::stable_partition(&terms_[in.first_term], &terms_[term_count_],
+                              [](const TaylorTerm& t) { return t.b < 0; });
+        break;
+    }
+    return in;
+  }
+
+  // adds factor · node n to the linear instruction, expanding n where it is
+  // the instruction's own node or one folded into it
+  void add_terms(int n, double factor, bool own, const std::array<bool, max_nodes>& kept,
+                 TaylorInstruction& in) {
+    const TaylorNode& node = nodes_[n];
+    if (own || (!kept[n] && is_linear(node.op))) {
+      if (node.op == TaylorOp::affine) {
+        in.shift += factor * node.c;
+        add_terms(node.a, factor * node.c1, false, kept, in);
+      } else {
+        add_terms(node.a, factor, false, kept, in);
+        add_terms(node.b, node.op == TaylorOp::subtract ? -factor : factor, false, kept, in);
+      }
+      return;
+    }
+    TaylorTerm term{offset(n), -1, 0, 0, factor};
+    if (!kept[n] && node.op == TaylorOp::multiply)
+      term = {offset(node.a), offset(node.b), nodes_[node.a].degree, nodes_[node.b].degree, factor};
+    for (int i = in.first_term; i < in.first_term + in.term_count; ++i)
+      if (terms_[i].a == term.a && terms_[i].b == term.b) {
+        terms_[i].factor += factor;
+        return;
+      }
+    terms_[term_count_++] = term;
+    ++in.term_count;
+  }
+
+  // orders from..to of one instruction (inlined into the order-by-order
+  // loop, where from = to: a call per instruction and order costs as much as
+  // the recurrences of the low orders)
+  template <class Real>
+  [[gnu::always_inline]] inline void run(const TaylorInstruction& in, int from, int to,
+                                         const Context<Real>& x) const {
+    switch (in.kernel) {
+      case TaylorKernel::constant:
+        for (int k = from; k <= to; ++k) x.row(in.out)[k] = k == 0 ? Real(in.shift) : Real(0);
+        break;
+      case TaylorKernel::time:
+        for (int k = from; k <= to; ++k)
+          x.row(in.out)[k] = k == 0 ? x.t0 : k == 1 ? Real(1) : Real(0);
+        break;
+      case TaylorKernel::linear:
+        if (from == to)
+          linear(in, from, x);
+        else
+          linear_all_orders(in, from, to, x);
+        break;
+      case TaylorKernel::multiply:
+        for (int k = from; k <= to; ++k) multiply(in, k, x);
+        break;
+      case TaylorKernel::divide:
+        for (int k = from; k <= to; ++k) divide(in, k, x);
+        break;
+      case TaylorKernel::sin_cos:
+        if (in.a_degree == 1 && from == 0 && to > 0)
+          sin_cos_of_linear(in, to, x);
+        else
+          for (int k = from; k <= to; ++k) sin_cos(in, k, x);
+        break;
+      case TaylorKernel::sign:
+        for (int k = from; k <= to; ++k) sign(in, k, x);
+        break;
+    }
+  }
+
+  template <class Real>
+  void linear(const TaylorInstruction& in, int k, const Context<Real>& x) const {
+    const TaylorTerm* term = &terms_[in.first_term];
+    Real sum = 0;
+    for (int i = 0; i < in.term_count; ++i) {
+      const TaylorTerm& t = term[i];
+      if (t.b < 0)
+        sum += t.factor * x.row(t.a)[k];
+      else
+        sum += t.factor * product(x.row(t.a), x.row(t.b), t.a_degree, t.b_degree, k);
+    }
+    x.row(in.out)[k] = k == 0 ? Real(sum + in.shift) : sum;
+  }
+
+  // orders from..to of a linear instruction, term by term (the same sums,
+  // in the same order, as linear() order by order; the loops over the
+  // orders are contiguous)
+  template <class Real>
+  void linear_all_orders(const TaylorInstruction& in, int from, int to,
+                         const Context<Real>& x) const {
+    Real* out = x.row(in.out);
+    for (int k = from; k <= to; ++k) out[k] = 0;
+    for (int i = in.first_term; i < in.first_term + in.term_count; ++i) {
+      const TaylorTerm& t = terms_[i];
+      const Real* a = x.row(t.a);
+      if (t.b < 0) {
+        for (int k = from; k <= to; ++k) out[k] += t.factor * a[k];
+      } else {
+        const Real* b = x.row(t.b);
+        for (int k = from; k <= to; ++k)
+          out[k] += t.factor * product(a, b, t.a_degree, t.b_degree, k);
+      }
+    }
+    if (from == 0) out[0] += in.shift;
+  }
+
+  template <class Real>
+  static void multiply(const TaylorInstruction& in, int k, const Context<Real>& x) {
+    x.row(in.out)[k] = product(x.row(in.a), x.row(in.b), in.a_degree, in.b_degree, k);
+  }
+
+  // coefficient k of a · b (degrees da, db): the products of coefficients
+  // older than k first, the newest (a_0 b_k and a_k b_0, the ones the
+  // order-by-order phase has just computed) last: the older part does not
+  // wait for them
+  template <class Real>
+  static Real product(const Real* a, const Real* b, int da, int db, int k) {
+    if (k == 0) return a[0] * b[0];
+    Real sum = 0;
+    for (int j = std::max(1, k - db); j <= std::min(k - 1, da); ++j) sum += a[j] * b[k - j];
+    if (k <= db) sum += a[0] * b[k];
+    if (k <= da) sum += a[k] * b[0];
+    return sum;
+  }
+
+  // q = a / b: b0 q_k = a_k − Σ_{j=1..k} b_j q_{k−j}
+  template <class Real>
+  static void divide(const TaylorInstruction& in, int k, const Context<Real>& x) {
+    const Real* b = x.row(in.b);
+    Real* out = x.row(in.out);
+    Real sum = x.row(in.a)[k];
+    for (int j = 1; j <= std::min(k, in.b_degree); ++j) sum -= b[j] * out[k - j];
+    out[k] = sum / b[0];
+  }
+
+  // s' = c a', c' = −s a': k s_k = Σ j a_j c_{k−j}, k c_k = −Σ j a_j s_{k−j}.
+  // Where a is a state component, j a_j = f_{j−1}, its derivative's
+  // coefficient (in.rate): read, not computed, which takes two
+  // multiplications off the order-by-order chain (the newest term, j = k,
+  // needs f_{k−1}, known one order earlier than a_k).
+  template <class Real>
+  static void sin_cos(const TaylorInstruction& in, int k, const Context<Real>& x) {
+    const Real* a = x.row(in.a);
+    Real* s = x.row(in.out);
+    Real* c = x.row(in.b);
+    if (k == 0) {
+      sin_and_cos(a[0], s[0], c[0]);
+      return;
+    }
+    Real s_sum = 0, c_sum = 0;
+    if (in.rate >= 0) {
+      // the two newest terms last: j = 1 (c_{k−1}, s_{k−1}: the previous
+      // order's) and j = k (f_{k−1})
+      const Real* f = x.row(in.rate);  // j a_j = f_{j−1}
+      for (int j = 2; j < k; ++j) {
+        s_sum += f[j - 1] * c[k - j];
+        c_sum += f[j - 1] * s[k - j];
+      }
+      if (k > 1) {
+        s_sum += f[k - 1] * c[0];
+        c_sum += f[k - 1] * s[0];
+      }
+      s_sum += f[0] * c[k - 1];
+      c_sum += f[0] * s[k - 1];
+    } else {
+      Real* ja = x.row(in.scratch);  // j · a_j
+      ja[k] = k * a[k];
+      for (int j = 1; j <= std::min(k, in.a_degree); ++j) {
+        s_sum += ja[j] * c[k - j];
+        c_sum += ja[j] * s[k - j];
+      }
+    }
+    s[k] = s_sum * reciprocal<Real>(k);
+    c[k] = -c_sum * reciprocal<Real>(k);
+  }
+
+  // orders 0..to of sin and cos of a0 + a1 h (ωt): the recurrence above
+  // with its one term, k s_k = a1 c_{k−1}, k c_k = −a1 s_{k−1} (the same
+  // operations in the same order, without the loop and the row of j a_j)
+  template <class Real>
+  static void sin_cos_of_linear(const TaylorInstruction& in, int to, const Context<Real>& x) {
+    const Real* a = x.row(in.a);
+    Real* s = x.row(in.out);
+    Real* c = x.row(in.b);
+    sin_and_cos(a[0], s[0], c[0]);
+    const Real a1 = a[1];
+    for (int k = 1; k <= to; ++k) {
+      s[k] = (a1 * c[k - 1]) * reciprocal<Real>(k);
+      c[k] = -(a1 * s[k - 1]) * reciprocal<Real>(k);
+    }
+  }
+
+  // sin v and cos v in one call where the library has it (glibc's sincos
+  // for double: the two share their argument reduction)
+  template <class Real>
+  static void sin_and_cos(const Real& v, Real& s, Real& c) {
+    using std::cos;
+    using std::sin;
+#if defined(__GLIBC__)
+    if constexpr (std::is_same_v<Real, double>) {
+      ::sincos(v, &s, &c);
+      return;
+    }
+#endif
+    s = sin(v);
+    c = cos(v);
+  }
+
+  template <class Real>
+  static void sign(const TaylorInstruction& in, int k, const Context<Real>& x) {
+    const Real* a = x.row(in.a);
+    Real* out = x.row(in.out);
+    if (k > 0)
+      out[k] = 0;
+    else
+      out[0] = x.signs_from_slope && near_zero(a) ? sign_of(a[1]) : sign_of(a[0]);
+  }
+
+  // 1 / k (1 <= k <= max_order): a multiplication instead of a division on
+  // the order-by-order chain (x_{k+1} = f_k / (k + 1), s_k = Σ / k) in
+  // double, where a division's latency is several multiplications'; exact
+  // division in the extended-precision types, whose 1/k the table's doubles
+  // would round
+  template <class Real>
+  static Real reciprocal(int k) {
+    if constexpr (std::is_same_v<Real, double>) {
+      static constexpr auto table = [] {
+        std::array<double, max_order + 2> r{};
+        for (int j = 1; j <= max_order + 1; ++j) r[j] = 1.0 / j;
+        return r;
+      }();
+      return table[k];
+    } else {
+      return Real(1) / k;
+    }
+  }
+
   template <class Real>
   static Real sign_of(const Real& v) { return v > 0 ? Real(1) : v < 0 ? Real(-1) : Real(0); }
   // a zero of the argument within 1e-9 s of t0 (its coefficients a0, a1)
@@ -297,8 +645,17 @@ class TaylorTape {
   std::array<TaylorNode, max_nodes> nodes_{};
   std::array<int, max_dimension> derivative_{};
   std::array<int, max_witness_count> witness_{};
-  std::array<int, max_nodes> sweep_{};  // live nodes, evaluation order
-  int sweep_count_ = 0;
+  // the compiled tape: phases 0 (functions of t alone), 1 (state to
+  // derivatives, order by order), 2 (the rest) end at phase_end_[0],
+  // phase_end_[1], program_count_
+  std::array<TaylorInstruction, max_nodes> program_{};
+  int program_count_ = 0;
+  std::array<int, 2> phase_end_{};
+  std::array<int, max_dimension> derivative_offset_{};  // where each f_i's row starts
+  // the terms of the linear instructions: each is one operand of a recorded
+  // sum or scaling, so there are at most two per node
+  std::array<TaylorTerm, 2 * max_nodes> terms_{};
+  int term_count_ = 0;
   int node_count_ = 0;
   int dimension_ = 0;
   int witness_count_ = 0;

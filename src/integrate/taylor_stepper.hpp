@@ -87,6 +87,7 @@ class TaylorStepper {
   explicit TaylorStepper(const StepperSettings& settings)
       : settings_(settings),
         order_(taylor_order(settings.rtol)),
+        safety_(std::exp(-taylor_step_exponent - 0.7 / (order_ - 1))),
         scale_floor_(settings.atol / settings.rtol) {
     if (!(settings.rtol > 0.0) || !(settings.atol > 0.0))
       throw std::invalid_argument("taylor: rtol and atol must be positive");
@@ -143,8 +144,7 @@ class TaylorStepper {
     double radius = std::numeric_limits<double>::infinity();
     for (int j = 0; j < 2; ++j)
       if (ratio[j] > 0.0) radius = std::min(radius, std::pow(ratio[j], -1.0 / (order_ - 1 + j)));
-    const double safety = std::exp(-taylor_step_exponent - 0.7 / (order_ - 1));
-    double h = radius * safety;
+    double h = radius * safety_;
     const double room = t_limit - t_old_double_;
     if (!std::isfinite(h)) h = room;  // a polynomial solution: exact at any step
     if (!(h > 0.0)) throw std::runtime_error("taylor: step size underflow");
@@ -300,6 +300,7 @@ class TaylorStepper {
 
   StepperSettings settings_;
   int order_;
+  double safety_;       // h / ρ: e^{−1.3} e^{−0.7 / (p − 1)}
   double scale_floor_;  // atol / rtol (state units)
   std::array<TaylorTape, max_modes> tapes_{};
   const TaylorTape* tape_ = nullptr;
