@@ -29,7 +29,10 @@
 //    arclength between them, each trial point corrected onto the branch;
 //  * a grazing point is then solved as an extended system in (q, q̇, p, t_g):
 //    F = 0 with the wall's contacts near t_g suppressed (the virtual orbit
-//    that passes through the graze), gap(t_g) = 0, gap rate(t_g) = 0;
+//    that passes through the graze), gap(t_g) = 0, gap rate(t_g) = 0; on the
+//    impact section, a grazing of the section's own impact (where that map
+//    ends) by the same system on the stroboscopic map of the same system
+//    (ContinuationProblem::strobe), the point carried back onto the section;
 //  * a change of the number of contact phases between two points is located
 //    by bisection on the arclength between them (each trial point corrected
 //    onto the branch) down to a bracket of 1e-10 of the range in p.
