@@ -658,11 +658,16 @@ class Driver {
     std::optional<BifurcationPoint> best;
     double best_s = INFINITY;
     for (const Candidate& candidate : candidates) {
-      auto solved = solve_grazing(last, candidate.witness, candidate.time, h);
+      // the impact section's own wall: solved on the stroboscopic map
+      const bool section_wall = candidate.witness == problem_.section_witness;
+      auto solved = section_wall ? solve_section_wall_grazing(last)
+                                 : solve_grazing(last, candidate.witness, candidate.time, h);
       if (!solved) continue;
       const double s = last.tangent.dot(solved_point - last.y);
       if (s < -0.05 * h || s > 1.5 * h || s >= best_s) continue;
-      solved->note = candidate.kind;
+      solved->note = section_wall ? "an impact velocity goes to zero: the section's own impact "
+                                    "(solved on the stroboscopic map)"
+                                  : candidate.kind;
       best = solved;
       best_s = s;
     }
@@ -673,32 +678,40 @@ class Driver {
     return true;
   }
 
-  // Newton on (x, p, t_g): Pⁿ(x; p) = x with the wall's contacts near t_g
-  // suppressed, gap(t_g) = 0, gap rate(t_g) = 0; finite-difference Jacobian.
-  std::optional<BifurcationPoint> solve_grazing(const Node& last, int witness, double time,
-                                                double h) {
+  // A solution of the grazing system: z = (x, p, t_g) in branch units, the
+  // orbit there, and Newton's last step in p (branch units).
+  struct GrazingSolution {
+    typename Spaces<Size>::Extended z;
+    OrbitEvaluation orbit;
+    double parameter_step = 0.0;
+    ContactWindow window;  // the contacts suppressed (times since the section)
+  };
+
+  // Newton on z = (x, p, t_g) from the guess z, on the map `on` at section
+  // phase `phase`: Pⁿ(x; p) = x with the contacts of `witness` suppressed
+  // within nT/10 of the first guess of t_g, gap(t_g) = 0, gap rate(t_g) = 0;
+  // central-difference Jacobian. None where a run fails, Newton does not
+  // converge in 25 iterations, or t_g leaves the window.
+  std::optional<GrazingSolution> newton_grazing(const ContinuationProblem& on, double phase,
+                                                typename Spaces<Size>::Extended z, int witness) {
     using Vec4 = typename Spaces<Size>::Extended;
+    const double time = z[n_ + 1];
     const double span = problem_.forcing_period_at_p;
     const double half_width = span > 0.0 ? 0.1 * span : 0.1;
     const ContactWindow window{witness, time - half_width, time + half_width};
-    auto residual_of = [&](const Vec4& z, OrbitEvaluation* orbit) -> std::optional<Vec4> {
-      const Vec y = z.head(n_ + 1);
-      OrbitEvaluation e = evaluate(y, false, window);
+    auto residual_of = [&](const Vec4& y, OrbitEvaluation* orbit) -> std::optional<Vec4> {
+      ++result_.map_evaluations;
+      OrbitEvaluation e = on.evaluate(state_of(y), y[n_] * scale_, phase, false, window);
       if (!e.completed) return std::nullopt;
-      const GapSample gap = problem_.gap_at(state_of(y), z[n_] * scale_, phase_, window, z[n_ + 1]);
+      const GapSample gap = on.gap_at(state_of(y), y[n_] * scale_, phase, window, y[n_ + 1]);
       if (!gap.completed) return std::nullopt;
       if (orbit) *orbit = e;
       Vec4 r(n_ + 2);
-      for (int i = 0; i < n_; ++i) r[i] = e.image[i] - z[i];
+      for (int i = 0; i < n_; ++i) r[i] = e.image[i] - y[i];
       r[n_] = gap.value;
       r[n_ + 1] = gap.rate;
       return r;
     };
-    // the guess: the last point moved half the failed step along the branch
-    Vec4 z(n_ + 2);
-    z.head(n_ + 1) = last.y;
-    z[n_ + 1] = time;
-    z.head(n_ + 1) += 0.5 * h * last.tangent;
     double last_parameter_step = INFINITY;
     for (int iteration = 0; iteration < 25; ++iteration) {
       OrbitEvaluation orbit;
@@ -706,20 +719,8 @@ class Driver {
       if (!r) return std::nullopt;
       const double size = 1.0 + state_norm(z.data(), n_);
       if (r->norm() <= request_.tolerance * size && iteration > 0 &&
-          std::fabs(last_parameter_step) <= 1e-11 * (1.0 + std::fabs(z[n_]))) {
-        BifurcationPoint point;
-        point.type = "grazing";
-        point.parameter = z[n_] * scale_;
-        point.state = reported_state(z.head(n_ + 1));
-        point.multipliers = multipliers_of(orbit.monodromy);
-        point.error_estimate = std::max(std::fabs(last_parameter_step) * scale_,
-                                        request_.tolerance * (1.0 + std::fabs(z[n_] * scale_)));
-        point.graze_time = time_since_requested_section(z[n_ + 1], orbit);
-        point.graze_witness = witness;
-        point.located = true;
-        solved_point = z.head(n_ + 1);
-        return point;
-      }
+          std::fabs(last_parameter_step) <= 1e-11 * (1.0 + std::fabs(z[n_])))
+        return GrazingSolution{z, orbit, last_parameter_step, window};
       typename Spaces<Size>::ExtendedSquare jacobian(n_ + 2, n_ + 2);
       for (int j = 0; j < n_ + 2; ++j) {
         const double dz = 1e-7 * (1.0 + std::fabs(z[j]));
@@ -737,6 +738,70 @@ class Driver {
       if (std::fabs(z[n_ + 1] - time) > half_width) return std::nullopt;  // left the window
     }
     return std::nullopt;
+  }
+
+  // The located point of a grazing solution: its parameter, multipliers and
+  // error estimate (Newton's last step in p, at least the tolerance).
+  BifurcationPoint grazing_point(const GrazingSolution& solved, int witness) const {
+    BifurcationPoint point;
+    point.type = "grazing";
+    point.parameter = solved.z[n_] * scale_;
+    point.multipliers = multipliers_of(solved.orbit.monodromy);
+    point.error_estimate = std::max(std::fabs(solved.parameter_step) * scale_,
+                                    request_.tolerance * (1.0 + std::fabs(point.parameter)));
+    point.graze_witness = witness;
+    point.located = true;
+    return point;
+  }
+
+  // The grazing system on the branch's own map, from the last point moved
+  // half the failed step along the branch, t_g from `time`.
+  std::optional<BifurcationPoint> solve_grazing(const Node& last, int witness, double time,
+                                                double h) {
+    typename Spaces<Size>::Extended z(n_ + 2);
+    z.head(n_ + 1) = last.y + 0.5 * h * last.tangent;
+    z[n_ + 1] = time;
+    const auto solved = newton_grazing(problem_, phase_, z, witness);
+    if (!solved) return std::nullopt;
+    BifurcationPoint point = grazing_point(*solved, witness);
+    point.state = reported_state(solved->z.head(n_ + 1));
+    point.graze_time = time_since_requested_section(solved->z[n_ + 1], solved->orbit);
+    solved_point = solved->z.head(n_ + 1);
+    return point;
+  }
+
+  // The impact section: the impact with the section's own wall grazes (the
+  // map ends there). The same grazing system, solved on the stroboscopic map
+  // problem_.strobe at the phase half a forcing period after the last
+  // point's impact (so that the graze, one orbit after that impact, at
+  // t_g = nT − T/2, lies half a period from the section), from the last
+  // point carried there along the virtual orbit. Back on the
+  // impact section the point is (φ, q̇⁻) = (phase + ω (t_g − nT), q̇(t_g)):
+  // the graze is the section's own impact, touched at the section
+  // (graze_time 0).
+  std::optional<BifurcationPoint> solve_section_wall_grazing(const Node& last) {
+    if (!problem_.strobe || !problem_.to_strobe || !(last.orbit.omega > 0.0)) return std::nullopt;
+    const ContinuationProblem& strobe = *problem_.strobe;
+    const double p = last.y[n_] * scale_;
+    const double phase = last.y[0] + std::numbers::pi;
+    const auto carried = problem_.to_strobe(state_of(last.y), p, phase);
+    if (!carried) return std::nullopt;
+    typename Spaces<Size>::Extended z(n_ + 2);
+    for (int i = 0; i < n_; ++i) z[i] = (*carried)[i];
+    z[n_] = last.y[n_];
+    z[n_ + 1] = last.orbit.span - std::numbers::pi / last.orbit.omega;
+    const int witness = problem_.section_witness;
+    const auto solved = newton_grazing(strobe, phase, z, witness);
+    if (!solved) return std::nullopt;
+    const double t_g = solved->z[n_ + 1];
+    const GapSample at =
+        strobe.gap_at(state_of(solved->z), solved->z[n_] * scale_, phase, solved->window, t_g);
+    if (!at.completed || at.state.size() < 2) return std::nullopt;
+    BifurcationPoint located = grazing_point(*solved, witness);
+    located.state = {phase + solved->orbit.omega * (t_g - solved->orbit.span), at.state[1]};
+    located.graze_time = 0.0;
+    solved_point = point(located.state, solved->z[n_]);
+    return located;
   }
 
   const ContinuationProblem& problem_;

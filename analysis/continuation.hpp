@@ -29,7 +29,10 @@
 //    arclength between them, each trial point corrected onto the branch;
 //  * a grazing point is then solved as an extended system in (q, q̇, p, t_g):
 //    F = 0 with the wall's contacts near t_g suppressed (the virtual orbit
-//    that passes through the graze), gap(t_g) = 0, gap rate(t_g) = 0;
+//    that passes through the graze), gap(t_g) = 0, gap rate(t_g) = 0; on the
+//    impact section, a grazing of the section's own impact (where that map
+//    ends) by the same system on the stroboscopic map of the same system
+//    (ContinuationProblem::strobe), the point carried back onto the section;
 //  * a change of the number of contact phases between two points is located
 //    by bisection on the arclength between them (each trial point corrected
 //    onto the branch) down to a bracket of 1e-10 of the range in p.
@@ -39,6 +42,7 @@
 #include <complex>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -93,6 +97,7 @@ struct GapSample {
   bool completed = false;
   double value = 0.0;  // gap (the witness's unit: length or rad)
   double rate = 0.0;   // its time derivative along the flow
+  OrbitPoint state{};  // the N components of the state there
 };
 
 // A boundary that depends on the parameter alone, reported where the branch
@@ -129,6 +134,19 @@ struct ContinuationProblem {
   double forcing_period_at_p = 0.0;  // nT at the start (s): the scale of the grazing window
   std::size_t dimension = 2;         // N: the components of an OrbitPoint
   std::vector<ParameterBoundary> boundaries;  // reported where the branch crosses them
+  // The impact section only. Where the impact with the section's own wall
+  // grazes (its speed goes to zero), the section is tangent to the flow and
+  // the impact map ends, so that grazing is solved on the stroboscopic map of
+  // the same system instead, by the same extended system as every grazing
+  // (the wall's contacts suppressed near t_g): `strobe` is that map (its
+  // phase set per call), `to_strobe(x, p, phase)` the state that the orbit
+  // from the impact x on this section reaches at the next ωt ≡ phase (along
+  // the virtual orbit: the section wall's contacts suppressed within nT/10 of
+  // the impact), and `section_witness` the section wall's witness (−1: a
+  // stroboscopic section, none of this).
+  int section_witness = -1;
+  std::shared_ptr<const ContinuationProblem> strobe;
+  std::function<std::optional<OrbitPoint>(const OrbitPoint& x, double p, double phase)> to_strobe;
 };
 
 struct ContinuationRequest {

@@ -293,6 +293,7 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
     sample.completed = true;
     sample.value = h.value;
     sample.rate = h.rate;
+    sample.state.assign(run.state.begin(), run.state.begin() + n);
     return sample;
   };
   problem.transport = [shared](const OrbitPoint& x, double p, double from,
@@ -554,14 +555,17 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
     note_events(records.begin() + static_cast<std::ptrdiff_t>(impacts.first_record) + 1,
                 records.begin() + static_cast<std::ptrdiff_t>(impacts.stop_record) + 1, t0,
                 result);
-    // the slowest impact; one with the section's own wall is no grazing
-    // candidate here (the section degenerates where its impact grazes)
+    // the slowest impact. With the section's own wall, only the target
+    // impact (the section's own, one orbit on) is a grazing candidate: the
+    // driver solves it on the stroboscopic map (problem.strobe); another
+    // impact with that wall is none (the count of the map would change)
     for (const auto& crossing : trace.crossings) {
       if (!(crossing.t > t0) || !(crossing.speed < result.min_impact_speed)) continue;
       result.min_impact_speed = crossing.speed;
       result.slowest_impact_time = crossing.t - t0;
+      const bool own_wall = crossing.witness == static_cast<int>(shared->witness);
       result.slowest_impact_witness =
-          crossing.witness == static_cast<int>(shared->witness) ? -1 : crossing.witness;
+          !own_wall || crossing.t == impacts.stop_time ? crossing.witness : -1;
     }
     note_lowest_flight_gap<System>(sampler.samples, trace, t0, result);
     return result;
@@ -591,10 +595,41 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
     sample.completed = true;
     sample.value = h.value;
     sample.rate = h.rate;
+    sample.state = {run.state[0], run.state[1]};
     return sample;
   };
   problem.transport = [](const OrbitPoint&, double, double, double) -> std::optional<OrbitPoint> {
     return std::nullopt;  // the impact section does not move
+  };
+  // the grazing of the section's own impact: on the stroboscopic map
+  problem.section_witness = static_cast<int>(witness);
+  problem.strobe = std::make_shared<const ContinuationProblem>(section_map_problem<System>(
+      make_system, flight_mode, setup, 0.0, period, forcing_omega_at_start));
+  problem.to_strobe = [shared](const OrbitPoint& x, double p,
+                               double phase) -> std::optional<OrbitPoint> {
+    const System system = shared->make_system(p);
+    const double omega = system.parameters().omega;
+    const double t0 = x[0] / omega;
+    const auto start = state_on_wall(system, shared->flight_mode, shared->witness, t0, x[1],
+                                     shared->q_guess);
+    if (!start) return std::nullopt;
+    // the next ωt ≡ phase after the impact
+    double shift = std::fmod(phase - x[0], 2.0 * std::numbers::pi);
+    if (shift <= 0.0) shift += 2.0 * std::numbers::pi;
+    const double reach = 0.1 * shared->period * 2.0 * std::numbers::pi / omega;
+    const Suppressed virtual_orbit(system, shared->flight_mode,
+                                   ContactWindow{static_cast<int>(shared->witness), t0 - reach,
+                                                 t0 + reach},
+                                   nullptr);
+    EventLog log(false);
+    const auto run = with_stepper<Suppressed>(
+        shared->setup.method, stepper_settings(virtual_orbit, shared->setup), [&](auto& stepper) {
+          return simulate(virtual_orbit, stepper, *start, shared->flight_mode, t0,
+                          t0 + shift / omega, loop_options(shared->setup), log);
+        });
+    if (run.termination != Termination::completed || run.mode != shared->flight_mode)
+      return std::nullopt;
+    return OrbitPoint{run.state[0], run.state[1]};
   };
   return problem;
 }
@@ -659,12 +694,18 @@ std::optional<std::pair<std::size_t, double>> wall_witness(const System& system,
 // The curve of the first located fold, period doubling or grazing point (of
 // job.curve_type where given) of branch `index`, in (job.parameter,
 // job.second_parameter), into `curve`; false, with why in `note`, where the
-// branch has none.
-template <HasJacobian System, class SystemAt>
+// branch has none. map_at(scene, period) is the branch's section map of the
+// system `scene` describes, continued in job.parameter (stroboscopic or
+// impact section). On the impact section, a grazing of the section's own
+// impact is followed on the stroboscopic map half a forcing period after the
+// impact (as the branch located it: that section is tangent to the flow
+// there), and each point is carried back onto the impact section:
+// (φ, q̇⁻) = (phase + ω (t_g − nT), q̇(t_g)), graze time 0.
+template <HasJacobian System, class SystemAt, class MapAt>
 bool continue_curve_of(const ContinuationJobResult& result, std::size_t index, CurveResult& curve,
-                       std::string& note, SystemAt system_at, typename System::Mode flight_mode,
-                       const Scene& scene, const ContinuationJob& job, const FlowSetup& setup,
-                       double omega) {
+                       std::string& note, SystemAt system_at, MapAt map_at,
+                       typename System::Mode flight_mode, const Scene& scene,
+                       const ContinuationJob& job, const FlowSetup& setup, double omega) {
   const ContinuationResult& branch = result.branches.at(index).result;
   const int period = result.branches[index].period;
   const auto wanted = [&](const BifurcationPoint& p) {
@@ -695,18 +736,61 @@ bool continue_curve_of(const ContinuationJobResult& result, std::size_t index, C
   request.tolerance = job.numerics.tolerance;
   // the branch's largest step, as a fraction of the first parameter's range
   if (job.numerics.max_step > 0.0) request.max_step = job.numerics.max_step / std::fabs(job.to - job.from);
-  TwoParameterProblem problem;
-  problem.at = [scene, job, system_at, flight_mode, setup, omega, period](double p2) {
-    auto make_system = [scene, job, system_at, p2](double p1) {
-      Scene at = scene;
-      at.values[job.parameter] = p1;
-      at.values[job.second_parameter] = p2;
-      return system_at(at);
-    };
-    return section_map_problem<System>(make_system, flight_mode, setup, job.phase, period,
-                                       omega);
+  const auto scene_at = [scene, job](double p2) {
+    Scene at = scene;
+    at.values[job.second_parameter] = p2;
+    return at;
   };
+  const ContinuationProblem at_start = map_at(scene_at(job.second_from), period);
+  const bool section_wall_graze = request.type == "grazing" && at_start.section_witness >= 0 &&
+                                  found->graze_witness == at_start.section_witness;
+  TwoParameterProblem problem;
+  double strobe_phase = 0.0;  // rad: the stroboscopic section of a section-wall graze
+  if (section_wall_graze) {
+    strobe_phase = found->state[0] + std::numbers::pi;
+    const auto carried = at_start.to_strobe(found->state, found->parameter, strobe_phase);
+    if (!carried) {
+      note = "the grazing point could not be carried to the stroboscopic section";
+      return false;
+    }
+    Scene at = scene_at(job.second_from);
+    at.values[job.parameter] = found->parameter;
+    const double span = period * 2.0 * std::numbers::pi / forcing_omega_of(system_at(at));
+    request.state = *carried;
+    request.graze_time = span - 0.5 * span / period;
+    problem.at = [scene_at, job, system_at, flight_mode, setup, omega, period,
+                  strobe_phase](double p2) {
+      auto make_system = [scene = scene_at(p2), job, system_at](double p1) {
+        Scene at = scene;
+        at.values[job.parameter] = p1;
+        return system_at(at);
+      };
+      return section_map_problem<System>(make_system, flight_mode, setup, strobe_phase, period,
+                                         omega);
+    };
+  } else {
+    problem.at = [scene_at, map_at, period](double p2) { return map_at(scene_at(p2), period); };
+  }
   curve = continue_curve(problem, request);
+  if (section_wall_graze) {
+    // back onto the impact section
+    for (CurvePoint& point : curve.curve) {
+      const ContinuationProblem strobe = problem.at(point.p2);
+      Scene at = scene_at(point.p2);
+      at.values[job.parameter] = point.p1;
+      const double point_omega = forcing_omega_of(system_at(at));
+      const double span = period * 2.0 * std::numbers::pi / point_omega;
+      const double half_width = 0.1 * strobe.forcing_period_at_p;
+      const GapSample touch = strobe.gap_at(
+          point.state, point.p1, strobe_phase,
+          ContactWindow{found->graze_witness, point.graze_time - half_width,
+                        point.graze_time + half_width},
+          point.graze_time);
+      point.state = {strobe_phase + point_omega * (point.graze_time - span),
+                     touch.completed ? touch.state[1] : std::numeric_limits<double>::quiet_NaN()};
+      point.graze_time = 0.0;
+    }
+  }
   return true;
 }
 
@@ -811,22 +895,24 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
           return no_start(result, job, "no return to the wall within the orbit's period");
       }
     }
-    auto problem_for = [&](int period) {
-      auto make_system = [scene, parameter = job.parameter, system_at](double p) {
-        Scene at = scene;
+    // the section map of the system `base` describes, continued in job.parameter
+    auto map_at = [&](const Scene& base, int period) {
+      auto make_system = [base, parameter = job.parameter, system_at](double p) {
+        Scene at = base;
         at.values[parameter] = p;
         return system_at(at);
       };
-      ContinuationProblem problem = [&] {
-        if constexpr (n == 2) {
-          if (job.impact_wall != 0)
-            return impact_map_problem<System>(make_system, flight_mode, setup, job.impact_wall,
-                                              wall_witness_index, wall_q, period,
-                                              wall_impacts * period / job.period, omega);
-        }
-        return section_map_problem<System>(make_system, flight_mode, setup, job.phase, period,
-                                           omega);
-      }();
+      if constexpr (n == 2) {
+        if (job.impact_wall != 0)
+          return impact_map_problem<System>(make_system, flight_mode, setup, job.impact_wall,
+                                            wall_witness_index, wall_q, period,
+                                            wall_impacts * period / job.period, omega);
+      }
+      return section_map_problem<System>(make_system, flight_mode, setup, job.phase, period,
+                                         omega);
+    };
+    auto problem_for = [&](int period) {
+      ContinuationProblem problem = map_at(scene, period);
       for (const SceneBoundary& boundary : boundaries)
         problem.boundaries.push_back(
             {boundary.type, boundary.note,
@@ -859,25 +945,27 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
           {period, continue_branch_from(problem_for(period), doubled, doubling_point.state,
                                         doubling_point.parameter, direction)});
     }
-    if (job.impact_wall != 0) {
-      // the impact phase reported in [0, 2π) (the branch runs on it unreduced)
-      const auto reduce = [](OrbitPoint& state) {
-        state[0] = std::fmod(state[0], 2.0 * std::numbers::pi);
-        if (state[0] < 0.0) state[0] += 2.0 * std::numbers::pi;
-      };
-      for (ContinuedBranch& branch : result.branches) {
-        for (BranchPoint& point : branch.result.branch) reduce(point.state);
-        for (BifurcationPoint& point : branch.result.points) reduce(point.state);
-      }
+    // the impact phase reported in [0, 2π) (branches and curves run on it unreduced)
+    const auto reduce = [&](OrbitPoint& state) {
+      if (job.impact_wall == 0 || state.empty()) return;
+      state[0] = std::fmod(state[0], 2.0 * std::numbers::pi);
+      if (state[0] < 0.0) state[0] += 2.0 * std::numbers::pi;
+    };
+    for (ContinuedBranch& branch : result.branches) {
+      for (BranchPoint& point : branch.result.branch) reduce(point.state);
+      for (BifurcationPoint& point : branch.result.points) reduce(point.state);
     }
     if (!job.second_parameter.empty()) {
-      result.has_curve = continue_curve_of<System>(result, 0, result.curve, result.curve_note,
-                                                   system_at, flight_mode, scene, job, setup, omega);
+      result.has_curve =
+          continue_curve_of<System>(result, 0, result.curve, result.curve_note, system_at, map_at,
+                                    flight_mode, scene, job, setup, omega);
+      for (CurvePoint& point : result.curve.curve) reduce(point.state);
       for (std::size_t b = 1; b < result.branches.size(); ++b) {
         BranchCurve doubled{static_cast<int>(b), result.branches[b].period};
-        doubled.has_curve = continue_curve_of<System>(result, b, doubled.curve, doubled.note,
-                                                      system_at, flight_mode, scene, job, setup,
-                                                      omega);
+        doubled.has_curve =
+            continue_curve_of<System>(result, b, doubled.curve, doubled.note, system_at, map_at,
+                                      flight_mode, scene, job, setup, omega);
+        for (CurvePoint& point : doubled.curve.curve) reduce(point.state);
         result.doubled_curves.push_back(std::move(doubled));
       }
     }

@@ -612,7 +612,6 @@ py::dict continue_binding(const Scene& scene, const std::string& parameter, doub
   job.from = from;
   job.to = to;
   job.period = period;
-  // before the section: the impact section refuses a second parameter
   if (!curve_type.empty() && parameter2.empty())
     throw BadInput("curve", curve_type, "needs param2");
   if (!parameter2.empty()) {

@@ -493,6 +493,70 @@ TEST(Continuation, LinearImpactOnTheImpactSectionHasTheStrobesPeriodDoublingAndM
   EXPECT_GE(compared_with_periodic, 1);
 }
 
+// The free (non-impacting) harmonic response x = P cos ωt + Q sin ωt of
+// ẍ + 2ζẋ + x = A cos ωt: P = A(1 − ω²)/D, Q = 2ζωA/D, D = (1 − ω²)² + (2ζω)².
+// Its amplitude A/√D reaches the stop σ at the grazing point, where it touches
+// at the phase ωt = atan2(Q, P) of its maximum with zero speed.
+double harmonic_amplitude(const ImpactOscillator& o, double omega) {
+  const double detuning = 1.0 - omega * omega;
+  return o.A / std::sqrt(detuning * detuning + 4.0 * o.zeta * o.zeta * omega * omega);
+}
+double harmonic_peak_phase(const ImpactOscillator& o, double omega) {
+  const double phase = std::atan2(2.0 * o.zeta * omega, 1.0 - omega * omega);  // D > 0 cancels
+  return phase < 0.0 ? phase + two_pi : phase;
+}
+
+// On the impact section of the stop, the period-1 orbit's own impact speed
+// falls to zero as ω rises to the grazing point A/√D = σ: there the section
+// is tangent to the flow and the impact map ends. The branch must end there
+// with the point located (by the extended system on the stroboscopic map) at
+// the closed form's ω to 1e-9 relative, its state the touch (the peak phase,
+// rate 0) and its multipliers the free response's, e^{(−ζ ± i√(1 − ζ²))T}.
+TEST(Continuation, LinearImpactOnTheImpactSectionEndsWhereItsOwnImpactSpeedVanishes) {
+  ImpactOscillator o;
+  o.sigma = 0.2;
+  const Scene scene = linear_impact_scene(o);
+  ContinuationJob job;
+  job.parameter = "omega";
+  job.from = 2.0;
+  job.to = 2.5;
+  job.impact_wall = 1;
+  const auto result = impactlab::continue_orbit(scene, job);
+  const auto& branch = result.branches.at(0).result;
+  EXPECT_EQ(branch.stop_reason, "signature_change") << branch.stop_detail;
+  const auto grazings = points_of_type(branch, "grazing");
+  ASSERT_EQ(grazings.size(), 1u) << branch.stop_detail;
+  const auto& graze = grazings[0];
+  const double omega_graze =
+      solve([&](double w) { return harmonic_amplitude(o, w) - o.sigma; }, 2.3, 2.6);
+  EXPECT_TRUE(graze.located);
+  EXPECT_NEAR(graze.parameter, omega_graze, 1e-9 * omega_graze);
+  EXPECT_LT(graze.error_estimate, 1e-9 * omega_graze);
+  EXPECT_NE(graze.note.find("section's own impact"), std::string::npos) << graze.note;
+  EXPECT_EQ(graze.graze_time, 0.0);  // touched at the section itself
+  // the state on the impact section: the touch, at the peak's phase with rate 0
+  EXPECT_NEAR(std::remainder(graze.state[0] - harmonic_peak_phase(o, omega_graze), two_pi), 0.0,
+              1e-9);
+  EXPECT_NEAR(graze.state[1], 0.0, 1e-9);
+  // the multipliers of the free response over one period
+  const double period = two_pi / omega_graze, wd = std::sqrt(1.0 - o.zeta * o.zeta);
+  const std::complex<double> free_multiplier =
+      std::exp(std::complex<double>(-o.zeta * period, wd * period));
+  ASSERT_EQ(graze.multipliers.size(), 2u);
+  for (const auto& multiplier : graze.multipliers) {
+    const double nearest = std::min(std::abs(multiplier - free_multiplier),
+                                    std::abs(multiplier - std::conj(free_multiplier)));
+    EXPECT_LT(nearest, 1e-9) << multiplier;
+  }
+  // the branch itself runs up to the point, and the period doubling on the way
+  ASSERT_FALSE(branch.branch.empty());
+  EXPECT_LT(branch.branch.back().parameter, graze.parameter);
+  const auto doublings = points_of_type(branch, "period_doubling");
+  ASSERT_EQ(doublings.size(), 1u);
+  const double expected = period_doubling(o, 2.24, 2.29);
+  EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
+}
+
 // The flight of ẍ + 2ζẋ + x = A cos ωt from (x0, v0) at t0, at t (closed form).
 std::array<double, 2> free_flight(const ImpactOscillator& o, double omega, double t0, double x0,
                                   double v0, double t) {
@@ -814,6 +878,92 @@ TEST(CurveContinuation, LinearImpactGrazingCurveInOmegaAndSigma) {
     EXPECT_NEAR(point.p2, amplitude, 1e-9 * amplitude) << "omega = " << point.p1;
   }
   EXPECT_GT(curve.curve.back().p2, 0.3);
+}
+
+// The period-doubling curve of the same branches on the impact section
+// (--param2 with --section impact:1): the closed form's period doubling at
+// each r to 1e-9, and the state the closed form's impact phase and speed.
+TEST(CurveContinuation, LinearImpactPeriodDoublingCurveOnTheImpactSection) {
+  ImpactOscillator o;  // ζ = 0.05, σ = 0, A = 1; r from 0.8 down to 0.6
+  const Scene scene = linear_impact_scene(o);
+  ContinuationJob job = curve_job("omega", 2.5, 2.8, "r", 0.8, 0.6, "period_doubling");
+  job.impact_wall = 1;
+  const auto result = impactlab::continue_orbit(scene, job);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  EXPECT_EQ(curve.stop_reason, "end_of_range") << curve.stop_detail;
+  EXPECT_NEAR(curve.curve.back().p2, 0.6, 1e-12);
+  ASSERT_GE(curve.curve.size(), 10u);
+  for (const auto& point : curve.curve) {
+    o.r = point.p2;
+    const double expected = period_doubling(o, point.p1 - 0.01, point.p1 + 0.01);
+    EXPECT_NEAR(point.p1, expected, 1e-9 * expected) << "r = " << point.p2;
+    const PeriodOneOrbit closed(o, point.p1);
+    ASSERT_TRUE(closed.found());
+    const double phase = std::fmod(point.p1 * closed.impact_time(), two_pi);
+    EXPECT_NEAR(std::remainder(point.state[0] - phase, two_pi), 0.0, 1e-8) << "r = " << point.p2;
+    EXPECT_GE(point.state[0], 0.0);
+    EXPECT_LT(point.state[0], two_pi);
+    EXPECT_NEAR(point.state[1], closed.speed(), 1e-8) << "r = " << point.p2;
+  }
+}
+
+// The grazing curve of the section's own impact on the impact section, in
+// (ω, σ): followed on the stroboscopic map and carried back, every point on
+// A/√D = σ to 1e-9 and its state the touch (peak phase, rate 0).
+TEST(CurveContinuation, LinearImpactOwnImpactGrazingCurveOnTheImpactSection) {
+  ImpactOscillator o;
+  o.sigma = 0.2;
+  const Scene scene = linear_impact_scene(o);
+  ContinuationJob job = curve_job("omega", 2.0, 2.5, "sigma", 0.2, 0.4, "grazing");
+  job.impact_wall = 1;
+  const auto result = impactlab::continue_orbit(scene, job);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  EXPECT_EQ(curve.stop_reason, "left_range") << curve.stop_detail;
+  ASSERT_GE(curve.curve.size(), 20u);
+  for (const auto& point : curve.curve) {
+    const double amplitude = harmonic_amplitude(o, point.p1);
+    EXPECT_NEAR(point.p2, amplitude, 1e-9 * amplitude) << "omega = " << point.p1;
+    EXPECT_NEAR(std::remainder(point.state[0] - harmonic_peak_phase(o, point.p1), two_pi), 0.0,
+                1e-9)
+        << "omega = " << point.p1;
+    EXPECT_NEAR(point.state[1], 0.0, 1e-9) << "omega = " << point.p1;
+    EXPECT_EQ(point.graze_time, 0.0);
+  }
+  EXPECT_GT(curve.curve.back().p2, 0.3);
+}
+
+// The ball's period-1 orbit is born in a fold (saddle-node) where its impact
+// phase reaches cos φ = 1: Γ = Aω²/g = π(1 − r)/(1 + r). Continued down in A
+// on the table's impact section the branch turns there; the fold's curve in
+// (A, r), r from 0.8 to 0.6, must follow A = π(1 − r)/(1 + r) g/ω² to 1e-9,
+// at the impact phase 0 with ẏ⁻ = −gT/2.
+TEST(CurveContinuation, BouncingBallFoldCurveOnTheImpactSection) {
+  const Scene scene = impactlab::load_scene("bouncing_ball");  // g 9.81, ω 30, r 0.8
+  const double g = 9.81, omega = 30.0, r = 0.8, period = two_pi / omega;
+  ContinuationJob job = curve_job("A", 0.0112, 0.003, "r", 0.8, 0.6, "fold");
+  job.impact_wall = -1;
+  job.has_start = true;
+  job.start = {std::acos(std::numbers::pi * (1.0 - r) / (0.0112 * omega * omega / g * (1.0 + r))),
+               -0.5 * g * period};
+  const auto result = impactlab::continue_orbit(scene, job);
+  const auto folds = points_of_type(result.branches.at(0).result, "fold");
+  ASSERT_EQ(folds.size(), 1u) << result.branches[0].result.stop_detail;
+  const double fold_at = std::numbers::pi * (1.0 - r) / (1.0 + r) * g / (omega * omega);
+  EXPECT_NEAR(folds[0].parameter, fold_at, 1e-9 * fold_at);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  EXPECT_EQ(curve.type, "fold");
+  EXPECT_EQ(curve.stop_reason, "end_of_range") << curve.stop_detail;
+  ASSERT_GE(curve.curve.size(), 10u);
+  for (const auto& point : curve.curve) {
+    const double expected = std::numbers::pi * (1.0 - point.p2) / (1.0 + point.p2) * g /
+                            (omega * omega);
+    EXPECT_NEAR(point.p1, expected, 1e-9 * expected) << "r = " << point.p2;
+    EXPECT_NEAR(std::remainder(point.state[0], two_pi), 0.0, 1e-6) << "r = " << point.p2;
+    EXPECT_NEAR(point.state[1], -0.5 * g * period, 1e-9) << "r = " << point.p2;
+  }
 }
 
 TEST(CurveContinuation, NoPointOfTheTypeOnTheBranchGivesNoCurve) {

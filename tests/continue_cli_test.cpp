@@ -87,6 +87,30 @@ TEST(ContinueCommand, ImpactSectionWritesThePhaseAndRateOfTheImpact) {
             std::string::npos);
 }
 
+// On the impact section: the branch ends where its own impact grazes, the
+// point in points.csv, and the grazing curve from it (--param2) in curve.csv.
+TEST(ContinueCommand, ImpactSectionLocatesItsOwnGrazeAndFollowsItsCurve) {
+  const auto dir = scratch("impact_curve");
+  const auto out = dir / "out";
+  const Outcome outcome = run("continue linear_impact --param omega=2:2.5 --section impact:+1 "
+                              "--param2 sigma=0.2:0.3 --curve grazing --quiet --out " +
+                                  out.string(),
+                              dir);
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const std::string points = slurp(out / "points.csv");
+  EXPECT_NE(points.find("grazing,2.448265181"), std::string::npos) << points;
+  const auto meta = nlohmann::json::parse(slurp(out / "continuation.json"));
+  EXPECT_EQ(meta["branches"][0]["stop_reason"], "signature_change");
+  const std::string curve = slurp(out / "curve.csv");
+  EXPECT_EQ(curve.rfind("omega,sigma,q,qdot,multiplier1_re,", 0), 0u) << curve;
+  EXPECT_GT(line_count(curve), 10);
+  const auto curve_meta = nlohmann::json::parse(slurp(out / "curve.json"));
+  EXPECT_EQ(curve_meta["type"], "grazing");
+  EXPECT_EQ(curve_meta["stop_reason"], "end_of_range");
+  EXPECT_EQ(curve_meta["request"]["section"], "impact:1");
+  EXPECT_NE(curve_meta["columns"]["q, qdot"].get<std::string>().find("phase"), std::string::npos);
+}
+
 TEST(ContinueCommand, TwoParameterCurveWritesTheCurveAndItsSidecar) {
   const auto dir = scratch("curve");
   const auto out = dir / "out";
@@ -134,7 +158,6 @@ TEST(ContinueCommand, BadInputExitsWithTwoAndOneLine) {
       "continue linear_impact --param omega=2:2.5 --section impact:0",   // no one wall
       "continue linear_impact --param omega=2:2.5 --section impact:-1",  // a wall never hit
       "continue linear_impact --param omega=2:2.5 --section q=0.1",      // not strobe or impact
-      "continue linear_impact --param omega=2:2.5 --section impact:1 --param2 r=0.8:0.6",
       "continue linear_impact --param omega=2:2.5 --period 3 --transient 0 --start 5,5",  // no start
       "continue linear_impact --param omega=2:2.5 --param2 omega=3:4",   // the same key twice
       "continue linear_impact --param omega=2:2.5 --param2 sigma=0.2",   // malformed range

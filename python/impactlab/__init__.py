@@ -394,7 +394,7 @@ def continue_(scene_=None, *, param, period=1, section="strobe", switch=False, s
     param2="NAME=FROM:TO" (with curve= fold, period_doubling or grazing; else
     the first located point's type) follows that bifurcation's curve in the
     plane of the two keys from the point the branch located (the CLI's
-    --param2 and --curve): curves is then a list of dicts with the columns of
+    --param2 and --curve; on either section): curves is then a list of dicts with the columns of
     curve.csv, the first branch's curve first, then each doubled branch's
     (switch=True); curve_note says why there is none."""
     loaded = scene(scene_ if scene_ is not None else "linear_impact", **keys)

@@ -78,8 +78,6 @@ void set_continuation_section(ContinuationJob& job, const std::string& text,
     throw BadInput(key, text, "continuation takes strobe[:PHASE] or impact:WALL");
   if (section.wall == 0)
     throw BadInput(key, text, "continuation on the impact section needs one wall: impact:+1 or impact:-1");
-  if (!job.second_parameter.empty())
-    throw BadInput(key, text, "a two-parameter curve (--param2) runs on the stroboscopic section");
   job.impact_wall = section.wall;
 }
 

@@ -34,8 +34,7 @@ ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& 
 
 // The section of a continuation from its text (`strobe[:PHASE]` or
 // `impact:WALL`, WALL +1 or -1) into job.phase / job.impact_wall; BadInput
-// (key `key`) for another section, impact:0 (any wall), or an impact section
-// with a two-parameter curve (job.second_parameter set).
+// (key `key`) for another section or impact:0 (any wall).
 void set_continuation_section(ContinuationJob& job, const std::string& text,
                               const std::string& key);
 

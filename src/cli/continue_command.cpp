@@ -249,7 +249,8 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
          {{"type", "fold, branch_point, period_doubling, neimark_sacker, grazing, contact_onset, "
                   "contact_end, contact_boundary (the pendulum's V0*omega = g)"},
           {"error_estimate", "bound on the error of the parameter value"},
-          {"graze_time", "grazing: time after the section at which the wall is touched"}}}}},
+          {"graze_time", "grazing: time after the section at which the wall is touched (0 "
+                         "where the impact section's own impact grazes)"}}}}},
       {"branches", branches},
       {"wall_time_s", wall_time},
   };
@@ -304,9 +305,14 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
         {"columns",
          {{range.name, "the first scene key (its unit in scene.units)"},
           {range2.name, "the second scene key (its unit in scene.units)"},
-          {"q, qdot", "the orbit's state on the section at the curve point"},
+          {"q, qdot", section.kind == SectionKind::impact
+                          ? "the orbit's state on the impact section at the curve point: q the "
+                            "forcing phase omega t mod 2 pi of the impact (rad), qdot the rate "
+                            "just before it (a grazing of that impact: the touch)"
+                          : "the orbit's state on the section at the curve point"},
           {"multiplier*", "Floquet multipliers of the orbit at the point"},
-          {"graze_time", "grazing: time after the section at which the wall is touched (s)"},
+          {"graze_time", "grazing: time after the section at which the wall is touched (s; 0 "
+                         "where the impact section's own impact grazes)"},
           {"impacts", "impacts per orbit period (a grazing point's touch not counted)"},
           {"branch", "the branch the curve starts from: 0, then k for the k-th doubled one "
                      "(--switch; doubled_curves)"},

@@ -75,8 +75,6 @@ def test_unknown_scene_raises_value_error():
     (lambda: impactlab.continue_("linear_impact", param="omega=2:3", curve="fold"), "curve"),
     (lambda: impactlab.continue_("linear_impact", param="omega=2:3", param2="r=0.8:0.6",
                                  curve="torus"), "curve"),
-    (lambda: impactlab.continue_("linear_impact", param="omega=2:3", param2="r=0.8:0.6",
-                                 section="impact:1"), "section"),
 ])
 def test_bad_option_raises_value_error_naming_it(call, named):
     with pytest.raises(ValueError) as raised:

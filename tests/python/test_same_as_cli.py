@@ -269,3 +269,27 @@ def test_continue_on_the_impact_section_equals_cli(cli):
     assert points["type"] == result.points["type"] and "period_doubling" in points["type"]
     for column in ("omega", "q", "qdot", "error_estimate"):
         same_numbers(points[column], result.points[column])
+
+
+def test_continue_on_the_impact_section_with_a_curve_equals_cli(cli):
+    # the branch ends where the section's own impact grazes (located on the
+    # stroboscopic map), and that grazing's curve in (omega, sigma)
+    out = cli("continue", "linear_impact", "--param", "omega=2:2.5", "--section", "impact:+1",
+              "--param2", "sigma=0.2:0.3", "--curve", "grazing")
+    result = impactlab.continue_("linear_impact", param="omega=2:2.5", section="impact:+1",
+                                 param2="sigma=0.2:0.3", curve="grazing")
+    (one,) = result.branches
+    assert one["stop_reason"] == "signature_change"
+    points = read_csv(out / "points.csv")
+    assert points["type"] == result.points["type"] and "grazing" in points["type"]
+    for column in ("omega", "q", "qdot", "error_estimate", "graze_time", "graze_witness"):
+        same_numbers(points[column], result.points[column])
+    assert result.curve_note == ""
+    table = read_csv(out / "curve.csv")
+    (curve,) = result.curves
+    assert curve["type"] == "grazing" and len(table["omega"]) > 10
+    for column in ("omega", "sigma", "q", "qdot", "graze_time", "impacts", "newton_iterations"):
+        same_numbers(table[column], curve[column])
+    for k in (1, 2):
+        same_numbers(table["multiplier{}_re".format(k)], curve["multiplier{}".format(k)].real)
+        same_numbers(table["multiplier{}_im".format(k)], curve["multiplier{}".format(k)].imag)
