@@ -1,5 +1,6 @@
 #include "analysis/flow_setup.hpp"
 
+#include "analysis/section.hpp"
 #include "io/scene.hpp"
 
 namespace impactlab {
@@ -8,6 +9,18 @@ FlowSetup flow_setup(const Scene& scene) {
   return {scene.text("integrator.method"), scene.number("integrator.rtol"),
           scene.number("integrator.atol"),
           static_cast<std::uint64_t>(scene.number("limits.max_steps"))};
+}
+
+FlowSetup with_integrator(FlowSetup setup, const IntegratorSetting& integrator) {
+  setup.method = integrator.method;
+  setup.rtol = integrator.rtol;
+  setup.atol = integrator.atol;
+  return setup;
+}
+
+IntegratorSetting scene_integrator(const Scene& scene) {
+  return {scene.text("integrator.method"), scene.number("integrator.rtol"),
+          scene.number("integrator.atol")};
 }
 
 }  // namespace impactlab

@@ -25,6 +25,15 @@ struct FlowSetup {
 // The scene's integrator keys and step budget.
 FlowSetup flow_setup(const Scene& scene);
 
+struct IntegratorSetting;
+
+// The setup with another integrator (method, rtol, atol), the step budget kept.
+FlowSetup with_integrator(FlowSetup setup, const IntegratorSetting& integrator);
+
+// The scene's own integrator (integrator.method, integrator.rtol,
+// integrator.atol).
+IntegratorSetting scene_integrator(const Scene& scene);
+
 template <HybridSystem System>
 StepperSettings stepper_settings(const System& system, const FlowSetup& setup) {
   StepperSettings settings;

@@ -74,7 +74,11 @@ SectionResult run_section(const System& system, const typename System::State& x0
   result.omega = omega;
   result.forcing_period = 2.0 * std::numbers::pi / omega;
   const double period = result.forcing_period;
-  const FlowSetup setup = flow_setup(scene);
+  // the transient and record at the request's stepper where it names one;
+  // the Lyapunov run always at the scene's integrator
+  const FlowSetup lyapunov_setup = flow_setup(scene);
+  const FlowSetup setup =
+      request.integrator ? with_integrator(lyapunov_setup, *request.integrator) : lyapunov_setup;
   check_section_size(request, omega, system.max_step(), setup.step_budget);
   const LoopOptions options = loop_options(setup);
 
@@ -193,7 +197,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
       if constexpr (HasJacobian<System>) {
         const int periods = std::max(1, static_cast<int>(std::lround(result.periods_recorded)));
         const LyapunovResult lyapunov = largest_lyapunov_exponent(
-            system, setup, x_record, mode_record, result.record_start, period, periods,
+            system, lyapunov_setup, x_record, mode_record, result.record_start, period, periods,
             request.lyapunov_alignment_periods);
         result.lyapunov = lyapunov.exponent;
         if (lyapunov.termination != Termination::completed)

@@ -87,6 +87,14 @@ struct ContinuationState {
   int mode = 0;               // the system's mode, as its enum's integer value
 };
 
+// An integrator as a scene states it (integrator.method, integrator.rtol,
+// integrator.atol).
+struct IntegratorSetting {
+  std::string method;
+  double rtol = 0.0;  // relative error per step (dimensionless)
+  double atol = 0.0;  // absolute error per step (state units)
+};
+
 struct SectionRequest {
   SectionSpec section;
   double transient_periods = 100.0;    // forcing periods discarded first
@@ -94,6 +102,10 @@ struct SectionRequest {
   std::uint64_t points = 50;           // strobe: periods recorded; impact: impacts recorded
   bool lyapunov = false;               // also the largest Lyapunov exponent
   int lyapunov_alignment_periods = 10; // periods a tangent vector turns before averaging
+  // the transient's and record's stepper where it is not the scene's (a sweep
+  // that only classifies, analysis/sweep.hpp); the system itself (its
+  // accumulation criteria) and the Lyapunov run keep the scene's integrator
+  std::optional<IntegratorSetting> integrator;
   double max_periods = 1e5;            // cap on a transient or record counted in impacts
   std::optional<ContinuationState> start;  // instead of the scene's initial state
   // where the points go as they are found; none: SectionResult::points

@@ -250,6 +250,7 @@ std::vector<SweepRecord> run_sweep_task(
     if (!keep_going()) break;
     const Scene scene = scene_at(base, *target.schema, plan, task.points[position]);
     SectionRequest request = plan.section;
+    request.integrator = plan.classification_integrator;
     if (plan.follow_attractor) request.start = previous;
     SweepRecord record;
     record.task = task.id;

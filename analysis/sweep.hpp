@@ -51,6 +51,12 @@ struct SweepPlan {
   // state, which the axes may set (basins of attraction)
   bool follow_attractor = true;
   double attractor_tolerance = 1e-4;  // basins: relative distance of two attractors' canonical points
+  // the transient and record of every point stepped at this integrator
+  // instead of the scene's (a classification-only sweep, api/sweep_job.hpp);
+  // the system's accumulation criteria and the Lyapunov exponent keep the
+  // scene's own
+  std::optional<IntegratorSetting> classification_integrator;
+  std::string classification_note;  // why that integrator, or why the scene's (meta.json)
 };
 
 // What a sweep needs of the scene's oscillator: its schema (to validate each

@@ -270,7 +270,8 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
                        const std::string& direction, int chunks, const std::string& section,
                        double transient, std::uint64_t transient_impacts, std::uint64_t points,
                        std::optional<bool> lyapunov, double period_tolerance, int max_period,
-                       int threads, py::object progress) {
+                       const std::string& classification_tolerance, int threads,
+                       py::object progress) {
   if (threads < 1 || threads > 1024)
     throw BadInput("threads", std::to_string(threads), "expected 1 to 1024");
   if (chunks < 1 || chunks > 1000000)
@@ -287,8 +288,10 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
   spec.lyapunov = lyapunov;
   spec.period_tolerance = period_tolerance;
   spec.max_period = max_period;
+  spec.classification_tolerance = classification_tolerance;
   spec.param_key = "param";
   spec.direction_key = "direction";
+  spec.classification_key = "classification_tol";
   const SweepTarget target = sweep_target(scene);
   const SweepPlan plan = make_sweep_plan(spec, scene, *target.schema);
   const PlanRun run = run_plan(scene, target, plan, threads, std::move(progress));

@@ -184,6 +184,29 @@ TEST(Sweep, SerialAndThreadedRunsWriteIdenticalFiles) {
   EXPECT_EQ(classes, slurp(threaded_2d / "classes.csv"));
 }
 
+TEST(Sweep, MetaRecordsTheClassificationAndLyapunovIntegrators) {
+  // a 2D map classifies at the scene's classification integrator (the
+  // Lyapunov exponent at the scene's own); a 1D sweep and a 2D map with an
+  // integrator key set stay at the scene's or the user's integrator throughout
+  const auto map = scratch("integrators_2d"), set = scratch("integrators_set"),
+             one = scratch("integrators_1d");
+  ASSERT_EQ(run(sweep_2d + " --out " + map.string()).status, 0);
+  ASSERT_EQ(run(sweep_2d + " --set integrator.rtol=1e-11 --out " + set.string()).status, 0);
+  ASSERT_EQ(run("sweep jin2003 --param omega=6:8:3 --transient 5 --points 4 --quiet --out " +
+                one.string()).status, 0);
+  const auto sweep_of = [](const fs::path& dir) {
+    return nlohmann::json::parse(slurp(dir / "meta.json"))["sweep"];
+  };
+  const auto m = sweep_of(map), s = sweep_of(set), o = sweep_of(one);
+  EXPECT_EQ(m["classification_integrator"]["rtol"], 1e-8) << m.dump(1);
+  EXPECT_EQ(m["lyapunov_integrator"]["method"], "rkf78");
+  EXPECT_EQ(m["lyapunov_integrator"]["rtol"], 1e-12);
+  EXPECT_EQ(s["classification_integrator"]["rtol"], 1e-11);
+  EXPECT_EQ(s["lyapunov_integrator"]["rtol"], 1e-11);
+  EXPECT_EQ(o["classification_integrator"]["rtol"], 1e-12);
+  EXPECT_TRUE(o["lyapunov_integrator"].is_null());
+}
+
 TEST(Sweep, MpiRunWritesTheSameFileAsTheSerialRun) {
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "no mpirun";
   const auto serial = scratch("mpi_serial"), parallel = scratch("mpi_parallel");
@@ -303,6 +326,12 @@ INSTANTIATE_TEST_SUITE_P(
                               "--direction", "sideways"},
                       BadCase{"sweep jin2003 --param omega=5:9:4 --section moon", "--section",
                               "moon"},
+                      BadCase{"sweep jin2003 --param omega=5:9:4 --param V0=1:2:2 "
+                              "--classification-tol sometimes",
+                              "--classification-tol", "sometimes"},
+                      BadCase{"sweep jin2003 --param omega=5:9:4 --param V0=1:2:2 "
+                              "--set integrator.classification_method=euler",
+                              "integrator.classification_method", "euler"},
                       BadCase{"poincare jin2003 --section impact:2", "--section", "impact:2"},
                       BadCase{"poincare jin2003 --section strobe:nan", "--section",
                               "strobe:nan"},

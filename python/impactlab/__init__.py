@@ -215,17 +215,21 @@ def poincare(scene_=None, *, section="strobe", transient=100.0, transient_impact
 
 def sweep(scene_=None, *, param, direction="up", threads=1, chunks=1, section="strobe",
           transient=100.0, transient_impacts=0, points=50, lyapunov=None, period_tol=1e-6,
-          max_period=16, progress=None, **keys):
+          max_period=16, classification_tol="auto", progress=None, **keys):
     """A 1D bifurcation sweep (param="omega=FROM:TO:N") or a 2D map (a list of
     two). Returns bifurcation (1D: the rows of bifurcation.csv), summary (the
-    rows of summary.csv, or of classes.csv for a 2D map), definition."""
+    rows of summary.csv, or of classes.csv for a 2D map), definition.
+    classification_tol: "auto" (a 2D map integrates at the scene's
+    integrator.classification_* unless an integrator key was set) or "off"
+    (the scene's integrator); the CLI's --classification-tol."""
     loaded = scene(scene_ if scene_ is not None else "jin2003", **keys)
     params = [param] if isinstance(param, str) else list(param)
     if not params or not all(isinstance(p, str) for p in params):
         raise ValueError("param = {!r}: expected NAME=FROM:TO:N or a list of two".format(param))
     if lyapunov is not None and not isinstance(lyapunov, bool):
         raise ValueError("lyapunov = {!r}: expected True, False or None".format(lyapunov))
-    for key, value in (("direction", direction), ("section", section)):
+    for key, value in (("direction", direction), ("section", section),
+                       ("classification_tol", classification_tol)):
         if not isinstance(value, str):
             raise ValueError("{} = {!r}: expected text".format(key, value))
     transient = _number("transient", transient)
@@ -233,7 +237,7 @@ def sweep(scene_=None, *, param, direction="up", threads=1, chunks=1, section="s
         loaded, params, direction, _whole("chunks", chunks, 1), section, transient,
         _whole("transient_impacts", transient_impacts), _whole("points", points, 1), lyapunov,
         _number("period_tol", period_tol, positive=True), _whole("max_period", max_period, 1),
-        _whole("threads", threads, 1), callback), progress, "sweep")
+        classification_tol, _whole("threads", threads, 1), callback), progress, "sweep")
     axes = raw["axes"]
     names = ["up" if d > 0 else "down" for d in raw["direction"]]
     summary = {axes[0]: raw["value"]}

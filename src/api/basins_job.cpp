@@ -35,6 +35,11 @@ SweepPlan make_basins_plan(const BasinsSpec& spec, const Scene& scene, const Sce
   sweep.param_key = spec.grid_key;
   SweepPlan plan = make_sweep_plan(sweep, scene, schema);
   plan.follow_attractor = false;  // every point from the scene's state
+  // basins tell attractors apart by their section points and write them
+  // (attractors.csv): they are not classification-only
+  plan.classification_integrator.reset();
+  plan.classification_note =
+      "the scene's integrator: basins tell attractors apart by their section points";
   plan.attractor_tolerance = spec.attractor_tolerance;
   return plan;
 }

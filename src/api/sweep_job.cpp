@@ -7,11 +7,52 @@
 
 #include <omp.h>
 
+#include "analysis/flow_setup.hpp"
 #include "api/scene_loading.hpp"
 #include "api/scene_record.hpp"
 #include "io/bad_input.hpp"
 
 namespace impactlab {
+
+namespace {
+
+// The integrator a sweep classifies at where it is not the scene's own
+// (plan.classification_integrator) and why (plan.classification_note): the
+// scene's integrator.classification_* (chosen from data, docs/performance.md)
+// for a sweep whose files hold classes only, unless turned off, not stated by
+// the scene, or overruled by an integrator key the user set or swept.
+void choose_classification_integrator(SweepPlan& plan, const SweepSpec& spec,
+                                      const Scene& scene) {
+  if (spec.classification_tolerance != "auto" && spec.classification_tolerance != "off")
+    throw BadInput(spec.classification_key, spec.classification_tolerance,
+                   "expected auto or off");
+  const auto note = [&](const std::string& why) {
+    plan.classification_note = "the scene's integrator: " + why;
+  };
+  if (spec.classification_tolerance == "off") return note("classification tolerance turned off");
+  if (plan.axes.size() != 2)
+    return note("a 1D sweep writes section points (bifurcation.csv)");
+  for (const std::string key : {"integrator.method", "integrator.rtol", "integrator.atol"})
+    if (scene.assigned.contains(key)) return note(key + " set by the user");
+  for (const SweepAxis& axis : plan.axes)
+    if (axis.name.starts_with("integrator.")) return note(axis.name + " swept");
+  const double rtol = scene.number("integrator.classification_rtol");
+  const double atol = scene.number("integrator.classification_atol");
+  if (!(rtol > 0.0) || !(atol > 0.0))
+    return note("the scene states no classification tolerance");
+  const std::string& method = scene.text("integrator.classification_method");
+  plan.classification_integrator =
+      IntegratorSetting{method == "same" ? scene.text("integrator.method") : method, rtol, atol};
+  plan.classification_note =
+      "classification only (2D map): the scene's integrator.classification_method, "
+      "classification_rtol and classification_atol";
+}
+
+nlohmann::json integrator_record(const IntegratorSetting& integrator) {
+  return {{"method", integrator.method}, {"rtol", integrator.rtol}, {"atol", integrator.atol}};
+}
+
+}  // namespace
 
 SweepPlan make_sweep_plan(const SweepSpec& spec, const Scene& scene, const SceneSchema& schema) {
   SweepPlan plan;
@@ -30,6 +71,7 @@ SweepPlan make_sweep_plan(const SweepSpec& spec, const Scene& scene, const Scene
   if (plan.axes.size() == 2 && plan.direction != SweepDirection::up)
     throw BadInput(spec.direction_key, spec.direction,
                    "a 2D sweep follows the first parameter upwards only");
+  choose_classification_integrator(plan, spec, scene);
   return plan;
 }
 
@@ -45,8 +87,16 @@ nlohmann::json sweep_definition(const SweepPlan& plan, const Scene& scene,
                     {"to", a.to},
                     {"count", a.count}});
   }
+  const IntegratorSetting own = scene_integrator(scene);
   return {
       {"scene", scene_record(scene)},
+      // the integrators actually used: the transient and record that classify
+      // each point, and the Lyapunov exponent's variational run (null: none)
+      {"classification_integrator",
+       integrator_record(plan.classification_integrator.value_or(own))},
+      {"classification_integrator_note", plan.classification_note},
+      {"lyapunov_integrator",
+       plan.section.lyapunov ? integrator_record(own) : nlohmann::json(nullptr)},
       {"axes", axes},
       {"direction", to_string(plan.direction)},
       {"chunks", plan.chunks},

@@ -29,7 +29,12 @@ struct SweepSpec {
   std::optional<bool> lyapunov;  // unset: on for 2D maps, off for 1D sweeps
   double period_tolerance = 1e-6;
   int max_period = 16;
-  std::string param_key = "--param", direction_key = "--direction";
+  // auto: a sweep that only classifies (a 2D map) integrates at the scene's
+  // integrator.classification_* where it states them and no integrator key
+  // was set by the user; off: always the scene's integrator
+  std::string classification_tolerance = "auto";
+  std::string param_key = "--param", direction_key = "--direction",
+              classification_key = "--classification-tol";
 };
 
 // The validated plan. Throws BadInput.

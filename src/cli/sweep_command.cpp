@@ -41,6 +41,7 @@ struct SweepOptions {
   long stop_after = 0;  // hidden, for tests: stop after this many new points per rank
   double period_tolerance = 1e-6;
   int max_period = 16;
+  std::string classification_tolerance = "auto";  // auto | off (api/sweep_job.hpp)
   bool basins = false;                // `impactlab basins`: params are --x, --y
   double attractor_tolerance = 1e-4;  // basins: relative distance of canonical points
 };
@@ -129,6 +130,7 @@ SweepSpec sweep_spec(const SweepOptions& options) {
   if (options.no_lyapunov) spec.lyapunov = false;
   spec.period_tolerance = options.period_tolerance;
   spec.max_period = options.max_period;
+  spec.classification_tolerance = options.classification_tolerance;
   return spec;
 }
 
@@ -364,6 +366,11 @@ Command add_sweep_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--max-period", options->max_period, "longest period looked for")
       ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  command->add_option("--classification-tol", options->classification_tolerance,
+                      "auto: a 2D map (classes only) integrates at the scene's "
+                      "integrator.classification_* unless an integrator key is --set; off: at "
+                      "the scene's integrator (the Lyapunov exponent always is)")
       ->capture_default_str();
   command->add_flag("--resume", options->resume,
                     "reuse the finished points of an interrupted run of the same sweep in --out");

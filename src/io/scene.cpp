@@ -110,6 +110,8 @@ std::string to_text(const SceneValue& value) {
 
 std::vector<KeySpec> common_keys() {
   std::vector<std::string_view> methods(stepper_names.begin(), stepper_names.end());
+  std::vector<std::string_view> classification_methods{"same"};
+  classification_methods.insert(classification_methods.end(), methods.begin(), methods.end());
   return {
       {.key = "name", .help = "scene name", .is_text = true, .default_text = ""},
       {.key = "description", .help = "what the scene is", .is_text = true, .default_text = ""},
@@ -123,6 +125,23 @@ std::vector<KeySpec> common_keys() {
        .lower = 0.0, .upper = 1.0, .lower_open = true},
       {.key = "integrator.atol", .unit = "state units", .help = "absolute tolerance per step",
        .default_number = 1e-12, .lower = 0.0, .upper = 1.0, .lower_open = true},
+      // a sweep that only classifies (a 2D map) integrates at these instead of
+      // the three above where the scene states them (classification_rtol > 0);
+      // chosen per scene from data (docs/performance.md, "Classification
+      // tolerance"), so a scene without them keeps its own integrator
+      {.key = "integrator.classification_method",
+       .help = "stepper of a classification-only sweep (2D map); same: integrator.method",
+       .is_text = true,
+       .default_text = "same",
+       .choices = classification_methods},
+      {.key = "integrator.classification_rtol",
+       .help = "relative tolerance per step of a classification-only sweep; 0: none stated "
+               "(the sweep keeps integrator.rtol)",
+       .default_number = 0.0, .lower = 0.0, .upper = 1.0},
+      {.key = "integrator.classification_atol", .unit = "state units",
+       .help = "absolute tolerance per step of a classification-only sweep; 0: none stated "
+               "(the sweep keeps integrator.atol)",
+       .default_number = 0.0, .lower = 0.0, .upper = 1.0},
       {.key = "limits.max_steps",
        .help = "step budget of one run: refused up front when it needs more, else stops "
                "(step_budget) when it takes more",
@@ -250,6 +269,7 @@ void set_scene_key(Scene& scene, const SceneSchema& schema, std::string_view ass
   else
     scene.values[key] = parse_number(key, text);
   validate(scene, schema);
+  scene.assigned.insert(key);
 }
 
 }  // namespace impactlab

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -42,6 +43,10 @@ struct Scene {
   std::string name;        // built-in name or file path
   std::string oscillator;  // schema it follows
   std::map<std::string, SceneValue> values;  // every key of the schema, resolved
+  // the keys given by an assignment (--set, a Python keyword) rather than by
+  // the scene file or a default: a sweep's classification tolerance yields to
+  // an integrator key the user set (analysis/sweep.hpp)
+  std::set<std::string> assigned;
 
   [[nodiscard]] double number(const std::string& key) const;
   [[nodiscard]] const std::string& text(const std::string& key) const;

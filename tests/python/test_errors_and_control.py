@@ -57,6 +57,8 @@ def test_unknown_scene_raises_value_error():
     (lambda: impactlab.sweep("jin2003", param="nokey=1:2:3"), "nokey"),
     (lambda: impactlab.sweep("jin2003", param="omega=6:7:3", direction="sideways"), "direction"),
     (lambda: impactlab.sweep("jin2003", param="omega=6:7:3", threads=0), "threads"),
+    (lambda: impactlab.sweep("jin2003", param=["omega=6:7:3", "V0=1:2:2"],
+                             classification_tol="sometimes"), "classification_tol"),
     (lambda: impactlab.periodic("jin2003", period="two"), "period"),
     (lambda: impactlab.compare("jin2003", models=["newton", "newton"]), "models"),
     (lambda: impactlab.simulate("jin2003", progress=42), "progress"),

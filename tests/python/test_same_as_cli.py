@@ -114,6 +114,35 @@ def test_sweep_2d_map_equals_cli(cli):
     classes = read_csv(out / "classes.csv")
     for column in ("omega", "V0", "period", "impacts_per_period", "contact", "lyapunov"):
         same_numbers(classes[column], result.summary[column])
+    # one truth for the classification tolerance: the same integrators recorded
+    assert result.definition == read_json(out / "meta.json")["sweep"]
+
+
+@pytest.mark.parametrize("cli_options, python_options", [
+    ([], {}),                                                   # auto: the classification integrator
+    (["--classification-tol", "off"], {"classification_tol": "off"}),  # the scene's
+    (["--set", "integrator.rtol=1e-11"], {"integrator__rtol": 1e-11}),  # the user's key wins
+])
+def test_sweep_2d_classification_integrator_equals_cli(cli, cli_options, python_options):
+    grid = ["omega=6.5:7.5:3", "V0=3.5:4.5:2"]
+    out = cli("sweep", "jin2003", "--param", grid[0], "--param", grid[1], "--points", "6",
+              "--transient", "5", "--no-lyapunov", *cli_options)
+    result = impactlab.sweep("jin2003", param=grid, points=6, transient=5, lyapunov=False,
+                             **python_options)
+    meta = read_json(out / "meta.json")
+    assert result.definition == meta["sweep"]
+    integrator = meta["sweep"]["classification_integrator"]
+    scene = impactlab.scene("jin2003").values()
+    if cli_options:
+        expected_rtol = 1e-11 if "--set" in cli_options else scene["integrator.rtol"]
+        assert integrator["rtol"] == expected_rtol
+    else:
+        assert integrator["rtol"] == scene["integrator.classification_rtol"]
+        assert integrator["rtol"] > scene["integrator.rtol"]
+    assert meta["sweep"]["lyapunov_integrator"] is None
+    classes = read_csv(out / "classes.csv")
+    for column in ("period", "impacts_per_period", "contact"):
+        same_numbers(classes[column], result.summary[column])
 
 
 def test_periodic_equals_cli(cli):
