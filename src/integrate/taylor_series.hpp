@@ -393,9 +393,15 @@ class TaylorTape {
         in.kernel = TaylorKernel::linear;
         in.first_term = term_count_;
         add_terms(n, 1.0, true, kept, in);
-        // products last: they hold this order's newest coefficients
-        std::stable_partition(&terms_[in.first_term], &terms_[term_count_],
-                              [](const TaylorTerm& t) { return t.b < 0; });
+        // products last: they hold this order's newest coefficients. A
+        // stable partition in place by rotations, not std::stable_partition,
+        // whose temporary buffer is a heap allocation: a mode's tape is
+        // recorded inside the event loop, which allocates nothing.
+        {
+          TaylorTerm* boundary = &terms_[in.first_term];
+          for (TaylorTerm* t = boundary; t != &terms_[term_count_]; ++t)
+            if (t->b < 0) std::rotate(boundary++, t, t + 1);
+        }
         break;
     }
     return in;
