@@ -1,6 +1,6 @@
 // The Taylor-series stepper (integrate/taylor_stepper.hpp) and its parts:
 // * the series arithmetic (integrate/taylor_series.hpp) against Taylor
-//   coefficients known in closed form;
+//   coefficients known in closed form, or against the function itself;
 // * the polynomial root isolation (integrate/polynomial_roots.hpp) on root
 //   pairs far closer than any sampling grid;
 // * whole runs against closed-form flows (the linear impact oscillator's
@@ -34,27 +34,34 @@ double factorial(int k) {
   return f;
 }
 
-// x' = cos(ω t) · x... recorded by hand on a tape: the series of
-// y(t) = sin(a + b t) and of z = y · y / (1 + t) against the closed forms
+// Coefficients 0..order of a right-hand side written in the test, over
+// TaylorVariable, with up to TaylorSeries::max_outputs further series
+template <std::size_t N, class Rhs>
+TaylorSeries<double, N> series_of(const std::array<double, N>& x0, double t0, int order, Rhs rhs) {
+  TaylorSeries<double, N> series;
+  series.evaluate(x0.data(), t0, order, rhs);
+  return series;
+}
+
+// x' = sin(a + b t): the series of sin(a + b t) and cos(a + b t) (the
+// one-term recurrence of a linear argument) against the closed forms
 TEST(TaylorSeries, SinCosOfAffineArgumentMatchClosedForm) {
-  TaylorTape tape;
-  TaylorVariable t;
-  const auto x = tape.begin<1>(t);
   const double a = 0.7, b = 2.5;
-  const TaylorVariable s = sin(a + b * t);
-  const TaylorVariable c = cos(a + b * t);
-  tape.set_derivatives(std::array<TaylorVariable, 1>{s});
-  tape.add_witness(s);
-  tape.add_witness(c);
-  tape.add_witness(x[0]);
-  tape.finish();
-  TaylorTape::Coefficients coefficients{};
-  const double x0 = 0.0, t0 = 0.3;
+  const double t0 = 0.3;
   const int order = 20;
-  tape.evaluate(&x0, t0, order, coefficients);
-  const double* sk = TaylorTape::row(coefficients, tape.witness_node(0));
-  const double* ck = TaylorTape::row(coefficients, tape.witness_node(1));
-  const double* xk = TaylorTape::row(coefficients, tape.witness_node(2));
+  using V = TaylorVariable<double>;
+  const auto series = series_of<1>({0.0}, t0, order, [&](const std::array<V, 1>&, const V& t,
+                                                        std::array<V, 1>& dxdt, auto& outputs) {
+    const V s = sin(a + b * t);
+    const V c = cos(a + b * t);
+    dxdt[0] = s;
+    outputs[0] = s;
+    outputs[1] = c;
+    return 2;
+  });
+  const double* sk = series.output(0);
+  const double* ck = series.output(1);
+  const double* xk = series.state(0);
   const double phase = a + b * t0;
   for (int k = 0; k <= order; ++k) {
     // d^k/dt^k sin(a + b t) = b^k sin(phase + k π/2)
@@ -73,39 +80,63 @@ TEST(TaylorSeries, SinCosOfAffineArgumentMatchClosedForm) {
 }
 
 // x' = x², x(0) = 1: x = 1 / (1 − t), every coefficient 1; and
-// y' = y / (1 + t)... here x' = −x / (1 + t) with x(0) = 1: x = 1 / (1 + t)
+// y' = −y / (1 + t), y(0) = 1: y = 1 / (1 + t), coefficients ±1
 TEST(TaylorSeries, ProductAndQuotientRecurrences) {
-  TaylorTape tape;
-  TaylorVariable t;
-  const auto x = tape.begin<2>(t);
-  const std::array<TaylorVariable, 2> dxdt = {x[0] * x[0], -x[1] / (1.0 + t)};
-  tape.set_derivatives(dxdt);
-  tape.finish();
-  TaylorTape::Coefficients coefficients{};
-  const std::array<double, 2> x0 = {1.0, 1.0};
-  tape.evaluate(x0.data(), 0.0, 25, coefficients);
+  using V = TaylorVariable<double>;
+  const auto series = series_of<2>({1.0, 1.0}, 0.0, 25, [](const std::array<V, 2>& x, const V& t,
+                                                           std::array<V, 2>& dxdt, auto&) {
+    dxdt = {x[0] * x[0], -x[1] / (1.0 + t)};
+    return 0;
+  });
   for (int k = 0; k <= 25; ++k) {
-    EXPECT_NEAR(TaylorTape::row(coefficients, 0)[k], 1.0, 1e-13) << k;
-    EXPECT_NEAR(TaylorTape::row(coefficients, 1)[k], k % 2 == 0 ? 1.0 : -1.0, 1e-13) << k;
+    EXPECT_NEAR(series.state(0)[k], 1.0, 1e-13) << k;
+    EXPECT_NEAR(series.state(1)[k], k % 2 == 0 ? 1.0 : -1.0, 1e-13) << k;
   }
 }
 
-// sin of a state variable (the coupled recurrence, not the affine shortcut):
-// x' = 1 with x(0) = x0 gives sin x = sin(x0 + t)
+// sin of a state variable (the coupled recurrence with the state's rates)
+// and of a general series (x0², with its own row of j a_j): x' = 1 with
+// x(0) = x0 gives sin x = sin(x0 + t) and sin x² = sin((x0 + t)²)
 TEST(TaylorSeries, SinOfSeriesArgumentByCoupledRecurrence) {
-  TaylorTape tape;
-  TaylorVariable t;
-  const auto x = tape.begin<2>(t);
-  const std::array<TaylorVariable, 2> dxdt = {TaylorVariable(1.0), sin(x[0] * x[0])};
-  tape.set_derivatives(dxdt);
-  tape.add_witness(sin(x[0]));
-  tape.finish();
-  TaylorTape::Coefficients coefficients{};
-  const std::array<double, 2> x0 = {0.4, 0.0};
-  tape.evaluate(x0.data(), 0.0, 18, coefficients);
-  const double* sk = TaylorTape::row(coefficients, tape.witness_node(0));
-  for (int k = 0; k <= 18; ++k)
-    EXPECT_NEAR(sk[k], std::sin(0.4 + k * pi / 2) / factorial(k), 1e-15) << k;
+  using V = TaylorVariable<double>;
+  const double x0 = 0.4;
+  const int order = 18;
+  const auto series = series_of<2>({x0, 0.0}, 0.0, order, [](const std::array<V, 2>& x, const V&,
+                                                             std::array<V, 2>& dxdt, auto& outputs) {
+    dxdt = {V(1.0), sin(x[0] * x[0])};
+    outputs[0] = sin(x[0]);
+    return 1;
+  });
+  const double* sk = series.output(0);
+  for (int k = 0; k <= order; ++k)
+    EXPECT_NEAR(sk[k], std::sin(x0 + k * pi / 2) / factorial(k), 1e-15) << k;
+  // y' = sin((x0 + t)²): the derivative of y's polynomial, Σ k y_k h^{k−1},
+  // against sin((x0 + h)²) itself at points of the step (an entire
+  // function: the truncation error at h ≤ 0.2 is far below the tolerance)
+  const double* yk = series.state(1);
+  for (double h : {0.05, 0.1, 0.2}) {
+    double derivative = 0.0, power = 1.0;
+    for (int k = 1; k <= order; ++k) {
+      derivative += k * yk[k] * power;
+      power *= h;
+    }
+    EXPECT_NEAR(derivative, std::sin((x0 + h) * (x0 + h)), 1e-12) << h;
+  }
+}
+
+// More operations than the series has rows: a clear error, not an overrun
+TEST(TaylorSeries, TooManyOperationsAreRefused) {
+  using V = TaylorVariable<double>;
+  auto run = [] {
+    series_of<1>({1.0}, 0.0, 4, [](const std::array<V, 1>& x, const V&, std::array<V, 1>& dxdt,
+                                   auto&) {
+      V sum = x[0];
+      for (int i = 0; i < 400; ++i) sum = sum * x[0];
+      dxdt[0] = sum;
+      return 0;
+    });
+  };
+  EXPECT_THROW(run(), std::length_error);
 }
 
 // (h − 1/2)² − δ² has the roots 1/2 ± δ; with δ = 1e-7 no sampling of [0, 1]

@@ -234,7 +234,7 @@ int run_bench(const BenchOptions& options, const std::vector<std::string>& comma
   // impactlab: every stepper over the ladder; the exact flow once
   std::size_t total = 0, done = 0;
   for (const auto& result : results)
-    total += has_closed_form(result.scene) ? plan.rtols.size() * 4 + 1 : plan.rtols.size() * 4;
+    total += plan.rtols.size() * (stepper_names.size() - 1) + (has_closed_form(result.scene) ? 1 : 0);
   {
     ProgressBar progress(!options.quiet);
     for (auto& result : results) {

@@ -67,6 +67,33 @@ inline double cos_phase(double x) {
   }
 }
 
+// sin x and cos x together, for any x (rad): one reduction for both (the
+// order-0 coefficients of a Taylor series' sin/cos pair); the cosine is
+// cos_phase's, bit for bit
+inline void sin_cos_phase(double x, double& s, double& c) {
+  constexpr double two_over_pi = 6.36619772367581382433e-01;
+  constexpr double pio2_1 = 1.57079632673412561417e+00;
+  constexpr double pio2_2 = 6.07710050630396597660e-11;
+  constexpr double pio2_3 = 2.02226624871116645580e-21;
+  constexpr double pio2_3t = 8.47842766036889956997e-32;
+  constexpr double round_shift = 0x1.8p52;
+  constexpr double largest = 1.6e6;
+  if (!(std::fabs(x) < largest)) {
+    s = std::sin(x);
+    c = std::cos(x);
+    return;
+  }
+  const double n = (x * two_over_pi + round_shift) - round_shift;
+  const double r = (((x - n * pio2_1) - n * pio2_2) - n * pio2_3) - n * pio2_3t;
+  const double sin_r = sin_quarter(r), cos_r = cos_quarter(r);
+  switch (static_cast<std::int64_t>(n) & 3) {
+    case 0: s = sin_r; c = cos_r; return;
+    case 1: s = cos_r; c = -sin_r; return;
+    case 2: s = -sin_r; c = -cos_r; return;
+    default: s = -cos_r; c = sin_r; return;
+  }
+}
+
 // sin θ (rad), by the series where |θ| <= π/4
 inline double sin_angle(double theta) {
   return std::fabs(theta) <= 0.25 * std::numbers::pi ? sin_quarter(theta) : std::sin(theta);

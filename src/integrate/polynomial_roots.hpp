@@ -50,9 +50,19 @@ class PolynomialRoots {
   [[nodiscard]] Real value(int m, const Real& h) const {
     if (m > degree_) return Real(0);
     differentiate(m);
-    Real sum = 0;
-    for (int j = degree_ - m; j >= 0; --j) sum = sum * h + derivative_[m][j];
-    return sum;
+    // Horner's scheme in h² on the even and the odd coefficients: two
+    // independent chains of half the length (the root refinement's cost is
+    // these evaluations, one after another)
+    const auto& d = derivative_[m];
+    const Real h2 = h * h;
+    Real even = 0, odd = 0;
+    int j = degree_ - m;
+    if (j % 2 == 0) even = d[j--];
+    for (; j >= 1; j -= 2) {
+      odd = odd * h2 + d[j];
+      even = even * h2 + d[j - 1];
+    }
+    return even + h * odd;
   }
 
   // The sign changes of P⁽ᵐ⁾ in (lo, hi), in increasing order.

@@ -17,8 +17,9 @@
 // period with errors 100× below the tolerance, e^{−1.3} takes 8 at about the
 // tolerance (docs/performance.md). The witnesses' coefficients bound ρ too.
 //
-// Events (locate_first_event): the witness functions of the mode are
-// recorded on the same tape, so each has its Taylor polynomial over the step.
+// Events (locate_first_event): the witness functions of the mode run through
+// the series with the right-hand side, so each has its Taylor polynomial over
+// the step.
 // A step whose witness polynomial g (oriented so that its trigger is a fall
 // through zero) satisfies g_0 − Σ_{j≥1} |g_j| h^j > the grazing tolerance
 // cannot hold an event and is skipped at the cost of one sum. In the others,
@@ -46,26 +47,26 @@
 
 namespace impactlab {
 
-template <class System>
-using SeriesState = std::array<TaylorVariable, std::tuple_size_v<typename System::State>>;
+template <class System, class Real = double>
+using SeriesState = std::array<TaylorVariable<Real>, std::tuple_size_v<typename System::State>>;
 
 // A system whose right-hand side and witnesses are written over a number
 // type, so that TaylorVariable runs through them.
 template <class S>
 concept HasSeriesRhs = HybridSystem<S> && requires(const S& system, typename S::Mode mode,
                                                    const SeriesState<S>& x, SeriesState<S>& dxdt,
-                                                   const TaylorVariable& t, std::size_t k) {
+                                                   const TaylorVariable<>& t, std::size_t k) {
   { system.rhs(mode, x, dxdt, t) };
-  { system.witness(mode, k, x, t).value } -> std::convertible_to<TaylorVariable>;
+  { system.witness(mode, k, x, t).value } -> std::convertible_to<TaylorVariable<>>;
 };
 
 // the fraction of the radius of convergence a step takes: e^{−step_exponent}
 inline constexpr double taylor_step_exponent = 1.3;
 
-// the order for a tolerance: ⌈−ln ε / 1.3⌉, within the tape's capacity
+// the order for a tolerance: ⌈−ln ε / 1.3⌉, within the series' capacity
 inline int taylor_order(double tolerance) {
   const double order = std::ceil(-std::log(tolerance) / taylor_step_exponent);
-  return static_cast<int>(std::clamp(order, 2.0, static_cast<double>(TaylorTape::max_order)));
+  return static_cast<int>(std::clamp(order, 2.0, static_cast<double>(taylor_max_order)));
 }
 
 // Real: the arithmetic of the series, the step's state and time (double; or
@@ -82,7 +83,6 @@ class TaylorStepper {
   static constexpr bool has_cheap_scan = false;
   static constexpr bool has_polish = true;  // state_at is the step's own polynomial
   static constexpr std::size_t dimension = std::tuple_size_v<State>;
-  static constexpr std::size_t max_modes = 8;
 
   explicit TaylorStepper(const StepperSettings& settings)
       : settings_(settings),
@@ -101,22 +101,20 @@ class TaylorStepper {
     t_ = t;
     x_double_ = x;
     t_double_ = t;
-    bind(rhs);
   }
 
   // One step from (t_, x_): the Taylor polynomial, the step from its last
   // two coefficients, never past t_limit.
   template <class Rhs>
   void do_step(const Rhs& rhs, double t_limit) {
-    bind(rhs);
     x_old_ = x_;
     t_old_ = t_;
     x_old_double_ = x_double_;
     t_old_double_ = t_double_;
-    tape_->evaluate(x_old_.data(), t_old_, order_, coefficients_);
+    evaluate(*rhs.system, rhs.mode, false);
     *rhs.evaluations += static_cast<std::uint64_t>(order_ + 1);
-    if (tape_->signs_need_slope(coefficients_)) {
-      tape_->evaluate(x_old_.data(), t_old_, order_, coefficients_, true);
+    if (series_.needs_slope()) {
+      evaluate(*rhs.system, rhs.mode, true);
       *rhs.evaluations += static_cast<std::uint64_t>(order_ + 1);
     }
     // the radius of convergence from the state's last two coefficients, and
@@ -132,18 +130,21 @@ class TaylorStepper {
         ratio[j] = std::max(ratio[j], std::fabs(static_cast<double>(c[order_ - 1 + j])) / row_scale);
     };
     for (std::size_t i = 0; i < dimension; ++i)
-      bound_by(TaylorTape::row(coefficients_, static_cast<int>(i)), scale);
-    for (int k = 0; k < tape_->witness_count(); ++k) {
-      const Real* w = TaylorTape::row(coefficients_, tape_->witness_node(k));
+      bound_by(series_.state(i), scale);
+    for (int k = 0; k < series_.output_count(); ++k) {
+      const Real* w = series_.output(k);
       // (the state's scale, or the witness's own size where larger: a
       // witness whose higher coefficients are the state's, such as a gap,
       // does not shorten the step)
       bound_by(w, std::max({scale, std::fabs(static_cast<double>(w[0])),
                             std::fabs(static_cast<double>(w[1]))}));
     }
-    double radius = std::numeric_limits<double>::infinity();
+    // ρ = exp(−max_j ln(ratio_j) / j): two logarithms and one exponential
+    // instead of two powers
+    double log_growth = -std::numeric_limits<double>::infinity();
     for (int j = 0; j < 2; ++j)
-      if (ratio[j] > 0.0) radius = std::min(radius, std::pow(ratio[j], -1.0 / (order_ - 1 + j)));
+      if (ratio[j] > 0.0) log_growth = std::max(log_growth, std::log(ratio[j]) / (order_ - 1 + j));
+    const double radius = std::exp(-log_growth);
     double h = radius * safety_;
     const double room = t_limit - t_old_double_;
     if (!std::isfinite(h)) h = room;  // a polynomial solution: exact at any step
@@ -192,8 +193,16 @@ class TaylorStepper {
     const Real h_end = tb == t_double_ ? step_ : Real(tb) - t_old_;
     const Real h_start = ta == t_old_double_ ? Real(0) : Real(ta) - t_old_;
     const double tolerance = options.grazing_tolerance;
+    // H^j of the step's end, shared by the witnesses' exclusion tests (over
+    // [0, H] ⊇ [0, h_limit]: a bound over the longer interval holds over
+    // the shorter)
+    std::array<Real, taylor_max_order + 1> powers;
+    if (h_start == 0) {
+      powers[0] = 1;
+      for (int j = 1; j <= order_; ++j) powers[j] = powers[j - 1] * h_end;
+    }
     for (std::size_t k = 0; k < system.witness_count(mode); ++k) {
-      const Real* w = TaylorTape::row(coefficients_, tape_->witness_node(static_cast<int>(k)));
+      const Real* w = series_.output(static_cast<int>(k));
       const TriggerDirection direction = system.trigger_direction(mode, k);
       // orientation: the trigger is a fall through zero; an `either` witness
       // is oriented so that its starting side (or the side it leaves zero
@@ -202,9 +211,19 @@ class TaylorStepper {
       const double s = direction == TriggerDirection::rising   ? -1.0
                        : direction == TriggerDirection::either ? (start_side >= 0 ? 1.0 : -1.0)
                                                                : 1.0;
-      std::array<Real, TaylorTape::max_order + 1> g;  // filled up to the order
-      for (int j = 0; j <= order_; ++j) g[j] = s * w[j];
       const Real h_limit = best.found ? Real(best.t) - t_old_ : h_end;
+      if (!(h_limit > h_start)) continue;
+      // exclusion: g = s w stays above the tolerance over the whole step, by
+      // g(h) >= min(g0, g0 + g1 H) − Σ_{j≥2} |g_j| H^j (the linear part is
+      // monotone: its minimum is at an end); most steps end here
+      if (h_start == 0 && s * w[0] > tolerance) {
+        Real reach = 0;
+        for (int j = 2; j <= order_; ++j) reach += fabs(w[j]) * powers[j];
+        const Real g0 = s * w[0], linear_end = g0 + (s * w[1]) * h_end;
+        if ((linear_end < g0 ? linear_end : g0) - reach > tolerance) continue;
+      }
+      std::array<Real, taylor_max_order + 1> g;  // filled up to the order
+      for (int j = 0; j <= order_; ++j) g[j] = s * w[j];
       const LocatedEvent candidate =
           first_event(g, h_start, h_limit, tolerance, direction != TriggerDirection::either,
                       k == just_grazed, k);
@@ -214,34 +233,40 @@ class TaylorStepper {
   }
 
  private:
-  template <class Rhs>
-  void bind(const Rhs& rhs) {
-    const auto index = static_cast<std::size_t>(rhs.mode);
-    if (index >= max_modes) throw std::length_error("taylor: more modes than the stepper holds");
-    TaylorTape& tape = tapes_[index];
-    if (!tape.recorded()) record(*rhs.system, rhs.mode, tape);
-    tape_ = &tape;
+  // the coefficients of the state and of the mode's witnesses at the step's
+  // start
+  void evaluate(const System& system, Mode mode, bool signs_from_slope) {
+    series_.evaluate(
+        x_old_.data(), t_old_, order_,
+        [&](const SeriesState<System, Real>& x, const TaylorVariable<Real>& t,
+            SeriesState<System, Real>& dxdt, typename Series::Outputs& witnesses) {
+          system.rhs(mode, x, dxdt, t);
+          const auto count = static_cast<int>(system.witness_count(mode));
+          if (count > Series::max_outputs)
+            throw std::length_error("taylor: more witnesses than the series holds");
+          for (int k = 0; k < count; ++k)
+            witnesses[k] = system.witness(mode, static_cast<std::size_t>(k), x, t).value;
+          return count;
+        },
+        signs_from_slope);
   }
 
-  static void record(const System& system, Mode mode, TaylorTape& tape) {
-    TaylorVariable t;
-    const SeriesState<System> x = tape.begin<dimension>(t);
-    SeriesState<System> dxdt;
-    system.rhs(mode, x, dxdt, t);
-    tape.set_derivatives(dxdt);
-    for (std::size_t k = 0; k < system.witness_count(mode); ++k)
-      tape.add_witness(system.witness(mode, k, x, t).value);
-    tape.finish();
-  }
-
-  // the polynomial at h (s past the step's start), newest coefficients last
-  // by Horner's scheme
+  // the polynomial at h (s past the step's start), newest coefficients last:
+  // Horner's scheme in h² on the even and the odd coefficients, two
+  // independent chains of p/2 multiply-adds instead of one of p (the end
+  // state of every step waits for it)
   void evaluate_state(const Real& h, RealState& x) const {
+    const Real h2 = h * h;
     for (std::size_t i = 0; i < dimension; ++i) {
-      const Real* c = TaylorTape::row(coefficients_, static_cast<int>(i));
-      Real sum = c[order_];
-      for (int j = order_ - 1; j >= 0; --j) sum = sum * h + c[j];
-      x[i] = sum;
+      const Real* c = series_.state(i);
+      Real even = 0, odd = 0;
+      int j = order_;
+      if (j % 2 == 0) even = c[j--];
+      for (; j >= 1; j -= 2) {
+        odd = odd * h2 + c[j];
+        even = even * h2 + c[j - 1];
+      }
+      x[i] = even + h * odd;
     }
   }
 
@@ -249,26 +274,28 @@ class TaylorStepper {
   // past the step's start): a fall through zero from the armed side, or a
   // minimum within the grazing tolerance; `one_sided`: a violation (below
   // −tolerance without a crossing) is unresolved.
-  LocatedEvent first_event(const std::array<Real, TaylorTape::max_order + 1>& g, const Real& lo,
+  LocatedEvent first_event(const std::array<Real, taylor_max_order + 1>& g, const Real& lo,
                            const Real& hi, double tolerance, bool one_sided, bool just_grazed,
                            std::size_t k) const {
     using std::fabs;
-    if (!(hi > lo)) return {};
-    // exclusion: g stays above the tolerance over the whole step, by
-    // g(h) >= min(g0, g0 + g1 H) − Σ_{j≥2} |g_j| H^j (the linear part is
-    // monotone: its minimum is at an end)
-    if (lo == 0 && g[0] > tolerance) {
-      Real reach = 0, power = hi;
+    // monotone: |g'(h)| >= |g1| − Σ_{j≥2} j |g_j| h^{j−1} > 0 on [0, hi], so g
+    // has no critical point there (sign_changes would find the same empty
+    // set by re-expanding g' at the centre, at O(p²)): the step that leaves
+    // a wall after an impact, whose witness starts at zero
+    bool monotone = false;
+    if (lo == 0) {
+      Real slope_reach = 0, power = hi;  // power = hi^{j−1}
       for (int j = 2; j <= order_; ++j) {
+        slope_reach += j * fabs(g[j]) * power;
         power *= hi;
-        reach += fabs(g[j]) * power;
       }
-      const Real linear_end = g[0] + g[1] * hi;
-      if ((linear_end < g[0] ? linear_end : g[0]) - reach > tolerance) return {};
+      monotone = fabs(g[1]) > slope_reach;
     }
-    const PolynomialRoots<TaylorTape::max_order, Real> poly(g.data(), order_, fabs(t_old_));
+    const PolynomialRoots<taylor_max_order, Real> poly(g.data(), order_, fabs(t_old_));
     auto at = [&](const Real& h) { return static_cast<double>(t_old_ + h); };
-    const auto critical = poly.sign_changes(1, lo, hi);
+    const auto critical =
+        monotone ? typename PolynomialRoots<taylor_max_order, Real>::Points{}
+                 : poly.sign_changes(1, lo, hi);
     const Real g_lo = poly.value(0, lo);
     const bool leaving_zero = fabs(g_lo) <= tolerance && poly.value(1, lo) > 0;
     Real u = lo;
@@ -302,9 +329,8 @@ class TaylorStepper {
   int order_;
   double safety_;       // h / ρ: e^{−1.3} e^{−0.7 / (p − 1)}
   double scale_floor_;  // atol / rtol (state units)
-  std::array<TaylorTape, max_modes> tapes_{};
-  const TaylorTape* tape_ = nullptr;
-  TaylorTape::CoefficientsOf<Real> coefficients_{};
+  using Series = TaylorSeries<Real, dimension>;
+  Series series_;
   RealState x_{}, x_old_{};             // the step's end and start
   Real t_ = 0, t_old_ = 0, step_ = 0;   // s
   State x_double_{}, x_old_double_{};   // the same, rounded, as the loop sees them
