@@ -37,7 +37,25 @@ struct FlowWithJacobian {
   std::uint64_t impacts = 0;
 };
 
-// The flow from (t0, x0) to t1 and its Jacobian.
+// The flow from (t0, x0) to t1 and its Jacobian, with a stepper for the
+// variational equations `tangent` that the caller holds across calls (one
+// from with_stepper<Variational<System>>): simulate() initializes it at the
+// start of each run, so a Runge–Kutta stepper starts afresh as a new one
+// would, and the Taylor stepper keeps its storage.
+template <HasJacobian System, class Stepper>
+FlowWithJacobian<typename System::State, typename System::Mode, tangent_dimension_of<System>>
+flow_with_jacobian(const Variational<System>& tangent, Stepper& stepper, const FlowSetup& setup,
+                   const typename System::State& x0, typename System::Mode mode, double t0,
+                   double t1) {
+  using Tangent = Variational<System>;
+  EventLog log(false);
+  const auto run =
+      simulate(tangent, stepper, tangent.start(x0, mode), mode, t0, t1, loop_options(setup), log);
+  return {Tangent::base_state(run.state), run.mode, Tangent::fundamental_matrix(run.state),
+          run.termination, log.count(EventKind::impact)};
+}
+
+// The flow from (t0, x0) to t1 and its Jacobian, with a stepper of its own.
 template <HasJacobian System>
 FlowWithJacobian<typename System::State, typename System::Mode, tangent_dimension_of<System>>
 flow_with_jacobian(
@@ -45,14 +63,10 @@ flow_with_jacobian(
     typename System::Mode mode, double t0, double t1) {
   using Tangent = Variational<System>;
   const Tangent tangent(system);
-  EventLog log(false);
-  const auto run = with_stepper<Tangent>(
+  return with_stepper<Tangent>(
       setup.method, stepper_settings(tangent, setup), [&](auto& stepper) {
-        return simulate(tangent, stepper, tangent.start(x0, mode), mode, t0, t1, loop_options(setup),
-                        log);
+        return flow_with_jacobian(tangent, stepper, setup, x0, mode, t0, t1);
       });
-  return {Tangent::base_state(run.state), run.mode, Tangent::fundamental_matrix(run.state),
-          run.termination, log.count(EventKind::impact)};
 }
 
 // Eigenvalues of an N × N matrix, largest modulus first (of a complex pair,
@@ -153,11 +167,13 @@ struct PeriodicOrbit {
 // residual grow, or leaves the admissible states (the run stops), is halved,
 // up to 20 times. Stops when the residual is below tolerance × (1 + |x|), or
 // after max_iterations.
-template <HasJacobian System>
+// All its flows with the caller's stepper (see flow_with_jacobian above).
+template <HasJacobian System, class Stepper>
 PeriodicOrbit<typename System::State, typename System::Mode, tangent_dimension_of<System>>
-locate_periodic_orbit(const System& system, const FlowSetup& setup, typename System::State guess,
-                      typename System::Mode mode, double t0, double span,
-                      int max_iterations = 30, double tolerance = 1e-11) {
+locate_periodic_orbit(const Variational<System>& tangent, Stepper& stepper,
+                      const FlowSetup& setup, typename System::State guess,
+                      typename System::Mode mode, double t0, double span, int max_iterations,
+                      double tolerance) {
   using State = typename System::State;
   constexpr std::size_t n = tangent_dimension_of<System>;
   PeriodicOrbit<State, typename System::Mode, n> orbit;
@@ -171,7 +187,10 @@ locate_periodic_orbit(const System& system, const FlowSetup& setup, typename Sys
   auto residual_of = [&](const State& x, const State& image) {
     return tangent_norm<n>(difference(x, image));
   };
-  auto image = flow_with_jacobian(system, setup, orbit.state, orbit.mode, t0, t0 + span);
+  auto flow = [&](const State& x) {
+    return flow_with_jacobian(tangent, stepper, setup, x, orbit.mode, t0, t0 + span);
+  };
+  auto image = flow(orbit.state);
   orbit.termination = image.termination;
   for (int iteration = 0;; ++iteration) {
     orbit.monodromy = image.jacobian;
@@ -189,7 +208,7 @@ locate_periodic_orbit(const System& system, const FlowSetup& setup, typename Sys
     for (double fraction = 1.0; fraction > 1e-6 && !accepted; fraction *= 0.5) {
       State trial = orbit.state;
       for (std::size_t i = 0; i < n; ++i) trial[i] += fraction * (*step)[i];
-      auto trial_image = flow_with_jacobian(system, setup, trial, orbit.mode, t0, t0 + span);
+      auto trial_image = flow(trial);
       if (trial_image.termination == Termination::completed &&
           residual_of(trial, trial_image.state) < orbit.residual) {
         orbit.state = trial;
@@ -201,6 +220,20 @@ locate_periodic_orbit(const System& system, const FlowSetup& setup, typename Sys
   }
   orbit.multipliers = eigenvalues(orbit.monodromy);
   return orbit;
+}
+
+// With one stepper for all the flows of the iteration.
+template <HasJacobian System>
+PeriodicOrbit<typename System::State, typename System::Mode, tangent_dimension_of<System>>
+locate_periodic_orbit(const System& system, const FlowSetup& setup, typename System::State guess,
+                      typename System::Mode mode, double t0, double span,
+                      int max_iterations = 30, double tolerance = 1e-11) {
+  using Tangent = Variational<System>;
+  const Tangent tangent(system);
+  return with_stepper<Tangent>(setup.method, stepper_settings(tangent, setup), [&](auto& stepper) {
+    return locate_periodic_orbit(tangent, stepper, setup, guess, mode, t0, span, max_iterations,
+                                 tolerance);
+  });
 }
 
 struct LyapunovResult {
@@ -215,11 +248,12 @@ struct LyapunovResult {
 // logarithm is averaged over `periods` periods after `alignment_periods`
 // periods that let it turn into the most unstable direction. A trajectory
 // that merges nearby states (rest on a wall) gives −∞.
-template <HasJacobian System>
-LyapunovResult largest_lyapunov_exponent(const System& system, const FlowSetup& setup,
-                                         typename System::State x, typename System::Mode mode,
-                                         double t0, double period, int periods,
-                                         int alignment_periods) {
+// All its periods with the caller's stepper (see flow_with_jacobian above).
+template <HasJacobian System, class Stepper>
+LyapunovResult largest_lyapunov_exponent(const Variational<System>& tangent, Stepper& stepper,
+                                         const FlowSetup& setup, typename System::State x,
+                                         typename System::Mode mode, double t0, double period,
+                                         int periods, int alignment_periods) {
   constexpr std::size_t n = tangent_dimension_of<System>;
   LyapunovResult result;
   TangentVectorOf<n> v;
@@ -227,7 +261,8 @@ LyapunovResult largest_lyapunov_exponent(const System& system, const FlowSetup& 
   double log_growth = 0.0;
   for (int k = 0; k < alignment_periods + periods; ++k) {
     const double ta = t0 + k * period;
-    const auto step = flow_with_jacobian(system, setup, x, mode, ta, t0 + (k + 1) * period);
+    const auto step =
+        flow_with_jacobian(tangent, stepper, setup, x, mode, ta, t0 + (k + 1) * period);
     if (step.termination != Termination::completed) {
       result.termination = step.termination;
       return result;
@@ -250,6 +285,22 @@ LyapunovResult largest_lyapunov_exponent(const System& system, const FlowSetup& 
   result.periods = periods;
   result.exponent = log_growth / (periods * period);
   return result;
+}
+
+// With one stepper for all the periods: a stepper per period would cost the
+// Taylor stepper's construction (its coefficient rows, about 42 KB) every
+// period.
+template <HasJacobian System>
+LyapunovResult largest_lyapunov_exponent(const System& system, const FlowSetup& setup,
+                                         typename System::State x, typename System::Mode mode,
+                                         double t0, double period, int periods,
+                                         int alignment_periods) {
+  using Tangent = Variational<System>;
+  const Tangent tangent(system);
+  return with_stepper<Tangent>(setup.method, stepper_settings(tangent, setup), [&](auto& stepper) {
+    return largest_lyapunov_exponent(tangent, stepper, setup, x, mode, t0, period, periods,
+                                     alignment_periods);
+  });
 }
 
 }  // namespace impactlab

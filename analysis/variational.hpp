@@ -7,15 +7,21 @@
 // mode's Jacobian; at an event Φ⁺ = S Φ⁻ with S the saltation matrix
 // (analysis/saltation.hpp) of the base system's transition. Starting from
 // Φ = I at t0, Φ at t is the Jacobian of the event-driven flow from t0 to t.
+//
+// Where the base's right-hand side and witnesses are written over a number
+// type, so are these (Φ' by forward-mode differentiation of the base's rhs),
+// and the Taylor stepper integrates the variational equations too.
 #pragma once
 
 #include <algorithm>
 #include <array>
+#include <concepts>
 #include <cstddef>
 #include <tuple>
 
 #include "analysis/saltation.hpp"
 #include "core/has_jacobian.hpp"
+#include "integrate/dual_number.hpp"
 
 namespace impactlab {
 
@@ -68,12 +74,59 @@ class Variational {
     put_matrix(multiply(j, fundamental_matrix(v)), dvdt);
   }
 
+  // Over another number type (the Taylor stepper's series type), where the
+  // base's right-hand side is written over one: column c of Φ' = J Φ is the
+  // derivative of the base's f along column c of Φ, by forward-mode
+  // differentiation (integrate/dual_number.hpp) of the base's own rhs on
+  // x + ε Φ_{·c} (the tangent components; the others and t have no ε part).
+  // The base part of dvdt is the value of the first column's run. This is
+  // the base's `jacobian` times Φ wherever that Jacobian is ∂f/∂x, which
+  // tests/variational_taylor_test.cpp checks; the double path above keeps
+  // the base's Jacobian.
+  template <class Number>
+  void rhs(Mode mode, const std::array<Number, base_size + matrix_size>& v,
+           std::array<Number, base_size + matrix_size>& dvdt, const Number& t) const
+    requires(!std::same_as<Number, double>) &&
+            requires(const Base& base, const std::array<Dual<Number>, base_size>& x,
+                     std::array<Dual<Number>, base_size>& dxdt, const Dual<Number>& time) {
+              base.rhs(mode, x, dxdt, time);
+            }
+  {
+    using DualState = std::array<Dual<Number>, base_size>;
+    const Dual<Number> time(t);
+    for (std::size_t column = 0; column < dimension; ++column) {
+      DualState x, dxdt;
+      for (std::size_t i = 0; i < base_size; ++i)
+        x[i] = i < dimension ? Dual<Number>(v[i], v[base_size + i * dimension + column])
+                             : Dual<Number>(v[i]);
+      base_.rhs(mode, x, dxdt, time);
+      if (column == 0)
+        for (std::size_t i = 0; i < base_size; ++i) dvdt[i] = dxdt[i].value();
+      for (std::size_t i = 0; i < dimension; ++i)
+        dvdt[base_size + i * dimension + column] = dxdt[i].derivative();
+    }
+  }
+
   [[nodiscard]] std::size_t witness_count(Mode mode) const { return base_.witness_count(mode); }
   [[nodiscard]] TriggerDirection trigger_direction(Mode mode, std::size_t k) const {
     return base_.trigger_direction(mode, k);
   }
   [[nodiscard]] WitnessSample witness(Mode mode, std::size_t k, const State& v, double t) const {
     return base_.witness(mode, k, base_state(v), t);
+  }
+  // over another number type: the base's witness of the base part
+  template <class Number>
+  [[nodiscard]] auto witness(Mode mode, std::size_t k,
+                             const std::array<Number, base_size + matrix_size>& v,
+                             const Number& t) const
+    requires(!std::same_as<Number, double>) &&
+            requires(const Base& base, const std::array<Number, base_size>& x) {
+              base.witness(mode, k, x, t);
+            }
+  {
+    std::array<Number, base_size> x;
+    std::copy_n(v.begin(), base_size, x.begin());
+    return base_.witness(mode, k, x, t);
   }
 
   Transition<State, Mode> on_event(Mode mode, std::size_t k, CrossingKind crossing,

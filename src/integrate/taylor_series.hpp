@@ -125,6 +125,8 @@ class TaylorVariable {
   }
 
   [[nodiscard]] bool is_constant() const { return evaluation_ == nullptr; }
+  // the constant's value (a constant only)
+  [[nodiscard]] double constant() const { return static_cast<double>(value_); }
   [[nodiscard]] TaylorEvaluation<Real>* evaluation() const { return evaluation_; }
   [[nodiscard]] Real* row() const { return row_; }
   // a state component's derivative coefficients: j · a_j = rate[j − 1]
