@@ -25,16 +25,11 @@
 #include "core/simulator.hpp"
 #include "integrate/stepper_dispatch.hpp"
 #include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include "thread_cpu_time.hpp"
 
 namespace {
 
 using namespace impactlab;
-
-double thread_cpu_seconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
 
 struct Run {
   std::vector<double> impact_times;

@@ -21,27 +21,12 @@
 #include "oscillators/bouncing_ball/bouncing_ball.hpp"
 #include "oscillators/linear_impact/linear_impact.hpp"
 #include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include "base_flow.hpp"
 
 namespace {
 
 using impactlab::FlowSetup;
 using impactlab::TangentMatrix;
-
-// The base system's state at t1 from (t0, x0), by the plain event loop.
-template <class System>
-typename System::State flow(const System& system, const FlowSetup& setup,
-                            typename System::State x0, typename System::Mode mode, double t0,
-                            double t1, std::uint64_t* impacts = nullptr) {
-  impactlab::EventLog log(false);
-  const auto run = impactlab::with_stepper<System>(
-      setup.method, impactlab::stepper_settings(system, setup), [&](auto& stepper) {
-        return impactlab::simulate(system, stepper, x0, mode, t0, t1,
-                                   impactlab::loop_options(setup), log);
-      });
-  EXPECT_EQ(run.termination, impactlab::Termination::completed);
-  if (impacts) *impacts = log.count(impactlab::EventKind::impact);
-  return run.state;
-}
 
 // ∂x(t1)/∂x(t0) on (q, q̇) by central differences with steps h_q, h_qdot.
 template <class System>

@@ -26,6 +26,7 @@
 #include "oscillators/bouncing_ball/bouncing_ball.hpp"
 #include "oscillators/linear_impact/linear_impact.hpp"
 #include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include "base_flow.hpp"
 
 namespace {
 
@@ -88,20 +89,6 @@ TEST(DualNumber, DerivativesOfTheElementaryFunctions) {
 
 // --- flows ---
 
-// x(t1) of the base system from (t0, x0)
-template <class System>
-typename System::State base_flow(const System& system, const FlowSetup& setup,
-                                 const typename System::State& x0, typename System::Mode mode,
-                                 double t0, double t1) {
-  impactlab::EventLog log(false);
-  const auto run = impactlab::with_stepper<System>(
-      setup.method, impactlab::stepper_settings(system, setup), [&](auto& stepper) {
-        return impactlab::simulate(system, stepper, x0, mode, t0, t1,
-                                   impactlab::loop_options(setup), log);
-      });
-  EXPECT_EQ(run.termination, impactlab::Termination::completed);
-  return run.state;
-}
 
 // ∂x(t1)/∂x(t0) on (θ, θ̇) by central differences of the base flow, step δ
 template <class System>
@@ -113,8 +100,8 @@ TangentMatrix central_difference(const System& system, const FlowSetup& setup,
     auto plus = x0, minus = x0;
     plus[column] += delta;
     minus[column] -= delta;
-    const auto xp = base_flow(system, setup, plus, mode, t0, t1);
-    const auto xm = base_flow(system, setup, minus, mode, t0, t1);
+    const auto xp = flow(system, setup, plus, mode, t0, t1);
+    const auto xm = flow(system, setup, minus, mode, t0, t1);
     for (std::size_t row = 0; row < 2; ++row) j[row][column] = (xp[row] - xm[row]) / (2 * delta);
   }
   return j;
