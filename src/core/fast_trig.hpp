@@ -47,19 +47,26 @@ inline double cos_quarter(double r) {
   return w + (((1.0 - w) - half_z) + z * p);
 }
 
-// cos x for a phase x = ωt (rad) of any size
-inline double cos_phase(double x) {
+// x = n π/2 + r, |r| <= π/4, for |x| below `phase_reduction_limit`: r, and
+// n mod 4 (the quadrant)
+inline constexpr double phase_reduction_limit = 1.6e6;  // |n| < 2^20 below this (rad)
+inline int reduce_phase(double x, double& r) {
   constexpr double two_over_pi = 6.36619772367581382433e-01;
   constexpr double pio2_1 = 1.57079632673412561417e+00;  // first 33 bits of π/2
   constexpr double pio2_2 = 6.07710050630396597660e-11;  // next 33 bits
   constexpr double pio2_3 = 2.02226624871116645580e-21;  // next 33 bits
   constexpr double pio2_3t = 8.47842766036889956997e-32; // the rest of π/2, rounded
   constexpr double round_shift = 0x1.8p52;               // adding it rounds to an integer
-  constexpr double largest = 1.6e6;                      // |n| < 2^20 below this (rad)
-  if (!(std::fabs(x) < largest)) return std::cos(x);
   const double n = (x * two_over_pi + round_shift) - round_shift;
-  const double r = (((x - n * pio2_1) - n * pio2_2) - n * pio2_3) - n * pio2_3t;
-  switch (static_cast<std::int64_t>(n) & 3) {
+  r = (((x - n * pio2_1) - n * pio2_2) - n * pio2_3) - n * pio2_3t;
+  return static_cast<int>(static_cast<std::int64_t>(n) & 3);
+}
+
+// cos x for a phase x = ωt (rad) of any size
+inline double cos_phase(double x) {
+  if (!(std::fabs(x) < phase_reduction_limit)) return std::cos(x);
+  double r = 0.0;
+  switch (reduce_phase(x, r)) {
     case 0: return cos_quarter(r);
     case 1: return -sin_quarter(r);
     case 2: return -cos_quarter(r);
@@ -71,22 +78,15 @@ inline double cos_phase(double x) {
 // order-0 coefficients of a Taylor series' sin/cos pair); the cosine is
 // cos_phase's, bit for bit
 inline void sin_cos_phase(double x, double& s, double& c) {
-  constexpr double two_over_pi = 6.36619772367581382433e-01;
-  constexpr double pio2_1 = 1.57079632673412561417e+00;
-  constexpr double pio2_2 = 6.07710050630396597660e-11;
-  constexpr double pio2_3 = 2.02226624871116645580e-21;
-  constexpr double pio2_3t = 8.47842766036889956997e-32;
-  constexpr double round_shift = 0x1.8p52;
-  constexpr double largest = 1.6e6;
-  if (!(std::fabs(x) < largest)) {
+  if (!(std::fabs(x) < phase_reduction_limit)) {
     s = std::sin(x);
     c = std::cos(x);
     return;
   }
-  const double n = (x * two_over_pi + round_shift) - round_shift;
-  const double r = (((x - n * pio2_1) - n * pio2_2) - n * pio2_3) - n * pio2_3t;
+  double r = 0.0;
+  const int quadrant = reduce_phase(x, r);
   const double sin_r = sin_quarter(r), cos_r = cos_quarter(r);
-  switch (static_cast<std::int64_t>(n) & 3) {
+  switch (quadrant) {
     case 0: s = sin_r; c = cos_r; return;
     case 1: s = cos_r; c = -sin_r; return;
     case 2: s = -sin_r; c = -cos_r; return;

@@ -23,6 +23,22 @@
 
 namespace impactlab {
 
+// Σ_{j=0..degree} c_j h^j by Horner's scheme in h² on the even and the odd
+// coefficients: two independent chains of half the length (a Taylor step's
+// end state and every evaluation of a root refinement wait for it)
+template <class Real>
+Real polynomial_at(const Real* c, int degree, const Real& h) {
+  const Real h2 = h * h;
+  Real even = 0, odd = 0;
+  int j = degree;
+  if (j % 2 == 0) even = c[j--];
+  for (; j >= 1; j -= 2) {
+    odd = odd * h2 + c[j];
+    even = even * h2 + c[j - 1];
+  }
+  return even + h * odd;
+}
+
 // up to `capacity` sorted points in an interval
 template <int capacity, class Real = double>
 struct PointList {
@@ -50,19 +66,7 @@ class PolynomialRoots {
   [[nodiscard]] Real value(int m, const Real& h) const {
     if (m > degree_) return Real(0);
     differentiate(m);
-    // Horner's scheme in h² on the even and the odd coefficients: two
-    // independent chains of half the length (the root refinement's cost is
-    // these evaluations, one after another)
-    const auto& d = derivative_[m];
-    const Real h2 = h * h;
-    Real even = 0, odd = 0;
-    int j = degree_ - m;
-    if (j % 2 == 0) even = d[j--];
-    for (; j >= 1; j -= 2) {
-      odd = odd * h2 + d[j];
-      even = even * h2 + d[j - 1];
-    }
-    return even + h * odd;
+    return polynomial_at(derivative_[m].data(), degree_ - m, h);
   }
 
   // The sign changes of P⁽ᵐ⁾ in (lo, hi), in increasing order.

@@ -21,8 +21,9 @@
 // the series with the right-hand side, so each has its Taylor polynomial over
 // the step.
 // A step whose witness polynomial g (oriented so that its trigger is a fall
-// through zero) satisfies g_0 − Σ_{j≥1} |g_j| h^j > the grazing tolerance
-// cannot hold an event and is skipped at the cost of one sum. In the others,
+// through zero) satisfies min(g_0, g_0 + g_1 h) − Σ_{j≥2} |g_j| h^j > the
+// grazing tolerance cannot hold an event and is skipped at the cost of one
+// sum. In the others,
 // the critical points of g are isolated rigorously (integrate/
 // polynomial_roots.hpp); on each monotone piece a crossing is bracketed by
 // the sign of g at its ends and refined by TOMS 748 on the polynomial; a
@@ -266,23 +267,9 @@ class TaylorStepper {
         signs_from_slope);
   }
 
-  // the polynomial at h (s past the step's start), newest coefficients last:
-  // Horner's scheme in h² on the even and the odd coefficients, two
-  // independent chains of p/2 multiply-adds instead of one of p (the end
-  // state of every step waits for it)
+  // the polynomial at h (s past the step's start)
   void evaluate_state(const Real& h, RealState& x) const {
-    const Real h2 = h * h;
-    for (std::size_t i = 0; i < dimension; ++i) {
-      const Real* c = series_.state(i);
-      Real even = 0, odd = 0;
-      int j = order_;
-      if (j % 2 == 0) even = c[j--];
-      for (; j >= 1; j -= 2) {
-        odd = odd * h2 + c[j];
-        even = even * h2 + c[j - 1];
-      }
-      x[i] = even + h * odd;
-    }
+    for (std::size_t i = 0; i < dimension; ++i) x[i] = polynomial_at(series_.state(i), order_, h);
   }
 
   // The first event of the oriented witness polynomial g on [lo, hi] (h

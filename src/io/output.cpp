@@ -104,9 +104,9 @@ std::string csv_field(double value) {
 namespace {
 
 // appends `value` with the fewest digits that read back to the same double
-// (fmt's shortest round-trip form, Dragonbox: a third of the cost of 17
-// significant digits on the event stream of a long run), or nothing for NaN
-// (not computed)
+// (fmt's shortest round-trip form, Dragonbox; a 200 000-period jin2003 run
+// writing events.csv took 0.88 s against 0.94 s with 17 significant
+// digits), or nothing for NaN (not computed)
 void append_field(fmt::memory_buffer& row, double value) {
   if (!std::isnan(value)) fmt::format_to(std::back_inserter(row), "{}", value);
 }
