@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <concepts>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -23,6 +24,7 @@
 #include "analysis/variational.hpp"
 #include "core/simulator.hpp"
 #include "integrate/stepper_dispatch.hpp"
+#include "integrate/taylor_series.hpp"
 #include "io/bad_input.hpp"
 #include "io/scene.hpp"
 
@@ -70,7 +72,14 @@ class SuppressedContacts {
       : base_(base), flight_mode_(flight_mode), window_(window), trace_(trace) {}
 
   [[nodiscard]] double max_step() const { return base_.max_step(); }
-  void rhs(Mode mode, const State& x, State& dxdt, double t) const { base_.rhs(mode, x, dxdt, t); }
+  // over the base's number types (a series type runs through it where it
+  // runs through the base)
+  template <class Vector, class Number>
+    requires requires(const Base& base, Mode mode, const Vector& x, Vector& dxdt,
+                      const Number& t) { base.rhs(mode, x, dxdt, t); }
+  void rhs(Mode mode, const Vector& x, Vector& dxdt, const Number& t) const {
+    base_.rhs(mode, x, dxdt, t);
+  }
   [[nodiscard]] std::size_t witness_count(Mode mode) const { return base_.witness_count(mode); }
   [[nodiscard]] TriggerDirection trigger_direction(Mode mode, std::size_t k) const {
     return base_.trigger_direction(mode, k);
@@ -82,6 +91,28 @@ class SuppressedContacts {
   [[nodiscard]] WitnessSample witness(Mode mode, std::size_t k, const State& x, double t) const {
     if (suppressed(mode, k, t)) return {1.0, 0.0};
     return base_.witness(mode, k, x, t);
+  }
+  // Over a series type: the window's ends end the Taylor stepper's steps
+  // (witness_switch_after), so each step lies inside the window or outside
+  // it, and its start time decides (from <= start < to).
+  template <class Vector, class Number>
+    requires(!std::same_as<Number, double>) &&
+            requires(const Base& base, Mode mode, std::size_t k, const Vector& x,
+                     const Number& t) { base.witness(mode, k, x, t); }
+  [[nodiscard]] auto witness(Mode mode, std::size_t k, const Vector& x, const Number& t) const
+      -> BasicWitnessSample<Number> {
+    const double start = start_value(t);
+    if (mode == flight_mode_ && static_cast<int>(k) == window_.witness && start >= window_.from &&
+        start < window_.to)
+      return {Number(1.0), Number(0.0)};
+    return base_.witness(mode, k, x, t);
+  }
+  // the first end of the window after t (s), or +∞
+  [[nodiscard]] double witness_switch_after(double t) const {
+    if (window_.witness < 0) return std::numeric_limits<double>::infinity();
+    if (t < window_.from) return window_.from;
+    if (t < window_.to) return window_.to;
+    return std::numeric_limits<double>::infinity();
   }
   Transition<State, Mode> on_event(Mode mode, std::size_t k, CrossingKind crossing, const State& x,
                                    double t, EventLog& log) const {
@@ -344,13 +375,27 @@ class StopAtWallImpact {
       : base_(base), wall_(wall), target_(target), trace_(trace) {}
 
   [[nodiscard]] double max_step() const { return base_.max_step(); }
-  void rhs(Mode mode, const State& x, State& dxdt, double t) const { base_.rhs(mode, x, dxdt, t); }
+  // over the base's number types, as SuppressedContacts
+  template <class Vector, class Number>
+    requires requires(const Base& base, Mode mode, const Vector& x, Vector& dxdt,
+                      const Number& t) { base.rhs(mode, x, dxdt, t); }
+  void rhs(Mode mode, const Vector& x, Vector& dxdt, const Number& t) const {
+    base_.rhs(mode, x, dxdt, t);
+  }
   [[nodiscard]] std::size_t witness_count(Mode mode) const { return base_.witness_count(mode); }
   [[nodiscard]] TriggerDirection trigger_direction(Mode mode, std::size_t k) const {
     return base_.trigger_direction(mode, k);
   }
-  [[nodiscard]] WitnessSample witness(Mode mode, std::size_t k, const State& x, double t) const {
+  template <class Vector, class Number>
+    requires requires(const Base& base, Mode mode, std::size_t k, const Vector& x,
+                      const Number& t) { base.witness(mode, k, x, t); }
+  [[nodiscard]] auto witness(Mode mode, std::size_t k, const Vector& x, const Number& t) const {
     return base_.witness(mode, k, x, t);
+  }
+  [[nodiscard]] double witness_switch_after(double t) const
+    requires requires(const Base& base, double time) { base.witness_switch_after(time); }
+  {
+    return base_.witness_switch_after(t);
   }
   Transition<State, Mode> on_event(Mode mode, std::size_t k, CrossingKind crossing, const State& x,
                                    double t, EventLog& log) const {

@@ -63,6 +63,13 @@ class Variational {
   }
 
   [[nodiscard]] double max_step() const { return base_.max_step(); }
+  // the base's switch times (integrate/taylor_stepper.hpp's do_step), where
+  // it has them
+  [[nodiscard]] double witness_switch_after(double t) const
+    requires requires(const Base& base, double time) { base.witness_switch_after(time); }
+  {
+    return base_.witness_switch_after(t);
+  }
 
   void rhs(Mode mode, const State& v, State& dvdt, double t) const {
     const BaseState x = base_state(v);

@@ -198,10 +198,14 @@ TEST(Sweep, MetaRecordsTheClassificationAndLyapunovIntegrators) {
     return nlohmann::json::parse(slurp(dir / "meta.json"))["sweep"];
   };
   const auto m = sweep_of(map), s = sweep_of(set), o = sweep_of(one);
-  // the built-in jin2003's integrator.classification_rtol (oscillators/pendulum_walls/jin2003.toml)
+  // the built-in jin2003 states no classification tolerance
+  // (oscillators/pendulum_walls/jin2003.toml): its own integrator, and the note says why
   EXPECT_EQ(m["classification_integrator"]["method"], "taylor") << m.dump(1);
-  EXPECT_EQ(m["classification_integrator"]["rtol"], 1e-10) << m.dump(1);
-  EXPECT_EQ(m["lyapunov_integrator"]["method"], "rkf78");
+  EXPECT_EQ(m["classification_integrator"]["rtol"], 1e-12) << m.dump(1);
+  EXPECT_NE(m["classification_integrator_note"].get<std::string>().find("states no classification"),
+            std::string::npos)
+      << m.dump(1);
+  EXPECT_EQ(m["lyapunov_integrator"]["method"], "taylor");
   EXPECT_EQ(m["lyapunov_integrator"]["rtol"], 1e-12);
   EXPECT_EQ(s["classification_integrator"]["rtol"], 1e-11);
   EXPECT_EQ(s["lyapunov_integrator"]["rtol"], 1e-11);

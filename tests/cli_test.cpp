@@ -132,7 +132,7 @@ TEST(Simulate, WritesCompleteEventsAndMeta) {
   ASSERT_EQ(events.rfind("t,kind,wall,q,qdot_before,qdot_after", 0), 0u);
   const auto meta = nlohmann::json::parse(slurp(out_dir / "meta.json"));
   EXPECT_EQ(meta["scene"]["oscillator"], "pendulum_walls");
-  EXPECT_EQ(meta["integrator"]["method"], "rkf78");
+  EXPECT_EQ(meta["integrator"]["method"], "taylor");
   EXPECT_EQ(meta["run"]["termination"], "completed");
   EXPECT_GT(meta["counts"]["impacts"].get<int>(), 0);
   EXPECT_EQ(meta["scene"]["keys"]["omega"]["unit"], "rad/s");

@@ -41,8 +41,8 @@ class TableReader {
       std::string listed;
       for (auto known : allowed) listed += (listed.empty() ? "" : ", ") + std::string(known);
       throw ModelFileError(position_of(name.source(), file_), key(name.str()),
-                           "unknown key '" + std::string(name.str()) + "' in " + path_ +
-                               " (known: " + listed + ")");
+                           "unknown key '" + key(name.str()) + "' (known in " + path_ + ": " +
+                               listed + ")");
     }
   }
 

@@ -39,7 +39,9 @@
 
 #include "contact/accumulation.hpp"
 #include "core/event_log.hpp"
+#include "core/fast_trig.hpp"
 #include "core/hybrid_system.hpp"
+#include "integrate/taylor_stepper.hpp"
 #include "oscillators/pendulum_walls/pendulum_walls.hpp"
 #include "rigidbody/contact_phase.hpp"
 #include "rigidbody/generalized_system.hpp"
@@ -67,7 +69,7 @@ class RigidPendulumWalls {
     stick_right,
     stick_left,
   };
-  static constexpr std::size_t max_witnesses = 2;
+  static constexpr std::size_t max_witnesses = 3;
 
   explicit RigidPendulumWalls(const RigidPendulumParameters& p)
       : p_(p.pendulum),
@@ -84,23 +86,38 @@ class RigidPendulumWalls {
   [[nodiscard]] double ball_inertia() const { return ball_inertia_; }
   [[nodiscard]] bool spin_free() const { return spin_free_; }
 
-  [[nodiscard]] double effective_gravity(double t) const {
-    return p_.g - p_.V0 * p_.omega * std::cos(p_.omega * t);
+  // effective gravity in the pivot's frame (m/s²), its rate (m/s³), the
+  // pivot's velocity (m/s) and acceleration (m/s²) along the wall; like the
+  // right-hand side and the witnesses, written over a number type (a series
+  // type runs through them: integrate/taylor_series.hpp)
+  template <class Number>
+  [[nodiscard]] Number effective_gravity(const Number& t) const {
+    return p_.g - p_.V0 * p_.omega * cos_phase(p_.omega * t);
   }
-  [[nodiscard]] double effective_gravity_rate(double t) const {
-    return p_.V0 * p_.omega * p_.omega * std::sin(p_.omega * t);
+  template <class Number>
+  [[nodiscard]] Number effective_gravity_rate(const Number& t) const {
+    using std::sin;
+    return p_.V0 * p_.omega * p_.omega * sin(p_.omega * t);
   }
   [[nodiscard]] double effective_gravity_curvature(double t) const {
     return p_.V0 * p_.omega * p_.omega * p_.omega * std::cos(p_.omega * t);
   }
-  [[nodiscard]] double pivot_velocity(double t) const { return p_.V0 * std::sin(p_.omega * t); }
-  [[nodiscard]] double pivot_acceleration(double t) const {
-    return p_.V0 * p_.omega * std::cos(p_.omega * t);
+  template <class Number>
+  [[nodiscard]] Number pivot_velocity(const Number& t) const {
+    using std::sin;
+    return p_.V0 * sin(p_.omega * t);
+  }
+  template <class Number>
+  [[nodiscard]] Number pivot_acceleration(const Number& t) const {
+    return p_.V0 * p_.omega * cos_phase(p_.omega * t);
   }
 
   // γ_T at wall w (m/s)
-  [[nodiscard]] double tangential_velocity(int wall, const State& x, double t) const {
-    return pivot_velocity(t) - p_.l * std::sin(x[0]) * x[1] - wall * r_ * x[3];
+  template <class Number>
+  [[nodiscard]] Number tangential_velocity(int wall, const std::array<Number, 5>& x,
+                                           const Number& t) const {
+    using std::sin;
+    return pivot_velocity(t) - p_.l * sin(x[0]) * x[1] - wall * r_ * x[3];
   }
 
   [[nodiscard]] double max_step() const {
@@ -113,12 +130,21 @@ class RigidPendulumWalls {
     return std::min({forcing_period, natural_period, damping_period}) / 16.0;
   }
 
-  void rhs(Mode mode, const State& x, State& dxdt, double t) const {
+  // Written once over a number type: double for the Runge–Kutta steppers, a
+  // Taylor series type for the Taylor stepper (the unqualified calls find its
+  // own sin, fabs and core/fast_trig.hpp's names).
+  template <class Number>
+  void rhs(Mode mode, const std::array<Number, 5>& x, std::array<Number, 5>& dxdt,
+           const Number& t) const {
     if (mode == Mode::free) {
       dxdt[0] = x[1];
-      dxdt[1] = -(p_.d * x[1] + p_.m * p_.l * effective_gravity(t) * std::sin(x[0])) / theta_inertia_;
+      dxdt[1] = -(p_.d * x[1] + p_.m * p_.l * effective_gravity(t) * sin_angle(x[0])) /
+                theta_inertia_;
       dxdt[2] = x[3];
-      dxdt[3] = spin_free_ ? 0.0 : dxdt[1];
+      if (spin_free_)
+        dxdt[3] = 0.0;
+      else
+        dxdt[3] = dxdt[1];
       dxdt[4] = 0.0;
       return;
     }
@@ -132,15 +158,20 @@ class RigidPendulumWalls {
       dxdt[4] = 0.0;
       return;
     }
-    const double slip = tangential_velocity(wall, x, t);
+    using std::fabs;
+    const Number slip = tangential_velocity(wall, x, t);
     const double s = slip_sign_of(mode);
-    const double lambda_n = sliding_normal_force(t, s);
+    const Number lambda_n = sliding_normal_force(t, s);
     // I_b φ̈ = W_T,φ λ_T = (−w r)(−μ s λ_N)
-    dxdt[3] = spin_free_ ? wall * r_ * p_.mu * s * lambda_n / ball_inertia_ : 0.0;
-    dxdt[4] = p_.mu * lambda_n * std::fabs(slip);
+    if (spin_free_)
+      dxdt[3] = wall * r_ * p_.mu * s * lambda_n / ball_inertia_;
+    else
+      dxdt[3] = 0.0;
+    dxdt[4] = p_.mu * lambda_n * fabs(slip);
   }
 
-  [[nodiscard]] std::size_t witness_count(Mode) const { return 2; }
+  // free and slide: 2; stick: 3 (the cone's two edges)
+  [[nodiscard]] std::size_t witness_count(Mode mode) const { return is_stick(mode) ? 3 : 2; }
 
   [[nodiscard]] TriggerDirection trigger_direction(Mode mode, std::size_t k) const {
     if (mode == Mode::free || k == 0 || is_stick(mode)) return TriggerDirection::falling;
@@ -151,27 +182,34 @@ class RigidPendulumWalls {
   // slide: k = 0 the frictionless normal force −m g_e tan θ0 (N), with the
   //        sign and zeros of λ_N while the contact is consistent (as Model N);
   //        k = 1 the slip γ_T (m/s), reaching zero from the mode's side
-  // stick: k = 0 the sticking normal force λ_N (N); k = 1 the friction cone
-  //        margin μ λ_N − |λ_T| (N)
-  [[nodiscard]] WitnessSample witness(Mode mode, std::size_t k, const State& x, double t) const {
+  // stick: k = 0 the sticking normal force λ_N (N); k = 1, 2 the friction
+  //        cone's margins μ λ_N − λ_T and μ λ_N + λ_T (N): two smooth
+  //        witnesses instead of μ λ_N − |λ_T|, whose kink where λ_T changes
+  //        sign a polynomial dense output would carry on past
+  template <class Number>
+  [[nodiscard]] BasicWitnessSample<Number> witness(Mode mode, std::size_t k,
+                                                   const std::array<Number, 5>& x,
+                                                   const Number& t) const {
     if (mode == Mode::free) {
       const double side = k == 0 ? 1.0 : -1.0;
       return {theta0_ - side * x[0], -side * x[1]};
     }
     const int wall = wall_of(mode);
     if (is_stick(mode)) {
-      const StickForces f = stick_forces(t);
+      const StickForces<Number> f = stick_forces(t);
       if (k == 0) return {f.normal, f.normal_rate};
-      const double s = f.tangential >= 0.0 ? 1.0 : -1.0;
-      return {p_.mu * f.normal - s * f.tangential, p_.mu * f.normal_rate - s * f.tangential_rate};
+      const double edge = k == 1 ? 1.0 : -1.0;
+      return {p_.mu * f.normal - edge * f.tangential,
+              p_.mu * f.normal_rate - edge * f.tangential_rate};
     }
     if (k == 0)
       return {-p_.m * effective_gravity(t) * sin0_ / cos0_,
               -p_.m * effective_gravity_rate(t) * sin0_ / cos0_};
-    const double slip = tangential_velocity(wall, x, t);
+    const Number slip = tangential_velocity(wall, x, t);
     const double s = slip_sign_of(mode);
-    const double spin_acceleration =
-        spin_free_ ? wall * r_ * p_.mu * s * sliding_normal_force(t, s) / ball_inertia_ : 0.0;
+    if (!spin_free_) return {slip, pivot_acceleration(t)};
+    const Number spin_acceleration =
+        wall * r_ * p_.mu * s * sliding_normal_force(t, s) / ball_inertia_;
     return {slip, pivot_acceleration(t) - wall * r_ * spin_acceleration};
   }
 
@@ -180,7 +218,7 @@ class RigidPendulumWalls {
     if (mode == Mode::free) return on_wall_reached(k == 0 ? 1 : -1, crossing, x, t, log);
     const int wall = wall_of(mode);
     if (k == 0) return release(wall, x, t, log);
-    if (is_stick(mode)) return stick_breaks(mode, wall, x, t, log);
+    if (is_stick(mode)) return stick_breaks(mode, wall, k, x, t, log);
     return slip_stops(mode, wall, x, t, log);
   }
 
@@ -210,9 +248,10 @@ class RigidPendulumWalls {
   }
 
  private:
+  template <class Number>
   struct StickForces {
-    double normal, normal_rate;          // λ_N (N), λ̇_N (N/s)
-    double tangential, tangential_rate;  // λ_T (N), λ̇_T (N/s)
+    Number normal, normal_rate;          // λ_N (N), λ̇_N (N/s)
+    Number tangential, tangential_rate;  // λ_T (N), λ̇_T (N/s)
   };
 
   static int wall_of(Mode mode) {
@@ -235,7 +274,8 @@ class RigidPendulumWalls {
   // λ_N = −h_θ / (W_N − μ s W_T,θ), W_T,θ = −w (l sin θ0 + r) with the spin
   // locked (the ball turns with the rod), −w l sin θ0 with it free:
   // λ_N = −m g_e sin θ0 / (cos θ0 − s μ (sin θ0 + r_locked / l))
-  [[nodiscard]] double sliding_normal_force(double t, double s) const {
+  template <class Number>
+  [[nodiscard]] Number sliding_normal_force(const Number& t, double s) const {
     return -p_.m * effective_gravity(t) * sin0_ / friction_denominator(s);
   }
   [[nodiscard]] double friction_denominator(double s) const {
@@ -246,11 +286,13 @@ class RigidPendulumWalls {
   // sticking on wall w, the same on both (spin free, θ̈ = 0, γ̇_T = 0): I_b φ̈ = −w r λ_T with
   // φ̈ = w V0 ω cos ωt / r gives λ_T = −I_b V0 ω cos ωt / r²; then
   // 0 = h_θ + W_N λ_N + W_T,θ λ_T gives λ_N = −m g_e tan θ0 − tan θ0 λ_T
-  [[nodiscard]] StickForces stick_forces(double t) const {
+  template <class Number>
+  [[nodiscard]] StickForces<Number> stick_forces(const Number& t) const {
+    using std::sin;
     const double tan0 = sin0_ / cos0_;
-    const double lambda_t = -ball_inertia_ * pivot_acceleration(t) / (r_ * r_);
-    const double lambda_t_rate =
-        ball_inertia_ * p_.V0 * p_.omega * p_.omega * std::sin(p_.omega * t) / (r_ * r_);
+    const Number lambda_t = -ball_inertia_ * pivot_acceleration(t) / (r_ * r_);
+    const Number lambda_t_rate =
+        ball_inertia_ * p_.V0 * p_.omega * p_.omega * sin(p_.omega * t) / (r_ * r_);
     return {-p_.m * effective_gravity(t) * tan0 - tan0 * lambda_t,
             -p_.m * effective_gravity_rate(t) * tan0 - tan0 * lambda_t_rate, lambda_t,
             lambda_t_rate};
@@ -384,14 +426,15 @@ class RigidPendulumWalls {
     return settle(mode, wall, resting, t, EventKind::slip_reversal, log, true);
   }
 
-  // the friction force reached the cone's edge: slip starts opposite to λ_T
-  Transition<State, Mode> stick_breaks(Mode mode, int wall, const State& x, double t,
-                                       EventLog& log) const {
+  // the friction force reached the cone's edge (witness k = 1: λ_T = μ λ_N,
+  // k = 2: λ_T = −μ λ_N): slip starts opposite to λ_T
+  Transition<State, Mode> stick_breaks(Mode mode, int wall, std::size_t k, const State& x,
+                                       double t, EventLog& log) const {
     // the slip starts from zero: the integrated spin's round-off must not
     // start it on the wrong side of its witness
     State resting = on_wall(wall, x);
     resting[3] = wall * pivot_velocity(t) / r_;
-    const double s = stick_forces(t).tangential > 0.0 ? -1.0 : 1.0;
+    const double s = k == 1 ? -1.0 : 1.0;
     if (!(friction_denominator(s) > 1e-9)) return stop_painleve(mode, wall, resting, t, 0.0, log);
     EventRecord record{t, EventKind::slip_reversal, wall, resting[0], 0.0, 0.0};
     record.normal_force = sliding_normal_force(t, s);
@@ -411,5 +454,6 @@ class RigidPendulumWalls {
 };
 
 static_assert(HybridSystem<RigidPendulumWalls>);
+static_assert(HasSeriesRhs<RigidPendulumWalls>);
 
 }  // namespace impactlab

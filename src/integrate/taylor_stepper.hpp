@@ -97,7 +97,7 @@ class TaylorStepper {
   [[nodiscard]] int order() const { return order_; }
 
   template <class Rhs>
-  void initialize(const Rhs& rhs, const State& x, double t, double /*dt*/) {
+  void initialize(const Rhs& /*rhs*/, const State& x, double t, double /*dt*/) {
     for (std::size_t i = 0; i < dimension; ++i) x_[i] = x[i];
     t_ = t;
     x_double_ = x;
@@ -106,8 +106,14 @@ class TaylorStepper {
 
   // One step from (t_, x_): the Taylor polynomial, the step from its last
   // two coefficients, never past t_limit.
+  //
+  // A system whose witnesses switch definition at known times (a member
+  // witness_switch_after(t): the first such time after t, or +∞) has its
+  // steps end there, so that no polynomial spans a switch.
   template <class Rhs>
   void do_step(const Rhs& rhs, double t_limit) {
+    if constexpr (requires { rhs.system->witness_switch_after(t_double_); })
+      t_limit = std::min(t_limit, rhs.system->witness_switch_after(t_double_));
     x_old_ = x_;
     t_old_ = t_;
     x_old_double_ = x_double_;

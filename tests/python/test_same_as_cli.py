@@ -136,9 +136,12 @@ def test_sweep_2d_classification_integrator_equals_cli(cli, cli_options, python_
     if cli_options:
         expected_rtol = 1e-11 if "--set" in cli_options else scene["integrator.rtol"]
         assert integrator["rtol"] == expected_rtol
-    else:
+    elif scene["integrator.classification_rtol"] > 0:
         assert integrator["rtol"] == scene["integrator.classification_rtol"]
         assert integrator["rtol"] > scene["integrator.rtol"]
+    else:  # the scene states no classification tolerance (jin2003): its own
+        assert integrator["rtol"] == scene["integrator.rtol"]
+        assert "states no classification" in meta["sweep"]["classification_integrator_note"]
     assert meta["sweep"]["lyapunov_integrator"] is None
     classes = read_csv(out / "classes.csv")
     for column in ("period", "impacts_per_period", "contact"):

@@ -49,9 +49,6 @@ RunOutput run_rigid_pendulum(const Scene& scene, const RunRequest& request) {
     throw BadInput("radius", to_text(rp.radius), "the ball must fit between the walls (radius < b)");
   if (rp.spin_free && !(rp.radius > 0.0))
     throw BadInput("spin", "free", "a spinning ball needs radius > 0");
-  if (scene.text("integrator.method") == "taylor")
-    throw BadInput("integrator.method", "taylor",
-                   "the rigid model's right-hand side is not written over a number type");
   const RigidPendulumWalls system(rp);
 
   const double theta = scene.number("initial.theta");
