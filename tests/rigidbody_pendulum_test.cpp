@@ -14,6 +14,7 @@
 // * bad combinations of radius and spin are BadInput.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -235,6 +236,60 @@ TEST(RigidPendulum, RollingContactsDoNotCrawl) {
   EXPECT_GT(rolling, 1000u);
   EXPECT_EQ(rolling_smooth, 0u);
   EXPECT_LT(rough.steps, 2 * smooth.steps);
+}
+
+// A ball that rolls on the wall (stick) until the friction it needs leaves
+// the cone, on the Taylor stepper (the scene's default), whose witnesses are
+// polynomials: the two cone edges μ λ_N ∓ λ_T are separate smooth witnesses
+// so that no step carries |λ_T| past its kink. Each stick ends where the
+// closed-form forces of rolling (λ_T = −I_b V0 ω cos ωt / r², λ_N = −m g_e
+// tan θ0 − tan θ0 λ_T; rigid_pendulum_walls.hpp) put λ_T on the cone's edge,
+// and the whole event sequence is rkf78's at the same tolerance.
+TEST(RigidPendulum, StickEndsOnTheConeEdgeOnTheTaylorStepper) {
+  const std::vector<std::string> rolling = {"model=rigid", "spin=free", "radius=0.01", "V0=5",
+                                            "mu=15"};
+  std::vector<std::string> taylor_run = rolling, rkf78_run = rolling;
+  taylor_run.push_back("integrator.method=taylor");
+  rkf78_run.push_back("integrator.method=rkf78");
+  const RunOutput taylor = run_scene(taylor_run, 20.0);
+  const RunOutput rkf78 = run_scene(rkf78_run, 20.0);
+  ASSERT_EQ(taylor.termination, "completed");
+
+  const Scene scene = load_scene("jin2003");
+  const double m = scene.number("m"), l = scene.number("l"), b = scene.number("b"),
+               g = scene.number("g"), omega = scene.number("omega"), V0 = 5.0, mu = 15.0,
+               r = 0.01;
+  const double ball_inertia = 0.4 * m * r * r;
+  const double tan0 = std::tan(std::asin((b - r) / l));
+  // μ λ_N − |λ_T| of rolling at time t (N)
+  const auto cone_margin = [&](double t) {
+    const double tangential = -ball_inertia * V0 * omega * std::cos(omega * t) / (r * r);
+    const double normal = -m * (g - V0 * omega * std::cos(omega * t)) * tan0 - tan0 * tangential;
+    return mu * normal - std::fabs(tangential);
+  };
+  int on_edge = 0, inside = 0;
+  for (const auto& e : taylor.events) {
+    if (e.kind != EventKind::slip_reversal) continue;
+    // a stick that starts is inside the cone; one that ends is on its edge
+    // (forces of order 10 N: 1e-9 N is the time error times their rate)
+    const double margin = cone_margin(e.t);
+    if (std::fabs(margin) < 1e-9)
+      ++on_edge;
+    else if (margin > 1e-3)
+      ++inside;
+    else
+      ADD_FAILURE() << "slip reversal at t = " << e.t << " with cone margin " << margin;
+  }
+  EXPECT_GE(on_edge, 10);
+  EXPECT_EQ(on_edge, inside);  // every stick that starts ends within the run
+
+  ASSERT_EQ(taylor.events.size(), rkf78.events.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < taylor.events.size(); ++i) {
+    EXPECT_EQ(taylor.events[i].kind, rkf78.events[i].kind) << "event " << i;
+    worst = std::max(worst, std::fabs(taylor.events[i].t - rkf78.events[i].t));
+  }
+  EXPECT_LT(worst, 1e-9);
 }
 
 TEST(RigidPendulum, RadiusMustFitAndSpinNeedsARadius) {
