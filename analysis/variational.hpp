@@ -85,33 +85,39 @@ class Variational {
   // base's right-hand side is written over one: column c of Φ' = J Φ is the
   // derivative of the base's f along column c of Φ, by forward-mode
   // differentiation (integrate/dual_number.hpp) of the base's own rhs on
-  // x + ε Φ_{·c} (the tangent components; the others and t have no ε part).
-  // The base part of dvdt is the value of the first column's run. This is
-  // the base's `jacobian` times Φ wherever that Jacobian is ∂f/∂x, which
+  // x + Σ_c ε_c Φ_{·c}: one run of the base's rhs with N directions, the
+  // tangent components' direction c being their entries of column c (the
+  // other components and t have no ε part). The base part of dvdt is the
+  // value, so f and what it shares with its derivatives (sin θ, the
+  // products) are computed once, not once per column. This is the base's
+  // `jacobian` times Φ wherever that Jacobian is ∂f/∂x, which
   // tests/variational_taylor_test.cpp checks; the double path above keeps
   // the base's Jacobian.
   template <class Number>
   void rhs(Mode mode, const std::array<Number, base_size + matrix_size>& v,
            std::array<Number, base_size + matrix_size>& dvdt, const Number& t) const
     requires(!std::same_as<Number, double>) &&
-            requires(const Base& base, const std::array<Dual<Number>, base_size>& x,
-                     std::array<Dual<Number>, base_size>& dxdt, const Dual<Number>& time) {
-              base.rhs(mode, x, dxdt, time);
-            }
+            requires(const Base& base, const std::array<Dual<Number, dimension>, base_size>& x,
+                     std::array<Dual<Number, dimension>, base_size>& dxdt,
+                     const Dual<Number, dimension>& time) { base.rhs(mode, x, dxdt, time); }
   {
-    using DualState = std::array<Dual<Number>, base_size>;
-    const Dual<Number> time(t);
-    for (std::size_t column = 0; column < dimension; ++column) {
-      DualState x, dxdt;
-      for (std::size_t i = 0; i < base_size; ++i)
-        x[i] = i < dimension ? Dual<Number>(v[i], v[base_size + i * dimension + column])
-                             : Dual<Number>(v[i]);
-      base_.rhs(mode, x, dxdt, time);
-      if (column == 0)
-        for (std::size_t i = 0; i < base_size; ++i) dvdt[i] = dxdt[i].value();
-      for (std::size_t i = 0; i < dimension; ++i)
-        dvdt[base_size + i * dimension + column] = dxdt[i].derivative();
+    using Tangent = Dual<Number, dimension>;
+    std::array<Tangent, base_size> x, dxdt;
+    for (std::size_t i = 0; i < base_size; ++i) {
+      if (i < dimension) {
+        // row i of Φ: component i's derivative along each column
+        typename Tangent::Derivatives phi_row;
+        std::copy_n(v.begin() + base_size + i * dimension, dimension, phi_row.begin());
+        x[i] = Tangent(v[i], phi_row);
+      } else {
+        x[i] = Tangent(v[i]);
+      }
     }
+    base_.rhs(mode, x, dxdt, Tangent(t));
+    for (std::size_t i = 0; i < base_size; ++i) dvdt[i] = dxdt[i].value();
+    for (std::size_t i = 0; i < dimension; ++i)
+      std::copy(dxdt[i].derivatives().begin(), dxdt[i].derivatives().end(),
+                dvdt.begin() + base_size + i * dimension);
   }
 
   [[nodiscard]] std::size_t witness_count(Mode mode) const { return base_.witness_count(mode); }

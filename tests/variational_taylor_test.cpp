@@ -2,7 +2,9 @@
 // over a number type, integrate/dual_number.hpp), against independent
 // computations:
 // * the dual numbers' derivatives against the functions' derivatives in
-//   closed form;
+//   closed form, along one direction and several (each direction as a
+//   one-direction number seeded with it alone, bit for bit; a direction
+//   known to be zero on a series skipped);
 // * the pendulum's flow Jacobian (jin2003, Model N), in free flight and
 //   across impacts, against rkf78 on the base system's Jacobian (the double
 //   path, unchanged) and against central differences of the base flow;
@@ -12,6 +14,7 @@
 //   periodic orbit with the Taylor stepper against rkf78.
 #include <array>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <string>
 
@@ -23,6 +26,7 @@
 #include "core/simulator.hpp"
 #include "integrate/dual_number.hpp"
 #include "integrate/stepper_dispatch.hpp"
+#include "integrate/taylor_series.hpp"
 #include "oscillators/bouncing_ball/bouncing_ball.hpp"
 #include "oscillators/linear_impact/linear_impact.hpp"
 #include "oscillators/pendulum_walls/pendulum_walls.hpp"
@@ -85,6 +89,84 @@ TEST(DualNumber, DerivativesOfTheElementaryFunctions) {
   w += 1.0;
   w /= u;  // (x² + 1) / x, derivative 1 − 1/x²
   EXPECT_DOUBLE_EQ(w.derivative(), 1.0 - 1.0 / (x * x));
+}
+
+// f(x, y) = sin x cos y + x / y, over any number type
+template <class Number>
+Number sine_cosine_quotient(const Number& x, const Number& y) {
+  return sin(x) * cos(y) + x / y;
+}
+
+TEST(DualNumber, TwoDirectionsGiveThePartialDerivatives) {
+  // f at (0.7, 1.3) along x (direction 0) and y (direction 1):
+  // ∂f/∂x = cos x cos y + 1/y, ∂f/∂y = −sin x sin y − x/y²
+  const double x0 = 0.7, y0 = 1.3;
+  const Dual<double, 2> x(x0, {1.0, 0.0});
+  const Dual<double, 2> y(y0, {0.0, 1.0});
+  const Dual<double, 2> f = sine_cosine_quotient(x, y);
+  EXPECT_DOUBLE_EQ(f.value(), std::sin(x0) * std::cos(y0) + x0 / y0);
+  EXPECT_DOUBLE_EQ(f.derivative(0), std::cos(x0) * std::cos(y0) + 1.0 / y0);
+  EXPECT_DOUBLE_EQ(f.derivative(1), -std::sin(x0) * std::sin(y0) - x0 / (y0 * y0));
+  // each direction by the operations of a one-direction number seeded with
+  // it alone: the same results, bit for bit
+  const Dual<double> along_x =
+      sine_cosine_quotient(Dual<double>(x0, 1.0), Dual<double>(y0, 0.0));
+  const Dual<double> along_y =
+      sine_cosine_quotient(Dual<double>(x0, 0.0), Dual<double>(y0, 1.0));
+  EXPECT_EQ(f.value(), along_x.value());
+  EXPECT_EQ(f.derivative(0), along_x.derivative());
+  EXPECT_EQ(f.derivative(1), along_y.derivative());
+}
+
+TEST(DualNumber, ThreeDirectionsThroughTheRightHandSideFunctions) {
+  // g(x, y) = cos_phase(x y) |x − y| / (2 + sin_angle(y)) at (0.4, 0.9),
+  // the functions of the pendulum's right-hand side, along x, y and the
+  // combination 2 x − y: the third derivative is 2 ∂g/∂x − ∂g/∂y (to
+  // round-off), and
+  // ∂g/∂x = (−y sin(x y) |x − y| − cos(x y)) / (2 + sin y),
+  // ∂g/∂y = (−x sin(x y) |x − y| + cos(x y)) / (2 + sin y)
+  //         − cos(x y) |x − y| cos y / (2 + sin y)²   (x < y)
+  const double x0 = 0.4, y0 = 0.9;
+  const Dual<double, 3> x(x0, {1.0, 0.0, 2.0});
+  const Dual<double, 3> y(y0, {0.0, 1.0, -1.0});
+  const Dual<double, 3> g = cos_phase(x * y) * fabs(x - y) / (2.0 + sin_angle(y));
+  const double c = std::cos(x0 * y0), s = std::sin(x0 * y0), gap = y0 - x0;
+  const double denominator = 2.0 + std::sin(y0);
+  const double along_x = (-y0 * s * gap - c) / denominator;
+  const double along_y = (-x0 * s * gap + c) / denominator -
+                         c * gap * std::cos(y0) / (denominator * denominator);
+  EXPECT_NEAR(g.value(), c * gap / denominator, 1e-15);
+  EXPECT_NEAR(g.derivative(0), along_x, 1e-15);
+  EXPECT_NEAR(g.derivative(1), along_y, 1e-15);
+  EXPECT_NEAR(g.derivative(2), 2.0 * along_x - along_y, 1e-15);
+}
+
+TEST(DualNumber, AZeroDirectionOnASeriesStaysTheConstantZero) {
+  // order 0 of a series x = 0.7 with derivatives (1, the constant 0): the
+  // second direction is skipped through the products, the quotient, sin and
+  // cos and stays the constant zero; the first is
+  // d/dx [sin x cos x / (x + 2)] = (cos 2x (x + 2) − sin x cos x) / (x + 2)²
+  using Series = impactlab::TaylorVariable<double>;
+  using Evaluation = impactlab::TaylorEvaluation<double>;
+  const auto rows = std::make_unique<Evaluation::Rows>();
+  Evaluation evaluation(*rows, 0, 0.0, false);
+  evaluation.start_order(0);
+  const auto variable = [&](double value) {
+    double* row = evaluation.take_row();
+    row[0] = value;
+    return Series(&evaluation, row, value, Series::unbounded);
+  };
+  const double x0 = 0.7;
+  const Dual<Series, 2> x(variable(x0), {variable(1.0), Series(0.0)});
+  const Dual<Series, 2> f = sin(x) * cos(x) / (x + 2.0);
+  EXPECT_TRUE(f.derivative(1).is_constant());
+  EXPECT_EQ(f.derivative(1).constant(), 0.0);
+  ASSERT_FALSE(f.derivative(0).is_constant());
+  EXPECT_NEAR(f.value().value(), std::sin(x0) * std::cos(x0) / (x0 + 2.0), 1e-15);
+  EXPECT_NEAR(f.derivative(0).value(),
+              (std::cos(2.0 * x0) * (x0 + 2.0) - std::sin(x0) * std::cos(x0)) /
+                  ((x0 + 2.0) * (x0 + 2.0)),
+              1e-15);
 }
 
 // --- flows ---

@@ -94,6 +94,22 @@ inline void sin_cos_phase(double x, double& s, double& c) {
   }
 }
 
+// sin x and cos x of one argument, computed together
+template <class Number>
+struct SineAndCosine {
+  Number sine;
+  Number cosine;
+};
+
+// sin_cos_phase's pair, for a generic caller that calls sin_and_cos_of
+// unqualified (integrate/dual_number.hpp; a series type supplies its own,
+// integrate/taylor_series.hpp)
+inline SineAndCosine<double> sin_and_cos_of(double x) {
+  SineAndCosine<double> result{};
+  sin_cos_phase(x, result.sine, result.cosine);
+  return result;
+}
+
 // sin θ (rad), by the series where |θ| <= π/4
 inline double sin_angle(double theta) {
   return std::fabs(theta) <= 0.25 * std::numbers::pi ? sin_quarter(theta) : std::sin(theta);

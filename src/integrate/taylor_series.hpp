@@ -375,6 +375,19 @@ TaylorVariable<Real> cos(const TaylorVariable<Real>& a) {
   return detail::sin_cos(a)[1];
 }
 
+// sin a and cos a from one run of the coupled recurrence (sin(a) and cos(a)
+// run it each: a caller that needs both, as the chain rule of a dual number
+// does, calls this; integrate/dual_number.hpp)
+template <class Real>
+SineAndCosine<TaylorVariable<Real>> sin_and_cos_of(const TaylorVariable<Real>& a) {
+  using std::cos;
+  using std::sin;
+  if (a.is_constant())
+    return {static_cast<double>(sin(a.value())), static_cast<double>(cos(a.value()))};
+  const std::array<TaylorVariable<Real>, 2> pair = detail::sin_cos(a);
+  return {pair[0], pair[1]};
+}
+
 // core/fast_trig.hpp's names: the same functions on a series
 template <class Real>
 TaylorVariable<Real> sin_angle(const TaylorVariable<Real>& a) { return sin(a); }
