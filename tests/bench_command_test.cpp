@@ -89,6 +89,7 @@ TEST_F(BenchQuick, WritesTheDataItsSidecarAndOnePlotPerCase) {
   EXPECT_EQ(pendulum["name"], "jin2003_periodic");
   EXPECT_LT(pendulum["reference"]["time_spread"].get<double>(), 1e-10);
   EXPECT_TRUE(meta["targets"].contains("speed_ratio_vs_scipy_pendulum"));
+  EXPECT_TRUE(meta["targets"].contains("speed_ratio_vs_scipy_dop853_pendulum"));
   EXPECT_TRUE(meta["targets"].contains("impacts_per_second_at_time_error_1e-9_jin2003"));
 }
 
