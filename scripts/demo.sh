@@ -24,7 +24,7 @@ build/impactlab simulate jin2003 --set V0=4.163 --set model=paper --periods 20 -
   "$out/jin2003-V0-4.163-paper"
 
 echo
-echo "== the paper's Fig. 4 under Model P, Model N and the rigid-body model (about 15 s on 2 cores)"
+echo "== the paper's Fig. 4 under Model P, Model N and the rigid-body model (about 5 s on 2 cores)"
 build/impactlab reproduce jin2003 --out notebooks_data/jin2003
 
 echo
