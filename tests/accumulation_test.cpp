@@ -11,6 +11,7 @@
 //   and closed by the constant-acceleration tail (whose error is then below
 //   1e-13 s).
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -449,6 +450,26 @@ TEST(LinearImpactAccumulation, MatchesTheClosedFormReferenceAtEveryTolerance) {
     previous_error = error;
   }
   EXPECT_LT(previous_error, 1e-9);
+}
+
+// A chatter where the wall stops attracting: jin2003 at ω = 5.606 rad/s,
+// V0 = 1.955 m/s, from the state the 100 × 100 map brings to that point,
+// chatters on the right wall at t ≈ 64 s while g_e = g − V0 ω cos ωt passes
+// through zero, so the hops neither shrink fast nor accumulate (the eighth
+// rebound leaves at 1.9e-6 rad/s). rkf78 at the scene's tolerances stops
+// there with no_progress: its Hermite scan loses the next hop
+// (docs/performance.md, "Taylor as the default"). The scene's default
+// stepper (taylor) and rk8pd and dopri5 run through.
+TEST(Jin2003Chatter, WhereTheWallStopsAttractingRunsThrough) {
+  for (const std::string method : {"taylor", "rk8pd", "dopri5"}) {
+    const RunOutput output = run_scene(
+        "jin2003",
+        {"omega=5.606060606060606", "V0=1.9545454545454546", "initial.theta=0.02533801725182166",
+         "initial.theta_dot=-0.006388163122412664", "integrator.method=" + method},
+        150.0 * 2.0 * std::numbers::pi / 5.606060606060606);  // 150 forcing periods (s)
+    EXPECT_EQ(output.termination, "completed") << method << " stopped at t = " << output.t_final;
+    EXPECT_GT(output.impacts, 50u) << method;
+  }
 }
 
 }  // namespace
