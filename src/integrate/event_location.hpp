@@ -147,6 +147,11 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
       state_at(t, x);
       return detail::oriented(system.witness(mode, k, x, t), direction, either_sign).rate;
     };
+    auto witness_at = [&](double t) {
+      State x;
+      state_at(t, x);
+      return detail::oriented(system.witness(mode, k, x, t), direction, either_sign);
+    };
 
     // A simple crossing in [tl, tr] (f(tl) > 0 >= f(tr) on state_at). With a
     // cheap scan the root of the interpolant is found first and Newton's
@@ -193,12 +198,33 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
       const bool leaving_zero =
           i == 0 && std::fabs(left.value) <= options.grazing_tolerance && left.rate > 0.0;
       if (leaving_zero && right.value <= 0.0) {
-        if (right.rate < 0.0 && direction != TriggerDirection::either) {
-          const double t_max = detail::bracketed_root(rate_at, tl, tr, left.rate, right.rate);
-          const double v_max = value_at(t_max);
-          if (v_max > 0.0)
-            return {true, detail::bracketed_root(value_at, t_max, tr, v_max, right.value), k,
+        if (direction == TriggerDirection::either) return {};
+        // The right sample is past zero. Falling there, the hop's maximum is
+        // the root of the rate before it. Rising there, the witness also
+        // turned back inside (tl, tr) (a chatter rebound whose wall stopped
+        // attracting: the state went past the wall and out again), so the
+        // interval is halved towards tl, keeping its right end past zero,
+        // until the hop's falling flank is sampled, or a sample above zero
+        // brackets the crossing after it.
+        double hi = tr;
+        WitnessSample at_hi = right;
+        for (int halving = 0; halving <= 64; ++halving) {
+          if (at_hi.rate < 0.0) {
+            const double t_max = detail::bracketed_root(rate_at, tl, hi, left.rate, at_hi.rate);
+            const double v_max = value_at(t_max);
+            if (v_max > 0.0)
+              return {true, detail::bracketed_root(value_at, t_max, hi, v_max, at_hi.value), k,
+                      CrossingKind::crossing};
+            return {};
+          }
+          const double mid = 0.5 * (tl + hi);
+          if (!(mid > tl && mid < hi)) return {};
+          const WitnessSample at_mid = witness_at(mid);
+          if (at_mid.value > 0.0)
+            return {true, detail::bracketed_root(value_at, mid, hi, at_mid.value, at_hi.value), k,
                     CrossingKind::crossing};
+          hi = mid;
+          at_hi = at_mid;
         }
       } else if (left.value > 0.0 && right.value <= 0.0) {
         return {true, crossing_root(tl, tr, left.value, right.value), k, CrossingKind::crossing};
