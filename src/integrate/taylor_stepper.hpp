@@ -241,18 +241,10 @@ class TaylorStepper {
 
  private:
   // Whether a witness with value v and rate r at the step's start sits at a
-  // zero: within the grazing tolerance, or within 16 ulps of the start time
-  // of one (|v| <= 16 ε |t| |r|). The second is the round-off of the event
-  // time itself: an event is located to a few ulps of t, and the next step's
-  // series evaluates the witness afresh at that rounded time, so a witness
-  // whose rate is large (a slip V0 sin ωt through its zero, 29 m/s² on
-  // jin2003 at V0 = 4.163) starts up to |r| ulp(t) from zero, on either side,
-  // more than an absolute tolerance of 1e-14 allows; taken for a new
-  // crossing, it would be found again at the step's start, forever.
+  // zero (integrate/event_location.hpp's witness_at_zero: within the
+  // grazing tolerance, or within 16 ulps of the start time of one)
   [[nodiscard]] bool at_zero(const Real& v, const Real& r, double tolerance) const {
-    using std::fabs;
-    return fabs(v) <= tolerance ||
-           fabs(v) <= 16 * std::numeric_limits<double>::epsilon() * fabs(t_old_) * fabs(r);
+    return witness_at_zero(v, r, t_old_, tolerance);
   }
 
   // the coefficients of the state and of the mode's witnesses at the step's
