@@ -102,9 +102,7 @@ class SuppressedContacts {
   [[nodiscard]] auto witness(Mode mode, std::size_t k, const Vector& x, const Number& t) const
       -> BasicWitnessSample<Number> {
     const double start = start_value(t);
-    if (mode == flight_mode_ && static_cast<int>(k) == window_.witness && start >= window_.from &&
-        start < window_.to)
-      return {Number(1.0), Number(0.0)};
+    if (suppressed(mode, k, start) && start != window_.to) return {Number(1.0), Number(0.0)};
     return base_.witness(mode, k, x, t);
   }
   // the first end of the window after t (s), or +∞

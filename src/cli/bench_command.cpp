@@ -299,16 +299,15 @@ int run_bench(const BenchOptions& options, const std::vector<std::string>& comma
         values.push_back(ratio.ratio);
       }
       record["speed_ratio_vs_scipy_at_equal_or_better_error"] = ratios;
-      if (!values.empty()) {
-        std::sort(values.begin(), values.end());
-        record["speed_ratio_vs_scipy_min"] = values.front();
-        record["speed_ratio_vs_scipy_median"] = values[values.size() / 2];
-      }
-      if (!dop853_values.empty()) {
-        std::sort(dop853_values.begin(), dop853_values.end());
-        record["speed_ratio_vs_scipy_dop853_min"] = dop853_values.front();
-        record["speed_ratio_vs_scipy_dop853_median"] = dop853_values[dop853_values.size() / 2];
-      }
+      // the least and the median ratio, as `<prefix>_min` and `<prefix>_median`
+      const auto record_spread = [&](const std::string& prefix, std::vector<double> of) {
+        if (of.empty()) return;
+        std::sort(of.begin(), of.end());
+        record[prefix + "_min"] = of.front();
+        record[prefix + "_median"] = of[of.size() / 2];
+      };
+      record_spread("speed_ratio_vs_scipy", values);
+      record_spread("speed_ratio_vs_scipy_dop853", dop853_values);
     }
     if (result.bench_case.name == "jin2003_periodic") {
       // issue 14's goals: 3·10^5 impacts/s at an impact-time error <= 1e-9 s,

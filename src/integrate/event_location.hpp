@@ -154,21 +154,13 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
       return detail::oriented(system.witness(mode, k, states[i], times[i]), direction,
                               either_sign);
     };
-    auto value_at = [&](double t) {
-      State x;
-      state_at(t, x);
-      return detail::oriented(system.witness(mode, k, x, t), direction, either_sign).value;
-    };
-    auto rate_at = [&](double t) {
-      State x;
-      state_at(t, x);
-      return detail::oriented(system.witness(mode, k, x, t), direction, either_sign).rate;
-    };
     auto witness_at = [&](double t) {
       State x;
       state_at(t, x);
       return detail::oriented(system.witness(mode, k, x, t), direction, either_sign);
     };
+    auto value_at = [&](double t) { return witness_at(t).value; };
+    auto rate_at = [&](double t) { return witness_at(t).rate; };
 
     // A simple crossing in [tl, tr] (f(tl) > 0 >= f(tr) on state_at). With a
     // cheap scan the root of the interpolant is found first and Newton's

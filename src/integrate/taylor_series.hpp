@@ -253,11 +253,10 @@ std::array<TaylorVariable<Real>, 2> sin_cos(const TaylorVariable<Real>& a) {
 
 }  // namespace detail
 
-// The value where a series is expanded (its coefficient 0, at every order);
-// a double is its own value. A system whose definitions switch at known times
-// (analysis/run_continuation.hpp's suppressed contact window) decides by it
-// which definition a step uses, the step ending at each switch.
-inline double start_value(double v) { return v; }
+// The value where a series is expanded (its coefficient 0, at every order).
+// A system whose definitions switch at known times (analysis/
+// run_continuation.hpp's suppressed contact window) decides by it which
+// definition a step uses, the step ending at each switch.
 template <class Real>
 double start_value(const TaylorVariable<Real>& v) {
   return static_cast<double>(v.coefficient(0));
