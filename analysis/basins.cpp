@@ -1,4 +1,4 @@
-#include "analysis/basins.hpp"
+#include <impactlab/analysis/basins.hpp>
 
 #include <algorithm>
 #include <cmath>

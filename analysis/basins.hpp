@@ -19,7 +19,7 @@
 #include <array>
 #include <vector>
 
-#include "analysis/sweep.hpp"
+#include <impactlab/analysis/sweep.hpp>
 
 namespace impactlab {
 

@@ -1,4 +1,4 @@
-#include "analysis/continuation.hpp"
+#include <impactlab/analysis/continuation.hpp>
 
 #include <algorithm>
 #include <cmath>

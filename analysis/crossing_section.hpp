@@ -8,8 +8,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "analysis/section.hpp"
-#include "core/hybrid_system.hpp"
+#include <impactlab/analysis/section.hpp>
+#include <impactlab/core/hybrid_system.hpp>
 
 namespace impactlab {
 

@@ -1,4 +1,4 @@
-#include "analysis/curve_continuation.hpp"
+#include <impactlab/analysis/curve_continuation.hpp>
 
 #include <algorithm>
 #include <cmath>

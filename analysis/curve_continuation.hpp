@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/continuation.hpp"
+#include <impactlab/analysis/continuation.hpp>
 
 namespace impactlab {
 

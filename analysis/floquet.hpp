@@ -21,10 +21,10 @@
 
 #include <Eigen/Dense>
 
-#include "analysis/flow_setup.hpp"
-#include "analysis/variational.hpp"
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
+#include <impactlab/analysis/flow_setup.hpp>
+#include <impactlab/analysis/variational.hpp>
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
 
 namespace impactlab {
 

@@ -1,7 +1,7 @@
-#include "analysis/flow_setup.hpp"
+#include <impactlab/analysis/flow_setup.hpp>
 
-#include "analysis/section.hpp"
-#include "io/scene.hpp"
+#include <impactlab/analysis/section.hpp>
+#include <impactlab/io/scene.hpp>
 
 namespace impactlab {
 

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <string>
 
-#include "core/hybrid_system.hpp"
-#include "core/simulator.hpp"
-#include "integrate/stepper_settings.hpp"
+#include <impactlab/core/hybrid_system.hpp>
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_settings.hpp>
 
 namespace impactlab {
 

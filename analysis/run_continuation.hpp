@@ -17,16 +17,16 @@
 #include <utility>
 #include <vector>
 
-#include "analysis/continuation.hpp"
-#include "analysis/curve_continuation.hpp"
-#include "analysis/flow_setup.hpp"
-#include "analysis/saltation.hpp"
-#include "analysis/variational.hpp"
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "integrate/taylor_series.hpp"
-#include "io/bad_input.hpp"
-#include "io/scene.hpp"
+#include <impactlab/analysis/continuation.hpp>
+#include <impactlab/analysis/curve_continuation.hpp>
+#include <impactlab/analysis/flow_setup.hpp>
+#include <impactlab/analysis/saltation.hpp>
+#include <impactlab/analysis/variational.hpp>
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/integrate/taylor_series.hpp>
+#include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/scene.hpp>
 
 namespace impactlab {
 

@@ -6,12 +6,12 @@
 #include <cmath>
 #include <numbers>
 
-#include "analysis/floquet.hpp"
-#include "analysis/periodic.hpp"
-#include "analysis/section.hpp"
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "io/scene.hpp"
+#include <impactlab/analysis/floquet.hpp>
+#include <impactlab/analysis/periodic.hpp>
+#include <impactlab/analysis/section.hpp>
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/io/scene.hpp>
 
 namespace impactlab {
 

@@ -12,14 +12,14 @@
 #include <string>
 #include <tuple>
 
-#include "analysis/crossing_section.hpp"
-#include "analysis/floquet.hpp"
-#include "analysis/flow_setup.hpp"
-#include "analysis/section.hpp"
-#include "core/has_jacobian.hpp"
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "io/scene.hpp"
+#include <impactlab/analysis/crossing_section.hpp>
+#include <impactlab/analysis/floquet.hpp>
+#include <impactlab/analysis/flow_setup.hpp>
+#include <impactlab/analysis/section.hpp>
+#include <impactlab/core/has_jacobian.hpp>
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/io/scene.hpp>
 
 namespace impactlab {
 

@@ -21,7 +21,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "core/has_jacobian.hpp"
+#include <impactlab/core/has_jacobian.hpp>
 
 namespace impactlab {
 

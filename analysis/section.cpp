@@ -1,4 +1,4 @@
-#include "analysis/section.hpp"
+#include <impactlab/analysis/section.hpp>
 
 #include <charconv>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "io/bad_input.hpp"
+#include <impactlab/io/bad_input.hpp>
 
 namespace impactlab {
 

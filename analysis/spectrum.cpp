@@ -1,4 +1,4 @@
-#include "analysis/spectrum.hpp"
+#include <impactlab/analysis/spectrum.hpp>
 
 #include <cmath>
 #include <complex>

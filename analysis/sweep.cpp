@@ -1,4 +1,4 @@
-#include "analysis/sweep.hpp"
+#include <impactlab/analysis/sweep.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "io/bad_input.hpp"
+#include <impactlab/io/bad_input.hpp>
 
 namespace impactlab {
 

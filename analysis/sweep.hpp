@@ -19,8 +19,8 @@
 #include <string_view>
 #include <vector>
 
-#include "analysis/section.hpp"
-#include "io/scene.hpp"
+#include <impactlab/analysis/section.hpp>
+#include <impactlab/io/scene.hpp>
 
 namespace impactlab {
 

@@ -1,5 +1,5 @@
 // The variational equations of a hybrid system as a hybrid system itself, so
-// that the one event loop (core/simulator.hpp) integrates them unchanged.
+// that the one event loop (simulate/simulator.hpp) integrates them unchanged.
 //
 // State: the base system's state, then Φ, the N × N fundamental matrix on the
 // base's tangent space (core/has_jacobian.hpp: (q, q̇), or a model file's N
@@ -19,9 +19,9 @@
 #include <cstddef>
 #include <tuple>
 
-#include "analysis/saltation.hpp"
-#include "core/has_jacobian.hpp"
-#include "integrate/dual_number.hpp"
+#include <impactlab/analysis/saltation.hpp>
+#include <impactlab/core/has_jacobian.hpp>
+#include <impactlab/integrate/dual_number.hpp>
 
 namespace impactlab {
 

@@ -11,11 +11,11 @@
 #include <filesystem>
 #include <numbers>
 
-#include "core/event_log.hpp"
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "io/output.hpp"
-#include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include <impactlab/core/event_log.hpp>
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/io/output.hpp>
+#include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 
 namespace {
 

@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "analysis/floquet.hpp"
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include <impactlab/analysis/floquet.hpp>
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 #include "thread_cpu_time.hpp"
 
 namespace {

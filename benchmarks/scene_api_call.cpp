@@ -5,8 +5,8 @@
 // looked for), and the run plus a scene copy.
 #include <benchmark/benchmark.h>
 
-#include "api/scene_jobs.hpp"
-#include "api/scene_loading.hpp"
+#include <impactlab/api/scene_jobs.hpp>
+#include <impactlab/api/scene_loading.hpp>
 
 namespace {
 

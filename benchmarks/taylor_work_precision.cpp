@@ -22,9 +22,9 @@
 
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 #include "thread_cpu_time.hpp"
 
 namespace {

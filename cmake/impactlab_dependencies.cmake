@@ -1,4 +1,4 @@
-# The libraries impactlab_core links against, listed once. The build includes
+# The libraries impactlab library links against, listed once. The build includes
 # this file (each dependency REQUIRED), and so does the installed package
 # (impactlabConfig.cmake, through find_dependency), so a program that calls
 # find_package(impactlab) finds exactly what the library was built with.

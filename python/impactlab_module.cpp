@@ -1,5 +1,5 @@
 // The compiled part of the Python package impactlab: thin bindings of the
-// scene API (src/api/) for python/impactlab/__init__.py, which adds the
+// scene API (api/) for python/impactlab/__init__.py, which adds the
 // keyword handling, the result classes and the warnings. Every job runs with
 // the GIL released; its progress callback takes the GIL back now and then to
 // call the user's callback and to look for Ctrl-C, and a Python exception
@@ -21,20 +21,20 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "analysis/continuation.hpp"
-#include "analysis/section.hpp"
-#include "api/basins_job.hpp"
-#include "api/compare.hpp"
-#include "api/periodic_job.hpp"
-#include "api/run_record.hpp"
-#include "api/scene_jobs.hpp"
-#include "api/scene_loading.hpp"
-#include "api/scene_record.hpp"
-#include "api/sweep_job.hpp"
-#include "api/work_precision.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "io/bad_input.hpp"
-#include "io/builtin_scenes.hpp"
+#include <impactlab/analysis/continuation.hpp>
+#include <impactlab/analysis/section.hpp>
+#include <impactlab/api/basins_job.hpp>
+#include <impactlab/api/compare.hpp>
+#include <impactlab/api/periodic_job.hpp>
+#include <impactlab/api/run_record.hpp>
+#include <impactlab/api/scene_jobs.hpp>
+#include <impactlab/api/scene_loading.hpp>
+#include <impactlab/api/scene_record.hpp>
+#include <impactlab/api/sweep_job.hpp>
+#include <impactlab/api/work_precision.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/builtin_scenes.hpp>
 
 namespace py = pybind11;
 using namespace impactlab;

@@ -1,53 +1,63 @@
 #!/usr/bin/env python3
-"""Fails when an #include runs upwards through impactlab's layers.
+"""Fails when an #include runs upwards through impactlab's layers, or names a
+project header by any spelling but its project-prefixed path.
 
 Layers, bottom to top (docs/architecture.md); a file may include headers of
 its own layer and of the layers below it:
 
-  1 engine      src/core, src/integrate, src/contact, src/rigidbody, src/platform
+  1 engine      src/platform < src/core < src/integrate < src/contact
+                < src/simulate < src/rigidbody   (the engine's own order)
   2 io          src/io
   3 physics     oscillators/
   4 analysis    analysis/
-  5 scene API   src/api/
-  6 front ends  src/cli, python/, examples/
+  5 scene API   api/
+  6 front ends  cli/, python/, examples/
+
+A project header is included as <impactlab/LAYER/...> (LAYER: core,
+integrate, contact, simulate, rigidbody, platform, io, oscillators, analysis,
+api). Every other spelling that reaches a project header is read too and
+reported: "core/x.hpp" or <core/x.hpp>, "src/core/x.hpp", "../core/x.hpp", a
+bare "x.hpp" beside the file. The front end cli/ includes its own headers by
+their bare names ("command.hpp"), and so does an example: those stay inside
+their folder and are allowed.
 
 Usage: check_layers.py [ROOT]   (ROOT defaults to the repository root)
-Exit status 0 when every include points down or sideways, 1 otherwise, with
-one line per offending include: FILE:LINE: layer of FILE < layer of HEADER.
+Exit status 0 when every include points down or sideways by its prefixed
+path, 1 otherwise, with one line per offending include:
+  FILE:LINE: LAYER (layer N) includes HEADER of LAYER (layer M)
+  FILE:LINE: HEADER is a project header: include it as <impactlab/...>
 """
 import pathlib
+import posixpath
 import re
 import sys
 
-# (path prefix relative to ROOT, layer number, layer name); longest prefix wins
+# (folder relative to ROOT, layer number, layer name); the engine's folders
+# carry their own order as the fraction
 FOLDER_LAYERS = [
-    ("src/core/", 1, "engine"),
-    ("src/integrate/", 1, "engine"),
-    ("src/contact/", 1, "engine"),
-    ("src/rigidbody/", 1, "engine"),
-    ("src/platform/", 1, "engine"),
+    ("src/platform/", 1.0, "engine/platform"),
+    ("src/core/", 1.1, "engine/core"),
+    ("src/integrate/", 1.2, "engine/integrate"),
+    ("src/contact/", 1.3, "engine/contact"),
+    ("src/simulate/", 1.4, "engine/simulate"),
+    ("src/rigidbody/", 1.5, "engine/rigidbody"),
     ("src/io/", 2, "io"),
     ("oscillators/", 3, "physics"),
     ("analysis/", 4, "analysis"),
-    ("src/api/", 5, "scene API"),
-    ("src/cli/", 6, "front end"),
+    ("api/", 5, "scene API"),
+    ("cli/", 6, "front end"),
     ("python/", 6, "front end"),
     ("examples/", 6, "front end"),
 ]
-# how a quoted include names each folder (include roots are src/ and the repository root)
-INCLUDE_PREFIXES = [
-    ("core/", "src/core/"),
-    ("integrate/", "src/integrate/"),
-    ("contact/", "src/contact/"),
-    ("rigidbody/", "src/rigidbody/"),
-    ("platform/", "src/platform/"),
-    ("io/", "src/io/"),
-    ("oscillators/", "oscillators/"),
-    ("analysis/", "analysis/"),
-    ("api/", "src/api/"),
-    ("cli/", "src/cli/"),
-]
-INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
+# the folder each <impactlab/PREFIX/...> names
+PREFIX_FOLDERS = {
+    "platform": "src/platform/", "core": "src/core/", "integrate": "src/integrate/",
+    "contact": "src/contact/", "simulate": "src/simulate/", "rigidbody": "src/rigidbody/",
+    "io": "src/io/", "oscillators": "oscillators/", "analysis": "analysis/", "api": "api/",
+}
+# folders whose files may include their own neighbours by bare name
+BARE_NAME_FOLDERS = ("cli/", "examples/")
+INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 SOURCE_SUFFIXES = {".hpp", ".cpp", ".h", ".cc"}
 
 
@@ -58,11 +68,36 @@ def layer_of_path(relative: str):
     return None
 
 
-def layer_of_include(header: str):
-    for include_prefix, folder in INCLUDE_PREFIXES:
-        if header.startswith(include_prefix):
-            return layer_of_path(folder)
-    return None
+def resolve(root: pathlib.Path, relative: str, header: str, bracket: str):
+    """The header's path relative to ROOT and whether it was spelled with the
+    project prefix; (None, _) when it is not a project header."""
+    if header.startswith("impactlab/"):
+        parts = header.split("/", 2)
+        if len(parts) == 3 and parts[1] in PREFIX_FOLDERS:
+            return PREFIX_FOLDERS[parts[1]] + parts[2], bracket == "<"
+        return None, False
+    candidates = []
+    if bracket == '"':
+        # beside the including file, then ../ and the like
+        candidates.append(posixpath.normpath(posixpath.join(posixpath.dirname(relative), header)))
+    candidates.append(posixpath.normpath(header))  # "src/core/x.hpp"
+    first = header.split("/", 1)[0]
+    if first in PREFIX_FOLDERS and "/" in header:  # "core/x.hpp", <core/x.hpp>
+        candidates.append(PREFIX_FOLDERS[first] + header.split("/", 1)[1])
+    for candidate in candidates:
+        if not candidate.startswith("..") and layer_of_path(candidate) and (root / candidate).is_file():
+            return candidate, False
+    # a header not in this tree (a checked tree of excerpts): by its spelling
+    if first in PREFIX_FOLDERS and "/" in header:
+        return PREFIX_FOLDERS[first] + header.split("/", 1)[1], False
+    plain = posixpath.normpath(header)
+    if layer_of_path(plain):  # "src/core/x.hpp"
+        return plain, False
+    if header.startswith("../"):
+        beside = posixpath.normpath(posixpath.join(posixpath.dirname(relative), header))
+        if not beside.startswith("..") and layer_of_path(beside):
+            return beside, False
+    return None, False
 
 
 def violations(root: pathlib.Path):
@@ -80,10 +115,18 @@ def violations(root: pathlib.Path):
             match = INCLUDE.match(line)
             if not match:
                 continue
-            target = layer_of_include(match.group(1))
-            if target and target[0] > own[0]:
-                found.append(f"{relative}:{number}: {own[1]} (layer {own[0]}) includes "
-                             f"{match.group(1)} of {target[1]} (layer {target[0]})")
+            bracket, header = match.group(1), match.group(2)
+            target_path, prefixed = resolve(root, relative, header, bracket)
+            if target_path is None:
+                continue
+            target = layer_of_path(target_path)
+            if target[0] > own[0]:
+                found.append(f"{relative}:{number}: {own[1]} (layer {own[0]:g}) includes "
+                             f"{header} of {target[1]} (layer {target[0]:g})")
+            elif not prefixed and not (relative.startswith(BARE_NAME_FOLDERS) and
+                                       target_path.startswith(BARE_NAME_FOLDERS)):
+                found.append(f"{relative}:{number}: {header} is a project header: "
+                             f"include it as <impactlab/...>")
     return found
 
 
@@ -92,7 +135,7 @@ def main():
     found = violations(root.resolve())
     for line in found:
         print(line)
-    print(f"layers: {len(found)} upward include(s)")
+    print(f"layers: {len(found)} offending include(s)")
     return 1 if found else 0
 
 

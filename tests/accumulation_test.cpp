@@ -17,10 +17,10 @@
 
 #include <gtest/gtest.h>
 
-#include "contact/accumulation.hpp"
-#include "api/oscillator_registry.hpp"
-#include "api/scene_loading.hpp"
-#include "io/scene.hpp"
+#include <impactlab/contact/accumulation.hpp>
+#include <impactlab/api/oscillator_registry.hpp>
+#include <impactlab/api/scene_loading.hpp>
+#include <impactlab/io/scene.hpp>
 
 namespace impactlab {
 namespace {

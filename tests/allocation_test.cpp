@@ -13,11 +13,11 @@
 
 #include <gtest/gtest.h>
 
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "oscillators/bouncing_ball/bouncing_ball.hpp"
-#include "oscillators/linear_impact/linear_impact.hpp"
-#include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
+#include <impactlab/oscillators/linear_impact/linear_impact.hpp>
+#include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 
 namespace {
 std::atomic<long> allocations{0};

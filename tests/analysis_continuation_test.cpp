@@ -33,12 +33,12 @@
 #include <boost/math/tools/roots.hpp>
 #include <gtest/gtest.h>
 
-#include "analysis/continuation.hpp"
-#include "analysis/periodic.hpp"
-#include "analysis/section.hpp"
-#include "api/scene_jobs.hpp"
-#include "api/scene_loading.hpp"
-#include "io/scene.hpp"
+#include <impactlab/analysis/continuation.hpp>
+#include <impactlab/analysis/periodic.hpp>
+#include <impactlab/analysis/section.hpp>
+#include <impactlab/api/scene_jobs.hpp>
+#include <impactlab/api/scene_loading.hpp>
+#include <impactlab/io/scene.hpp>
 
 namespace {
 

@@ -23,14 +23,14 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "analysis/floquet.hpp"
-#include "analysis/sweep.hpp"
-#include "api/scene_jobs.hpp"
-#include "api/scene_loading.hpp"
-#include "io/scene.hpp"
-#include "oscillators/bouncing_ball/bouncing_ball.hpp"
-#include "oscillators/linear_impact/linear_impact.hpp"
-#include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include <impactlab/analysis/floquet.hpp>
+#include <impactlab/analysis/sweep.hpp>
+#include <impactlab/api/scene_jobs.hpp>
+#include <impactlab/api/scene_loading.hpp>
+#include <impactlab/io/scene.hpp>
+#include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
+#include <impactlab/oscillators/linear_impact/linear_impact.hpp>
+#include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 #include "linear_impact_closed_form.hpp"
 
 namespace {

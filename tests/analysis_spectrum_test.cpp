@@ -16,7 +16,7 @@
 
 #include <gtest/gtest.h>
 
-#include "analysis/spectrum.hpp"
+#include <impactlab/analysis/spectrum.hpp>
 
 namespace {
 

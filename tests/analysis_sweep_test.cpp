@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "analysis/sweep.hpp"
-#include "io/bad_input.hpp"
+#include <impactlab/analysis/sweep.hpp>
+#include <impactlab/io/bad_input.hpp>
 
 namespace {
 

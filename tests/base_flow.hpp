@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include "analysis/flow_setup.hpp"
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
+#include <impactlab/analysis/flow_setup.hpp>
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
 
 template <class System>
 typename System::State flow(const System& system, const impactlab::FlowSetup& setup,

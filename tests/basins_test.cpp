@@ -23,7 +23,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "analysis/basins.hpp"
+#include <impactlab/analysis/basins.hpp>
 #include "mpi_launch.hpp"
 
 namespace {

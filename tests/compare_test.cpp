@@ -20,8 +20,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "api/compare.hpp"
-#include "io/bad_input.hpp"
+#include <impactlab/api/compare.hpp>
+#include <impactlab/io/bad_input.hpp>
 
 namespace impactlab {
 namespace {

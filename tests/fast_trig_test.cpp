@@ -10,7 +10,7 @@
 #include <numbers>
 #include <random>
 
-#include "core/fast_trig.hpp"
+#include <impactlab/core/fast_trig.hpp>
 
 namespace {
 

@@ -35,11 +35,11 @@
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/tools/roots.hpp>
 
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "oscillators/bouncing_ball/bouncing_ball.hpp"
-#include "oscillators/linear_impact/linear_impact.hpp"
-#include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
+#include <impactlab/oscillators/linear_impact/linear_impact.hpp>
+#include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 
 namespace impactlab {
 namespace {

@@ -17,7 +17,7 @@
 
 #include <boost/math/tools/roots.hpp>
 
-#include "oscillators/linear_impact/linear_impact.hpp"
+#include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 
 namespace impactlab::testing {
 

@@ -22,10 +22,10 @@
 #include <boost/math/tools/roots.hpp>
 #include <gtest/gtest.h>
 
-#include "api/work_precision.hpp"
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "oscillators/linear_impact/linear_impact.hpp"
+#include <impactlab/api/work_precision.hpp>
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 
 namespace {
 

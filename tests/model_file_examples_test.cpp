@@ -23,11 +23,11 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "oscillators/linear_impact/linear_impact.hpp"
-#include "oscillators/model_file/compiled_model.hpp"
-#include "oscillators/model_file/model_system.hpp"
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/oscillators/linear_impact/linear_impact.hpp>
+#include <impactlab/oscillators/model_file/compiled_model.hpp>
+#include <impactlab/oscillators/model_file/model_system.hpp>
 
 namespace {
 

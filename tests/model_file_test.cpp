@@ -18,13 +18,13 @@
 
 #include <gtest/gtest.h>
 
-#include "analysis/floquet.hpp"
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "oscillators/bouncing_ball/bouncing_ball.hpp"
-#include "oscillators/linear_impact/linear_impact.hpp"
-#include "oscillators/model_file/compiled_model.hpp"
-#include "oscillators/model_file/model_system.hpp"
+#include <impactlab/analysis/floquet.hpp>
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
+#include <impactlab/oscillators/linear_impact/linear_impact.hpp>
+#include <impactlab/oscillators/model_file/compiled_model.hpp>
+#include <impactlab/oscillators/model_file/model_system.hpp>
 
 namespace {
 

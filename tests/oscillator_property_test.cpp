@@ -28,12 +28,12 @@
 
 #include <gtest/gtest.h>
 
-#include "io/bad_input.hpp"
-#include "io/builtin_scenes.hpp"
-#include "api/oscillator_registry.hpp"
-#include "api/scene_loading.hpp"
-#include "io/run_output.hpp"
-#include "io/scene.hpp"
+#include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/builtin_scenes.hpp>
+#include <impactlab/api/oscillator_registry.hpp>
+#include <impactlab/api/scene_loading.hpp>
+#include <impactlab/io/run_output.hpp>
+#include <impactlab/io/scene.hpp>
 
 namespace {
 

@@ -16,7 +16,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "io/output.hpp"
+#include <impactlab/io/output.hpp>
 
 namespace impactlab {
 namespace {

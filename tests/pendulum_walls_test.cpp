@@ -20,10 +20,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/event_log.hpp"
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include <impactlab/core/event_log.hpp>
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 
 namespace impactlab {
 namespace {

@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "platform/run_program.hpp"
+#include <impactlab/platform/run_program.hpp>
 
 namespace {
 

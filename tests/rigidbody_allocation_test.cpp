@@ -10,10 +10,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/simulator.hpp"
-#include "integrate/odeint_dopri5.hpp"
-#include "integrate/gsl_rk8pd.hpp"
-#include "oscillators/pendulum_walls/rigid_pendulum_walls.hpp"
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/odeint_dopri5.hpp>
+#include <impactlab/integrate/gsl_rk8pd.hpp>
+#include <impactlab/oscillators/pendulum_walls/rigid_pendulum_walls.hpp>
 
 namespace {
 std::atomic<long> allocations{0};

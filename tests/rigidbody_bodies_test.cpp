@@ -16,11 +16,11 @@
 #include <numbers>
 #include <vector>
 
-#include "rigidbody/body2d.hpp"
-#include "rigidbody/body3d.hpp"
-#include "rigidbody/box_stack.hpp"
-#include "rigidbody/collision_matrix.hpp"
-#include "rigidbody/quaternion_kinematics.hpp"
+#include <impactlab/rigidbody/body2d.hpp>
+#include <impactlab/rigidbody/body3d.hpp>
+#include <impactlab/rigidbody/box_stack.hpp>
+#include <impactlab/rigidbody/collision_matrix.hpp>
+#include <impactlab/rigidbody/quaternion_kinematics.hpp>
 
 namespace impactlab::rigidbody {
 namespace {

@@ -12,10 +12,10 @@
 
 #include <cmath>
 
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "rigidbody/contact_phase.hpp"
-#include "rigidbody/sliding_rod.hpp"
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/rigidbody/contact_phase.hpp>
+#include <impactlab/rigidbody/sliding_rod.hpp>
 
 namespace impactlab::rigidbody {
 namespace {

@@ -15,11 +15,11 @@
 
 #include <Eigen/Core>
 
-#include "rigidbody/body2d.hpp"
-#include "rigidbody/body3d.hpp"
-#include "rigidbody/collision_matrix.hpp"
-#include "rigidbody/generalized_system.hpp"
-#include "rigidbody/newton_coulomb_impulse.hpp"
+#include <impactlab/rigidbody/body2d.hpp>
+#include <impactlab/rigidbody/body3d.hpp>
+#include <impactlab/rigidbody/collision_matrix.hpp>
+#include <impactlab/rigidbody/generalized_system.hpp>
+#include <impactlab/rigidbody/newton_coulomb_impulse.hpp>
 
 namespace impactlab::rigidbody {
 namespace {

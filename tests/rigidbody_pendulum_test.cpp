@@ -19,13 +19,13 @@
 #include <string>
 #include <vector>
 
-#include "api/oscillator_registry.hpp"
-#include "api/scene_loading.hpp"
-#include "core/event_log.hpp"
-#include "io/bad_input.hpp"
-#include "io/scene.hpp"
-#include "oscillators/pendulum_walls/rigid_pendulum_walls.hpp"
-#include "rigidbody/contact_phase.hpp"
+#include <impactlab/api/oscillator_registry.hpp>
+#include <impactlab/api/scene_loading.hpp>
+#include <impactlab/core/event_log.hpp>
+#include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/scene.hpp>
+#include <impactlab/oscillators/pendulum_walls/rigid_pendulum_walls.hpp>
+#include <impactlab/rigidbody/contact_phase.hpp>
 
 namespace impactlab {
 namespace {

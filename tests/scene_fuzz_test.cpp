@@ -29,12 +29,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "io/bad_input.hpp"
-#include "io/builtin_scenes.hpp"
-#include "io/message_text.hpp"
-#include "api/oscillator_registry.hpp"
-#include "api/scene_loading.hpp"
-#include "io/scene.hpp"
+#include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/builtin_scenes.hpp>
+#include <impactlab/io/message_text.hpp>
+#include <impactlab/api/oscillator_registry.hpp>
+#include <impactlab/api/scene_loading.hpp>
+#include <impactlab/io/scene.hpp>
 #include "run_binary.hpp"
 
 namespace {

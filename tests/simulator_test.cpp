@@ -1,4 +1,4 @@
-// The event loop's guarantees (core/simulator.hpp), checked across every
+// The event loop's guarantees (simulate/simulator.hpp), checked across every
 // stepper on motions whose events are known in closed form:
 // * a grazing contact (a double root of the gap) inside one step is seen, a
 //   pair of roots 1e-7 inside the stop is an impact, 1e-7 outside nothing;
@@ -19,10 +19,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "oscillators/bouncing_ball/bouncing_ball.hpp"
-#include "oscillators/linear_impact/linear_impact.hpp"
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
+#include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 
 namespace {
 

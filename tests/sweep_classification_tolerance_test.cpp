@@ -19,13 +19,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "analysis/flow_setup.hpp"
-#include "analysis/sweep.hpp"
-#include "api/basins_job.hpp"
-#include "api/scene_jobs.hpp"
-#include "api/scene_loading.hpp"
-#include "api/sweep_job.hpp"
-#include "io/bad_input.hpp"
+#include <impactlab/analysis/flow_setup.hpp>
+#include <impactlab/analysis/sweep.hpp>
+#include <impactlab/api/basins_job.hpp>
+#include <impactlab/api/scene_jobs.hpp>
+#include <impactlab/api/scene_loading.hpp>
+#include <impactlab/api/sweep_job.hpp>
+#include <impactlab/io/bad_input.hpp>
 
 namespace impactlab {
 namespace {

@@ -34,16 +34,16 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "analysis/continuation.hpp"
-#include "analysis/floquet.hpp"
-#include "api/scene_jobs.hpp"
-#include "api/scene_loading.hpp"
-#include "io/bad_input.hpp"
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
+#include <impactlab/analysis/continuation.hpp>
+#include <impactlab/analysis/floquet.hpp>
+#include <impactlab/api/scene_jobs.hpp>
+#include <impactlab/api/scene_loading.hpp>
+#include <impactlab/io/bad_input.hpp>
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
 #include "linear_impact_closed_form.hpp"
-#include "oscillators/model_file/compiled_model.hpp"
-#include "oscillators/model_file/model_system.hpp"
+#include <impactlab/oscillators/model_file/compiled_model.hpp>
+#include <impactlab/oscillators/model_file/model_system.hpp>
 #include "run_binary.hpp"
 
 namespace {

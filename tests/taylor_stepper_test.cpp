@@ -15,13 +15,13 @@
 
 #include <gtest/gtest.h>
 
-#include "core/simulator.hpp"
-#include "integrate/polynomial_roots.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "integrate/taylor_series.hpp"
-#include "integrate/taylor_stepper.hpp"
-#include "oscillators/linear_impact/linear_impact.hpp"
-#include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/polynomial_roots.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/integrate/taylor_series.hpp>
+#include <impactlab/integrate/taylor_stepper.hpp>
+#include <impactlab/oscillators/linear_impact/linear_impact.hpp>
+#include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 
 namespace {
 

@@ -21,15 +21,15 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "analysis/floquet.hpp"
-#include "analysis/variational.hpp"
-#include "core/simulator.hpp"
-#include "integrate/dual_number.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "integrate/taylor_series.hpp"
-#include "oscillators/bouncing_ball/bouncing_ball.hpp"
-#include "oscillators/linear_impact/linear_impact.hpp"
-#include "oscillators/pendulum_walls/pendulum_walls.hpp"
+#include <impactlab/analysis/floquet.hpp>
+#include <impactlab/analysis/variational.hpp>
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/dual_number.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/integrate/taylor_series.hpp>
+#include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
+#include <impactlab/oscillators/linear_impact/linear_impact.hpp>
+#include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 #include "base_flow.hpp"
 
 namespace {

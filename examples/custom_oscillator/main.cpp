@@ -19,13 +19,13 @@
 #include <string_view>
 #include <vector>
 
-#include "analysis/run_periodic.hpp"
-#include "analysis/run_section.hpp"
-#include "analysis/sweep.hpp"
-#include "core/simulator.hpp"
-#include "integrate/stepper_dispatch.hpp"
-#include "io/bad_input.hpp"
-#include "io/scene.hpp"
+#include <impactlab/analysis/run_periodic.hpp>
+#include <impactlab/analysis/run_section.hpp>
+#include <impactlab/analysis/sweep.hpp>
+#include <impactlab/simulate/simulator.hpp>
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/scene.hpp>
 #include "two_stop_oscillator.hpp"
 
 namespace {

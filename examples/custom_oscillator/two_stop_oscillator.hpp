@@ -18,9 +18,9 @@
 #include <cstddef>
 #include <numbers>
 
-#include "core/event_log.hpp"
-#include "core/has_jacobian.hpp"
-#include "core/hybrid_system.hpp"
+#include <impactlab/core/event_log.hpp>
+#include <impactlab/core/has_jacobian.hpp>
+#include <impactlab/core/hybrid_system.hpp>
 
 namespace two_stop {
 

@@ -21,11 +21,11 @@
 #include <limits>
 #include <numbers>
 
-#include "contact/accumulation.hpp"
-#include "contact/newton_impact.hpp"
-#include "core/event_log.hpp"
-#include "core/hybrid_system.hpp"
-#include "core/has_jacobian.hpp"
+#include <impactlab/contact/accumulation.hpp>
+#include <impactlab/contact/newton_impact.hpp>
+#include <impactlab/core/event_log.hpp>
+#include <impactlab/core/hybrid_system.hpp>
+#include <impactlab/core/has_jacobian.hpp>
 
 namespace impactlab {
 

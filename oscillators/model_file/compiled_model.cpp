@@ -1,4 +1,4 @@
-#include "oscillators/model_file/compiled_model.hpp"
+#include <impactlab/oscillators/model_file/compiled_model.hpp>
 
 #include <dlfcn.h>
 #include <unistd.h>
@@ -19,8 +19,8 @@
 #include <fmt/format.h>
 #include <ginac/ginac.h>
 
-#include "oscillators/model_file/model_expression.hpp"
-#include "platform/run_program.hpp"
+#include <impactlab/oscillators/model_file/model_expression.hpp>
+#include <impactlab/platform/run_program.hpp>
 
 namespace impactlab {
 

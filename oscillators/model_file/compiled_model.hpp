@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "core/hybrid_system.hpp"
-#include "oscillators/model_file/model_definition.hpp"
-#include "oscillators/model_file/model_kernels.hpp"
+#include <impactlab/core/hybrid_system.hpp>
+#include <impactlab/oscillators/model_file/model_definition.hpp>
+#include <impactlab/oscillators/model_file/model_kernels.hpp>
 
 namespace impactlab {
 

@@ -1,4 +1,4 @@
-#include "oscillators/model_file/model_definition.hpp"
+#include <impactlab/oscillators/model_file/model_definition.hpp>
 
 #include <algorithm>
 #include <cmath>

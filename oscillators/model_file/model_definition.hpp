@@ -26,8 +26,8 @@
 
 #include <toml++/toml.h>
 
-#include "core/hybrid_system.hpp"
-#include "oscillators/model_file/model_expression.hpp"
+#include <impactlab/core/hybrid_system.hpp>
+#include <impactlab/oscillators/model_file/model_expression.hpp>
 
 namespace impactlab {
 

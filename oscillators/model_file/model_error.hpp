@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "io/bad_input.hpp"
+#include <impactlab/io/bad_input.hpp>
 
 namespace impactlab {
 

@@ -1,4 +1,4 @@
-#include "oscillators/model_file/model_expression.hpp"
+#include <impactlab/oscillators/model_file/model_expression.hpp>
 
 #include <array>
 #include <cctype>

@@ -19,7 +19,7 @@
 
 #include <ginac/ginac.h>
 
-#include "oscillators/model_file/model_error.hpp"
+#include <impactlab/oscillators/model_file/model_error.hpp>
 
 namespace impactlab {
 

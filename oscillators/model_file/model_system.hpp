@@ -29,11 +29,11 @@
 #include <string_view>
 #include <vector>
 
-#include "contact/accumulation.hpp"
-#include "core/event_log.hpp"
-#include "core/has_jacobian.hpp"
-#include "core/hybrid_system.hpp"
-#include "oscillators/model_file/compiled_model.hpp"
+#include <impactlab/contact/accumulation.hpp>
+#include <impactlab/core/event_log.hpp>
+#include <impactlab/core/has_jacobian.hpp>
+#include <impactlab/core/hybrid_system.hpp>
+#include <impactlab/oscillators/model_file/compiled_model.hpp>
 
 namespace impactlab {
 

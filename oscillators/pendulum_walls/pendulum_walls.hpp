@@ -29,15 +29,15 @@
 #include <numbers>
 #include <optional>
 
-#include "contact/accumulation.hpp"
-#include "contact/newton_impact.hpp"
-#include "contact/painleve.hpp"
-#include "core/event_log.hpp"
-#include "core/fast_trig.hpp"
-#include "core/sign.hpp"
-#include "core/hybrid_system.hpp"
-#include "oscillators/pendulum_walls/sliding_impact.hpp"
-#include "core/has_jacobian.hpp"
+#include <impactlab/contact/accumulation.hpp>
+#include <impactlab/contact/newton_impact.hpp>
+#include <impactlab/contact/painleve.hpp>
+#include <impactlab/core/event_log.hpp>
+#include <impactlab/core/fast_trig.hpp>
+#include <impactlab/core/sign.hpp>
+#include <impactlab/core/hybrid_system.hpp>
+#include <impactlab/oscillators/pendulum_walls/sliding_impact.hpp>
+#include <impactlab/core/has_jacobian.hpp>
 
 namespace impactlab {
 

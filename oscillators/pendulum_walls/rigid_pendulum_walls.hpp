@@ -37,14 +37,14 @@
 
 #include <Eigen/Core>
 
-#include "contact/accumulation.hpp"
-#include "core/event_log.hpp"
-#include "core/fast_trig.hpp"
-#include "core/hybrid_system.hpp"
-#include "integrate/taylor_stepper.hpp"
-#include "oscillators/pendulum_walls/pendulum_walls.hpp"
-#include "rigidbody/contact_phase.hpp"
-#include "rigidbody/generalized_system.hpp"
+#include <impactlab/contact/accumulation.hpp>
+#include <impactlab/core/event_log.hpp>
+#include <impactlab/core/fast_trig.hpp>
+#include <impactlab/core/hybrid_system.hpp>
+#include <impactlab/integrate/taylor_stepper.hpp>
+#include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
+#include <impactlab/rigidbody/contact_phase.hpp>
+#include <impactlab/rigidbody/generalized_system.hpp>
 
 namespace impactlab {
 

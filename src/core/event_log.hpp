@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/event_sink.hpp"
+#include <impactlab/core/event_sink.hpp>
 
 namespace impactlab {
 

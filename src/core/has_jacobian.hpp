@@ -15,7 +15,7 @@
 #include <cstddef>
 #include <tuple>
 
-#include "core/hybrid_system.hpp"
+#include <impactlab/core/hybrid_system.hpp>
 
 namespace impactlab {
 

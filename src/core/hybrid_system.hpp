@@ -2,7 +2,7 @@
 // with a trigger direction, and a transition (reset map) per event.
 //
 // Every oscillator in `oscillators/` models this concept; the one event loop in
-// `core/simulator.hpp` runs any of them. The state is a fixed-size
+// `simulate/simulator.hpp` runs any of them. The state is a fixed-size
 // std::array so that the right-hand side inlines and nothing is allocated per
 // step (Boost.Odeint's array algebra works on it directly).
 #pragma once
@@ -11,7 +11,7 @@
 #include <concepts>
 #include <cstddef>
 
-#include "core/event_log.hpp"
+#include <impactlab/core/event_log.hpp>
 
 namespace impactlab {
 

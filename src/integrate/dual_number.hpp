@@ -30,8 +30,8 @@
 #include <cstddef>
 #include <utility>
 
-#include "core/fast_trig.hpp"
-#include "core/sign.hpp"
+#include <impactlab/core/fast_trig.hpp>
+#include <impactlab/core/sign.hpp>
 
 namespace impactlab {
 

@@ -31,7 +31,7 @@
 
 #include <boost/math/tools/roots.hpp>
 
-#include "core/hybrid_system.hpp"
+#include <impactlab/core/hybrid_system.hpp>
 
 namespace impactlab {
 

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 
-#include "core/hybrid_system.hpp"
-#include "integrate/stepper_settings.hpp"
+#include <impactlab/core/hybrid_system.hpp>
+#include <impactlab/integrate/stepper_settings.hpp>
 
 namespace impactlab {
 

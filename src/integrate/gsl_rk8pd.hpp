@@ -17,8 +17,8 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 
-#include "integrate/step_record.hpp"
-#include "integrate/stepper_settings.hpp"
+#include <impactlab/integrate/step_record.hpp>
+#include <impactlab/integrate/stepper_settings.hpp>
 
 namespace impactlab {
 

@@ -8,7 +8,7 @@
 
 #include <boost/numeric/odeint.hpp>
 
-#include "integrate/stepper_settings.hpp"
+#include <impactlab/integrate/stepper_settings.hpp>
 
 namespace impactlab {
 

@@ -8,8 +8,8 @@
 
 #include <boost/numeric/odeint.hpp>
 
-#include "integrate/step_to_limit.hpp"
-#include "integrate/stepper_settings.hpp"
+#include <impactlab/integrate/step_to_limit.hpp>
+#include <impactlab/integrate/stepper_settings.hpp>
 
 namespace impactlab {
 

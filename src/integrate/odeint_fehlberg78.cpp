@@ -1,6 +1,6 @@
 // The Fehlberg 7(8) stepper's constructor, compiled once (see CMakeLists.txt
 // for why they live apart).
-#include "integrate/odeint_fehlberg78.hpp"
+#include <impactlab/integrate/odeint_fehlberg78.hpp>
 
 namespace impactlab {
 

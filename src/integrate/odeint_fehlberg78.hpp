@@ -12,9 +12,9 @@
 
 #include <boost/numeric/odeint.hpp>
 
-#include "integrate/step_record.hpp"
-#include "integrate/step_to_limit.hpp"
-#include "integrate/stepper_settings.hpp"
+#include <impactlab/integrate/step_record.hpp>
+#include <impactlab/integrate/step_to_limit.hpp>
+#include <impactlab/integrate/stepper_settings.hpp>
 
 namespace impactlab {
 

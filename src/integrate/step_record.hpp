@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "integrate/cubic_hermite.hpp"
+#include <impactlab/integrate/cubic_hermite.hpp>
 
 namespace impactlab {
 

@@ -8,14 +8,14 @@
 #include <string>
 #include <string_view>
 
-#include "core/hybrid_system.hpp"
-#include "integrate/exact_flow_stepper.hpp"
-#include "integrate/gsl_rk8pd.hpp"
-#include "integrate/odeint_bulirsch_stoer.hpp"
-#include "integrate/odeint_dopri5.hpp"
-#include "integrate/odeint_fehlberg78.hpp"
-#include "integrate/stepper_settings.hpp"
-#include "integrate/taylor_stepper.hpp"
+#include <impactlab/core/hybrid_system.hpp>
+#include <impactlab/integrate/exact_flow_stepper.hpp>
+#include <impactlab/integrate/gsl_rk8pd.hpp>
+#include <impactlab/integrate/odeint_bulirsch_stoer.hpp>
+#include <impactlab/integrate/odeint_dopri5.hpp>
+#include <impactlab/integrate/odeint_fehlberg78.hpp>
+#include <impactlab/integrate/stepper_settings.hpp>
+#include <impactlab/integrate/taylor_stepper.hpp>
 
 namespace impactlab {
 

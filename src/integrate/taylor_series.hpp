@@ -30,7 +30,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "core/fast_trig.hpp"
+#include <impactlab/core/fast_trig.hpp>
 
 namespace impactlab {
 

@@ -40,11 +40,11 @@
 #include <string>
 #include <tuple>
 
-#include "core/hybrid_system.hpp"
-#include "integrate/event_location.hpp"
-#include "integrate/polynomial_roots.hpp"
-#include "integrate/stepper_settings.hpp"
-#include "integrate/taylor_series.hpp"
+#include <impactlab/core/hybrid_system.hpp>
+#include <impactlab/integrate/event_location.hpp>
+#include <impactlab/integrate/polynomial_roots.hpp>
+#include <impactlab/integrate/stepper_settings.hpp>
+#include <impactlab/integrate/taylor_series.hpp>
 
 namespace impactlab {
 

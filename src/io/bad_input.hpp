@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "io/message_text.hpp"
+#include <impactlab/io/message_text.hpp>
 
 namespace impactlab {
 

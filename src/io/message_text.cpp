@@ -1,4 +1,4 @@
-#include "io/message_text.hpp"
+#include <impactlab/io/message_text.hpp>
 
 #include <fmt/format.h>
 

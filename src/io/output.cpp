@@ -1,4 +1,4 @@
-#include "io/output.hpp"
+#include <impactlab/io/output.hpp>
 
 #include <cmath>
 #include <stdexcept>
@@ -8,7 +8,7 @@
 
 #include <fmt/compile.h>
 
-#include "io/bad_input.hpp"
+#include <impactlab/io/bad_input.hpp>
 
 namespace impactlab {
 

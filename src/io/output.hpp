@@ -14,9 +14,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "core/event_log.hpp"
-#include "core/event_sink.hpp"
-#include "io/run_output.hpp"
+#include <impactlab/core/event_log.hpp>
+#include <impactlab/core/event_sink.hpp>
+#include <impactlab/io/run_output.hpp>
 
 namespace impactlab {
 

@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/event_log.hpp"
-#include "core/event_sink.hpp"
+#include <impactlab/core/event_log.hpp>
+#include <impactlab/core/event_sink.hpp>
 
 namespace impactlab {
 

@@ -1,4 +1,4 @@
-#include "io/scene.hpp"
+#include <impactlab/io/scene.hpp>
 
 #include <charconv>
 #include <cmath>
@@ -10,9 +10,9 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include "integrate/stepper_dispatch.hpp"
-#include "io/bad_input.hpp"
-#include "io/builtin_scenes.hpp"
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/builtin_scenes.hpp>
 
 namespace impactlab {
 

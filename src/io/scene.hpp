@@ -14,7 +14,7 @@
 #include <variant>
 #include <vector>
 
-#include "contact/accumulation.hpp"
+#include <impactlab/contact/accumulation.hpp>
 
 namespace impactlab {
 

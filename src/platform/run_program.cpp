@@ -1,4 +1,4 @@
-#include "platform/run_program.hpp"
+#include <impactlab/platform/run_program.hpp>
 
 #include <cerrno>
 

@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "rigidbody/cross_matrix.hpp"
+#include <impactlab/rigidbody/cross_matrix.hpp>
 
 namespace impactlab::rigidbody {
 

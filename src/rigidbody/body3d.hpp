@@ -13,7 +13,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "rigidbody/quaternion_kinematics.hpp"
+#include <impactlab/rigidbody/quaternion_kinematics.hpp>
 
 namespace impactlab::rigidbody {
 

@@ -6,7 +6,7 @@
 //     4. contact pass (restitution ramped to 0), then shock propagation
 //     5. positions advanced with the new velocities
 //     6. position correction of what still overlaps
-// A time-stepping scheme (not the event loop of core/simulator.hpp): with
+// A time-stepping scheme (not the event loop of simulate/simulator.hpp): with
 // many persistent contacts the events would accumulate at every step, which
 // is what this family of schemes is made for. Its error is first order in dt.
 //
@@ -24,8 +24,8 @@
 
 #include <Eigen/Core>
 
-#include "rigidbody/body2d.hpp"
-#include "rigidbody/sequential_impulse.hpp"
+#include <impactlab/rigidbody/body2d.hpp>
+#include <impactlab/rigidbody/sequential_impulse.hpp>
 
 namespace impactlab::rigidbody {
 

@@ -15,9 +15,9 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include "rigidbody/body2d.hpp"
-#include "rigidbody/body3d.hpp"
-#include "rigidbody/cross_matrix.hpp"
+#include <impactlab/rigidbody/body2d.hpp>
+#include <impactlab/rigidbody/body3d.hpp>
+#include <impactlab/rigidbody/cross_matrix.hpp>
 
 namespace impactlab::rigidbody {
 

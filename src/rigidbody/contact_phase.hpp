@@ -22,7 +22,7 @@
 #include <Eigen/Core>
 #include <Eigen/QR>
 
-#include "rigidbody/generalized_system.hpp"
+#include <impactlab/rigidbody/generalized_system.hpp>
 
 namespace impactlab::rigidbody {
 

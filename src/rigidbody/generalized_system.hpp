@@ -13,8 +13,8 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include "rigidbody/collision_matrix.hpp"
-#include "rigidbody/newton_coulomb_impulse.hpp"
+#include <impactlab/rigidbody/collision_matrix.hpp>
+#include <impactlab/rigidbody/newton_coulomb_impulse.hpp>
 
 namespace impactlab::rigidbody {
 

@@ -29,9 +29,9 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include "rigidbody/body2d.hpp"
-#include "rigidbody/collision_matrix.hpp"
-#include "rigidbody/newton_coulomb_impulse.hpp"
+#include <impactlab/rigidbody/body2d.hpp>
+#include <impactlab/rigidbody/collision_matrix.hpp>
+#include <impactlab/rigidbody/newton_coulomb_impulse.hpp>
 
 namespace impactlab::rigidbody {
 

@@ -1,6 +1,6 @@
 // The classic Painlevé rod as a hybrid system: a uniform rod (mass m, length
 // 2a, I = m a²/3) whose lower end slides on a rough floor y = 0, moved by the
-// event loop of core/simulator.hpp with its contact resolved at acceleration
+// event loop of simulate/simulator.hpp with its contact resolved at acceleration
 // level (contact_phase.hpp).
 //
 // Coordinates q = (x, y, θ) of the centre and the angle to the floor; the
@@ -28,10 +28,10 @@
 #include <cmath>
 #include <cstddef>
 
-#include "core/event_log.hpp"
-#include "core/hybrid_system.hpp"
-#include "rigidbody/contact_phase.hpp"
-#include "rigidbody/generalized_system.hpp"
+#include <impactlab/core/event_log.hpp>
+#include <impactlab/core/hybrid_system.hpp>
+#include <impactlab/rigidbody/contact_phase.hpp>
+#include <impactlab/rigidbody/generalized_system.hpp>
 
 namespace impactlab::rigidbody {
 

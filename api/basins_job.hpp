@@ -1,0 +1,55 @@
+// Basins of attraction as a job that any front end runs (the CLI's
+// `impactlab basins`, the Python module's basins): the plan from the two grid
+// keys, a sweep whose points each start from the scene's state
+// (SweepPlan::follow_attractor false, run by api/sweep_job.hpp's run_sweep),
+// and its records classified by attractor (analysis/basins.hpp) and laid out
+// as the rows of basins.csv and attractors.csv.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include <impactlab/analysis/basins.hpp>
+#include <impactlab/api/sweep_job.hpp>
+
+namespace impactlab {
+
+// A basins map as its options state it; the *_key members name the options
+// in BadInput messages (the CLI's --x, the Python keyword x, ...).
+struct BasinsSpec {
+  std::string x, y;  // KEY=FROM:TO:N: the first (fastest) and second grid key
+  SectionRequest section;
+  bool lyapunov = false;
+  double period_tolerance = 1e-6;
+  int max_period = 16;
+  double attractor_tolerance = 1e-4;  // relative distance of two canonical points
+  std::string x_key = "--x", y_key = "--y", grid_key = "--x/--y",
+              attractor_tolerance_key = "--attractor-tol";
+};
+
+// The validated plan: both keys numeric keys of the scene's oscillator and
+// different, every point from the scene's state. Throws BadInput.
+SweepPlan make_basins_plan(const BasinsSpec& spec, const Scene& scene, const SceneSchema& schema);
+
+// sweep_definition with the basins' own entries (the checkpoint header and
+// meta.json's "sweep").
+nlohmann::json basins_definition(const SweepPlan& plan, const Scene& scene,
+                                 const SceneSchema& schema, const nlohmann::json& section_record);
+
+// The rows of basins.csv (one per grid point, in grid order: the first key
+// fastest) and the attractors of attractors.csv.
+struct BasinsTable {
+  std::vector<double> x, y;
+  std::vector<int> attractor, period;
+  std::vector<double> impacts_per_period;
+  std::vector<int> contact;
+  std::vector<std::string> termination;
+  BasinMap map;  // the attractors (by id) and the count of unclassified points
+};
+
+BasinsTable basins_table(const SweepPlan& plan, const std::vector<SweepTask>& tasks,
+                         const std::map<SweepRecordKey, SweepRecord>& records);
+
+}  // namespace impactlab

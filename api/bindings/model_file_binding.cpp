@@ -1,0 +1,213 @@
+// The scene binding of oscillators defined in a scene file's [model] section:
+// a schema built at run time from the model's parameters (defaults, units,
+// ranges: the scene keys and --set keys) and states (initial.<state>), and the
+// run, section, periodic-orbit and continuation hooks for 2 or 4 states.
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <numbers>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <impactlab/analysis/run_continuation.hpp>
+#include <impactlab/analysis/run_periodic.hpp>
+#include <impactlab/analysis/run_section.hpp>
+#include <impactlab/io/bad_input.hpp>
+#include <impactlab/api/oscillator_registry.hpp>
+#include <impactlab/api/run_system.hpp>
+#include <impactlab/oscillators/model_file/compiled_model.hpp>
+#include <impactlab/oscillators/model_file/model_system.hpp>
+
+namespace impactlab {
+
+namespace {
+
+const CompiledModel& model_of(const Scene& scene) {
+  const RuntimeOscillator* runtime = runtime_oscillator(scene.oscillator);
+  if (!runtime) throw BadInput("oscillator", scene.oscillator, "no model of that name is loaded");
+  return *static_cast<const CompiledModel*>(runtime->data.get());
+}
+
+template <std::size_t N>
+ModelSystem<N> make_system(const Scene& scene) {
+  const RuntimeOscillator* runtime = runtime_oscillator(scene.oscillator);
+  auto model = std::static_pointer_cast<const CompiledModel>(runtime->data);
+  std::vector<double> p;
+  for (const auto& parameter : model->parameters) p.push_back(scene.number(parameter.name));
+  ModelSystem<N> probe(model, p);
+  // held to the scene's accumulation standard on the forcing's time scale;
+  // the gap's resolution per unit wall coordinate (ModelSystem scales it)
+  return ModelSystem<N>(model, std::move(p),
+                        accumulation_tolerance(scene, 1.0 / probe.forcing_frequency(), 1.0));
+}
+
+// The scene's initial state, checked: every written expression finite there.
+template <std::size_t N>
+typename ModelSystem<N>::State initial_state(const Scene& scene, const ModelSystem<N>& system) {
+  typename ModelSystem<N>::State x{};
+  std::vector<double> values;
+  for (std::size_t i = 0; i < N; ++i) {
+    x[i] = scene.number("initial." + system.model().states[i]);
+    values.push_back(x[i]);
+  }
+  check_initial_values(system.model(), values, scene.number("t0"), system.parameters().values);
+  if (!(system.forcing_frequency() > 0.0) || !(system.max_step() > 0.0))
+    throw BadInput("model.forcing_frequency", fmt::format("{}", system.forcing_frequency()),
+                   "the forcing frequency and max_step must be positive");
+  return x;
+}
+
+// Why a model has no linearisation the analyses may use, or empty. A
+// sticking mode pins the whole state (ModelSystem::pinned, the collapse at an
+// accumulation): right for one degree of freedom, wrong where other states
+// move on while one wall holds its mass.
+template <std::size_t N>
+std::string not_linearisable(const CompiledModel& model) {
+  if (N == 2) return {};
+  for (const auto& wall : model.walls)
+    if (wall.has_sticking)
+      return fmt::format("a {}-state model with a sticking wall: its contact phases have no "
+                         "linearisation (Floquet, Lyapunov, continuation)",
+                         N);
+  return {};
+}
+
+template <std::size_t N>
+RunOutput run_states(const Scene& scene, const RunRequest& request) {
+  const ModelSystem<N> system = make_system<N>(scene);
+  return run_system(system, initial_state(scene, system), ModelSystem<N>::free_mode, scene, request,
+                    2.0 * std::numbers::pi / system.forcing_frequency(),
+                    [&system](ModelMode mode) { return system.mode_name(mode); });
+}
+
+template <std::size_t N>
+SectionResult section_states(const Scene& scene, const SectionRequest& request) {
+  const ModelSystem<N> system = make_system<N>(scene);
+  // a continued state starts in free flight (its walls may have moved)
+  auto admissible = [](typename ModelSystem<N>::State&, ModelMode& mode) {
+    mode = ModelSystem<N>::free_mode;
+  };
+  const auto x0 = initial_state(scene, system);
+  const std::string why_not = not_linearisable<N>(system.model());
+  if (request.lyapunov && !why_not.empty()) {
+    SectionRequest without = request;
+    without.lyapunov = false;
+    SectionResult result = run_section(system, x0, ModelSystem<N>::free_mode, scene, without,
+                                       system.forcing_frequency(), admissible);
+    result.lyapunov_note = why_not;
+    return result;
+  }
+  return run_section(system, x0, ModelSystem<N>::free_mode, scene, request,
+                     system.forcing_frequency(), admissible);
+}
+
+template <std::size_t N>
+PeriodicResult periodic_states(const Scene& scene, const PeriodicRequest& request) {
+  const ModelSystem<N> system = make_system<N>(scene);
+  if (std::string why_not = not_linearisable<N>(system.model()); !why_not.empty()) {
+    PeriodicResult result;
+    result.note = std::move(why_not);
+    return result;
+  }
+  return run_periodic(system, initial_state(scene, system), ModelSystem<N>::free_mode, scene,
+                      request, system.forcing_frequency());
+}
+
+// Continuation on every state of the model (the tangent space is all N);
+// refused where a sticking wall would need a contact linearisation of N > 2.
+template <std::size_t N>
+ContinuationJobResult continuation_states(const Scene& scene, const ContinuationJob& job) {
+  const ModelSystem<N> system = make_system<N>(scene);
+  if (std::string why_not = not_linearisable<N>(system.model()); !why_not.empty()) {
+    ContinuationJobResult result;
+    result.note = std::move(why_not);
+    return result;
+  }
+  // a given start replaces the scene's initial state (which a continued
+  // parameter may have put beyond a wall)
+  const auto x0 = job.has_start ? typename ModelSystem<N>::State{} : initial_state(scene, system);
+  return run_continuation<ModelSystem<N>>(&make_system<N>, ModelSystem<N>::free_mode, x0, scene,
+                                          job);
+}
+
+RunOutput run(const Scene& scene, const RunRequest& request) {
+  return model_of(scene).states.size() == 2 ? run_states<2>(scene, request)
+                                            : run_states<4>(scene, request);
+}
+
+SectionResult section(const Scene& scene, const SectionRequest& request) {
+  return model_of(scene).states.size() == 2 ? section_states<2>(scene, request)
+                                            : section_states<4>(scene, request);
+}
+
+PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request) {
+  return model_of(scene).states.size() == 2 ? periodic_states<2>(scene, request)
+                                            : periodic_states<4>(scene, request);
+}
+
+ContinuationJobResult continuation(const Scene& scene, const ContinuationJob& job) {
+  return model_of(scene).states.size() == 2 ? continuation_states<2>(scene, job)
+                                            : continuation_states<4>(scene, job);
+}
+
+// The schema: common keys (no closed-form flow: `exact` is not offered), the
+// accumulation tolerance, the parameters, the initial state.
+void build_schema(RuntimeOscillator& oscillator, const CompiledModel& model) {
+  SceneSchema& schema = oscillator.schema;
+  schema.oscillator = oscillator.name;
+  schema.main_coordinate = oscillator.keep(model.states[0]);
+  schema.keys = common_keys();
+  for (auto& key : schema.keys)
+    if (key.key == "integrator.method") std::erase(key.choices, std::string_view("exact"));
+  schema.keys.push_back(accumulation_tolerance_key());
+  for (const auto& parameter : model.parameters)
+    schema.keys.push_back({.key = oscillator.keep(parameter.name),
+                           .unit = oscillator.keep(parameter.unit),
+                           .help = oscillator.keep(parameter.help),
+                           .default_number = parameter.default_value,
+                           .lower = parameter.lower,
+                           .upper = parameter.upper,
+                           .lower_open = parameter.lower_open,
+                           .upper_open = parameter.upper_open});
+  for (const auto& state : model.states)
+    schema.keys.push_back({.key = oscillator.keep("initial." + state),
+                           .help = "initial value of the state",
+                           .default_number = 0.0});
+}
+
+}  // namespace
+
+void register_model_scene(std::string_view name_or_path) {
+  const std::string path(name_or_path);
+  const std::string name = model_oscillator_name(path);
+  std::error_code ignored;
+  if (runtime_oscillator(name) || !std::filesystem::is_regular_file(path, ignored)) return;
+  std::stringstream text;
+  text << std::ifstream(path).rdbuf();
+  toml::table document;
+  try {
+    document = toml::parse(text.str(), path);
+  } catch (const toml::parse_error&) {
+    return;  // read_scene reports it
+  }
+  // `model = "newton"` is the pendulum's impact model, not a model section
+  const toml::node* model_table = document.get("model");
+  if (!model_table || !model_table->is_table()) return;
+  const ModelDefinition definition = read_model_definition(*model_table->as_table(), path);
+  std::shared_ptr<const CompiledModel> model =
+      compile_model(definition, compile_options_from_environment());
+  if (!model->compiled)
+    std::cerr << "impactlab: model " << path << ": " << model->slow_path_reason
+              << "; using the interpreted evaluator (the slow path, several times slower)\n";
+
+  auto oscillator = std::make_unique<RuntimeOscillator>();
+  oscillator->name = name;
+  build_schema(*oscillator, *model);
+  oscillator->entry = {&oscillator->schema, &run, &section, &periodic_orbit, &continuation};
+  oscillator->data = model;
+  register_runtime_oscillator(std::move(oscillator));
+}
+
+}  // namespace impactlab

@@ -1,0 +1,91 @@
+#include <impactlab/api/scene_jobs.hpp>
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include <impactlab/api/oscillator_registry.hpp>
+#include <impactlab/io/bad_input.hpp>
+
+namespace impactlab {
+
+RunOutput simulate(const Scene& scene, const RunRequest& request) {
+  return oscillator_entry(scene.oscillator).run(scene, request);
+}
+
+SectionResult poincare(const Scene& scene, const SectionRequest& request) {
+  return sweep_target(scene).section(scene, request);
+}
+
+PeriodicResult periodic(const Scene& scene, const PeriodicRequest& request) {
+  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
+  if (!entry.periodic_orbit)
+    throw BadInput("oscillator", scene.oscillator, "has no periodic-orbit entry");
+  return entry.periodic_orbit(scene, request);
+}
+
+ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& job) {
+  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
+  if (!entry.continuation)
+    throw BadInput("oscillator", scene.oscillator, "has no continuation entry");
+  const SceneSchema& schema = *entry.schema;
+  const auto check_key = [&](const std::string& option, const std::string& key, double from,
+                             double to) {
+    const auto spec = std::find_if(schema.keys.begin(), schema.keys.end(),
+                                   [&](const KeySpec& k) { return k.key == key; });
+    if (spec == schema.keys.end() || spec->is_text || key.starts_with("initial.") ||
+        key.starts_with("integrator.") || key == "t0")
+      throw BadInput(option, key,
+                     fmt::format("not a numeric parameter of oscillator {}", schema.oscillator));
+    // both ends admissible (BadInput names the key and value otherwise)
+    Scene probe = scene;
+    for (double value : {from, to}) {
+      probe.values[key] = value;
+      validate(probe, schema);
+    }
+  };
+  check_key("--param", job.parameter, job.from, job.to);
+  if (!job.second_parameter.empty()) {
+    if (job.second_parameter == job.parameter)
+      throw BadInput("--param2", job.second_parameter, "must differ from --param's key");
+    check_key("--param2", job.second_parameter, job.second_from, job.second_to);
+    if (!job.curve_type.empty() && job.curve_type != "fold" && job.curve_type != "period_doubling" &&
+        job.curve_type != "grazing")
+      throw BadInput("--curve", job.curve_type, "expected fold, period_doubling or grazing");
+  }
+  ContinuationJobResult result = entry.continuation(scene, job);
+  if (!result.available) throw BadInput("oscillator", scene.oscillator, result.note);
+  if (result.branches.empty() || result.branches[0].result.stop_reason == "start_not_converged")
+    throw BadInput("--param", fmt::format("{}={}:{}", job.parameter, job.from, job.to),
+                   fmt::format("no period-{} orbit converged at {} = {}{} (try --period, --start "
+                               "or --transient)",
+                               job.period, job.parameter, job.from,
+                               job.impact_wall != 0 && !result.branches.empty()
+                                   ? ": " + result.branches[0].result.stop_detail
+                                   : ""));
+  return result;
+}
+
+void set_continuation_section(ContinuationJob& job, const std::string& text,
+                              const std::string& key) {
+  const SectionSpec section = parse_section(text, key);
+  if (section.kind == SectionKind::strobe) {
+    job.phase = section.phase;
+    job.impact_wall = 0;
+    return;
+  }
+  if (section.kind != SectionKind::impact)
+    throw BadInput(key, text, "continuation takes strobe[:PHASE] or impact:WALL");
+  if (section.wall == 0)
+    throw BadInput(key, text, "continuation on the impact section needs one wall: impact:+1 or impact:-1");
+  job.impact_wall = section.wall;
+}
+
+SweepTarget sweep_target(const Scene& scene) {
+  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
+  if (!entry.section)
+    throw BadInput("oscillator", scene.oscillator, "has no Poincare-section entry");
+  return {entry.schema, entry.section};
+}
+
+}  // namespace impactlab

@@ -1,0 +1,239 @@
+#include <impactlab/api/sweep_job.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+
+#include <omp.h>
+
+#include <impactlab/analysis/flow_setup.hpp>
+#include <impactlab/api/scene_loading.hpp>
+#include <impactlab/api/scene_record.hpp>
+#include <impactlab/io/bad_input.hpp>
+
+namespace impactlab {
+
+namespace {
+
+// The integrator a sweep classifies at where it is not the scene's own
+// (plan.classification_integrator) and why (plan.classification_note): the
+// scene's integrator.classification_* (chosen from data, docs/performance.md)
+// for a sweep whose files hold classes only, unless turned off, not stated by
+// the scene, or overruled by an integrator key the user set or swept.
+void choose_classification_integrator(SweepPlan& plan, const SweepSpec& spec,
+                                      const Scene& scene) {
+  if (spec.classification_tolerance != "auto" && spec.classification_tolerance != "off")
+    throw BadInput(spec.classification_key, spec.classification_tolerance,
+                   "expected auto or off");
+  const auto note = [&](const std::string& why) {
+    plan.classification_note = "the scene's integrator: " + why;
+  };
+  if (spec.classification_tolerance == "off") return note("classification tolerance turned off");
+  if (plan.axes.size() != 2)
+    return note("a 1D sweep writes section points (bifurcation.csv)");
+  for (const std::string key : {"integrator.method", "integrator.rtol", "integrator.atol"})
+    if (scene.assigned.contains(key)) return note(key + " set by the user");
+  for (const SweepAxis& axis : plan.axes)
+    if (axis.name.starts_with("integrator.")) return note(axis.name + " swept");
+  const double rtol = scene.number("integrator.classification_rtol");
+  const double atol = scene.number("integrator.classification_atol");
+  if (!(rtol > 0.0) || !(atol > 0.0))
+    return note("the scene states no classification tolerance");
+  const std::string& method = scene.text("integrator.classification_method");
+  plan.classification_integrator =
+      IntegratorSetting{method == "same" ? scene.text("integrator.method") : method, rtol, atol};
+  plan.classification_note =
+      "classification only (2D map): the scene's integrator.classification_method, "
+      "classification_rtol and classification_atol";
+}
+
+nlohmann::json integrator_record(const IntegratorSetting& integrator) {
+  return {{"method", integrator.method}, {"rtol", integrator.rtol}, {"atol", integrator.atol}};
+}
+
+}  // namespace
+
+SweepPlan make_sweep_plan(const SweepSpec& spec, const Scene& scene, const SceneSchema& schema) {
+  SweepPlan plan;
+  for (const auto& text : spec.params) plan.axes.push_back(parse_axis(text, spec.param_key));
+  if (plan.axes.empty() || plan.axes.size() > 2)
+    throw BadInput(spec.param_key, std::to_string(plan.axes.size()) + " axes",
+                   "give one (bifurcation sweep) or two (classification map)");
+  plan.direction = parse_direction(spec.direction, spec.direction_key);
+  plan.chunks = spec.chunks;
+  plan.section = spec.section;
+  plan.period_tolerance = spec.period_tolerance;
+  plan.max_period = spec.max_period;
+  // Lyapunov: on by default for 2D maps, off for 1D sweeps
+  plan.section.lyapunov = spec.lyapunov.value_or(plan.axes.size() == 2);
+  validate_plan(plan, scene, schema);
+  if (plan.axes.size() == 2 && plan.direction != SweepDirection::up)
+    throw BadInput(spec.direction_key, spec.direction,
+                   "a 2D sweep follows the first parameter upwards only");
+  choose_classification_integrator(plan, spec, scene);
+  return plan;
+}
+
+nlohmann::json sweep_definition(const SweepPlan& plan, const Scene& scene,
+                                const SceneSchema& schema, const nlohmann::json& section_record) {
+  nlohmann::json axes = nlohmann::json::array();
+  for (const auto& a : plan.axes) {
+    const auto spec = std::find_if(schema.keys.begin(), schema.keys.end(),
+                                   [&](const KeySpec& k) { return k.key == a.name; });
+    axes.push_back({{"name", a.name},
+                    {"unit", std::string(spec->unit)},
+                    {"from", a.from},
+                    {"to", a.to},
+                    {"count", a.count}});
+  }
+  const IntegratorSetting own = scene_integrator(scene);
+  return {
+      {"scene", scene_record(scene)},
+      // the integrators actually used: the transient and record that classify
+      // each point, and the Lyapunov exponent's variational run (null: none)
+      {"classification_integrator",
+       integrator_record(plan.classification_integrator.value_or(own))},
+      {"classification_integrator_note", plan.classification_note},
+      {"lyapunov_integrator",
+       plan.section.lyapunov ? integrator_record(own) : nlohmann::json(nullptr)},
+      {"axes", axes},
+      {"direction", to_string(plan.direction)},
+      {"chunks", plan.chunks},
+      {"section", section_record},
+      {"lyapunov", plan.section.lyapunov},
+      {"lyapunov_alignment_periods", plan.section.lyapunov_alignment_periods},
+      {"period_tolerance", plan.period_tolerance},
+      {"max_period", plan.max_period},
+      {"impactlab_version", IMPACTLAB_VERSION},
+  };
+}
+
+SweepOutput run_sweep(const Scene& scene, const SweepTarget& target, const SweepPlan& plan,
+                      const std::vector<const SweepTask*>& tasks, const SweepJobOptions& options) {
+  std::size_t points = 0;
+  for (const SweepTask* task : tasks) points += task->points.size();
+  std::mutex mutex;  // guards on_record, progress and `failure`
+  std::size_t finished = 0;
+  std::atomic<long> new_points{0};
+  std::atomic<bool> stopped{false};
+  std::exception_ptr failure;
+  SweepOutput output;
+  output.records.resize(tasks.size());
+  // called under the lock
+  auto advance_progress = [&] {
+    ++finished;
+    if (options.progress)
+      options.progress(static_cast<double>(finished) / static_cast<double>(points));
+  };
+
+#pragma omp parallel for schedule(dynamic, 1) num_threads(options.threads)
+  for (std::size_t m = 0; m < tasks.size(); ++m) {
+    try {
+      const SweepTask& task = *tasks[m];
+      output.records[m] = run_sweep_task(
+          scene, target, plan, task,
+          [&](int position) -> const SweepRecord* {
+            if (!options.done) return nullptr;
+            const auto it = options.done->find({task.id, position});
+            if (it == options.done->end()) return nullptr;
+            std::lock_guard lock(mutex);
+            advance_progress();
+            return &it->second;
+          },
+          [&](const SweepRecord& record) {
+            std::lock_guard lock(mutex);
+            if (options.on_record) options.on_record(record);
+            advance_progress();
+          },
+          [&] {
+            if (stopped) return false;
+            if (options.stop_after > 0 && new_points.fetch_add(1) >= options.stop_after) {
+              stopped = true;
+              return false;
+            }
+            return true;
+          },
+          options.keep_points);
+    } catch (...) {
+      std::lock_guard lock(mutex);
+      if (!failure) failure = std::current_exception();
+      stopped = true;
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+  output.stopped = stopped;
+  return output;
+}
+
+namespace {
+
+void add_summary(SweepTable& table, const SweepRecord& r) {
+  table.period.push_back(r.classification.period);
+  table.impacts_per_period.push_back(r.classification.impacts_per_period);
+  table.contact.push_back(r.classification.contact ? 1 : 0);
+  table.lyapunov.push_back(r.result.lyapunov);
+  table.termination.push_back(r.result.termination);
+  table.points.push_back(static_cast<int>(
+      std::max<std::uint64_t>(r.result.point_count, r.result.points.size())));
+}
+
+}  // namespace
+
+std::vector<SweepRecordKey> sweep_row_order(const SweepPlan& plan,
+                                            const std::vector<SweepTask>& tasks) {
+  std::vector<SweepRecordKey> order;
+  if (plan.axes.size() == 1) {
+    for (int direction : {1, -1}) {
+      // this direction's records by grid index
+      std::map<int, SweepRecordKey> by_index;
+      for (const auto& task : tasks)
+        if (task.direction == direction)
+          for (std::size_t p = 0; p < task.points.size(); ++p)
+            by_index[task.points[p][0]] = {task.id, static_cast<int>(p)};
+      if (direction > 0)
+        for (const auto& [index, key] : by_index) order.push_back(key);
+      else
+        for (auto it = by_index.rbegin(); it != by_index.rend(); ++it) order.push_back(it->second);
+    }
+    return order;
+  }
+  for (const auto& task : tasks)
+    for (std::size_t p = 0; p < task.points.size(); ++p)
+      order.push_back({task.id, static_cast<int>(p)});
+  return order;
+}
+
+void add_bifurcation_rows(SweepTable& table, const SweepPlan& plan, const SweepRecord& record) {
+  const double value = plan.axes[0].value(record.index[0]);
+  for (std::size_t k = 0; k < record.result.points.size(); ++k) {
+    const SectionPoint& p = record.result.points[k];
+    table.point_value.push_back(value);
+    table.point_k.push_back(static_cast<int>(k));
+    table.point_t.push_back(p.t);
+    table.point_q.push_back(p.q);
+    table.point_qdot.push_back(p.qdot);
+    table.point_wall.push_back(p.wall);
+    table.point_direction.push_back(record.direction);
+  }
+}
+
+SweepTable sweep_table(const SweepPlan& plan, const std::vector<SweepTask>& tasks,
+                       const std::map<SweepRecordKey, SweepRecord>& records) {
+  SweepTable table;
+  for (const SweepRecordKey& key : sweep_row_order(plan, tasks)) {
+    const SweepRecord& r = records.at(key);
+    table.value.push_back(plan.axes[0].value(r.index[0]));
+    if (plan.axes.size() == 1) {
+      add_bifurcation_rows(table, plan, r);
+      table.direction.push_back(r.direction);
+    } else {
+      table.value2.push_back(plan.axes[1].value(r.index[1]));
+      table.direction.push_back(1);
+    }
+    add_summary(table, r);
+  }
+  return table;
+}
+
+}  // namespace impactlab

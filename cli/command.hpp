@@ -1,0 +1,89 @@
+// What every subcommand of the `impactlab` program shares: the exit statuses,
+// the number validators, the options of a command that runs a scene, a
+// progress bar, and the provenance written beside every output.
+//
+// A subcommand lives in its own cli/<name>_command.cpp and exposes one
+// `Command add_<name>_command(CLI::App&)`; main.cpp lists them.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <impactlab/io/run_output.hpp>
+#include <impactlab/io/scene.hpp>
+
+namespace impactlab::cli {
+
+constexpr int exit_done = 0;
+constexpr int exit_failed = 1;
+constexpr int exit_bad_input = 2;
+constexpr int exit_stopped_early = 3;
+
+// A registered subcommand: its CLI11 node and what runs when it was parsed.
+// `run` receives the whole command line, for provenance.
+struct Command {
+  CLI::App* app;
+  std::function<int(const std::vector<std::string>& command_line)> run;
+};
+
+// A finite number; a positive finite number. CLI11's own range checks let inf
+// through and print the whole double range.
+const CLI::Validator& finite_number();
+const CLI::Validator& positive_number();
+// A finite number in [lower, upper]; a whole number (digits only, so that -1
+// cannot wrap around) in [lower, upper].
+CLI::Validator number_in(double lower, double upper);
+CLI::Validator count_in(std::uint64_t lower, std::uint64_t upper);
+
+// Options shared by the subcommands that run a scene.
+struct SceneOptions {
+  std::string scene = "jin2003";
+  std::vector<std::string> assignments;
+  double t_end = 0.0;
+  double periods = 0.0;
+  std::string out;
+  int threads = 1;
+  bool quiet = false;
+  CLI::Option* t_end_option = nullptr;  // set by add_to: whether --t-end was given
+
+  void add_to(CLI::App& command);
+  // the scene with every --set applied (BadInput on a bad key or value)
+  [[nodiscard]] Scene load() const;
+  // the time span: --t-end T (an absolute end time, which must be after t0:
+  // --t-end 0 with t0 = 0 is refused, not read as "not given"), else
+  // --periods N from t0 (default 100); the two exclude each other
+  [[nodiscard]] RunRequest request() const;
+  // --out, else out/<scene>
+  [[nodiscard]] std::filesystem::path output_directory() const;
+};
+
+// A progress bar on stderr for runs long enough to want one (drawn only on a
+// terminal, and only after the first half second).
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled);
+  ~ProgressBar();
+  ProgressBar(const ProgressBar&) = delete;
+  ProgressBar& operator=(const ProgressBar&) = delete;
+  void update(double fraction);
+
+ private:
+  bool enabled_;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+// Current UTC time, ISO 8601 (for created_utc in meta files).
+std::string utc_now();
+
+// The scene's source, oscillator and every key with its value and unit.
+nlohmann::json scene_record(const Scene& scene);
+
+}  // namespace impactlab::cli

@@ -1,0 +1,432 @@
+// `impactlab continue`: pseudo-arclength continuation of a period-n orbit in
+// one scene key, with its bifurcations and grazing points located
+// (analysis/continuation.hpp); writes branch.csv, points.csv and
+// continuation.json (units, provenance, why each branch stopped).
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include <impactlab/analysis/continuation.hpp>
+#include <impactlab/analysis/section.hpp>
+#include <impactlab/api/scene_jobs.hpp>
+#include <impactlab/api/scene_loading.hpp>
+#include "command.hpp"
+#include "commands.hpp"
+#include "section_options.hpp"
+#include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/output.hpp>
+
+namespace impactlab::cli {
+
+namespace {
+
+struct ContinueOptions {
+  SceneOptions scene;
+  std::string param;  // NAME=FROM:TO
+  std::string param2;  // NAME=FROM:TO: the second parameter of a two-parameter curve
+  std::string curve;   // fold, period_doubling, grazing (empty: the first located)
+  int period = 1;
+  std::string section = "strobe";
+  bool switch_doubling = false;
+  std::vector<double> start;  // q,qdot (a model file: its N states)
+  double transient = 100.0;
+  int max_points = 5000;
+  double tolerance = 1e-10;
+  double max_step = 0.0;  // arclength; 0: 1/50 of the range
+  bool plot = false;
+  std::string with_sweep;  // a sweep's bifurcation.csv drawn under the branch
+};
+
+constexpr int doublings_followed = 3;  // --switch: the cascade, up to period 8n
+
+struct ParameterRange {
+  std::string name;
+  double from = 0.0, to = 0.0;
+};
+
+// NAME=FROM:TO (the key and its range are checked by the scene API)
+ParameterRange parse_range(const std::string& text, const std::string& option) {
+  const auto bad = [&](const std::string& why) { return BadInput(option, text, why); };
+  const auto equals = text.find('=');
+  const auto colon = text.find(':', equals == std::string::npos ? 0 : equals);
+  if (equals == std::string::npos || equals == 0 || colon == std::string::npos ||
+      text.find(':', colon + 1) != std::string::npos)
+    throw bad("expected NAME=FROM:TO");
+  ParameterRange range{text.substr(0, equals)};
+  const std::string from = text.substr(equals + 1, colon - equals - 1), to = text.substr(colon + 1);
+  char* end = nullptr;
+  range.from = std::strtod(from.c_str(), &end);
+  const bool from_ok = !from.empty() && *end == '\0' && std::isfinite(range.from);
+  range.to = std::strtod(to.c_str(), &end);
+  const bool to_ok = !to.empty() && *end == '\0' && std::isfinite(range.to);
+  if (!from_ok || !to_ok) throw bad("FROM and TO must be finite numbers");
+  if (range.from == range.to) throw bad("FROM and TO must differ");
+  return range;
+}
+
+// The columns of an orbit's state: q,qdot, then state3 ... stateN (a model
+// file's further states, in its order).
+std::string state_header(std::size_t dimension) {
+  std::string header = "q,qdot";
+  for (std::size_t k = 3; k <= dimension; ++k) header += fmt::format(",state{}", k);
+  return header;
+}
+std::string state_fields(const OrbitPoint& state, std::size_t dimension) {
+  std::string fields;
+  for (std::size_t k = 0; k < dimension; ++k)
+    fields += (k == 0 ? "" : ",") + csv_field(k < state.size() ? state[k] : NAN);
+  return fields;
+}
+// multiplier1_re,multiplier1_im,...,multiplierN_im[,multiplier1_abs,...,multiplierN_abs]
+std::string multiplier_header(std::size_t dimension, bool with_modulus) {
+  std::string header;
+  for (std::size_t k = 1; k <= dimension; ++k)
+    header += fmt::format("{}multiplier{}_re,multiplier{}_im", k == 1 ? "" : ",", k, k);
+  if (with_modulus)
+    for (std::size_t k = 1; k <= dimension; ++k) header += fmt::format(",multiplier{}_abs", k);
+  return header;
+}
+std::string multiplier_fields(const std::vector<std::complex<double>>& multipliers,
+                              std::size_t dimension, bool with_modulus) {
+  std::string fields;
+  const auto at = [&](std::size_t k) {
+    return k < multipliers.size() ? multipliers[k] : std::complex<double>(NAN, NAN);
+  };
+  for (std::size_t k = 0; k < dimension; ++k)
+    fields += (k == 0 ? "" : ",") + csv_field(at(k).real()) + ',' + csv_field(at(k).imag());
+  if (with_modulus)
+    for (std::size_t k = 0; k < dimension; ++k) fields += ',' + csv_field(std::abs(at(k)));
+  return fields;
+}
+
+void write_branch_csv(AtomicFile& file, const std::string& name, std::size_t dimension,
+                      const std::vector<ContinuedBranch>& branches) {
+  auto& out = file.stream();
+  out << name << ',' << state_header(dimension)
+      << ",period,branch,impacts,contact_phases,stable," << multiplier_header(dimension, true)
+      << ",min_impact_speed,min_flight_gap,newton_iterations\n";
+  for (std::size_t b = 0; b < branches.size(); ++b)
+    for (const BranchPoint& p : branches[b].result.branch)
+      out << csv_field(p.parameter) << ',' << state_fields(p.state, dimension) << ','
+          << branches[b].period << ',' << b << ',' << p.impacts << ',' << p.contact_phases << ','
+          << (p.stable ? 1 : 0) << ',' << multiplier_fields(p.multipliers, dimension, true)
+          << ',' << csv_field(std::isfinite(p.min_impact_speed) ? p.min_impact_speed : NAN) << ','
+          << csv_field(std::isfinite(p.min_flight_gap) ? p.min_flight_gap : NAN) << ','
+          << p.newton_iterations << '\n';
+}
+
+void write_points_csv(AtomicFile& file, const std::string& name, std::size_t dimension,
+                      const std::vector<ContinuedBranch>& branches) {
+  auto& out = file.stream();
+  out << "type," << name << ',' << state_header(dimension) << ",period,branch,"
+      << multiplier_header(dimension, false)
+      << ",error_estimate,located,graze_time,graze_witness,note\n";
+  for (std::size_t b = 0; b < branches.size(); ++b)
+    for (const BifurcationPoint& p : branches[b].result.points)
+      out << p.type << ',' << csv_field(p.parameter) << ',' << state_fields(p.state, dimension)
+          << ',' << branches[b].period << ',' << b << ','
+          << multiplier_fields(p.multipliers, dimension, false) << ','
+          << csv_field(p.error_estimate) << ',' << (p.located ? 1 : 0) << ','
+          << csv_field(p.graze_time) << ',' << p.graze_witness << ",\"" << p.note << "\"\n";
+}
+
+// every curve, one row per point: the first branch's, then (--switch) each
+// doubled branch's, told apart by the branch and period columns
+void write_curve_csv(AtomicFile& file, const std::string& name1, const std::string& name2,
+                     std::size_t dimension, const std::vector<BranchCurve>& curves) {
+  auto& out = file.stream();
+  out << name1 << ',' << name2 << ',' << state_header(dimension) << ','
+      << multiplier_header(dimension, true)
+      << ",graze_time,impacts,newton_iterations,branch,period\n";
+  for (const BranchCurve& curve : curves)
+    for (const CurvePoint& p : curve.curve.curve)
+      out << csv_field(p.p1) << ',' << csv_field(p.p2) << ',' << state_fields(p.state, dimension)
+          << ',' << multiplier_fields(p.multipliers, dimension, true) << ','
+          << csv_field(p.graze_time) << ',' << p.impacts << ',' << p.newton_iterations << ','
+          << curve.branch << ',' << curve.period << '\n';
+}
+
+int run_continue(const ContinueOptions& options, const std::vector<std::string>& command_line) {
+  const Scene scene = options.scene.load();
+  const ParameterRange range = parse_range(options.param, "--param");
+  const bool two_parameter = !options.param2.empty();
+  const ParameterRange range2 = two_parameter ? parse_range(options.param2, "--param2")
+                                              : ParameterRange{};
+  if (!options.curve.empty() && !two_parameter)
+    throw BadInput("--curve", options.curve, "needs --param2");
+  if (!options.with_sweep.empty() && !std::filesystem::is_regular_file(options.with_sweep))
+    throw BadInput("--with-sweep", options.with_sweep,
+                   two_parameter ? "no such file (a 2D sweep's classes.csv)"
+                                 : "no such file (a sweep's bifurcation.csv)");
+
+  ContinuationJob job;
+  job.parameter = range.name;
+  job.from = range.from;
+  job.to = range.to;
+  job.period = options.period;
+  job.transient_periods = options.transient;
+  job.doublings = options.switch_doubling ? doublings_followed : 0;
+  if (two_parameter) {
+    job.second_parameter = range2.name;
+    job.second_from = range2.from;
+    job.second_to = range2.to;
+    job.curve_type = options.curve;
+  }
+  set_continuation_section(job, options.section, "--section");
+  const SectionSpec section = parse_section(options.section, "--section");
+  if (!options.start.empty()) {
+    job.has_start = true;
+    job.start = options.start;
+  }
+  job.numerics.max_points = options.max_points;
+  job.numerics.tolerance = options.tolerance;
+  job.numerics.max_step = options.max_step;
+  if (options.max_step > 0.0) job.numerics.initial_step = options.max_step;
+
+  const auto directory = options.scene.output_directory();
+  const auto started = std::chrono::steady_clock::now();
+  const ContinuationJobResult result = continue_orbit(scene, job);
+  const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+  // branch.csv, points.csv, continuation.json (and the curve's files),
+  // committed together
+  RunFiles run_files(directory);
+  write_branch_csv(run_files.add("branch.csv"), range.name, result.dimension, result.branches);
+  write_points_csv(run_files.add("points.csv"), range.name, result.dimension, result.branches);
+
+  nlohmann::json branches = nlohmann::json::array();
+  for (const ContinuedBranch& branch : result.branches)
+    branches.push_back({{"period", branch.period},
+                        {"points", branch.result.branch.size()},
+                        {"bifurcations", branch.result.points.size()},
+                        {"stop_reason", branch.result.stop_reason},
+                        {"stop_detail", branch.result.stop_detail},
+                        {"map_evaluations", branch.result.map_evaluations}});
+  const nlohmann::json document = {
+      {"impactlab_version", IMPACTLAB_VERSION},
+      {"command", command_line},
+      {"created_utc", utc_now()},
+      {"scene", scene_record(scene)},
+      {"request",
+       {{"parameter", range.name},
+        {"from", range.from},
+        {"to", range.to},
+        {"period", options.period},
+        {"section", to_string(section)},
+        {"transient_periods", options.transient},
+        {"switch", options.switch_doubling},
+        {"tolerance", options.tolerance},
+        {"max_step", options.max_step},
+        {"start", options.start}}},
+      {"method",
+       "pseudo-arclength continuation of the fixed point of the n-fold stroboscopic map (or "
+       "of the impact map of one wall, state (impact phase, rate before the impact)); "
+       "dF/dx from the saltation-corrected monodromy, dF/dp by a central difference; fold, "
+       "period doubling and Neimark-Sacker located by TOMS 748 on the arclength; grazing "
+       "solved as an extended system (zero gap, zero normal velocity)"},
+      {"columns",
+       {{"branch.csv",
+         {{range.name, "the continued scene key (its unit in scene.units)"},
+          {"q, qdot", section.kind == SectionKind::impact
+                          ? "the orbit's state on the impact section: q the forcing phase "
+                            "omega t mod 2 pi of the impact (rad), qdot the rate just before it"
+                          : "the orbit's state on the section (main coordinate and its rate)"},
+          {"state3...", "a model file with more states: its further states, in its order"},
+          {"period", "forcing periods of the orbit"},
+          {"branch", "0: the first branch; k: the k-th doubled branch (--switch)"},
+          {"impacts", "impacts per orbit period"},
+          {"stable", "1 if every Floquet multiplier lies inside the unit circle"},
+          {"multiplier*", "the N Floquet multipliers (N = 2, or a model file's states), "
+                          "largest modulus first"},
+          {"min_flight_gap", "smallest wall gap in flight between impacts (q's unit)"},
+          {"min_impact_speed", "smallest normal approach speed of an impact"}}},
+        {"points.csv",
+         {{"type", "fold, branch_point, period_doubling, neimark_sacker, grazing, contact_onset, "
+                  "contact_end, contact_boundary (the pendulum's V0*omega = g)"},
+          {"error_estimate", "bound on the error of the parameter value"},
+          {"graze_time", "grazing: time after the section at which the wall is touched (0 "
+                         "where the impact section's own impact grazes)"}}}}},
+      {"branches", branches},
+      {"wall_time_s", wall_time},
+  };
+  write_json(run_files.add("continuation.json"), document);
+  if (two_parameter) {
+    // the curves: the first branch's, then each doubled branch's (--switch)
+    std::vector<BranchCurve> curves = {
+        {0, options.period, result.has_curve, result.curve, result.curve_note}};
+    for (const BranchCurve& doubled : result.doubled_curves)
+      if (doubled.has_curve) curves.push_back(doubled);
+    nlohmann::json curve_list = nlohmann::json::array();
+    for (const BranchCurve& curve : result.doubled_curves)
+      curve_list.push_back({{"branch", curve.branch},
+                            {"period", curve.period},
+                            {"type", curve.has_curve ? curve.curve.type : ""},
+                            {"points", curve.curve.curve.size()},
+                            {"stop_reason", curve.has_curve ? curve.curve.stop_reason
+                                                            : "no_start_point"},
+                            {"stop_detail", curve.has_curve ? curve.curve.stop_detail : curve.note},
+                            {"map_evaluations", curve.curve.map_evaluations}});
+    write_curve_csv(run_files.add("curve.csv"), range.name, range2.name, result.dimension,
+                    curves);
+    const nlohmann::json curve_document = {
+        {"impactlab_version", IMPACTLAB_VERSION},
+        {"command", command_line},
+        {"created_utc", utc_now()},
+        {"scene", scene_record(scene)},
+        {"request",
+         {{"parameter", range.name},
+          {"from", range.from},
+          {"to", range.to},
+          {"parameter2", range2.name},
+          {"from2", range2.from},
+          {"to2", range2.to},
+          {"curve", options.curve.empty() ? "first located" : options.curve},
+          {"period", options.period},
+          {"switch", options.switch_doubling},
+          {"section", to_string(section)},
+          {"tolerance", options.tolerance}}},
+        {"type", result.has_curve ? result.curve.type : ""},
+        {"points", result.curve.curve.size()},
+        {"stop_reason", result.has_curve ? result.curve.stop_reason : "no_start_point"},
+        {"stop_detail", result.has_curve ? result.curve.stop_detail : result.curve_note},
+        {"map_evaluations", result.curve.map_evaluations},
+        {"doubled_curves", curve_list},
+        {"method",
+         "pseudo-arclength continuation in (q, qdot, p1, p2) of the orbit condition "
+         "P^n(x) = x with det(M - I) = 0 (fold), det(M + I) = 0 (period doubling), or zero gap "
+         "and zero gap rate at t_g with the wall's contacts suppressed near t_g (grazing; t_g is "
+         "an unknown too); the branch is run first at p2 = from2 and the curve starts at its "
+         "first located point of the type"},
+        {"columns",
+         {{range.name, "the first scene key (its unit in scene.units)"},
+          {range2.name, "the second scene key (its unit in scene.units)"},
+          {"q, qdot", section.kind == SectionKind::impact
+                          ? "the orbit's state on the impact section at the curve point: q the "
+                            "forcing phase omega t mod 2 pi of the impact (rad), qdot the rate "
+                            "just before it (a grazing of that impact: the touch)"
+                          : "the orbit's state on the section at the curve point"},
+          {"multiplier*", "Floquet multipliers of the orbit at the point"},
+          {"graze_time", "grazing: time after the section at which the wall is touched (s; 0 "
+                         "where the impact section's own impact grazes)"},
+          {"impacts", "impacts per orbit period (a grazing point's touch not counted)"},
+          {"branch", "the branch the curve starts from: 0, then k for the k-th doubled one "
+                     "(--switch; doubled_curves)"},
+          {"period", "forcing periods of that branch's orbit"}}},
+        {"wall_time_s", wall_time},
+    };
+    write_json(run_files.add("curve.json"), curve_document);
+  }
+  run_files.commit();
+
+  if (options.plot || !options.with_sweep.empty()) {
+    std::vector<std::string> names = {range.name,
+                                      std::string(scene_schema(scene).main_coordinate)};
+    if (!options.with_sweep.empty() && !two_parameter) names.push_back(options.with_sweep);
+    plot_with_python("continuation", directory / "branch.csv", directory / "continuation.png",
+                     names);
+    if (two_parameter) {
+      std::vector<std::string> curve_names = {range.name, range2.name};
+      if (!options.with_sweep.empty()) curve_names.push_back(options.with_sweep);
+      plot_with_python("curve", directory / "curve.csv", directory / "curve.png", curve_names);
+    }
+  }
+  if (!options.scene.quiet) {
+    for (const ContinuedBranch& branch : result.branches) {
+      std::cout << fmt::format("period-{} branch: {} points, stopped: {} ({})\n", branch.period,
+                               branch.result.branch.size(), branch.result.stop_reason,
+                               branch.result.stop_detail);
+      for (const BifurcationPoint& p : branch.result.points)
+        std::cout << fmt::format("  {} at {} = {:.12g} (error {:.2g}){}\n", p.type, range.name,
+                                 p.parameter, p.error_estimate, p.note.empty() ? "" : ": " + p.note);
+    }
+    if (two_parameter) {
+      if (result.has_curve)
+        std::cout << fmt::format("{} curve in ({}, {}): {} points, stopped: {} ({})\n",
+                                 result.curve.type, range.name, range2.name,
+                                 result.curve.curve.size(), result.curve.stop_reason,
+                                 result.curve.stop_detail);
+      else
+        std::cout << "no curve: " << result.curve_note << '\n';
+      for (const BranchCurve& doubled : result.doubled_curves) {
+        if (doubled.has_curve)
+          std::cout << fmt::format("  period-{} branch's {} curve: {} points, stopped: {} ({})\n",
+                                   doubled.period, doubled.curve.type, doubled.curve.curve.size(),
+                                   doubled.curve.stop_reason, doubled.curve.stop_detail);
+        else
+          std::cout << fmt::format("  period-{} branch: no curve: {}\n", doubled.period,
+                                   doubled.note);
+      }
+    }
+    std::cout << "wrote " << (directory / "branch.csv").string() << ", points.csv, continuation.json"
+              << (two_parameter ? ", curve.csv, curve.json" : "") << '\n';
+  }
+  return exit_done;
+}
+
+}  // namespace
+
+Command add_continue_command(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "continue",
+      "continue a period-n orbit in one parameter (pseudo-arclength), locating folds, period "
+      "doublings, Neimark-Sacker and grazing points");
+  auto options = std::make_shared<ContinueOptions>();
+  command->add_option("scene", options->scene.scene, "built-in scene name or path")
+      ->capture_default_str();
+  command->add_option("--set", options->scene.assignments, "KEY=VALUE, repeatable");
+  command->add_option("--out", options->scene.out, "output directory (default out/<scene>)");
+  command->add_flag("--quiet", options->scene.quiet, "print nothing but errors");
+  command->add_option("--param", options->param, "NAME=FROM:TO: the scene key continued")
+      ->required();
+  command->add_option("--param2", options->param2,
+                      "NAME=FROM:TO: follow the first located fold, period doubling or grazing "
+                      "point of the branch (run at NAME=FROM) in (--param, NAME) to NAME=TO "
+                      "(with --switch: of each doubled branch too); writes curve.csv");
+  command->add_option("--curve", options->curve,
+                      "fold|period_doubling|grazing: the bifurcation whose curve --param2 follows "
+                      "(default: the first located)");
+  command->add_option("--period", options->period, "n: the orbit's period in forcing periods")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  command->add_option("--section", options->section,
+                      "strobe[:PHASE], or impact:WALL (+1 or -1): the impact map, state (the "
+                      "impact's forcing phase, the rate before it)")
+      ->capture_default_str();
+  command->add_flag("--switch", options->switch_doubling,
+                    "at a period doubling, continue the doubled orbit (the cascade, up to 3 "
+                    "doublings)");
+  command->add_option("--start", options->start,
+                      "Q,QDOT (a model file: its N states): the start on the section (else the "
+                      "transient's end); impact section: PHASE,QDOT")
+      ->delimiter(',');
+  command->add_option("--transient", options->transient, "forcing periods run for the start")
+      ->check(CLI::Range(0.0, 1e9))
+      ->capture_default_str();
+  command->add_option("--max-points", options->max_points, "points per branch")
+      ->check(CLI::Range(2, 1000000))
+      ->capture_default_str();
+  command->add_option("--tolerance", options->tolerance, "Newton residual |P^n(x) - x| / (1 + |x|)")
+      ->check(positive_number())
+      ->capture_default_str();
+  command->add_option("--max-step", options->max_step,
+                      "largest arclength step in (q, qdot, parameter) (default: 1/50 of the range)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_flag("--plot", options->plot,
+                    "draw continuation.png (scripts/plot_continuation.py): stable solid, "
+                    "unstable dashed, bifurcations marked");
+  command->add_option("--with-sweep", options->with_sweep,
+                      "a brute-force sweep's bifurcation.csv of the same parameter, drawn under "
+                      "the branch; with --param2 a 2D sweep's classes.csv under the curve "
+                      "(implies --plot)");
+  return {command, [options](const std::vector<std::string>& command_line) {
+            return run_continue(*options, command_line);
+          }};
+}
+
+}  // namespace impactlab::cli

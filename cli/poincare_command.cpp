@@ -1,0 +1,136 @@
+// `impactlab poincare`: a scene's Poincaré section after a transient;
+// writes poincare.csv (k,t,q,qdot; the impact map adds wall,phase) and
+// meta.json, atomically (meta.json last); --plot adds poincare.png.
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <iostream>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include <impactlab/api/scene_jobs.hpp>
+#include <impactlab/api/scene_loading.hpp>
+#include "command.hpp"
+#include "commands.hpp"
+#include "section_options.hpp"
+#include <impactlab/io/output.hpp>
+
+namespace impactlab::cli {
+
+namespace {
+
+std::string number(double value) { return fmt::format("{}", value); }
+
+// poincare.csv, one row per point as the run finds it (memory does not grow
+// with --points)
+class PoincareCsvWriter final : public SectionPointSink {
+ public:
+  PoincareCsvWriter(std::ofstream& out, bool impact_map, bool user_section)
+      : out_(out), impact_map_(impact_map), user_section_(user_section) {
+    out_ << (impact_map ? "k,t,q,qdot,wall,phase\n"
+                        : user_section ? "k,t,q,qdot,phase\n" : "k,t,q,qdot\n");
+  }
+  void begin(double omega) override { omega_ = omega; }
+  void write(const SectionPoint& p) override {
+    out_ << index_++ << ',' << number(p.t) << ',' << number(p.q) << ',' << number(p.qdot);
+    if (impact_map_) out_ << ',' << p.wall;
+    if (impact_map_ || user_section_)
+      out_ << ',' << number(std::fmod(omega_ * p.t, 2.0 * std::numbers::pi));
+    out_ << '\n';
+  }
+
+ private:
+  std::ofstream& out_;
+  bool impact_map_, user_section_;
+  double omega_ = 0.0;  // rad per time unit, from begin()
+  std::uint64_t index_ = 0;
+};
+
+int run_poincare(const SectionOptions& options, bool lyapunov,
+                 const std::vector<std::string>& command_line) {
+  const Scene scene = options.scene.load();
+  SectionRequest request = options.request();
+  request.lyapunov = lyapunov;
+  const auto directory = options.scene.output_directory();
+  // poincare.csv and meta.json, committed together (meta.json last)
+  RunFiles files(directory);
+
+  const bool impact_map = request.section.kind == SectionKind::impact;
+  const bool user_section = request.section.kind != SectionKind::impact &&
+                            request.section.kind != SectionKind::strobe;
+  PoincareCsvWriter rows(files.add("poincare.csv").stream(), impact_map, user_section);
+  request.point_sink = &rows;
+
+  const auto start = std::chrono::steady_clock::now();
+  const SectionResult result = poincare(scene, request);
+  const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const SceneSchema& schema = scene_schema(scene);
+  const std::string q_name(schema.main_coordinate);
+
+  nlohmann::json meta = {
+      {"impactlab_version", IMPACTLAB_VERSION},
+      {"command", command_line},
+      {"created_utc", utc_now()},
+      {"scene", scene_record(scene)},
+      {"section", options.record()},
+      {"termination", result.termination},
+      {"forcing_period", result.forcing_period},
+      {"record_start", result.record_start},
+      {"counts",
+       {{"points", result.point_count},
+        {"periods_recorded", result.periods_recorded},
+        {"impacts_recorded", result.impacts},
+        {"contact_phases_recorded", result.contact_phases},
+        {"steps", result.steps},
+        {"rhs_evaluations", result.rhs_evaluations}}},
+      {"wall_time_s", wall_time},
+      {"columns",
+       {{"k", "index of the section point"},
+        {"t", "time of the point (scene time unit)"},
+        {"q", q_name},
+        {"qdot", "d" + q_name + "/dt" + (impact_map ? " just before the impact" : "")},
+        {"wall", "wall hit (+1 / -1), impact map only"},
+        {"phase", "forcing phase omega t mod 2 pi (rad), impact map and user-given sections"}}},
+      {"files", {"poincare.csv", "meta.json"}},
+  };
+  if (lyapunov) {
+    meta["lyapunov"] = {{"largest_exponent_per_time", fmt::format("{}", result.lyapunov)},
+                        {"note", result.lyapunov_note}};
+  }
+  write_json(files.add("meta.json"), meta);
+  files.commit();
+
+  if (options.plot)
+    plot_with_python("poincare", directory / "poincare.csv", directory / "poincare.png",
+                     {q_name});
+  if (!options.scene.quiet)
+    std::cout << fmt::format("{}: {} section points ({}), {:.3f} s wall\nwrote {}\n", scene.name,
+                             result.point_count, to_string(request.section), wall_time,
+                             (directory / "poincare.csv").string());
+  if (result.termination != "completed") {
+    std::cerr << fmt::format("impactlab: run stopped early ({}); {} points recorded\n",
+                             result.termination, result.point_count);
+    return exit_stopped_early;
+  }
+  return exit_done;
+}
+
+}  // namespace
+
+Command add_poincare_command(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "poincare", "a Poincare section after a transient; write poincare.csv and meta.json");
+  auto options = std::make_shared<SectionOptions>();
+  auto lyapunov = std::make_shared<bool>(false);
+  options->add_to(*command, "section points recorded (strobe: forcing periods; impact: impacts)");
+  command->add_flag("--lyapunov", *lyapunov,
+                    "also the largest Lyapunov exponent over the recorded periods (meta.json)");
+  return {command, [options, lyapunov](const std::vector<std::string>& command_line) {
+            return run_poincare(*options, *lyapunov, command_line);
+          }};
+}
+
+}  // namespace impactlab::cli

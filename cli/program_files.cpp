@@ -1,0 +1,16 @@
+#include "program_files.hpp"
+
+#include <impactlab/platform/program_location.hpp>
+
+namespace impactlab::cli {
+
+std::filesystem::path program_file(std::string_view relative) {
+  const std::filesystem::path folder = running_program_path().parent_path();
+  const std::filesystem::path installed = folder / ".." / "share" / "impactlab" / relative;
+  const std::filesystem::path built = folder / "share" / "impactlab" / relative;
+  if (std::filesystem::exists(installed)) return installed.lexically_normal();
+  if (std::filesystem::exists(built)) return built;
+  return installed.lexically_normal();
+}
+
+}  // namespace impactlab::cli

@@ -1,0 +1,56 @@
+// `impactlab scenes [SCENE]`: the built-in scenes, or one scene's keys with
+// value, unit, range and help.
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include <impactlab/api/scene_jobs.hpp>
+#include <impactlab/api/scene_loading.hpp>
+#include "command.hpp"
+#include "commands.hpp"
+#include <impactlab/io/builtin_scenes.hpp>
+
+namespace impactlab::cli {
+
+namespace {
+
+int run_scenes(const std::string& name) {
+  if (name.empty()) {
+    for (const auto& builtin : builtin_scenes()) {
+      const Scene scene = load_scene(builtin.name);
+      std::cout << fmt::format("{:<16} {:<16} {}\n", builtin.name, scene.oscillator,
+                               scene.text("description"));
+    }
+    return exit_done;
+  }
+  const Scene scene = load_scene(name);
+  const SceneSchema& schema = scene_schema(scene);
+  std::cout << fmt::format("{} ({}): key = value [unit] range: help\n", name, scene.oscillator);
+  for (const auto& spec : schema.keys) {
+    const std::string value = to_text(scene.values.at(std::string(spec.key)));
+    std::string range;
+    if (spec.is_text) {
+      for (auto choice : spec.choices) range += (range.empty() ? "" : "|") + std::string(choice);
+    } else {
+      range = fmt::format("{}{}, {}{}", spec.lower_open ? "(" : "[",
+                          spec.lower <= -1e308 ? "-inf" : to_text(spec.lower),
+                          spec.upper >= 1e308 ? "inf" : to_text(spec.upper),
+                          spec.upper_open ? ")" : "]");
+    }
+    std::cout << fmt::format("  {:<20} = {:<12} {:<10} {:<14} {}\n", spec.key, value,
+                             spec.unit.empty() ? "" : "[" + std::string(spec.unit) + "]", range,
+                             spec.help);
+  }
+  return exit_done;
+}
+
+}  // namespace
+
+Command add_scenes_command(CLI::App& app) {
+  auto* command = app.add_subcommand("scenes", "list the built-in scenes, or one scene's keys");
+  auto name = std::make_shared<std::string>();
+  command->add_option("scene", *name, "a scene whose keys, values, units and ranges to list");
+  return {command, [name](const std::vector<std::string>&) { return run_scenes(*name); }};
+}
+
+}  // namespace impactlab::cli

@@ -1,0 +1,41 @@
+// Options shared by the commands that run a scene onto a Poincaré section
+// (poincare, sweep): the scene and its overrides, the section, the transient
+// and the number of points, the output directory, and the plot.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <impactlab/analysis/section.hpp>
+#include "command.hpp"
+
+namespace impactlab::cli {
+
+struct SectionOptions {
+  SceneOptions scene;              // scene, --set, --out, --quiet (its other fields unused)
+  std::string section = "strobe";  // strobe[:PHASE] | impact[:WALL]
+  double transient = 100.0;        // forcing periods discarded
+  std::uint64_t transient_impacts = 0;
+  std::uint64_t points = 50;
+  bool plot = false;
+
+  // adds the scene arguments and the section options; `points_help` says
+  // what --points counts for this command
+  void add_to(CLI::App& command, const std::string& points_help);
+  // the section request (BadInput on a malformed --section)
+  [[nodiscard]] SectionRequest request() const;
+  [[nodiscard]] nlohmann::json record() const;
+};
+
+// Runs scripts/plot_sweep.py with /usr/bin/python3 to write `png` from
+// `csv`; prints a warning and returns false where python3, matplotlib or the
+// script is missing (the data files stay).
+bool plot_with_python(const std::string& kind, const std::filesystem::path& csv,
+                      const std::filesystem::path& png, const std::vector<std::string>& extra);
+
+}  // namespace impactlab::cli

@@ -1,0 +1,422 @@
+// `impactlab sweep`: 1D bifurcation sweeps (bifurcation.csv, summary.csv) and
+// 2D classification maps (classes.csv) over any numeric scene parameter, and
+// `impactlab basins`: a 2D sweep whose points each start from the scene's
+// state with the two keys set (basins.csv, attractors.csv; the attractors
+// told apart by analysis/basins.hpp), on
+// threads (--threads) and, under mpirun, across MPI ranks; resumable from a
+// per-rank checkpoint (checkpoint-<rank>.jsonl, one flushed line per point,
+// first line identifying the sweep). The data files and meta.json appear only
+// when the whole sweep is complete, written by rank 0 (AtomicFile).
+#include <algorithm>
+#include <fstream>
+#include <iostream>
+#include <map>
+
+#include <fmt/format.h>
+
+#include <impactlab/analysis/sweep.hpp>
+#include <impactlab/api/basins_job.hpp>
+#include <impactlab/api/scene_jobs.hpp>
+#include <impactlab/api/sweep_checkpoints.hpp>
+#include <impactlab/api/sweep_job.hpp>
+#include "command.hpp"
+#include "commands.hpp"
+#include "mpi_session.hpp"
+#include "section_options.hpp"
+#include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/output.hpp>
+
+namespace impactlab::cli {
+
+namespace {
+
+struct SweepOptions {
+  SectionOptions section;
+  std::vector<std::string> params;
+  std::string direction = "up";
+  int threads = 1;
+  int chunks = 1;
+  bool lyapunov = false, no_lyapunov = false;
+  bool resume = false;
+  long stop_after = 0;  // hidden, for tests: stop after this many new points per rank
+  double period_tolerance = 1e-6;
+  int max_period = 16;
+  std::string classification_tolerance = "auto";  // auto | off (api/sweep_job.hpp)
+  bool basins = false;                // `impactlab basins`: params are --x, --y
+  double attractor_tolerance = 1e-4;  // basins: relative distance of canonical points
+};
+
+std::string number(double value) { return fmt::format("{}", value); }
+
+using RecordKey = SweepRecordKey;
+
+// basins.csv (each grid point's attractor) and attractors.csv (each
+// attractor's class, canonical section point and basin size)
+void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<SweepTask>& tasks,
+                  const std::map<RecordKey, SweepRecord>& records, std::vector<std::string>& files) {
+  const BasinsTable table = basins_table(plan, tasks, records);
+  auto flag = [](bool value) { return value ? 1 : 0; };
+  AtomicFile& basins = run_files.add("basins.csv");
+  basins.stream() << plan.axes[0].name << ',' << plan.axes[1].name
+                  << ",attractor,period,impacts_per_period,contact,termination\n";
+  for (std::size_t k = 0; k < table.x.size(); ++k)
+    basins.stream() << number(table.x[k]) << ',' << number(table.y[k]) << ','
+                    << table.attractor[k] << ',' << table.period[k] << ','
+                    << number(table.impacts_per_period[k]) << ',' << table.contact[k] << ','
+                    << table.termination[k] << '\n';
+  AtomicFile& attractors = run_files.add("attractors.csv");
+  attractors.stream() << "attractor,period,impacts_per_period,contact,q,qdot,basin_points\n";
+  if (table.map.unclassified > 0)
+    attractors.stream() << "0,0,nan,0,nan,nan," << table.map.unclassified << '\n';
+  for (const Attractor& a : table.map.attractors)
+    attractors.stream() << a.id << ',' << a.period << ',' << number(a.impacts_per_period) << ','
+                        << flag(a.contact) << ',' << number(a.point[0]) << ','
+                        << number(a.point[1]) << ',' << a.basin_points << '\n';
+  files = {"basins.csv", "attractors.csv"};
+}
+
+// bifurcation.csv and summary.csv (1D) or classes.csv (2D). `table` holds the
+// summary rows; a 1D sweep's section points are read back from the
+// checkpoints record by record, in the rows' order.
+void write_outputs(RunFiles& run_files, const SweepPlan& plan, const std::vector<SweepTask>& tasks,
+                   const SweepTable& table, const SweepCheckpoints& checkpoints,
+                   std::vector<std::string>& files) {
+  auto summary_fields = [&](std::size_t row) {
+    return fmt::format("{},{},{},{},{}", table.period[row], number(table.impacts_per_period[row]),
+                       table.contact[row], number(table.lyapunov[row]), table.termination[row]);
+  };
+  auto direction_name = [](int direction) { return direction > 0 ? "up" : "down"; };
+  if (plan.axes.size() == 1) {
+    const SweepAxis& axis = plan.axes[0];
+    AtomicFile& bifurcation = run_files.add("bifurcation.csv");
+    AtomicFile& summary = run_files.add("summary.csv");
+    bifurcation.stream() << axis.name << ",k,t,q,qdot,wall,direction\n";
+    summary.stream() << axis.name
+                     << ",direction,period,impacts_per_period,contact,lyapunov,termination,"
+                        "points\n";
+    for (const SweepRecordKey& key : sweep_row_order(plan, tasks)) {
+      SweepTable rows;
+      add_bifurcation_rows(rows, plan, checkpoints.load(key));
+      for (std::size_t row = 0; row < rows.point_value.size(); ++row)
+        bifurcation.stream() << number(rows.point_value[row]) << ',' << rows.point_k[row] << ','
+                             << number(rows.point_t[row]) << ',' << number(rows.point_q[row])
+                             << ',' << number(rows.point_qdot[row]) << ','
+                             << rows.point_wall[row] << ','
+                             << direction_name(rows.point_direction[row]) << '\n';
+    }
+    for (std::size_t row = 0; row < table.value.size(); ++row)
+      summary.stream() << number(table.value[row]) << ',' << direction_name(table.direction[row])
+                       << ',' << summary_fields(row) << ',' << table.points[row] << '\n';
+    files = {"bifurcation.csv", "summary.csv"};
+    return;
+  }
+  AtomicFile& classes = run_files.add("classes.csv");
+  classes.stream() << plan.axes[0].name << ',' << plan.axes[1].name
+                   << ",period,impacts_per_period,contact,lyapunov,termination\n";
+  for (std::size_t row = 0; row < table.value.size(); ++row)
+    classes.stream() << number(table.value[row]) << ',' << number(table.value2[row]) << ','
+                     << summary_fields(row) << '\n';
+  files = {"classes.csv"};
+}
+
+// The sweep the options describe (api/sweep_job.hpp).
+SweepSpec sweep_spec(const SweepOptions& options) {
+  SweepSpec spec;
+  spec.params = options.params;
+  spec.direction = options.direction;
+  spec.chunks = options.chunks;
+  spec.section = options.section.request();
+  if (options.lyapunov) spec.lyapunov = true;
+  if (options.no_lyapunov) spec.lyapunov = false;
+  spec.period_tolerance = options.period_tolerance;
+  spec.max_period = options.max_period;
+  spec.classification_tolerance = options.classification_tolerance;
+  return spec;
+}
+
+// The basins map the options describe (api/basins_job.hpp).
+BasinsSpec basins_spec(const SweepOptions& options) {
+  BasinsSpec spec;
+  spec.x = options.params.at(0);
+  spec.y = options.params.at(1);
+  spec.section = options.section.request();
+  spec.lyapunov = options.lyapunov;  // off unless asked for
+  spec.period_tolerance = options.period_tolerance;
+  spec.max_period = options.max_period;
+  spec.attractor_tolerance = options.attractor_tolerance;
+  return spec;
+}
+
+// This rank's checkpoint, opened for appending; one that is not this
+// sweep's (or any, without --resume) is started afresh with the header.
+std::ofstream open_checkpoint(const std::filesystem::path& path, const std::string& header,
+                              bool resume) {
+  {
+    std::ifstream existing(path);
+    std::string first;
+    const bool keep = resume && std::getline(existing, first) && first == header;
+    if (!keep) std::ofstream(path, std::ios::trunc) << header << '\n';
+  }
+  std::ofstream checkpoint(path, std::ios::app);
+  if (!checkpoint) throw BadInput("--out", path.parent_path().string(), "cannot write the checkpoint");
+  return checkpoint;
+}
+
+// The records in every rank's text (one checkpoint line each), by key.
+std::map<RecordKey, SweepRecord> parse_records(const std::vector<std::string>& texts) {
+  std::map<RecordKey, SweepRecord> all;
+  for (const auto& text : texts) {
+    std::size_t begin = 0;
+    while (begin < text.size()) {
+      const std::size_t end = text.find('\n', begin);
+      if (auto record = from_json_line(std::string_view(text).substr(begin, end - begin)))
+        all.emplace(RecordKey{record->task, record->position}, std::move(*record));
+      begin = end == std::string::npos ? text.size() : end + 1;
+    }
+  }
+  return all;
+}
+
+void write_meta(RunFiles& run_files, const nlohmann::json& definition,
+                const Scene& scene, const SceneSchema& schema,
+                const std::map<RecordKey, SweepRecord>& all, nlohmann::json run,
+                const std::vector<std::string>& command_line, std::vector<std::string> files) {
+  std::uint64_t steps = 0, rhs = 0, stopped_points = 0;
+  for (const auto& [key, record] : all) {
+    steps += record.result.steps;
+    rhs += record.result.rhs_evaluations;
+    if (record.result.termination != "completed") ++stopped_points;
+  }
+  files.push_back("meta.json");
+  const std::string q_name(schema.main_coordinate);
+  const nlohmann::json meta = {
+      {"impactlab_version", IMPACTLAB_VERSION},
+      {"command", command_line},
+      {"created_utc", utc_now()},
+      {"sweep", definition},
+      {"scene", scene_record(scene)},
+      {"run", std::move(run)},
+      {"counts",
+       {{"points", all.size()},
+        {"points_stopped_early", stopped_points},
+        {"steps", steps},
+        {"rhs_evaluations", rhs}}},
+      {"columns",
+       {{"k", "index of the section point at this parameter value"},
+        {"t", "time of the section point (scene time unit)"},
+        {"q", q_name},
+        {"qdot", "d" + q_name + "/dt (before the impact, for the impact map)"},
+        {"wall", "impact map: wall hit (+1 / -1); 0 for stroboscopic points"},
+        {"direction", "up / down: the continuation direction"},
+        {"period", "smallest p with section point k+p within period_tolerance of point k "
+                   "(relative to 1 + |(q, qdot)|); 0: none up to max_period"},
+        {"impacts_per_period", "impacts per forcing period in the record window"},
+        {"contact", "1 if a contact (sticking/sliding) phase began or ended in the record window"},
+        {"lyapunov", "largest Lyapunov exponent (1/time unit); nan where not computed, -inf "
+                     "where nearby states merge (rest on a wall)"},
+        {"termination", "completed, stopped_by_model, no_progress, ..."},
+        {"points", "section points recorded"},
+        {"attractor", "basins: the attractor the point settles on (attractors.csv; 0: none found)"},
+        {"basin_points", "basins: grid points that settle on the attractor"}}},
+      {"files", files},
+  };
+  write_json(run_files.add("meta.json"), meta);
+}
+
+int run_sweep_command(const SweepOptions& options, const std::vector<std::string>& command_line) {
+  const Scene scene = options.section.scene.load();
+  const SweepTarget target = sweep_target(scene);
+  const SceneSchema& schema = *target.schema;
+  const SweepPlan plan = options.basins ? make_basins_plan(basins_spec(options), scene, schema)
+                                        : make_sweep_plan(sweep_spec(options), scene, schema);
+  const auto directory = options.section.scene.output_directory();
+  // the sweep's data files and meta.json, committed together by rank 0
+  RunFiles run_files(directory);
+  // MPI starts once the input is known to be good: bad input exits with
+  // status 2 on every rank alike, before any rank waits for another
+  MpiSession mpi;
+
+  const nlohmann::json definition =
+      options.basins ? basins_definition(plan, scene, schema, options.section.record())
+                     : sweep_definition(plan, scene, schema, options.section.record());
+  const std::string header = nlohmann::json{{"impactlab_sweep_checkpoint", definition}}.dump();
+  // basins tell attractors apart by their section points: their records keep
+  // them; a sweep's records shed them once they are in the checkpoint
+  const bool keep_points = options.basins;
+  std::map<RecordKey, SweepRecord> done;
+  if (options.resume) done = SweepCheckpoints(directory, header, keep_points).records();
+  std::ofstream checkpoint =
+      open_checkpoint(directory / sweep_checkpoint_name(mpi.rank()), header, options.resume);
+
+  // this rank's share: task id mod ranks
+  const std::vector<SweepTask> tasks = sweep_tasks(plan);
+  std::vector<const SweepTask*> mine;
+  std::size_t total_points = 0;
+  for (const auto& task : tasks) {
+    total_points += task.points.size();
+    if (task.id % mpi.size() == mpi.rank()) mine.push_back(&task);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  ProgressBar progress(!options.section.scene.quiet && mpi.rank() == 0);
+  SweepJobOptions job;
+  job.threads = options.threads;
+  job.done = &done;
+  job.on_record = [&checkpoint](const SweepRecord& record) {
+    checkpoint << to_json_line(record) << '\n' << std::flush;
+  };
+  job.progress = [&progress](double fraction) { progress.update(fraction); };
+  job.stop_after = options.stop_after;
+  job.keep_points = keep_points;
+  const SweepOutput work = run_sweep(scene, target, plan, mine, job);
+  // every line flushed and the file closed before rank 0 reads it back
+  checkpoint.close();
+  const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  // every rank's records to rank 0, which writes
+  std::string text;
+  for (const auto& records : work.records)
+    for (const auto& record : records) text += to_json_line(record) + '\n';
+  const std::vector<std::string> gathered = mpi.gather(text);
+  if (mpi.rank() != 0) return work.stopped ? exit_stopped_early : exit_done;
+  const std::map<RecordKey, SweepRecord> all = parse_records(gathered);
+  if (all.size() < total_points) {
+    std::cerr << fmt::format(
+        "impactlab: sweep stopped after {} of {} points (checkpoint in {}); run again with "
+        "--resume to finish it\n",
+        all.size(), total_points, directory.string());
+    return exit_stopped_early;
+  }
+
+  std::vector<std::string> files;
+  if (options.basins)
+    write_basins(run_files, plan, tasks, all, files);
+  else
+    write_outputs(run_files, plan, tasks, sweep_table(plan, tasks, all),
+                  SweepCheckpoints(directory, header, false), files);
+  write_meta(run_files, definition, scene, *target.schema, all,
+             {{"threads", options.threads},
+              {"mpi_ranks", mpi.size()},
+              {"tasks", tasks.size()},
+              {"points_reused_from_checkpoint", done.size()},
+              {"wall_time_s", wall_time}},
+             command_line, files);
+  run_files.commit();
+  // the sweep is complete: its checkpoints (of any rank count) are spent
+  for (const auto& file : std::filesystem::directory_iterator(directory)) {
+    const std::string name = file.path().filename().string();
+    if (name.starts_with("checkpoint-") && name.ends_with(".jsonl"))
+      std::filesystem::remove(file.path());
+  }
+
+  const std::string q_name(target.schema->main_coordinate);
+  if (options.section.plot) {
+    if (options.basins)
+      plot_with_python("basins", directory / "basins.csv", directory / "basins.png",
+                       {plan.axes[0].name, plan.axes[1].name});
+    else if (plan.axes.size() == 1)
+      plot_with_python("bifurcation", directory / "bifurcation.csv",
+                       directory / "bifurcation.png", {plan.axes[0].name, q_name});
+    else
+      plot_with_python("classes", directory / "classes.csv", directory / "classes.png",
+                       {plan.axes[0].name, plan.axes[1].name});
+  }
+  if (!options.section.scene.quiet)
+    std::cout << fmt::format("{}: {} points ({} reused), {} threads x {} ranks, {:.3f} s wall\n"
+                             "wrote {}\n",
+                             scene.name, all.size(), done.size(), options.threads, mpi.size(),
+                             wall_time, (directory / files.front()).string());
+  return exit_done;
+}
+
+}  // namespace
+
+Command add_sweep_command(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "sweep",
+      "1D bifurcation sweep (bifurcation.csv, summary.csv) or 2D classification map "
+      "(classes.csv) over scene parameters");
+  auto options = std::make_shared<SweepOptions>();
+  options->section.add_to(*command,
+                          "section points recorded per value (strobe: forcing periods; "
+                          "impact: impacts)");
+  command->add_option("--param", options->params,
+                      "NAME=FROM:TO:N, once (1D bifurcation sweep) or twice (2D map)")
+      ->required()
+      ->expected(1, 2);
+  command->add_option("--direction", options->direction,
+                      "1D: follow the attractor up, down or both ways")
+      ->capture_default_str();
+  command->add_option("--threads", options->threads, "worker threads")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  command->add_option("--chunks", options->chunks,
+                      "1D: split each direction into this many continuation runs, each from "
+                      "the scene's initial state (lets threads share a 1D sweep)")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  auto* lyapunov = command->add_flag(
+      "--lyapunov", options->lyapunov,
+      "compute the largest Lyapunov exponent (default: on for 2D, off for 1D)");
+  command->add_flag("--no-lyapunov", options->no_lyapunov, "do not compute it in a 2D map")
+      ->excludes(lyapunov);
+  command->add_option("--period-tol", options->period_tolerance,
+                      "relative distance under which section points count as repeating")
+      ->check(positive_number())
+      ->capture_default_str();
+  command->add_option("--max-period", options->max_period, "longest period looked for")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  command->add_option("--classification-tol", options->classification_tolerance,
+                      "auto: a 2D map (classes only) integrates at the scene's "
+                      "integrator.classification_* unless an integrator key is --set; off: at "
+                      "the scene's integrator (the Lyapunov exponent always is)")
+      ->capture_default_str();
+  command->add_flag("--resume", options->resume,
+                    "reuse the finished points of an interrupted run of the same sweep in --out");
+  // for tests of --resume: stop (exit 3, checkpoint kept) after this many new points per rank
+  command->add_option("--stop-after", options->stop_after)->group("")->check(CLI::Range(1L, 1L << 40));
+  return {command, [options](const std::vector<std::string>& command_line) {
+            return run_sweep_command(*options, command_line);
+          }};
+}
+
+Command add_basins_command(CLI::App& app) {
+  auto* command = app.add_subcommand(
+      "basins",
+      "basins of attraction: each initial condition of a 2D grid (e.g. initial.theta x "
+      "initial.theta_dot) classified by the attractor it settles on (basins.csv, attractors.csv)");
+  auto options = std::make_shared<SweepOptions>();
+  options->basins = true;
+  options->params.resize(2);
+  options->section.add_to(*command,
+                          "section points recorded per initial condition (strobe: forcing "
+                          "periods; impact: impacts)");
+  command->add_option("--x", options->params[0], "KEY=FROM:TO:N: the first grid key (fastest)")
+      ->required();
+  command->add_option("--y", options->params[1], "KEY=FROM:TO:N: the second grid key")->required();
+  command->add_option("--threads", options->threads, "worker threads")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  command->add_flag("--lyapunov", options->lyapunov, "also compute the largest Lyapunov exponent");
+  command->add_option("--period-tol", options->period_tolerance,
+                      "relative distance under which section points count as repeating")
+      ->check(positive_number())
+      ->capture_default_str();
+  command->add_option("--max-period", options->max_period, "longest period looked for")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  command->add_option("--attractor-tol", options->attractor_tolerance,
+                      "relative distance under which two canonical section points are one "
+                      "attractor")
+      ->check(positive_number())
+      ->capture_default_str();
+  command->add_flag("--resume", options->resume,
+                    "reuse the finished points of an interrupted run of the same map in --out");
+  command->add_option("--stop-after", options->stop_after)->group("")->check(CLI::Range(1L, 1L << 40));
+  return {command, [options](const std::vector<std::string>& command_line) {
+            return run_sweep_command(*options, command_line);
+          }};
+}
+
+}  // namespace impactlab::cli

@@ -1,0 +1,5 @@
+// A deliberate layer violation for the layer check's own test: io including the scene API through ../.
+// Never compiled.
+#pragma once
+
+#include "../../api/oscillator_registry.hpp"

@@ -1,5 +1,0 @@
-// A deliberate layer violation for the layer check's own test: io (layer 2)
-// including the scene API (layer 5). Never compiled.
-#pragma once
-
-#include "api/oscillator_registry.hpp"
