@@ -237,7 +237,7 @@ ContinuationResult continue_branch_from(const ContinuationProblem& problem,
                                         const OrbitPoint& x, double p,
                                         const std::vector<double>& direction);
 
-// A continuation from a scene (OscillatorEntry::continuation): the scene key
+// A continuation from a scene (continuation_of_scene, api/system_jobs.hpp): the scene key
 // continued, the orbit, where the branch starts, and the cascade to follow.
 struct ContinuationJob {
   std::string parameter;           // scene key (omega, A, V0, ...)

@@ -24,7 +24,7 @@
 #include <impactlab/analysis/flow_setup.hpp>
 #include <impactlab/analysis/variational.hpp>
 #include <impactlab/simulate/simulator.hpp>
-#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/simulate/flow.hpp>
 
 namespace impactlab {
 
@@ -39,7 +39,7 @@ struct FlowWithJacobian {
 
 // The flow from (t0, x0) to t1 and its Jacobian, with a stepper for the
 // variational equations `tangent` that the caller holds across calls (one
-// from with_stepper<Variational<System>>): simulate() initializes it at the
+// from with_flow<Variational<System>>): simulate() initializes it at the
 // start of each run, so a Runge–Kutta stepper starts afresh as a new one
 // would, and the Taylor stepper keeps its storage.
 template <HasJacobian System, class Stepper>
@@ -63,7 +63,7 @@ flow_with_jacobian(
     typename System::Mode mode, double t0, double t1) {
   using Tangent = Variational<System>;
   const Tangent tangent(system);
-  return with_stepper<Tangent>(
+  return with_flow<Tangent>(
       setup.method, stepper_settings(tangent, setup), [&](auto& stepper) {
         return flow_with_jacobian(tangent, stepper, setup, x0, mode, t0, t1);
       });
@@ -230,7 +230,7 @@ locate_periodic_orbit(const System& system, const FlowSetup& setup, typename Sys
                       int max_iterations = 30, double tolerance = 1e-11) {
   using Tangent = Variational<System>;
   const Tangent tangent(system);
-  return with_stepper<Tangent>(setup.method, stepper_settings(tangent, setup), [&](auto& stepper) {
+  return with_flow<Tangent>(setup.method, stepper_settings(tangent, setup), [&](auto& stepper) {
     return locate_periodic_orbit(tangent, stepper, setup, guess, mode, t0, span, max_iterations,
                                  tolerance);
   });
@@ -297,7 +297,7 @@ LyapunovResult largest_lyapunov_exponent(const System& system, const FlowSetup& 
                                          int alignment_periods) {
   using Tangent = Variational<System>;
   const Tangent tangent(system);
-  return with_stepper<Tangent>(setup.method, stepper_settings(tangent, setup), [&](auto& stepper) {
+  return with_flow<Tangent>(setup.method, stepper_settings(tangent, setup), [&](auto& stepper) {
     return largest_lyapunov_exponent(tangent, stepper, setup, x, mode, t0, period, periods,
                                      alignment_periods);
   });

@@ -1,5 +1,5 @@
 // A periodic orbit located from a scene: the type-erased request and result of
-// OscillatorEntry::periodic_orbit (analysis/run_periodic.hpp does the work for
+// periodic_orbit_of_scene (api/system_jobs.hpp) (analysis/run_periodic.hpp does the work for
 // a concrete system with Jacobians).
 #pragma once
 

@@ -21,9 +21,10 @@
 #include <impactlab/analysis/curve_continuation.hpp>
 #include <impactlab/analysis/flow_setup.hpp>
 #include <impactlab/analysis/saltation.hpp>
+#include <impactlab/analysis/scene_boundary.hpp>
 #include <impactlab/analysis/variational.hpp>
 #include <impactlab/simulate/simulator.hpp>
-#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/integrate/taylor_series.hpp>
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/scene.hpp>
@@ -271,7 +272,7 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
     const int sample_count = detailed ? samples_per_period * shared->period - 1 : 0;
     GapSampler<System> sampler(system, shared->flight_mode, t0, span / (sample_count + 1),
                                sample_count);
-    const auto run = with_stepper<Tangent>(
+    const auto run = with_flow<Tangent>(
         shared->setup.method, stepper_settings(tangent, shared->setup), [&](auto& stepper) {
           return simulate(tangent, stepper, tangent.start(x0, shared->flight_mode),
                           shared->flight_mode, t0, t0 + span, loop_options(shared->setup), log,
@@ -309,7 +310,7 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
     typename System::State x0{};
     std::copy_n(x.begin(), n, x0.begin());
     EventLog log(false);
-    const auto run = with_stepper<Wrapped>(
+    const auto run = with_flow<Wrapped>(
         shared->setup.method, stepper_settings(wrapped, shared->setup), [&](auto& stepper) {
           return simulate(wrapped, stepper, x0, shared->flight_mode, t0, t0 + t,
                           loop_options(shared->setup), log);
@@ -335,7 +336,7 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
     typename System::State x0{};
     std::copy_n(x.begin(), n, x0.begin());
     EventLog log(false);
-    const auto run = with_stepper<System>(
+    const auto run = with_flow<System>(
         shared->setup.method, stepper_settings(system, shared->setup), [&](auto& stepper) {
           return simulate(system, stepper, x0, shared->flight_mode, t0, t1,
                           loop_options(shared->setup), log);
@@ -481,7 +482,7 @@ std::optional<WallImpact> first_wall_impact(const System& system,
   const SuppressedContacts<System> plain(system, mode, ContactWindow{}, nullptr);
   const StopAtWallImpact<SuppressedContacts<System>> stopping(plain, wall, 0, &impacts);
   EventLog log(true);
-  const auto run = with_stepper<StopAtWallImpact<SuppressedContacts<System>>>(
+  const auto run = with_flow<StopAtWallImpact<SuppressedContacts<System>>>(
       setup.method, stepper_settings(stopping, setup), [&](auto& stepper) {
         return simulate(stopping, stepper, x, mode, t0, t_end, loop_options(setup), log);
       });
@@ -554,7 +555,7 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
     const int sample_count = detailed ? samples_per_period * shared->period - 1 : 0;
     GapSampler<System> sampler(system, shared->flight_mode, t0, span / (sample_count + 1),
                                sample_count);
-    const auto run = with_stepper<Tangent>(
+    const auto run = with_flow<Tangent>(
         shared->setup.method, stepper_settings(tangent, shared->setup), [&](auto& stepper) {
           return simulate(tangent, stepper, tangent.start(*start, shared->flight_mode),
                           shared->flight_mode, t0, t0 + span + 0.5 * forcing_period,
@@ -626,7 +627,7 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
     window.to += t0;
     const Suppressed wrapped(system, shared->flight_mode, window, nullptr);
     EventLog log(false);
-    const auto run = with_stepper<Suppressed>(
+    const auto run = with_flow<Suppressed>(
         shared->setup.method, stepper_settings(wrapped, shared->setup), [&](auto& stepper) {
           return simulate(wrapped, stepper, *start, shared->flight_mode, t0, t0 + t,
                           loop_options(shared->setup), log);
@@ -665,7 +666,7 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
                                                  t0 + reach},
                                    nullptr);
     EventLog log(false);
-    const auto run = with_stepper<Suppressed>(
+    const auto run = with_flow<Suppressed>(
         shared->setup.method, stepper_settings(virtual_orbit, shared->setup), [&](auto& stepper) {
           return simulate(virtual_orbit, stepper, *start, shared->flight_mode, t0,
                           t0 + shift / omega, loop_options(shared->setup), log);
@@ -693,7 +694,7 @@ int wall_impacts_per_orbit(const System& system, typename System::Mode flight_mo
   const StopAtWallImpact<SuppressedContacts<System>> counting(
       plain, wall, std::numeric_limits<int>::max(), &impacts);
   EventLog log(true);
-  with_stepper<StopAtWallImpact<SuppressedContacts<System>>>(
+  with_flow<StopAtWallImpact<SuppressedContacts<System>>>(
       setup.method, stepper_settings(counting, setup), [&](auto& stepper) {
         return simulate(counting, stepper, *start, flight_mode, t0,
                         t0 + span + 0.5 * span / period, loop_options(setup), log);
@@ -723,7 +724,7 @@ std::optional<std::pair<std::size_t, double>> wall_witness(const System& system,
     const SuppressedContacts<System> plain(system, flight_mode, ContactWindow{}, nullptr);
     const StopAtWallImpact<SuppressedContacts<System>> stopping(plain, wall, 0, &impacts);
     EventLog log(true);
-    with_stepper<StopAtWallImpact<SuppressedContacts<System>>>(
+    with_flow<StopAtWallImpact<SuppressedContacts<System>>>(
         setup.method, stepper_settings(stopping, setup), [&](auto& stepper) {
           return simulate(stopping, stepper, *start, flight_mode, t0, t0 + 1e-3 / omega,
                           loop_options(setup), log);
@@ -837,13 +838,6 @@ bool continue_curve_of(const ContinuationJobResult& result, std::size_t index, C
   return true;
 }
 
-// A boundary in terms of the scene (ParameterBoundary): `value(scene)` changes
-// sign where it is crossed, as a function of the continued key alone.
-struct SceneBoundary {
-  std::string type, note;
-  double (*value)(const Scene& scene) = nullptr;
-};
-
 // A job whose start was not found: one branch stopped at its start, with why.
 inline ContinuationJobResult no_start(ContinuationJobResult& result, const ContinuationJob& job,
                                       const std::string& why) {
@@ -902,7 +896,7 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
           std::ceil((omega * after - job.phase) / (2.0 * std::numbers::pi) - 1e-9);
       const double t_section = (job.phase + 2.0 * std::numbers::pi * k) / omega;
       EventLog log(false);
-      const auto transient = with_stepper<System>(
+      const auto transient = with_flow<System>(
           setup.method, stepper_settings(start_system, setup), [&](auto& stepper) {
             return simulate(start_system, stepper, initial_state, flight_mode, t0, t_section,
                             loop_options(setup), log);

@@ -1,4 +1,4 @@
-// Newton shooting from a scene, for OscillatorEntry::periodic_orbit: run a
+// Newton shooting from a scene, for any oscillator (api/system_jobs.hpp): run a
 // transient to the stroboscopic section, then locate the period-n orbit with
 // the saltation-corrected monodromy (analysis/floquet.hpp).
 #pragma once
@@ -10,7 +10,7 @@
 #include <impactlab/analysis/periodic.hpp>
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/simulate/simulator.hpp>
-#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/io/scene.hpp>
 
 namespace impactlab {
@@ -39,7 +39,7 @@ PeriodicResult run_periodic(const System& system, const typename System::State& 
     result.orbit_period = request.period * period;
     EventLog log(false);
     const auto transient =
-        with_stepper<System>(setup.method, stepper_settings(system, setup), [&](auto& stepper) {
+        with_flow<System>(setup.method, stepper_settings(system, setup), [&](auto& stepper) {
           return simulate(system, stepper, x0, mode0, t0, result.t_section, loop_options(setup),
                           log);
         });

@@ -2,7 +2,7 @@
 // (forcing periods, or impacts), record the section points, count impacts and
 // contact phases in the record window, optionally the largest Lyapunov
 // exponent, and return the final state for continuation. Each oscillator's
-// scene file instantiates it once for OscillatorEntry::section.
+// binding runs it through section_of_scene (api/system_jobs.hpp).
 #pragma once
 
 #include <algorithm>
@@ -18,7 +18,7 @@
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/core/has_jacobian.hpp>
 #include <impactlab/simulate/simulator.hpp>
-#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/io/scene.hpp>
 
 namespace impactlab {
@@ -92,7 +92,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
   double t = scene.number("t0");
   const double t0 = t;
 
-  return with_stepper<System>(setup.method, stepper_settings(system, setup), [&](auto& stepper) {
+  return with_flow<System>(setup.method, stepper_settings(system, setup), [&](auto& stepper) {
     // one stretch of the run, from (t, x, mode) to t_end; false when it stopped early
     auto advance = [&](double t_end, EventLog& log, auto&& observer) {
       const auto run = simulate(system, stepper, x, mode, t, t_end, options, log, observer);
@@ -149,7 +149,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
           result.termination = "crossings_not_reached";
           break;
         }
-        const auto run = with_stepper<CrossingSection<System>>(
+        const auto run = with_flow<CrossingSection<System>>(
             setup.method, stepper_settings(system, setup), [&](auto& crossing_stepper) {
               return simulate(crossing, crossing_stepper, x, mode, t,
                               t + static_cast<double>(chunk) * period, options, record_log);

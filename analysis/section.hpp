@@ -1,7 +1,7 @@
 // Poincaré sections: which section, what one point on it records, and what
 // one run onto a section is asked for and gives back. These types are
 // independent of the oscillator, so that commands and sweeps reach every
-// oscillator through one type-erased entry (OscillatorEntry::section,
+// oscillator through one type-erased entry (api/system_jobs.hpp's section_of_scene,
 // analysis/run_section.hpp does the work for a concrete system).
 #pragma once
 

@@ -10,6 +10,7 @@
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
+#include <impactlab/api/system_jobs.hpp>
 #include <impactlab/io/bad_input.hpp>
 
 namespace impactlab {
@@ -87,11 +88,10 @@ Comparison compare_models(const Scene& scene, const std::vector<std::string>& mo
   comparison.period = 2.0 * std::numbers::pi / scene.number("omega");
   request.sample_step = comparison.period;
   request.keep_events = true;
-  const auto& entry = oscillator_entry(scene.oscillator);
   for (const auto& model : models) {
     ModelRun run{model, scene, {}, {}, {}};
     apply_override(run.scene, "model=" + model);
-    run.output = entry.run(run.scene, request);
+    run.output = run_of_scene(run.scene, request);
     for (const auto& e : run.output.events)
       if (e.kind == EventKind::impact) run.impacts.push_back(e);
     run.contacts = contact_intervals(run.output);

@@ -12,6 +12,7 @@
 
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/api/scene_loading.hpp>
+#include <impactlab/api/system_jobs.hpp>
 #include <impactlab/oscillators/pendulum_walls/sliding_impact.hpp>
 
 namespace impactlab {
@@ -62,7 +63,7 @@ ResidualOutcome run_residual_task(const Scene& scene, const Jin2003Settings& set
   const Scene run_scene = with_values(scene, task.model, V0, omega);
   RunRequest request;
   request.periods = settings.periods;
-  const RunOutput output = oscillator_entry(run_scene.oscillator).run(run_scene, request);
+  const RunOutput output = run_of_scene(run_scene, request);
 
   const double l = run_scene.number("l"), b = run_scene.number("b");
   const double cos0 = std::sqrt(1.0 - (b / l) * (b / l)), tan0 = (b / l) / cos0;
@@ -235,7 +236,7 @@ Jin2003Results reproduce_jin2003(const Scene& scene, const Jin2003Settings& sett
     RunRequest request;
     request.periods = settings.periods + settings.history_periods;
     request.sample_step = sample_step;
-    histories[m] = oscillator_entry(run_scene.oscillator).run(run_scene, request);
+    histories[m] = run_of_scene(run_scene, request);
     const double first_steady = steady_state_start(histories[m], settings.transient_impacts);
     steady_from = std::max(steady_from, std::isnan(first_steady) ? settings.periods * period
                                                                  : first_steady);

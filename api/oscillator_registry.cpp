@@ -1,22 +1,36 @@
 #include <impactlab/api/oscillator_registry.hpp>
 
-#include <array>
 #include <map>
 #include <mutex>
 #include <string>
 
+#include <impactlab/api/builtin_bindings.hpp>
 #include <impactlab/io/bad_input.hpp>
 
 namespace impactlab {
 
-// defined in api/bindings/<name>_binding.cpp
-const OscillatorEntry& pendulum_walls_entry();
-const OscillatorEntry& linear_impact_entry();
-const OscillatorEntry& bouncing_ball_entry();
+namespace {
+
+// one entry per schema: the bindings of one oscillator's models share it
+template <class... Bindings>
+std::vector<OscillatorEntry> builtin_entries(BindingList<Bindings...>) {
+  std::vector<OscillatorEntry> entries;
+  auto add = [&entries]<class Binding>() {
+    if constexpr (requires { Binding::schema(); }) {
+      const SceneSchema* schema = &Binding::schema();
+      for (const OscillatorEntry& entry : entries)
+        if (entry.schema == schema) return;
+      entries.push_back({schema});
+    }
+  };
+  (add.template operator()<Bindings>(), ...);
+  return entries;
+}
+
+}  // namespace
 
 std::span<const OscillatorEntry> oscillators() {
-  static const std::array<OscillatorEntry, 3> entries = {
-      pendulum_walls_entry(), linear_impact_entry(), bouncing_ball_entry()};
+  static const std::vector<OscillatorEntry> entries = builtin_entries(BuiltinBindings{});
   return entries;
 }
 

@@ -1,5 +1,6 @@
-// The oscillators the program knows: each one's scene schema and how to run
-// it. Each oscillator registers itself in api/bindings/<name>_binding.cpp.
+// The oscillators the program knows: each one's scene schema, from the
+// built-in bindings (api/builtin_bindings.hpp) and the models registered at
+// run time.
 #pragma once
 
 #include <memory>
@@ -12,29 +13,11 @@
 
 namespace impactlab {
 
-// analysis/section.hpp, analysis/periodic.hpp
-struct SectionRequest;
-struct SectionResult;
-struct PeriodicRequest;
-struct PeriodicResult;
-struct ContinuationJob;  // analysis/continuation.hpp
-struct ContinuationJobResult;
-
+// An oscillator as the scene loader knows it: its schema (keys, units,
+// ranges, help). What runs it is its binding (api/builtin_bindings.hpp,
+// reached through api/visit_scene.hpp).
 struct OscillatorEntry {
   const SceneSchema* schema;
-  // builds the system from a validated scene (further checks that need several
-  // keys at once throw BadInput) and runs it
-  RunOutput (*run)(const Scene& scene, const RunRequest& request);
-  // the same system onto a Poincaré section (transient, section points, final
-  // state for continuation, counts, optional Lyapunov exponent): the analysis
-  // layer's entry point (analysis/run_section.hpp)
-  SectionResult (*section)(const Scene& scene, const SectionRequest& request) = nullptr;
-  // Newton shooting for a period-n orbit and its Floquet multipliers
-  // (analysis/run_periodic.hpp)
-  PeriodicResult (*periodic_orbit)(const Scene& scene, const PeriodicRequest& request) = nullptr;
-  // pseudo-arclength continuation of a period-n orbit in one scene key, its
-  // bifurcations and grazing points (analysis/run_continuation.hpp)
-  ContinuationJobResult (*continuation)(const Scene& scene, const ContinuationJob& job) = nullptr;
 };
 
 std::span<const OscillatorEntry> oscillators();

@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 
 #include <impactlab/simulate/simulator.hpp>
-#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
@@ -137,7 +137,7 @@ RunOutput run_system(const System& system, const typename System::State& x0,
   detail::SamplingObserver<ModeName> observer(output.t0, output.t_end, request, output, mode_name);
 
   const auto start = std::chrono::steady_clock::now();
-  const auto result = with_stepper<System>(
+  const auto result = with_flow<System>(
       scene.text("integrator.method"), settings, [&](auto& stepper) {
         return simulate(system, stepper, x0, mode0, output.t0, output.t_end, options, log,
                         observer);

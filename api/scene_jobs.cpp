@@ -5,12 +5,13 @@
 #include <fmt/format.h>
 
 #include <impactlab/api/oscillator_registry.hpp>
+#include <impactlab/api/system_jobs.hpp>
 #include <impactlab/io/bad_input.hpp>
 
 namespace impactlab {
 
 RunOutput simulate(const Scene& scene, const RunRequest& request) {
-  return oscillator_entry(scene.oscillator).run(scene, request);
+  return run_of_scene(scene, request);
 }
 
 SectionResult poincare(const Scene& scene, const SectionRequest& request) {
@@ -18,17 +19,11 @@ SectionResult poincare(const Scene& scene, const SectionRequest& request) {
 }
 
 PeriodicResult periodic(const Scene& scene, const PeriodicRequest& request) {
-  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
-  if (!entry.periodic_orbit)
-    throw BadInput("oscillator", scene.oscillator, "has no periodic-orbit entry");
-  return entry.periodic_orbit(scene, request);
+  return periodic_orbit_of_scene(scene, request);
 }
 
 ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& job) {
-  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
-  if (!entry.continuation)
-    throw BadInput("oscillator", scene.oscillator, "has no continuation entry");
-  const SceneSchema& schema = *entry.schema;
+  const SceneSchema& schema = *oscillator_entry(scene.oscillator).schema;
   const auto check_key = [&](const std::string& option, const std::string& key, double from,
                              double to) {
     const auto spec = std::find_if(schema.keys.begin(), schema.keys.end(),
@@ -53,7 +48,7 @@ ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& 
         job.curve_type != "grazing")
       throw BadInput("--curve", job.curve_type, "expected fold, period_doubling or grazing");
   }
-  ContinuationJobResult result = entry.continuation(scene, job);
+  ContinuationJobResult result = continuation_of_scene(scene, job);
   if (!result.available) throw BadInput("oscillator", scene.oscillator, result.note);
   if (result.branches.empty() || result.branches[0].result.stop_reason == "start_not_converged")
     throw BadInput("--param", fmt::format("{}={}:{}", job.parameter, job.from, job.to),
@@ -82,10 +77,7 @@ void set_continuation_section(ContinuationJob& job, const std::string& text,
 }
 
 SweepTarget sweep_target(const Scene& scene) {
-  const OscillatorEntry& entry = oscillator_entry(scene.oscillator);
-  if (!entry.section)
-    throw BadInput("oscillator", scene.oscillator, "has no Poincare-section entry");
-  return {entry.schema, entry.section};
+  return {oscillator_entry(scene.oscillator).schema, &section_of_scene};
 }
 
 }  // namespace impactlab

@@ -10,6 +10,7 @@
 #include <impactlab/api/bindings/pendulum_walls_parameters.hpp>
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/api/scene_loading.hpp>
+#include <impactlab/api/system_jobs.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/taylor_stepper.hpp>
 #include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
@@ -142,7 +143,7 @@ ReferenceImpacts integrated_reference(const Scene& scene, double t_end, std::siz
     RunRequest request;
     request.periods = 0.0;
     request.t_end = t_end;
-    const RunOutput output = oscillator_entry(scene.oscillator).run(tight, request);
+    const RunOutput output = run_of_scene(tight, request);
     runs.push_back(impacts_of(output.events));
   }
   ReferenceImpacts reference;
@@ -187,7 +188,7 @@ WorkPrecisionPoint measure_point(const Scene& scene, const std::string& method, 
     request.periods = periods;
     request.progress = [&stamps](double) { stamps.push_back(thread_cpu_seconds()); };
     const double start = thread_cpu_seconds();
-    const RunOutput output = oscillator_entry(scene.oscillator).run(run_scene, request);
+    const RunOutput output = run_of_scene(run_scene, request);
     cpu_seconds.push_back(thread_cpu_seconds() - start);
     wall_seconds.push_back(output.wall_time);
     if (repetition > 0) continue;

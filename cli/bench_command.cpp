@@ -20,7 +20,7 @@
 #include "commands.hpp"
 #include "program_files.hpp"
 #include <impactlab/platform/run_program.hpp>
-#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/integrate/stepper_names.hpp>
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/output.hpp>
 

@@ -32,7 +32,7 @@
 #include <impactlab/api/scene_record.hpp>
 #include <impactlab/api/sweep_job.hpp>
 #include <impactlab/api/work_precision.hpp>
-#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/integrate/stepper_names.hpp>
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/builtin_scenes.hpp>
 

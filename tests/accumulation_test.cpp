@@ -20,6 +20,7 @@
 #include <impactlab/contact/accumulation.hpp>
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/api/scene_loading.hpp>
+#include <impactlab/api/system_jobs.hpp>
 #include <impactlab/io/scene.hpp>
 
 namespace impactlab {
@@ -127,7 +128,7 @@ RunOutput run_scene(const std::string& name, const std::vector<std::string>& ass
   RunRequest request;
   request.periods = 0.0;
   request.t_end = t_end;
-  return oscillator_entry(scene.oscillator).run(scene, request);
+  return run_of_scene(scene, request);
 }
 
 const EventRecord* first_accumulation(const RunOutput& output) {

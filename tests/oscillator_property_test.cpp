@@ -32,6 +32,7 @@
 #include <impactlab/io/builtin_scenes.hpp>
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/api/scene_loading.hpp>
+#include <impactlab/api/system_jobs.hpp>
 #include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
 
@@ -132,7 +133,7 @@ TEST(OscillatorProperties, RandomPhysicalParametersKeepThePromise) {
           RunRequest request;
           request.periods = 5.0;
           request.sample_step = 2.0 * std::numbers::pi / omega / 40.0;
-          const RunOutput output = entry.run(scene, request);
+          const RunOutput output = run_of_scene(scene, request);
           ++tally.runs;
           if (oscillator == "pendulum_walls") {
             const double wall = std::asin(scene.number("b") / scene.number("l"));

@@ -21,6 +21,7 @@
 
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/api/scene_loading.hpp>
+#include <impactlab/api/system_jobs.hpp>
 #include <impactlab/core/event_log.hpp>
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/scene.hpp>
@@ -35,7 +36,7 @@ RunOutput run_scene(const std::vector<std::string>& assignments, double periods)
   for (const auto& assignment : assignments) apply_override(scene, assignment);
   RunRequest request;
   request.periods = periods;
-  return oscillator_entry(scene.oscillator).run(scene, request);
+  return run_of_scene(scene, request);
 }
 
 std::vector<EventRecord> impacts_of(const RunOutput& output) {
@@ -224,7 +225,7 @@ TEST(RigidPendulum, RollingContactsDoNotCrawl) {
     for (const std::string assignment : {"model=rigid", "spin=free", "radius=0.01", "V0=5"})
       apply_override(scene, assignment);
     apply_override(scene, "mu=" + mu);
-    return oscillator_entry(scene.oscillator).run(scene, request);
+    return run_of_scene(scene, request);
   };
   const RunOutput rough = run_with("15");
   const RunOutput smooth = run_with("0.6");

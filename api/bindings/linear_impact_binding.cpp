@@ -1,13 +1,7 @@
-// The linear impact oscillator's scene schema and runner.
-#include <numbers>
+// The linear impact oscillator's scene schema and system (linear_impact_binding.hpp).
+#include <impactlab/api/bindings/linear_impact_binding.hpp>
 
-#include <impactlab/analysis/run_continuation.hpp>
-#include <impactlab/analysis/run_periodic.hpp>
-#include <impactlab/analysis/run_section.hpp>
-#include <impactlab/api/oscillator_registry.hpp>
-#include <impactlab/api/run_system.hpp>
 #include <impactlab/io/bad_input.hpp>
-#include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 
 namespace impactlab {
 
@@ -36,17 +30,15 @@ SceneSchema make_schema() {
   return schema;
 }
 
-const SceneSchema& schema() {
+}  // namespace
+
+const SceneSchema& linear_impact_schema() {
   static const SceneSchema instance = make_schema();
   return instance;
 }
 
-std::string_view mode_name(LinearImpact::Mode mode) {
-  return mode == LinearImpact::Mode::free ? "free" : "stuck";
-}
-
 // The system a scene describes (checks that need several keys at once throw BadInput).
-LinearImpact make_system(const Scene& scene) {
+LinearImpact LinearImpactBinding::make_system(const Scene& scene) {
   LinearImpactParameters p;
   p.zeta = scene.number("zeta");
   p.A = scene.number("A");
@@ -61,55 +53,13 @@ LinearImpact make_system(const Scene& scene) {
   return LinearImpact(p);
 }
 
-LinearImpact::State initial_state(const Scene& scene, const LinearImpact& system) {
+LinearImpact::State LinearImpactBinding::initial_state(const Scene& scene,
+                                                       const LinearImpact& system) {
   const double x = scene.number("initial.x");
   if (x > system.parameters().sigma)
     throw BadInput("initial.x", to_text(x),
                    "starts beyond the stop sigma = " + to_text(system.parameters().sigma));
   return {x, scene.number("initial.x_dot")};
-}
-
-RunOutput run(const Scene& scene, const RunRequest& request) {
-  const LinearImpact system = make_system(scene);
-  const double omega = system.parameters().omega;
-  return run_system(system, initial_state(scene, system), LinearImpact::Mode::free, scene, request,
-                    2.0 * std::numbers::pi / omega, mode_name);
-}
-
-SectionResult section(const Scene& scene, const SectionRequest& request) {
-  const LinearImpact system = make_system(scene);
-  const double sigma = system.parameters().sigma;
-  // a continued state beyond a moved stop starts on it
-  auto admissible = [sigma](LinearImpact::State& x, LinearImpact::Mode& mode) {
-    if (x[0] > sigma || mode == LinearImpact::Mode::stuck) {
-      x = {sigma, 0.0};
-      mode = LinearImpact::Mode::free;
-    }
-  };
-  // a continued run does not start from the scene's initial state (which a
-  // swept sigma may have left beyond the stop)
-  const LinearImpact::State x0 = request.start ? LinearImpact::State{} : initial_state(scene, system);
-  return run_section(system, x0, LinearImpact::Mode::free, scene, request,
-                     system.parameters().omega, admissible);
-}
-
-PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request) {
-  const LinearImpact system = make_system(scene);
-  return run_periodic(system, initial_state(scene, system), LinearImpact::Mode::free, scene,
-                      request, system.parameters().omega);
-}
-
-ContinuationJobResult continuation(const Scene& scene, const ContinuationJob& job) {
-  const LinearImpact system = make_system(scene);
-  const LinearImpact::State x0 = job.has_start ? LinearImpact::State{} : initial_state(scene, system);
-  return run_continuation<LinearImpact>(&make_system, LinearImpact::Mode::free, x0, scene, job);
-}
-
-}  // namespace
-
-const OscillatorEntry& linear_impact_entry() {
-  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit, &continuation};
-  return entry;
 }
 
 }  // namespace impactlab

@@ -1,37 +1,41 @@
-// The scene binding of oscillators defined in a scene file's [model] section:
-// a schema built at run time from the model's parameters (defaults, units,
-// ranges: the scene keys and --set keys) and states (initial.<state>), and the
-// run, section, periodic-orbit and continuation hooks for 2 or 4 states.
+// Oscillators defined in a scene file's [model] section: a schema built at run
+// time from the model's parameters (defaults, units, ranges: the scene keys
+// and --set keys) and states (initial.<state>), registered once per model,
+// and the bindings of its systems (model_file_binding.hpp).
+#include <impactlab/api/bindings/model_file_binding.hpp>
+
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
-#include <numbers>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include <impactlab/analysis/run_continuation.hpp>
-#include <impactlab/analysis/run_periodic.hpp>
-#include <impactlab/analysis/run_section.hpp>
-#include <impactlab/io/bad_input.hpp>
 #include <impactlab/api/oscillator_registry.hpp>
-#include <impactlab/api/run_system.hpp>
+#include <impactlab/io/bad_input.hpp>
 #include <impactlab/oscillators/model_file/compiled_model.hpp>
-#include <impactlab/oscillators/model_file/model_system.hpp>
 
 namespace impactlab {
 
 namespace {
 
-const CompiledModel& model_of(const Scene& scene) {
+const CompiledModel* loaded_model(const Scene& scene) {
   const RuntimeOscillator* runtime = runtime_oscillator(scene.oscillator);
-  if (!runtime) throw BadInput("oscillator", scene.oscillator, "no model of that name is loaded");
-  return *static_cast<const CompiledModel*>(runtime->data.get());
+  return runtime ? static_cast<const CompiledModel*>(runtime->data.get()) : nullptr;
+}
+
+}  // namespace
+
+template <std::size_t N>
+bool ModelFileBinding<N>::matches(const Scene& scene) {
+  const CompiledModel* model = loaded_model(scene);
+  // two states run as ModelSystem<2>, three or four as ModelSystem<4>
+  return model && (model->states.size() == 2) == (N == 2);
 }
 
 template <std::size_t N>
-ModelSystem<N> make_system(const Scene& scene) {
+ModelSystem<N> ModelFileBinding<N>::make_system(const Scene& scene) {
   const RuntimeOscillator* runtime = runtime_oscillator(scene.oscillator);
   auto model = std::static_pointer_cast<const CompiledModel>(runtime->data);
   std::vector<double> p;
@@ -45,7 +49,8 @@ ModelSystem<N> make_system(const Scene& scene) {
 
 // The scene's initial state, checked: every written expression finite there.
 template <std::size_t N>
-typename ModelSystem<N>::State initial_state(const Scene& scene, const ModelSystem<N>& system) {
+typename ModelSystem<N>::State ModelFileBinding<N>::initial_state(const Scene& scene,
+                                                                 const ModelSystem<N>& system) {
   typename ModelSystem<N>::State x{};
   std::vector<double> values;
   for (std::size_t i = 0; i < N; ++i) {
@@ -64,7 +69,8 @@ typename ModelSystem<N>::State initial_state(const Scene& scene, const ModelSyst
 // accumulation): right for one degree of freedom, wrong where other states
 // move on while one wall holds its mass.
 template <std::size_t N>
-std::string not_linearisable(const CompiledModel& model) {
+std::string ModelFileBinding<N>::without_linearisation(const ModelSystem<N>& system) {
+  const CompiledModel& model = system.model();
   if (N == 2) return {};
   for (const auto& wall : model.walls)
     if (wall.has_sticking)
@@ -74,86 +80,11 @@ std::string not_linearisable(const CompiledModel& model) {
   return {};
 }
 
-template <std::size_t N>
-RunOutput run_states(const Scene& scene, const RunRequest& request) {
-  const ModelSystem<N> system = make_system<N>(scene);
-  return run_system(system, initial_state(scene, system), ModelSystem<N>::free_mode, scene, request,
-                    2.0 * std::numbers::pi / system.forcing_frequency(),
-                    [&system](ModelMode mode) { return system.mode_name(mode); });
-}
+template struct ModelFileBinding<2>;
+template struct ModelFileBinding<4>;
 
-template <std::size_t N>
-SectionResult section_states(const Scene& scene, const SectionRequest& request) {
-  const ModelSystem<N> system = make_system<N>(scene);
-  // a continued state starts in free flight (its walls may have moved)
-  auto admissible = [](typename ModelSystem<N>::State&, ModelMode& mode) {
-    mode = ModelSystem<N>::free_mode;
-  };
-  const auto x0 = initial_state(scene, system);
-  const std::string why_not = not_linearisable<N>(system.model());
-  if (request.lyapunov && !why_not.empty()) {
-    SectionRequest without = request;
-    without.lyapunov = false;
-    SectionResult result = run_section(system, x0, ModelSystem<N>::free_mode, scene, without,
-                                       system.forcing_frequency(), admissible);
-    result.lyapunov_note = why_not;
-    return result;
-  }
-  return run_section(system, x0, ModelSystem<N>::free_mode, scene, request,
-                     system.forcing_frequency(), admissible);
-}
+namespace {
 
-template <std::size_t N>
-PeriodicResult periodic_states(const Scene& scene, const PeriodicRequest& request) {
-  const ModelSystem<N> system = make_system<N>(scene);
-  if (std::string why_not = not_linearisable<N>(system.model()); !why_not.empty()) {
-    PeriodicResult result;
-    result.note = std::move(why_not);
-    return result;
-  }
-  return run_periodic(system, initial_state(scene, system), ModelSystem<N>::free_mode, scene,
-                      request, system.forcing_frequency());
-}
-
-// Continuation on every state of the model (the tangent space is all N);
-// refused where a sticking wall would need a contact linearisation of N > 2.
-template <std::size_t N>
-ContinuationJobResult continuation_states(const Scene& scene, const ContinuationJob& job) {
-  const ModelSystem<N> system = make_system<N>(scene);
-  if (std::string why_not = not_linearisable<N>(system.model()); !why_not.empty()) {
-    ContinuationJobResult result;
-    result.note = std::move(why_not);
-    return result;
-  }
-  // a given start replaces the scene's initial state (which a continued
-  // parameter may have put beyond a wall)
-  const auto x0 = job.has_start ? typename ModelSystem<N>::State{} : initial_state(scene, system);
-  return run_continuation<ModelSystem<N>>(&make_system<N>, ModelSystem<N>::free_mode, x0, scene,
-                                          job);
-}
-
-RunOutput run(const Scene& scene, const RunRequest& request) {
-  return model_of(scene).states.size() == 2 ? run_states<2>(scene, request)
-                                            : run_states<4>(scene, request);
-}
-
-SectionResult section(const Scene& scene, const SectionRequest& request) {
-  return model_of(scene).states.size() == 2 ? section_states<2>(scene, request)
-                                            : section_states<4>(scene, request);
-}
-
-PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request) {
-  return model_of(scene).states.size() == 2 ? periodic_states<2>(scene, request)
-                                            : periodic_states<4>(scene, request);
-}
-
-ContinuationJobResult continuation(const Scene& scene, const ContinuationJob& job) {
-  return model_of(scene).states.size() == 2 ? continuation_states<2>(scene, job)
-                                            : continuation_states<4>(scene, job);
-}
-
-// The schema: common keys (no closed-form flow: `exact` is not offered), the
-// accumulation tolerance, the parameters, the initial state.
 void build_schema(RuntimeOscillator& oscillator, const CompiledModel& model) {
   SceneSchema& schema = oscillator.schema;
   schema.oscillator = oscillator.name;
@@ -205,7 +136,7 @@ void register_model_scene(std::string_view name_or_path) {
   auto oscillator = std::make_unique<RuntimeOscillator>();
   oscillator->name = name;
   build_schema(*oscillator, *model);
-  oscillator->entry = {&oscillator->schema, &run, &section, &periodic_orbit, &continuation};
+  oscillator->entry = {&oscillator->schema};
   oscillator->data = model;
   register_runtime_oscillator(std::move(oscillator));
 }

@@ -1,19 +1,13 @@
-// The pendulum's scene schema and runner.
-#include <cmath>
-#include <cstdint>
-#include <numbers>
-#include <optional>
+// The pendulum's scene schema, its parameters read from a scene, and what its
+// bindings (pendulum_walls_binding.hpp) do out of line.
+#include <impactlab/api/bindings/pendulum_walls_binding.hpp>
 
-#include <impactlab/analysis/run_continuation.hpp>
-#include <impactlab/analysis/run_periodic.hpp>
-#include <impactlab/analysis/run_section.hpp>
-#include <impactlab/api/bindings/pendulum_walls_parameters.hpp>
-#include <impactlab/api/bindings/rigid_pendulum_binding.hpp>
-#include <impactlab/api/event_tap.hpp>
-#include <impactlab/api/oscillator_registry.hpp>
-#include <impactlab/api/run_system.hpp>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
 #include <impactlab/io/bad_input.hpp>
-#include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
+#include <impactlab/oscillators/pendulum_walls/sliding_impact.hpp>
 
 namespace impactlab {
 
@@ -64,7 +58,21 @@ const SceneSchema& schema() {
   return instance;
 }
 
-std::string_view mode_name(PendulumMode mode) {
+double median(std::vector<double> values) {
+  if (values.empty()) return NAN;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+}  // namespace
+
+const SceneSchema& pendulum_walls_schema() {
+  static const SceneSchema instance = make_schema();
+  return instance;
+}
+
+std::string_view pendulum_mode_name(PendulumMode mode) {
   switch (mode) {
     case PendulumMode::free: return "free";
     case PendulumMode::contact_right: return "contact_right";
@@ -73,136 +81,86 @@ std::string_view mode_name(PendulumMode mode) {
   return "unknown";
 }
 
-template <class System>
-typename System::State initial_state(const Scene& scene, const System& system) {
+std::string_view rigid_pendulum_mode_name(RigidPendulumWalls::Mode mode) {
+  switch (mode) {
+    case RigidPendulumWalls::Mode::free: return "free";
+    case RigidPendulumWalls::Mode::slide_right_pos: return "slide_right_pos";
+    case RigidPendulumWalls::Mode::slide_right_neg: return "slide_right_neg";
+    case RigidPendulumWalls::Mode::slide_left_pos: return "slide_left_pos";
+    case RigidPendulumWalls::Mode::slide_left_neg: return "slide_left_neg";
+    case RigidPendulumWalls::Mode::stick_right: return "stick_right";
+    case RigidPendulumWalls::Mode::stick_left: return "stick_left";
+  }
+  return "unknown";
+}
+
+void PendulumRunTally::on_event(const EventRecord& event) {
+  if (event.kind == EventKind::contact_end) friction_work_ = event.friction_work;
+  if (event.kind == EventKind::contact_start && previous_ == EventKind::impact) ++sliding_impacts_;
+  previous_ = event.kind;
+}
+
+void PendulumRunTally::add_to(RunOutput& output) const {
+  const PendulumWallsParameters& p = parameters_;
+  output.derived = {
+      {"theta0_rad", wall_angle_},
+      {"mu_tan_theta0", p.mu * std::tan(wall_angle_)},
+      {"forcing_period_s", 2.0 * std::numbers::pi / p.omega},
+      {"friction_work_J", friction_work_},
+  };
+  if (paper_model_) {
+    output.derived["sliding_impacts"] = sliding_impacts_;
+    output.derived["slip_end_velocity_m_per_s"] = slip_end_velocity(p.V0, p.omega, p.g);
+  }
+}
+
+void RigidPendulumRunTally::on_event(const EventRecord& event) {
+  if (event.kind == EventKind::contact_end) friction_work_ = event.friction_work;
+  if (event.kind == EventKind::impact && std::fabs(event.tangential_velocity) > 1e-9)
+    ratios_.push_back(event.tangential_velocity_after / event.tangential_velocity);
+}
+
+void RigidPendulumRunTally::add_to(RunOutput& output) const {
+  const auto [lowest, highest] = std::minmax_element(ratios_.begin(), ratios_.end());
+  output.derived = {
+      {"theta0_rad", wall_angle_},
+      {"ball_inertia_kg_m2", ball_inertia_},
+      {"spin", spin_free_ ? "free" : "locked"},
+      {"forcing_period_s", forcing_period_},
+      {"friction_work_J", friction_work_},
+      {"tangential_ratio_impacts", ratios_.size()},
+      {"tangential_ratio_median", median(ratios_)},
+      {"tangential_ratio_min", ratios_.empty() ? NAN : *lowest},
+      {"tangential_ratio_max", ratios_.empty() ? NAN : *highest},
+      {"emergent_e_t_median", -median(ratios_)},
+  };
+}
+
+RigidPendulumWalls RigidPendulumBinding::make_system(const Scene& scene) {
+  RigidPendulumParameters rp;
+  rp.pendulum = pendulum_walls_parameters(scene);
+  const PendulumWallsParameters& p = rp.pendulum;
+  rp.radius = scene.number("radius");
+  rp.spin_free = scene.text("spin") == "free";
+  if (!(rp.radius < p.b))
+    throw BadInput("radius", to_text(rp.radius), "the ball must fit between the walls (radius < b)");
+  if (rp.spin_free && !(rp.radius > 0.0))
+    throw BadInput("spin", "free", "a spinning ball needs radius > 0");
+  return RigidPendulumWalls(rp);
+}
+
+// the ball starts without spin of its own: with a free bearing its absolute
+// rate φ̇ is 0, locked it turns with the rod
+RigidPendulumWalls::State RigidPendulumBinding::initial_state(const Scene& scene,
+                                                              const RigidPendulumWalls& system) {
   const double theta = scene.number("initial.theta");
   if (std::fabs(theta) > system.wall_angle())
     throw BadInput("initial.theta", to_text(theta),
-                   "the bob would start inside a wall (|theta| > asin(b/l) = " +
+                   "the ball would start inside a wall (|theta| > asin((b - radius)/l) = " +
                        to_text(system.wall_angle()) + ")");
-  typename System::State x0{};
-  x0[0] = theta;
-  x0[1] = scene.number("initial.theta_dot");
-  return x0;
+  const double theta_dot = scene.number("initial.theta_dot");
+  return {theta, theta_dot, theta, system.spin_free() ? 0.0 : theta_dot, 0.0};
 }
-
-// The rigid-body model runs through its own scene code and has no section
-// hook yet.
-void reject_rigid_analysis(const Scene& scene) {
-  if (scene.text("model") == "rigid")
-    throw BadInput("model", "rigid",
-                   "sections, sweeps and periodic orbits take newton or paper in this version");
-}
-
-template <class System>
-SectionResult section_model(const Scene& scene, const SectionRequest& request) {
-  const System system(pendulum_walls_parameters(scene));
-  const double theta0 = system.wall_angle();
-  // a continued state beyond a moved wall, or resting on a wall, starts on
-  // the wall at rest in free flight (the event at t0 decides contact again);
-  // the friction work (and Model P's pending release rate) restart from zero
-  // at each parameter value
-  auto admissible = [theta0](typename System::State& x, PendulumMode& mode) {
-    if (mode != PendulumMode::free) {
-      x[0] = mode == PendulumMode::contact_right ? theta0 : -theta0;
-      x[1] = 0.0;
-    }
-    if (std::fabs(x[0]) > theta0) x[0] = std::copysign(theta0, x[0]);
-    for (std::size_t i = 2; i < x.size(); ++i) x[i] = 0.0;
-    mode = PendulumMode::free;
-  };
-  // a continued run does not start from the scene's initial state (which a
-  // swept b may have put inside a wall)
-  const typename System::State x0 =
-      request.start ? typename System::State{} : initial_state(scene, system);
-  return run_section(system, x0, PendulumMode::free, scene, request, system.parameters().omega,
-                     admissible);
-}
-
-SectionResult section(const Scene& scene, const SectionRequest& request) {
-  reject_rigid_analysis(scene);
-  if (scene.text("model") == "paper") return section_model<PaperPendulumWalls>(scene, request);
-  return section_model<PendulumWalls>(scene, request);
-}
-
-PeriodicResult periodic_orbit(const Scene& scene, const PeriodicRequest& request) {
-  reject_rigid_analysis(scene);
-  if (scene.text("model") == "paper") {
-    const PaperPendulumWalls system(pendulum_walls_parameters(scene));
-    return run_periodic(system, initial_state(scene, system), PendulumMode::free, scene, request,
-                        system.parameters().omega);
-  }
-  const PendulumWalls system(pendulum_walls_parameters(scene));
-  return run_periodic(system, initial_state(scene, system), PendulumMode::free, scene, request,
-                      system.parameters().omega);
-}
-
-template <class System>
-ContinuationJobResult continuation_model(const Scene& scene, const ContinuationJob& job) {
-  const System system(pendulum_walls_parameters(scene));
-  const typename System::State x0 =
-      job.has_start ? typename System::State{} : initial_state(scene, system);
-  auto system_at = [](const Scene& at) { return System(pendulum_walls_parameters(at)); };
-  // the pivot's peak acceleration V0·ω reaches g: below it the bob cannot be
-  // held on a wall, so no contact phase can exist
-  const std::vector<SceneBoundary> boundaries = {
-      {"contact_boundary", "V0*omega = g: below it no contact phase can exist",
-       [](const Scene& at) { return at.number("V0") * at.number("omega") - at.number("g"); }}};
-  return run_continuation<System>(system_at, PendulumMode::free, x0, scene, job, boundaries);
-}
-
-ContinuationJobResult continuation(const Scene& scene, const ContinuationJob& job) {
-  reject_rigid_analysis(scene);
-  if (scene.text("model") == "paper") return continuation_model<PaperPendulumWalls>(scene, job);
-  return continuation_model<PendulumWalls>(scene, job);
-}
-
-template <PendulumModel model>
-RunOutput run_model(const Scene& scene, const RunRequest& request) {
-  using System = BasicPendulumWalls<model>;
-  const System system(pendulum_walls_parameters(scene));
-  const PendulumWallsParameters& p = system.parameters();
-  const typename System::State x0 = initial_state(scene, system);
-  const double period = 2.0 * std::numbers::pi / p.omega;
-
-  // the derived quantities, tallied as the events pass (kept or streamed)
-  double friction_work = 0.0;
-  std::uint64_t sliding_impacts = 0;
-  std::optional<EventKind> previous;
-  EventTap tally(
-      [&](const EventRecord& event) {
-        if (event.kind == EventKind::contact_end) friction_work = event.friction_work;
-        // a sliding impact: a contact phase that starts at an impact, not at
-        // the accumulation point of a chatter
-        if (event.kind == EventKind::contact_start && previous == EventKind::impact)
-          ++sliding_impacts;
-        previous = event.kind;
-      },
-      request.event_sink);
-  RunRequest tallied = request;
-  tallied.event_sink = &tally;
-  RunOutput output = run_system(system, x0, PendulumMode::free, scene, tallied, period, mode_name);
-  output.derived = {
-      {"theta0_rad", system.wall_angle()},
-      {"mu_tan_theta0", p.mu * std::tan(system.wall_angle())},
-      {"forcing_period_s", period},
-      {"friction_work_J", friction_work},
-  };
-  if constexpr (System::is_paper_model) {
-    output.derived["sliding_impacts"] = sliding_impacts;
-    output.derived["slip_end_velocity_m_per_s"] = slip_end_velocity(p.V0, p.omega, p.g);
-  }
-  return output;
-}
-
-RunOutput run(const Scene& scene, const RunRequest& request) {
-  const std::string& model = scene.text("model");
-  if (model == "rigid") return run_rigid_pendulum(scene, request);
-  if (model == "paper") return run_model<PendulumModel::paper>(scene, request);
-  return run_model<PendulumModel::newton>(scene, request);
-}
-
-}  // namespace
 
 PendulumWallsParameters pendulum_walls_parameters(const Scene& scene) {
   if (scene.text("integrator.method") == "exact")
@@ -223,11 +181,6 @@ PendulumWallsParameters pendulum_walls_parameters(const Scene& scene) {
   p.accumulation = accumulation_tolerance(scene, 1.0 / p.omega, std::asin(p.b / p.l),
                                           std::sqrt(p.l * p.l - p.b * p.b));
   return p;
-}
-
-const OscillatorEntry& pendulum_walls_entry() {
-  static const OscillatorEntry entry{&schema(), &run, &section, &periodic_orbit, &continuation};
-  return entry;
 }
 
 }  // namespace impactlab

@@ -28,6 +28,12 @@
 #include <impactlab/io/scene.hpp>
 #include "two_stop_oscillator.hpp"
 
+#include <impactlab/analysis/analysis_flows.hpp>
+
+// the flows the analyses below run for the oscillator: the event loop bound
+// to every stepper, compiled here once (analysis/analysis_flows.hpp)
+IMPACTLAB_TANGENT_FLOW_ENGINES(two_stop::TwoStopOscillator);
+
 namespace {
 
 using impactlab::BadInput;

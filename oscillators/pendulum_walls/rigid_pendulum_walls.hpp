@@ -85,6 +85,8 @@ class RigidPendulumWalls {
   [[nodiscard]] double wall_angle() const { return theta0_; }
   [[nodiscard]] double ball_inertia() const { return ball_inertia_; }
   [[nodiscard]] bool spin_free() const { return spin_free_; }
+  // the pendulum's own parameters (m, l, b, d, g, V0, ω, e_n, μ)
+  [[nodiscard]] const PendulumWallsParameters& parameters() const { return p_; }
 
   // effective gravity in the pivot's frame (m/s²), its rate (m/s³), the
   // pivot's velocity (m/s) and acceleration (m/s²) along the wall; like the

@@ -8,8 +8,10 @@ template OdeintFehlberg78<std::array<double, 2>>::OdeintFehlberg78(const Stepper
 template OdeintFehlberg78<std::array<double, 3>>::OdeintFehlberg78(const StepperSettings&);
 template OdeintFehlberg78<std::array<double, 4>>::OdeintFehlberg78(const StepperSettings&);
 template OdeintFehlberg78<std::array<double, 5>>::OdeintFehlberg78(const StepperSettings&);
-// the variational states (analysis/variational.hpp): a 2- or 3-component state and Φ (2 × 2)
+// the variational states (analysis/variational.hpp): a 2- or 3-component state and Φ (2 × 2),
+// a four-state model file's state and Φ (4 × 4)
 template OdeintFehlberg78<std::array<double, 6>>::OdeintFehlberg78(const StepperSettings&);
 template OdeintFehlberg78<std::array<double, 7>>::OdeintFehlberg78(const StepperSettings&);
+template OdeintFehlberg78<std::array<double, 20>>::OdeintFehlberg78(const StepperSettings&);
 
 }  // namespace impactlab

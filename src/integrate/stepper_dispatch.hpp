@@ -3,7 +3,6 @@
 // run time.
 #pragma once
 
-#include <array>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -14,20 +13,11 @@
 #include <impactlab/integrate/odeint_bulirsch_stoer.hpp>
 #include <impactlab/integrate/odeint_dopri5.hpp>
 #include <impactlab/integrate/odeint_fehlberg78.hpp>
+#include <impactlab/integrate/stepper_names.hpp>
 #include <impactlab/integrate/stepper_settings.hpp>
 #include <impactlab/integrate/taylor_stepper.hpp>
 
 namespace impactlab {
-
-// every integrator.method value, in the order the docs list them
-inline constexpr std::array<std::string_view, 6> stepper_names = {
-    "dopri5", "rkf78", "bulirsch_stoer", "rk8pd", "taylor", "exact"};
-
-inline bool is_stepper_name(std::string_view name) {
-  for (auto known : stepper_names)
-    if (known == name) return true;
-  return false;
-}
 
 // Calls `body(stepper)` with a freshly constructed stepper of the named method
 // for `System`, and returns what it returns. `exact` needs HasExactFlow,

@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/integrate/stepper_names.hpp>
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/builtin_scenes.hpp>
 

@@ -1,0 +1,5 @@
+// The flows of a model file's systems of three or four states, for every analysis (analysis/analysis_flows.hpp).
+#include <impactlab/analysis/analysis_flows.hpp>
+#include <impactlab/oscillators/model_file/model_system.hpp>
+
+IMPACTLAB_TANGENT_FLOW_ENGINES(impactlab::ModelSystem<4>);

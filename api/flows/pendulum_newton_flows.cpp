@@ -1,0 +1,6 @@
+// The flows of the pendulum's Model N, for every analysis (analysis/analysis_flows.hpp).
+#include <impactlab/analysis/analysis_flows.hpp>
+#include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
+
+IMPACTLAB_TANGENT_FLOW_ENGINES(impactlab::PendulumWalls);
+IMPACTLAB_IMPACT_SECTION_FLOW_ENGINES(impactlab::PendulumWalls);

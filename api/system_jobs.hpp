@@ -1,0 +1,31 @@
+// The analyses run on a scene's system, whatever its oscillator: each visits
+// the scene's binding (api/visit_scene.hpp) and runs the generic analysis of
+// analysis/ on the system it builds. One translation unit per analysis
+// (api/<analysis>_of_scene.cpp), each compiled once for every binding.
+// api/scene_jobs.hpp adds the checks of the jobs' options on top.
+#pragma once
+
+#include <impactlab/analysis/continuation.hpp>
+#include <impactlab/analysis/periodic.hpp>
+#include <impactlab/analysis/section.hpp>
+#include <impactlab/io/run_output.hpp>
+#include <impactlab/io/scene.hpp>
+
+namespace impactlab {
+
+// One event-driven run (events, samples, counters, the binding's derived
+// quantities).
+RunOutput run_of_scene(const Scene& scene, const RunRequest& request);
+
+// The orbit on a Poincaré section, after a transient (analysis/run_section.hpp).
+SectionResult section_of_scene(const Scene& scene, const SectionRequest& request);
+
+// Newton shooting for a period-n orbit and its Floquet multipliers
+// (analysis/run_periodic.hpp).
+PeriodicResult periodic_orbit_of_scene(const Scene& scene, const PeriodicRequest& request);
+
+// Pseudo-arclength continuation of a period-n orbit, its bifurcations and
+// grazing points (analysis/run_continuation.hpp).
+ContinuationJobResult continuation_of_scene(const Scene& scene, const ContinuationJob& job);
+
+}  // namespace impactlab
