@@ -19,6 +19,7 @@
 
 #include <impactlab/analysis/continuation.hpp>
 #include <impactlab/analysis/curve_continuation.hpp>
+#include <impactlab/analysis/decorated_system.hpp>
 #include <impactlab/analysis/flow_setup.hpp>
 #include <impactlab/analysis/saltation.hpp>
 #include <impactlab/analysis/scene_boundary.hpp>
@@ -31,16 +32,6 @@
 
 namespace impactlab {
 
-// What the wrapper saw of the crossings during one run.
-struct CrossingTrace {
-  struct Crossing {
-    double t;      // s
-    int witness;
-    double speed;  // |witness rate| just before (the normal approach speed)
-  };
-  std::vector<Crossing> crossings;
-};
-
 // The forcing frequency of a system (rad/s): parameters().omega of the
 // built-in oscillators, forcing_frequency() of a model file's.
 template <class System>
@@ -51,102 +42,17 @@ double forcing_omega_of(const System& system) {
     return system.parameters().omega;
 }
 
-template <class Base>
-constexpr bool affine_flow_of() {
-  if constexpr (requires { Base::affine_flow; }) return Base::affine_flow;
-  return false;
+// The system with witness `window.witness` suppressed in flight mode between
+// the absolute times window.from and window.to, noting every crossing in
+// flight mode into `trace` (where given): the grazing extended system.
+template <HasJacobian System>
+DecoratedSystem<System> suppressing_contacts(const System& system,
+                                             typename System::Mode flight_mode,
+                                             const ContactWindow& window, CrossingTrace* trace) {
+  DecoratedSystem<System> decorated(system);
+  decorated.with_suppressed_contacts(flight_mode, window, trace);
+  return decorated;
 }
-
-// A system whose witness `window.witness` does not fire in flight mode between
-// the absolute times window.from and window.to (it reads +1 there), and that
-// notes every crossing it is told of.
-template <HasJacobian Base>
-class SuppressedContacts {
- public:
-  using State = typename Base::State;
-  using Mode = typename Base::Mode;
-  static constexpr std::size_t max_witnesses = Base::max_witnesses;
-  static constexpr bool affine_flow = affine_flow_of<Base>();
-  static constexpr std::size_t tangent_dimension = tangent_dimension_of<Base>;
-
-  SuppressedContacts(const Base& base, Mode flight_mode, ContactWindow window, CrossingTrace* trace)
-      : base_(base), flight_mode_(flight_mode), window_(window), trace_(trace) {}
-
-  [[nodiscard]] double max_step() const { return base_.max_step(); }
-  // over the base's number types (a series type runs through it where it
-  // runs through the base)
-  template <class Vector, class Number>
-    requires requires(const Base& base, Mode mode, const Vector& x, Vector& dxdt,
-                      const Number& t) { base.rhs(mode, x, dxdt, t); }
-  void rhs(Mode mode, const Vector& x, Vector& dxdt, const Number& t) const {
-    base_.rhs(mode, x, dxdt, t);
-  }
-  [[nodiscard]] std::size_t witness_count(Mode mode) const { return base_.witness_count(mode); }
-  [[nodiscard]] TriggerDirection trigger_direction(Mode mode, std::size_t k) const {
-    return base_.trigger_direction(mode, k);
-  }
-  [[nodiscard]] bool suppressed(Mode mode, std::size_t k, double t) const {
-    return mode == flight_mode_ && static_cast<int>(k) == window_.witness && t >= window_.from &&
-           t <= window_.to;
-  }
-  [[nodiscard]] WitnessSample witness(Mode mode, std::size_t k, const State& x, double t) const {
-    if (suppressed(mode, k, t)) return {1.0, 0.0};
-    return base_.witness(mode, k, x, t);
-  }
-  // Over a series type: the window's ends end the Taylor stepper's steps
-  // (witness_switch_after), so each step lies inside the window or outside
-  // it, and its start time decides (from <= start < to).
-  template <class Vector, class Number>
-    requires(!std::same_as<Number, double>) &&
-            requires(const Base& base, Mode mode, std::size_t k, const Vector& x,
-                     const Number& t) { base.witness(mode, k, x, t); }
-  [[nodiscard]] auto witness(Mode mode, std::size_t k, const Vector& x, const Number& t) const
-      -> BasicWitnessSample<Number> {
-    const double start = start_value(t);
-    if (suppressed(mode, k, start) && start != window_.to) return {Number(1.0), Number(0.0)};
-    return base_.witness(mode, k, x, t);
-  }
-  // the first end of the window after t (s), or +∞
-  [[nodiscard]] double witness_switch_after(double t) const {
-    if (window_.witness < 0) return std::numeric_limits<double>::infinity();
-    if (t < window_.from) return window_.from;
-    if (t < window_.to) return window_.to;
-    return std::numeric_limits<double>::infinity();
-  }
-  Transition<State, Mode> on_event(Mode mode, std::size_t k, CrossingKind crossing, const State& x,
-                                   double t, EventLog& log) const {
-    if (trace_ && crossing == CrossingKind::crossing && mode == flight_mode_)
-      trace_->crossings.push_back(
-          {t, static_cast<int>(k), std::fabs(base_.witness(mode, k, x, t).rate)});
-    return base_.on_event(mode, k, crossing, x, t, log);
-  }
-  void exact_flow(Mode mode, const State& x0, double t0, double t, State& x) const
-    requires HasExactFlow<Base>
-  {
-    base_.exact_flow(mode, x0, t0, t, x);
-  }
-  void jacobian(Mode mode, const State& x, double t, TangentMatrixOf<tangent_dimension>& j) const {
-    base_.jacobian(mode, x, t, j);
-  }
-  [[nodiscard]] TangentVectorOf<tangent_dimension> witness_gradient(Mode mode, std::size_t k,
-                                                                    const State& x,
-                                                                    double t) const {
-    if (suppressed(mode, k, t)) return {};
-    return base_.witness_gradient(mode, k, x, t);
-  }
-  [[nodiscard]] ResetJacobianOf<tangent_dimension> reset_jacobian(
-      Mode mode, std::size_t k, CrossingKind crossing, const State& x, double t,
-      const Transition<State, Mode>& after) const {
-    return base_.reset_jacobian(mode, k, crossing, x, t, after);
-  }
-  [[nodiscard]] bool pinned(Mode mode) const { return base_.pinned(mode); }
-
- private:
-  Base base_;
-  Mode flight_mode_;
-  ContactWindow window_;
-  CrossingTrace* trace_;
-};
 
 // Samples of the wall gaps in flight, for the lowest flight gap.
 template <class Base>
@@ -236,7 +142,7 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
                                         const FlowSetup& setup, double phase, int period,
                                         double forcing_omega_at_start) {
   using Mode = typename System::Mode;
-  using Wrapped = SuppressedContacts<System>;
+  using Wrapped = DecoratedSystem<System>;
   using Tangent = Variational<Wrapped>;
   constexpr std::size_t n = tangent_dimension_of<System>;  // the OrbitPoint's components
   constexpr int samples_per_period = 96;
@@ -264,7 +170,7 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
     ContactWindow window = suppressed;
     window.from += t0;
     window.to += t0;
-    const Wrapped wrapped(system, shared->flight_mode, window, &trace);
+    const Wrapped wrapped = suppressing_contacts(system, shared->flight_mode, window, &trace);
     const Tangent tangent(wrapped);
     typename System::State x0{};
     std::copy_n(x.begin(), n, x0.begin());
@@ -306,7 +212,7 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
     ContactWindow window = suppressed;
     window.from += t0;
     window.to += t0;
-    const Wrapped wrapped(system, shared->flight_mode, window, nullptr);
+    const Wrapped wrapped = suppressing_contacts(system, shared->flight_mode, window, nullptr);
     typename System::State x0{};
     std::copy_n(x.begin(), n, x0.begin());
     EventLog log(false);
@@ -349,98 +255,19 @@ ContinuationProblem section_map_problem(MakeSystem make_system, typename System:
 
 // --- the impact section: the map from one impact with a wall to a later one ---
 
-// What StopAtWallImpact saw of the impacts with its wall during one run.
-struct WallImpactTrace {
-  std::vector<double> times;     // every impact with the wall (s), in order
-  bool stopped = false;          // the run stopped at the target impact
-  double stop_time = 0.0;        // s
-  std::size_t stop_witness = 0;  // the witness whose crossing it was
-  std::size_t first_record = 0, stop_record = 0;  // log indices of the first and the target impact
-};
-
-// A system that stops the run just before the reset of its `target`-th impact
-// with wall `wall` (counted from 0), and notes the times of those impacts.
-// A run that starts on the wall, moving into it, has that impact as its 0th.
-// The log must keep its records (the wall of an impact is read from them).
-template <HasJacobian Base>
-class StopAtWallImpact {
- public:
-  using State = typename Base::State;
-  using Mode = typename Base::Mode;
-  static constexpr std::size_t max_witnesses = Base::max_witnesses;
-  static constexpr bool affine_flow = affine_flow_of<Base>();
-
-  StopAtWallImpact(const Base& base, int wall, int target, WallImpactTrace* trace)
-      : base_(base), wall_(wall), target_(target), trace_(trace) {}
-
-  [[nodiscard]] double max_step() const { return base_.max_step(); }
-  // over the base's number types, as SuppressedContacts
-  template <class Vector, class Number>
-    requires requires(const Base& base, Mode mode, const Vector& x, Vector& dxdt,
-                      const Number& t) { base.rhs(mode, x, dxdt, t); }
-  void rhs(Mode mode, const Vector& x, Vector& dxdt, const Number& t) const {
-    base_.rhs(mode, x, dxdt, t);
-  }
-  [[nodiscard]] std::size_t witness_count(Mode mode) const { return base_.witness_count(mode); }
-  [[nodiscard]] TriggerDirection trigger_direction(Mode mode, std::size_t k) const {
-    return base_.trigger_direction(mode, k);
-  }
-  template <class Vector, class Number>
-    requires requires(const Base& base, Mode mode, std::size_t k, const Vector& x,
-                      const Number& t) { base.witness(mode, k, x, t); }
-  [[nodiscard]] auto witness(Mode mode, std::size_t k, const Vector& x, const Number& t) const {
-    return base_.witness(mode, k, x, t);
-  }
-  [[nodiscard]] double witness_switch_after(double t) const
-    requires requires(const Base& base, double time) { base.witness_switch_after(time); }
-  {
-    return base_.witness_switch_after(t);
-  }
-  Transition<State, Mode> on_event(Mode mode, std::size_t k, CrossingKind crossing, const State& x,
-                                   double t, EventLog& log) const {
-    const std::size_t before = log.records().size();
-    auto after = base_.on_event(mode, k, crossing, x, t, log);
-    const auto& records = log.records();
-    for (std::size_t j = before; j < records.size(); ++j) {
-      if (records[j].kind != EventKind::impact || records[j].wall != wall_) continue;
-      const int index = static_cast<int>(trace_->times.size());
-      trace_->times.push_back(t);
-      if (index == 0) trace_->first_record = j;
-      if (index == target_) {
-        trace_->stopped = true;
-        trace_->stop_time = t;
-        trace_->stop_witness = k;
-        trace_->stop_record = j;
-        return {x, mode, t, true};  // the state just before the impact
-      }
-      break;
-    }
-    return after;
-  }
-  void exact_flow(Mode mode, const State& x0, double t0, double t, State& x) const
-    requires HasExactFlow<Base>
-  {
-    base_.exact_flow(mode, x0, t0, t, x);
-  }
-  void jacobian(Mode mode, const State& x, double t, TangentMatrix& j) const {
-    base_.jacobian(mode, x, t, j);
-  }
-  [[nodiscard]] TangentVector witness_gradient(Mode mode, std::size_t k, const State& x,
-                                               double t) const {
-    return base_.witness_gradient(mode, k, x, t);
-  }
-  [[nodiscard]] ResetJacobian reset_jacobian(Mode mode, std::size_t k, CrossingKind crossing,
-                                             const State& x, double t,
-                                             const Transition<State, Mode>& after) const {
-    return base_.reset_jacobian(mode, k, crossing, x, t, after);
-  }
-  [[nodiscard]] bool pinned(Mode mode) const { return base_.pinned(mode); }
-
- private:
-  Base base_;
-  int wall_, target_;
-  WallImpactTrace* trace_;
-};
+// The system that stops the run just before the reset of its `target`-th
+// impact with wall `wall` (counted from 0), noting the times of those
+// impacts; no contact suppressed.
+template <HasJacobian System>
+DecoratedSystem<System> stopping_at_wall_impact(const System& system,
+                                                typename System::Mode flight_mode, int wall,
+                                                int target, WallImpactTrace& trace,
+                                                const ContactWindow& window = {},
+                                                CrossingTrace* crossings = nullptr) {
+  DecoratedSystem<System> decorated = suppressing_contacts(system, flight_mode, window, crossings);
+  decorated.with_stop_at_wall_impact(wall, target, trace);
+  return decorated;
+}
 
 // The state on witness k's zero at time t with rate qdot: q by Newton on the
 // gap from q_guess; none where it does not converge.
@@ -479,10 +306,9 @@ std::optional<WallImpact> first_wall_impact(const System& system,
                                             typename System::Mode mode, double t0, double t_end,
                                             int wall, const FlowSetup& setup) {
   WallImpactTrace impacts;
-  const SuppressedContacts<System> plain(system, mode, ContactWindow{}, nullptr);
-  const StopAtWallImpact<SuppressedContacts<System>> stopping(plain, wall, 0, &impacts);
+  const DecoratedSystem<System> stopping = stopping_at_wall_impact(system, mode, wall, 0, impacts);
   EventLog log(true);
-  const auto run = with_flow<StopAtWallImpact<SuppressedContacts<System>>>(
+  const auto run = with_flow<DecoratedSystem<System>>(
       setup.method, stepper_settings(stopping, setup), [&](auto& stepper) {
         return simulate(stopping, stepper, x, mode, t0, t_end, loop_options(setup), log);
       });
@@ -512,9 +338,8 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
                                        double q_guess, int period, int wall_impacts,
                                        double forcing_omega_at_start) {
   using Mode = typename System::Mode;
-  using Suppressed = SuppressedContacts<System>;
-  using Stopping = StopAtWallImpact<Suppressed>;
-  using Tangent = Variational<Stopping>;
+  using Decorated = DecoratedSystem<System>;
+  using Tangent = Variational<Decorated>;
   constexpr int samples_per_period = 96;
   struct Shared {
     MakeSystem make_system;
@@ -548,8 +373,9 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
     ContactWindow window = suppressed;
     window.from += t0;
     window.to += t0;
-    const Suppressed wrapped(system, shared->flight_mode, window, &trace);
-    const Stopping stopping(wrapped, shared->wall, shared->wall_impacts, &impacts);
+    const Decorated stopping =
+        stopping_at_wall_impact(system, shared->flight_mode, shared->wall, shared->wall_impacts,
+                                impacts, window, &trace);
     const Tangent tangent(stopping);
     EventLog log(true);
     const int sample_count = detailed ? samples_per_period * shared->period - 1 : 0;
@@ -625,9 +451,9 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
     ContactWindow window = suppressed;
     window.from += t0;
     window.to += t0;
-    const Suppressed wrapped(system, shared->flight_mode, window, nullptr);
+    const Decorated wrapped = suppressing_contacts(system, shared->flight_mode, window, nullptr);
     EventLog log(false);
-    const auto run = with_flow<Suppressed>(
+    const auto run = with_flow<Decorated>(
         shared->setup.method, stepper_settings(wrapped, shared->setup), [&](auto& stepper) {
           return simulate(wrapped, stepper, *start, shared->flight_mode, t0, t0 + t,
                           loop_options(shared->setup), log);
@@ -661,12 +487,11 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
     double shift = std::fmod(phase - x[0], 2.0 * std::numbers::pi);
     if (shift <= 0.0) shift += 2.0 * std::numbers::pi;
     const double reach = 0.1 * shared->period * 2.0 * std::numbers::pi / omega;
-    const Suppressed virtual_orbit(system, shared->flight_mode,
-                                   ContactWindow{static_cast<int>(shared->witness), t0 - reach,
-                                                 t0 + reach},
-                                   nullptr);
+    const Decorated virtual_orbit = suppressing_contacts(
+        system, shared->flight_mode,
+        ContactWindow{static_cast<int>(shared->witness), t0 - reach, t0 + reach}, nullptr);
     EventLog log(false);
-    const auto run = with_flow<Suppressed>(
+    const auto run = with_flow<Decorated>(
         shared->setup.method, stepper_settings(virtual_orbit, shared->setup), [&](auto& stepper) {
           return simulate(virtual_orbit, stepper, *start, shared->flight_mode, t0,
                           t0 + shift / omega, loop_options(shared->setup), log);
@@ -690,11 +515,10 @@ int wall_impacts_per_orbit(const System& system, typename System::Mode flight_mo
   const auto start = state_on_wall(system, flight_mode, witness, t0, x[1], q_guess);
   if (!start) return 0;
   WallImpactTrace impacts;
-  const SuppressedContacts<System> plain(system, flight_mode, ContactWindow{}, nullptr);
-  const StopAtWallImpact<SuppressedContacts<System>> counting(
-      plain, wall, std::numeric_limits<int>::max(), &impacts);
+  const DecoratedSystem<System> counting = stopping_at_wall_impact(
+      system, flight_mode, wall, std::numeric_limits<int>::max(), impacts);
   EventLog log(true);
-  with_flow<StopAtWallImpact<SuppressedContacts<System>>>(
+  with_flow<DecoratedSystem<System>>(
       setup.method, stepper_settings(counting, setup), [&](auto& stepper) {
         return simulate(counting, stepper, *start, flight_mode, t0,
                         t0 + span + 0.5 * span / period, loop_options(setup), log);
@@ -721,10 +545,10 @@ std::optional<std::pair<std::size_t, double>> wall_witness(const System& system,
     const auto start = state_on_wall(system, flight_mode, k, t0, x[1], q_guess);
     if (!start) continue;
     WallImpactTrace impacts;
-    const SuppressedContacts<System> plain(system, flight_mode, ContactWindow{}, nullptr);
-    const StopAtWallImpact<SuppressedContacts<System>> stopping(plain, wall, 0, &impacts);
+    const DecoratedSystem<System> stopping =
+        stopping_at_wall_impact(system, flight_mode, wall, 0, impacts);
     EventLog log(true);
-    with_flow<StopAtWallImpact<SuppressedContacts<System>>>(
+    with_flow<DecoratedSystem<System>>(
         setup.method, stepper_settings(stopping, setup), [&](auto& stepper) {
           return simulate(stopping, stepper, *start, flight_mode, t0, t0 + 1e-3 / omega,
                           loop_options(setup), log);

@@ -12,7 +12,7 @@
 #include <string>
 #include <tuple>
 
-#include <impactlab/analysis/crossing_section.hpp>
+#include <impactlab/analysis/decorated_system.hpp>
 #include <impactlab/analysis/floquet.hpp>
 #include <impactlab/analysis/flow_setup.hpp>
 #include <impactlab/analysis/section.hpp>
@@ -142,14 +142,15 @@ SectionResult run_section(const System& system, const typename System::State& x0
       }
     } else if (request.section.kind != SectionKind::impact) {
       // a user-given section: the system with one more witness, in whole periods
-      const CrossingSection<System> crossing(system, request.section, collected);
+      DecoratedSystem<System> crossing(system);
+      crossing.with_crossing_section(request.section, collected);
       const std::uint64_t chunk = std::max<std::uint64_t>(request.points, 1);
       for (std::uint64_t periods = 0; !collected.full(); periods += chunk) {
         if (periods >= max_periods) {
           result.termination = "crossings_not_reached";
           break;
         }
-        const auto run = with_flow<CrossingSection<System>>(
+        const auto run = with_flow<DecoratedSystem<System>>(
             setup.method, stepper_settings(system, setup), [&](auto& crossing_stepper) {
               return simulate(crossing, crossing_stepper, x, mode, t,
                               t + static_cast<double>(chunk) * period, options, record_log);
@@ -196,8 +197,10 @@ SectionResult run_section(const System& system, const typename System::State& x0
     if (request.lyapunov) {
       if constexpr (HasJacobian<System>) {
         const int periods = std::max(1, static_cast<int>(std::lround(result.periods_recorded)));
+        // the tangent dynamics of the decorated system with nothing switched
+        // on (its base, number for number): one tangent type per oscillator
         const LyapunovResult lyapunov = largest_lyapunov_exponent(
-            system, lyapunov_setup, x_record, mode_record, result.record_start, period, periods,
+            DecoratedSystem<System>(system), lyapunov_setup, x_record, mode_record, result.record_start, period, periods,
             request.lyapunov_alignment_periods);
         result.lyapunov = lyapunov.exponent;
         if (lyapunov.termination != Termination::completed)

@@ -3,4 +3,3 @@
 #include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
 
 IMPACTLAB_TANGENT_FLOW_ENGINES(impactlab::BouncingBall);
-IMPACTLAB_IMPACT_SECTION_FLOW_ENGINES(impactlab::BouncingBall);

@@ -3,4 +3,3 @@
 #include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 
 IMPACTLAB_TANGENT_FLOW_ENGINES(impactlab::LinearImpact);
-IMPACTLAB_IMPACT_SECTION_FLOW_ENGINES(impactlab::LinearImpact);

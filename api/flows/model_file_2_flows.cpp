@@ -3,4 +3,3 @@
 #include <impactlab/oscillators/model_file/model_system.hpp>
 
 IMPACTLAB_TANGENT_FLOW_ENGINES(impactlab::ModelSystem<2>);
-IMPACTLAB_IMPACT_SECTION_FLOW_ENGINES(impactlab::ModelSystem<2>);

@@ -3,4 +3,3 @@
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 
 IMPACTLAB_TANGENT_FLOW_ENGINES(impactlab::PendulumWalls);
-IMPACTLAB_IMPACT_SECTION_FLOW_ENGINES(impactlab::PendulumWalls);
