@@ -30,8 +30,8 @@ bool has_default(const OptionSpec& spec) {
 CLI::Validator number_check(const OptionSpec& spec) {
   const bool below_unbounded = std::isinf(spec.lower), above_unbounded = std::isinf(spec.upper);
   if (below_unbounded && above_unbounded) return finite_number();
-  if (spec.lower == 0.0 && above_unbounded) return spec.lower_open ? positive_number()
-                                                                   : CLI::NonNegativeNumber;
+  if (spec.lower == 0.0 && above_unbounded && spec.lower_open) return positive_number();
+  if (spec.lower == 0.0 && above_unbounded) return CLI::NonNegativeNumber;
   return number_in(spec.lower, spec.upper);
 }
 

@@ -133,7 +133,7 @@ def _spelled(text):
 def _documented(job):
     """Appends the job's options (name, help, unit, default) to the docstring."""
     def document(function):
-        lines = ["", "Options (the scene API's table of `{}`):".format(job)]
+        lines = ["", "", "Options (the scene API's option table {!r}):".format(job)]
         for row in _OPTIONS[job].values():
             if row["front_ends"] == "cli" or row["for_tests_only"]:
                 continue
