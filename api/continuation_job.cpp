@@ -23,14 +23,14 @@ void check_whole(const std::string& name, int value) {
 
 }  // namespace
 
-ParameterRange parse_parameter_range(const std::string& text, const std::string& option) {
+KeyRange parse_parameter_range(const std::string& text, const std::string& option) {
   const auto bad = [&](const std::string& why) { return BadInput(option, text, why); };
   const auto equals = text.find('=');
   const auto colon = text.find(':', equals == std::string::npos ? 0 : equals);
   if (equals == std::string::npos || equals == 0 || colon == std::string::npos ||
       text.find(':', colon + 1) != std::string::npos)
     throw bad("expected NAME=FROM:TO");
-  ParameterRange range{text.substr(0, equals)};
+  KeyRange range{text.substr(0, equals)};
   const std::string from = text.substr(equals + 1, colon - equals - 1), to = text.substr(colon + 1);
   char* end = nullptr;
   range.from = std::strtod(from.c_str(), &end);
@@ -43,10 +43,10 @@ ParameterRange parse_parameter_range(const std::string& text, const std::string&
 }
 
 ContinuationJob continuation_job(const ContinueOptions& options) {
-  const ParameterRange range = parse_parameter_range(options.param, "param");
+  const KeyRange range = parse_parameter_range(options.param, "param");
   const bool two_parameter = !options.param2.empty();
-  const ParameterRange range2 =
-      two_parameter ? parse_parameter_range(options.param2, "param2") : ParameterRange{};
+  const KeyRange range2 =
+      two_parameter ? parse_parameter_range(options.param2, "param2") : KeyRange{};
   if (!options.curve.empty() && !two_parameter)
     throw BadInput("curve", options.curve, "needs " + mention("param2"));
   check_whole("period", options.period);

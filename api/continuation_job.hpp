@@ -29,14 +29,14 @@ struct ContinueOptions {
 };
 
 // A scene key and its range, NAME=FROM:TO.
-struct ParameterRange {
+struct KeyRange {
   std::string name;
   double from = 0.0, to = 0.0;
 };
 
 // NAME=FROM:TO, FROM and TO finite and different (the key and its range are
 // checked by continue_orbit). BadInput names `option`.
-ParameterRange parse_parameter_range(const std::string& text, const std::string& option);
+KeyRange parse_parameter_range(const std::string& text, const std::string& option);
 
 // The job the options describe. BadInput (named by the option) for a
 // malformed range or section, a value outside the option's range, fewer than

@@ -121,9 +121,9 @@ int run_continue(const ContinueCommandOptions& command_options,
   const ContinueOptions& options = command_options.job;
   const Scene scene = command_options.scene.load();
   const ContinuationJob job = continuation_job(options);
-  const ParameterRange range{job.parameter, job.from, job.to};
+  const KeyRange range{job.parameter, job.from, job.to};
   const bool two_parameter = !job.second_parameter.empty();
-  const ParameterRange range2{job.second_parameter, job.second_from, job.second_to};
+  const KeyRange range2{job.second_parameter, job.second_from, job.second_to};
   const std::string& with_sweep = command_options.with_sweep;
   if (!with_sweep.empty() && !std::filesystem::is_regular_file(with_sweep))
     throw BadInput("with_sweep", with_sweep,

@@ -4,6 +4,7 @@
 // the GIL released; its progress callback takes the GIL back now and then to
 // call the user's callback and to look for Ctrl-C, and a Python exception
 // there cancels the job and comes out of the call unchanged.
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <complex>
@@ -40,6 +41,7 @@
 #include <impactlab/integrate/stepper_dispatch.hpp>
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/builtin_scenes.hpp>
+#include <impactlab/io/message_text.hpp>
 
 namespace py = pybind11;
 using namespace impactlab;
@@ -668,6 +670,39 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
   return out;
 }
 
+// `text` with each command-line flag in it (`--period-tol`) as its Python
+// keyword (`period_tol`): parts of the library older than the option tables
+// still name options by their flags.
+std::string keywords_for_flags(std::string_view text) {
+  std::string spelled;
+  for (std::size_t k = 0; k < text.size(); ++k) {
+    const bool flag = text.substr(k, 2) == "--" && k + 2 < text.size() &&
+                      std::islower(static_cast<unsigned char>(text[k + 2])) &&
+                      (k == 0 || text[k - 1] == ' ' || text[k - 1] == '(' || text[k - 1] == '/');
+    if (!flag) {
+      spelled += text[k];
+      continue;
+    }
+    for (k += 2; k < text.size() && (std::isalnum(static_cast<unsigned char>(text[k])) ||
+                                     text[k] == '-');
+         ++k)
+      spelled += text[k] == '-' ? '_' : text[k];
+    --k;
+  }
+  return spelled;
+}
+
+// The line of a BadInput with every option it names spelled as the Python
+// keyword: the key, and the options the reason names (`param`, or as flags).
+std::string keyword_message(const BadInput& bad) {
+  const std::string what = bad.what();
+  const std::string prefix = elide_value(bad.key()) + " = " + elide_value(bad.value()) + ": ";
+  const auto keyword = [](std::string_view name) { return std::string(name); };
+  if (!what.starts_with(prefix)) return spell_options(what, keyword);
+  return keywords_for_flags(elide_value(bad.key())) + " = " + elide_value(bad.value()) + ": " +
+         keywords_for_flags(spell_options(std::string_view(what).substr(prefix.size()), keyword));
+}
+
 // A job's option table (api/job_options.hpp) as a list of dicts, one per
 // option: name, type, default (None where unset; an int for whole numbers, a
 // tuple for a list of numbers), lower, upper, lower_open, unit, help (other
@@ -757,10 +792,7 @@ PYBIND11_MODULE(_impactlab, m) {
     try {
       if (pointer) std::rethrow_exception(pointer);
     } catch (const BadInput& bad) {
-      // the options a reason names, by their Python keywords
-      const std::string message = spell_options(
-          bad.what(), [](std::string_view name) { return std::string(name); });
-      PyErr_SetString(PyExc_ValueError, message.c_str());
+      PyErr_SetString(PyExc_ValueError, keyword_message(bad).c_str());
     }
   });
 
