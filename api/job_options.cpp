@@ -13,9 +13,6 @@ namespace {
 using std::string_view;
 using Options = std::vector<OptionSpec>;
 
-constexpr double unbounded = std::numeric_limits<double>::infinity();
-constexpr double two_pi = 6.283185307179586;  // rad: the largest section phase
-
 // tables made of shared parts and a job's own options, in the CLI's order
 Options joined(std::initializer_list<Options> parts) {
   Options all;
@@ -185,6 +182,7 @@ Options basins_options() {
 }
 
 Options periodic_options() {
+  constexpr double two_pi = 6.283185307179586;  // rad: the largest section phase
   return {
       scene_argument("built-in scene name or path"),
       scene_settings("KEY=VALUE, repeatable"),
@@ -278,7 +276,8 @@ Options bench_options() {
       {.name = "repetitions", .type = OptionType::integer,
        .help = "timed repetitions per point (median; default 3, 1 with `quick`)", .lower = 1,
        .upper = 100, .front_ends = FrontEnds::cli},
-      {.name = "python", .type = OptionType::file, .help = "Python with NumPy, SciPy and matplotlib",
+      {.name = "python", .type = OptionType::file,
+       .help = "Python with NumPy, SciPy and matplotlib",
        .default_value = string_view("/usr/bin/python3"), .front_ends = FrontEnds::cli},
       quiet(),
   };
@@ -325,7 +324,8 @@ Options reproduce_options() {
        .front_ends = FrontEnds::cli, .comma_separated = true},
       {.name = "out", .type = OptionType::text, .help = "output directory",
        .default_value = string_view("notebooks_data/jin2003"), .front_ends = FrontEnds::cli},
-      {.name = "threads", .type = OptionType::integer, .help = "worker threads (default: all cores)",
+      {.name = "threads", .type = OptionType::integer,
+       .help = "worker threads (default: all cores)",
        .lower = 1, .upper = 1024, .front_ends = FrontEnds::cli},
       {.name = "quick", .type = OptionType::flag, .help = "coarse grids, for tests",
        .default_value = false, .front_ends = FrontEnds::cli},
@@ -358,19 +358,23 @@ struct JobTable {
   Options (*make)();
 };
 
-constexpr std::array<JobTable, 11> job_tables = {{
-    {"simulate", simulate_options},
-    {"poincare", poincare_options},
-    {"sweep", sweep_options},
-    {"basins", basins_options},
-    {"periodic", periodic_options},
-    {"continue", continue_options},
-    {"compare", compare_options},
-    {"bench", bench_options},
-    {"work_precision", work_precision_options},
-    {"reproduce", reproduce_options},
-    {"spectrum", spectrum_options},
-}};
+// every job with options, in the order job_names lists them
+const std::array<JobTable, 11>& job_tables() {
+  static constexpr std::array<JobTable, 11> tables = {{
+      {"simulate", simulate_options},
+      {"poincare", poincare_options},
+      {"sweep", sweep_options},
+      {"basins", basins_options},
+      {"periodic", periodic_options},
+      {"continue", continue_options},
+      {"compare", compare_options},
+      {"bench", bench_options},
+      {"work_precision", work_precision_options},
+      {"reproduce", reproduce_options},
+      {"spectrum", spectrum_options},
+  }};
+  return tables;
+}
 
 }  // namespace
 
@@ -378,18 +382,18 @@ std::span<const OptionSpec> job_options(std::string_view job) {
   // every table built once, on first use
   static const std::vector<Options> tables = [] {
     std::vector<Options> built;
-    for (const JobTable& table : job_tables) built.push_back(table.make());
+    for (const JobTable& table : job_tables()) built.push_back(table.make());
     return built;
   }();
-  for (std::size_t k = 0; k < job_tables.size(); ++k)
-    if (job_tables[k].job == job) return tables[k];
+  for (std::size_t k = 0; k < job_tables().size(); ++k)
+    if (job_tables()[k].job == job) return tables[k];
   throw BadInput("job", std::string(job), "not a job with options");
 }
 
 std::span<const std::string_view> job_names() {
   static const std::vector<std::string_view> names = [] {
     std::vector<std::string_view> listed;
-    for (const JobTable& table : job_tables) listed.push_back(table.job);
+    for (const JobTable& table : job_tables()) listed.push_back(table.job);
     return listed;
   }();
   return names;

@@ -77,8 +77,9 @@ CLI::Option* TableOptions::add(std::string_view name, double& value) {
 CLI::Option* TableOptions::add(std::string_view name, int& value) {
   const OptionSpec& spec = job_option(job_, name);
   value = static_cast<int>(number_default(spec));
-  return finish(command_.add_option(cli_name(spec), value, help(spec))->check(whole_check<int>(spec)),
-                spec);
+  return finish(
+      command_.add_option(cli_name(spec), value, help(spec))->check(whole_check<int>(spec)),
+      spec);
 }
 
 CLI::Option* TableOptions::add(std::string_view name, long& value) {

@@ -150,24 +150,30 @@ TEST(ContinueCommand, SwitchWithACurveWritesTheDoubledBranchsCurveToo) {
 TEST(ContinueCommand, BadInputExitsWithTwoAndOneLineNamingTheKey) {
   // each command line and the key its message must name ("impactlab: KEY = ...")
   const std::vector<std::pair<std::string, std::string>> bad = {
-      {"continue linear_impact --param omega=-1:2", "omega"},       // outside the key's range
-      {"continue linear_impact --param zeta2=0:1", "--param"},      // no such key
-      {"continue linear_impact --param omega=2", "--param"},        // malformed range
-      {"continue linear_impact --param omega=2:2.5 --period 0", "--period"},  // no such period
-      {"continue jin2003 --set model=paper --param omega=6:7", "oscillator"},  // no Jacobians (Model P)
-      {"continue jin2003 --set model=rigid --param omega=6:7", "model"},  // the rigid model
-      {"continue linear_impact --param omega=2:2.5 --section impact:0", "--section"},  // no one wall
-      {"continue linear_impact --param omega=2:2.5 --section impact:-1", "--param"},  // a wall never hit
-      {"continue linear_impact --param omega=2:2.5 --section q=0.1", "--section"},  // not strobe or impact
+      // outside the key's range; no such key; a malformed range; no such period
+      {"continue linear_impact --param omega=-1:2", "omega"},
+      {"continue linear_impact --param zeta2=0:1", "--param"},
+      {"continue linear_impact --param omega=2", "--param"},
+      {"continue linear_impact --param omega=2:2.5 --period 0", "--period"},
+      // no Jacobians (Model P); the rigid model
+      {"continue jin2003 --set model=paper --param omega=6:7", "oscillator"},
+      {"continue jin2003 --set model=rigid --param omega=6:7", "model"},
+      // no one wall; a wall never hit; neither strobe nor impact
+      {"continue linear_impact --param omega=2:2.5 --section impact:0", "--section"},
+      {"continue linear_impact --param omega=2:2.5 --section impact:-1", "--param"},
+      {"continue linear_impact --param omega=2:2.5 --section q=0.1", "--section"},
+      // no orbit from this start
       {"continue linear_impact --param omega=2:2.5 --period 3 --transient 0 --start 5,5",
-       "--param"},                                                                 // no start
-      {"continue linear_impact --param omega=2:2.5 --param2 omega=3:4", "--param2"},  // the same key twice
-      {"continue linear_impact --param omega=2:2.5 --param2 sigma=0.2", "--param2"},  // malformed range
-      {"continue linear_impact --param omega=2:2.5 --param2 r=0.8:1.5", "r"},  // outside r's range
-      {"continue linear_impact --param omega=2:2.5 --param2 zeta2=0:1", "--param2"},  // no such key
-      {"continue linear_impact --param omega=2:2.5 --curve fold", "--curve"},  // --curve without --param2
+       "--param"},
+      // the same key twice; a malformed range; outside r's range; no such key
+      {"continue linear_impact --param omega=2:2.5 --param2 omega=3:4", "--param2"},
+      {"continue linear_impact --param omega=2:2.5 --param2 sigma=0.2", "--param2"},
+      {"continue linear_impact --param omega=2:2.5 --param2 r=0.8:1.5", "r"},
+      {"continue linear_impact --param omega=2:2.5 --param2 zeta2=0:1", "--param2"},
+      // --curve without --param2; an unknown curve; one start number
+      {"continue linear_impact --param omega=2:2.5 --curve fold", "--curve"},
       {"continue linear_impact --param omega=2:2.5 --param2 r=0.8:0.6 --curve torus", "--curve"},
-      {"continue linear_impact --param omega=2:2.5 --start 0.1", "--start"},  // one number
+      {"continue linear_impact --param omega=2:2.5 --start 0.1", "--start"},
   };
   for (const auto& [arguments, key] : bad) {
     const auto dir = scratch("bad");

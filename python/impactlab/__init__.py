@@ -173,7 +173,8 @@ def _whole(key, value, row):
     if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < lowest:
         raise ValueError("{} = {!r}: expected a whole number >= {}".format(key, value, lowest))
     if value > row["upper"]:
-        raise ValueError("{} = {!r}: expected {} to {:.0f}".format(key, value, lowest, row["upper"]))
+        raise ValueError("{} = {!r}: expected {} to {:.0f}".format(
+            key, value, lowest, row["upper"]))
     return int(value)
 
 
