@@ -37,8 +37,8 @@ struct SweepOptions {
   SectionOptions section;
   std::vector<std::string> params;
   std::string direction;
-  int threads = 1;
-  int chunks = 1;
+  int threads = 0;
+  int chunks = 0;
   bool lyapunov = false, no_lyapunov = false;
   bool resume = false;
   long stop_after = 0;  // hidden, for tests: stop after this many new points per rank
