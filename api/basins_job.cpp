@@ -6,25 +6,26 @@
 
 #include <fmt/format.h>
 
+#include <impactlab/api/job_options.hpp>
 #include <impactlab/io/bad_input.hpp>
 
 namespace impactlab {
 
 SweepPlan make_basins_plan(const BasinsSpec& spec, const Scene& scene, const SceneSchema& schema) {
   // the grid keys named by the options that gave them
-  for (const auto& [option, text] : {std::pair{&spec.x_key, &spec.x}, std::pair{&spec.y_key, &spec.y}}) {
-    const SweepAxis axis = parse_axis(*text, *option);
+  for (const auto& [option, text] : {std::pair{"x", &spec.x}, std::pair{"y", &spec.y}}) {
+    const SweepAxis axis = parse_axis(*text, option);
     const auto key = std::find_if(schema.keys.begin(), schema.keys.end(),
                                   [&](const KeySpec& k) { return k.key == axis.name; });
     if (key == schema.keys.end() || key->is_text)
-      throw BadInput(*option, axis.name,
+      throw BadInput(option, axis.name,
                      fmt::format("not a numeric key of oscillator {}", schema.oscillator));
   }
-  const std::string y_name = parse_axis(spec.y, spec.y_key).name;
-  if (parse_axis(spec.x, spec.x_key).name == y_name)
-    throw BadInput(spec.y_key, y_name, fmt::format("must differ from {}'s key", spec.x_key));
+  const std::string y_name = parse_axis(spec.y, "y").name;
+  if (parse_axis(spec.x, "x").name == y_name)
+    throw BadInput("y", y_name, "must differ from " + mention("x") + "'s key");
   if (!(spec.attractor_tolerance > 0.0) || !std::isfinite(spec.attractor_tolerance))
-    throw BadInput(spec.attractor_tolerance_key, fmt::format("{}", spec.attractor_tolerance),
+    throw BadInput("attractor_tol", fmt::format("{}", spec.attractor_tolerance),
                    "must be a finite number > 0");
   SweepSpec sweep;
   sweep.params = {spec.x, spec.y};
@@ -32,7 +33,7 @@ SweepPlan make_basins_plan(const BasinsSpec& spec, const Scene& scene, const Sce
   sweep.lyapunov = spec.lyapunov;  // off unless asked for
   sweep.period_tolerance = spec.period_tolerance;
   sweep.max_period = spec.max_period;
-  sweep.param_key = spec.grid_key;
+  sweep.param_key = "x/y";
   SweepPlan plan = make_sweep_plan(sweep, scene, schema);
   plan.follow_attractor = false;  // every point from the scene's state
   // basins tell attractors apart by their section points and write them
@@ -70,6 +71,25 @@ BasinsTable basins_table(const SweepPlan& plan, const std::vector<SweepTask>& ta
     table.termination.push_back(r->result.termination);
   }
   return table;
+}
+
+AttractorRows attractor_rows(const BasinMap& map) {
+  AttractorRows rows;
+  const auto add = [&rows](int id, int period, double impacts_per_period, bool contact, double q,
+                           double qdot, int basin_points) {
+    rows.id.push_back(id);
+    rows.period.push_back(period);
+    rows.impacts_per_period.push_back(impacts_per_period);
+    rows.contact.push_back(contact ? 1 : 0);
+    rows.q.push_back(q);
+    rows.qdot.push_back(qdot);
+    rows.basin_points.push_back(basin_points);
+  };
+  const double none = std::nan("");
+  if (map.unclassified > 0) add(0, 0, none, false, none, none, map.unclassified);
+  for (const Attractor& a : map.attractors)
+    add(a.id, a.period, a.impacts_per_period, a.contact, a.point[0], a.point[1], a.basin_points);
+  return rows;
 }
 
 }  // namespace impactlab

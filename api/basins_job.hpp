@@ -16,8 +16,9 @@
 
 namespace impactlab {
 
-// A basins map as its options state it; the *_key members name the options
-// in BadInput messages (the CLI's --x, the Python keyword x, ...).
+// A basins map as its options state it (the "basins" table of
+// api/job_options.hpp); BadInput names the options by those names (x, y,
+// attractor_tol; x/y for the grid as a whole).
 struct BasinsSpec {
   std::string x, y;  // KEY=FROM:TO:N: the first (fastest) and second grid key
   SectionRequest section;
@@ -25,8 +26,6 @@ struct BasinsSpec {
   double period_tolerance = 1e-6;
   int max_period = 16;
   double attractor_tolerance = 1e-4;  // relative distance of two canonical points
-  std::string x_key = "--x", y_key = "--y", grid_key = "--x/--y",
-              attractor_tolerance_key = "--attractor-tol";
 };
 
 // The validated plan: both keys numeric keys of the scene's oscillator and
@@ -51,5 +50,15 @@ struct BasinsTable {
 
 BasinsTable basins_table(const SweepPlan& plan, const std::vector<SweepTask>& tasks,
                          const std::map<SweepRecordKey, SweepRecord>& records);
+
+// The rows of attractors.csv: attractor 0 (the grid points that settled on
+// none: period 0, no impact rate or point) first where there are any, then
+// each attractor by id with its canonical section point (q, qdot).
+struct AttractorRows {
+  std::vector<int> id, period, contact, basin_points;
+  std::vector<double> impacts_per_period, q, qdot;
+};
+
+AttractorRows attractor_rows(const BasinMap& map);
 
 }  // namespace impactlab

@@ -63,9 +63,9 @@ std::vector<std::string> parse_model_list(std::string_view list) {
   while (start <= list.size()) {
     const std::size_t comma = std::min(list.find(',', start), list.size());
     const std::string name(list.substr(start, comma - start));
-    if (name.empty()) throw BadInput("--models", std::string(list), "empty model name in the list");
+    if (name.empty()) throw BadInput("models", std::string(list), "empty model name in the list");
     if (!seen.insert(name).second)
-      throw BadInput("--models", std::string(list), "model " + name + " is listed twice");
+      throw BadInput("models", std::string(list), "model " + name + " is listed twice");
     models.push_back(name);
     start = comma + 1;
   }
@@ -351,7 +351,7 @@ std::vector<std::string> models_to_compare(const Scene& scene, const std::string
       if (skipped) skipped(bad);
     }
   }
-  if (accepted.empty()) throw BadInput("--models", "(default)", "the scene accepts no model");
+  if (accepted.empty()) throw BadInput("models", "(default)", "the scene accepts no model");
   return accepted;
 }
 

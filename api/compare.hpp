@@ -40,7 +40,7 @@ struct Comparison {
   std::vector<ModelRun> runs;
 };
 
-// "newton,rigid" -> {"newton", "rigid"}; BadInput (key --models) on an empty
+// "newton,rigid" -> {"newton", "rigid"}; BadInput (key `models`) on an empty
 // or repeated name. The names themselves are checked by the scene.
 std::vector<std::string> parse_model_list(std::string_view list);
 
@@ -50,7 +50,7 @@ std::vector<std::string> scene_models(const Scene& scene);
 // The models to compare: those of `list` ("newton,rigid"), or where it is
 // empty every model the scene accepts (each tried on a tiny run; `skipped`
 // hears why one is not). BadInput (key `oscillator`) for a scene without a
-// `model` key, (key --models) when none is accepted.
+// `model` key, (key `models`) when none is accepted.
 std::vector<std::string> models_to_compare(const Scene& scene, const std::string& list,
                                            const std::function<void(const BadInput&)>& skipped);
 

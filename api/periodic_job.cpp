@@ -40,7 +40,7 @@ PeriodicJobResult find_periodic_orbit(const Scene& scene, const PeriodicJob& job
     char* end = nullptr;
     const long n = std::strtol(job.period.c_str(), &end, 10);
     if (end == job.period.c_str() || *end != '\0' || n < 1 || n > 1000)
-      throw BadInput(job.period_key, job.period, "expected auto or a whole number from 1 to 1000");
+      throw BadInput("period", job.period, "expected auto or a whole number from 1 to 1000");
     request.period = static_cast<int>(n);
   }
   request.phase = job.phase;

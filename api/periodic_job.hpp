@@ -18,7 +18,6 @@ struct PeriodicJob {
   double transient = 100.0;     // forcing periods
   int max_iterations = 30;
   double tolerance = 1e-11;
-  std::string period_key = "--period";  // names the key in BadInput messages
 };
 
 struct PeriodicJobResult {
@@ -28,7 +27,7 @@ struct PeriodicJobResult {
   double wall_time = 0.0;     // s, of the shooting alone
 };
 
-// Throws BadInput for a malformed period or an oscillator without the hook.
+// Throws BadInput (key `period`) for a malformed period or an oscillator without the hook.
 PeriodicJobResult find_periodic_orbit(const Scene& scene, const PeriodicJob& job);
 
 // periodic.json without the command line, the time of writing and the wall time.

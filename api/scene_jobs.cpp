@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <impactlab/api/job_options.hpp>
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/api/system_jobs.hpp>
 #include <impactlab/io/bad_input.hpp>
@@ -39,25 +40,26 @@ ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& 
       validate(probe, schema);
     }
   };
-  check_key("--param", job.parameter, job.from, job.to);
+  check_key("param", job.parameter, job.from, job.to);
   if (!job.second_parameter.empty()) {
     if (job.second_parameter == job.parameter)
-      throw BadInput("--param2", job.second_parameter, "must differ from --param's key");
-    check_key("--param2", job.second_parameter, job.second_from, job.second_to);
+      throw BadInput("param2", job.second_parameter,
+                     "must differ from " + mention("param") + "'s key");
+    check_key("param2", job.second_parameter, job.second_from, job.second_to);
     if (!job.curve_type.empty() && job.curve_type != "fold" && job.curve_type != "period_doubling" &&
         job.curve_type != "grazing")
-      throw BadInput("--curve", job.curve_type, "expected fold, period_doubling or grazing");
+      throw BadInput("curve", job.curve_type, "expected fold, period_doubling or grazing");
   }
   ContinuationJobResult result = continuation_of_scene(scene, job);
   if (!result.available) throw BadInput("oscillator", scene.oscillator, result.note);
   if (result.branches.empty() || result.branches[0].result.stop_reason == "start_not_converged")
-    throw BadInput("--param", fmt::format("{}={}:{}", job.parameter, job.from, job.to),
-                   fmt::format("no period-{} orbit converged at {} = {}{} (try --period, --start "
-                               "or --transient)",
+    throw BadInput("param", fmt::format("{}={}:{}", job.parameter, job.from, job.to),
+                   fmt::format("no period-{} orbit converged at {} = {}{} (try {}, {} or {})",
                                job.period, job.parameter, job.from,
                                job.impact_wall != 0 && !result.branches.empty()
                                    ? ": " + result.branches[0].result.stop_detail
-                                   : ""));
+                                   : "",
+                               mention("period"), mention("start"), mention("transient")));
   return result;
 }
 

@@ -27,9 +27,10 @@ PeriodicResult periodic(const Scene& scene, const PeriodicRequest& request);
 // Pseudo-arclength continuation of a period-n orbit in job.parameter from
 // job.from to job.to, its bifurcations and grazing points, and with
 // job.doublings the doubled orbits. BadInput when the key is not a numeric
-// parameter of the oscillator (key `--param`), an end of the range is out of
-// the key's range, the oscillator or model has no Jacobians (key
-// `oscillator`), or no orbit converges at the start (key `--param`).
+// parameter of the oscillator (key `param`; `param2` for the second), an end
+// of the range is out of the key's range, the oscillator or model has no
+// Jacobians (key `oscillator`), or no orbit converges at the start (key
+// `param`). Options are named by their own names (api/job_options.hpp).
 ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& job);
 
 // The section of a continuation from its text (`strobe[:PHASE]` or

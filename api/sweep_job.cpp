@@ -24,7 +24,7 @@ namespace {
 void choose_classification_integrator(SweepPlan& plan, const SweepSpec& spec,
                                       const Scene& scene) {
   if (spec.classification_tolerance != "auto" && spec.classification_tolerance != "off")
-    throw BadInput(spec.classification_key, spec.classification_tolerance,
+    throw BadInput("classification_tol", spec.classification_tolerance,
                    "expected auto or off");
   const auto note = [&](const std::string& why) {
     plan.classification_note = "the scene's integrator: " + why;
@@ -60,7 +60,7 @@ SweepPlan make_sweep_plan(const SweepSpec& spec, const Scene& scene, const Scene
   if (plan.axes.empty() || plan.axes.size() > 2)
     throw BadInput(spec.param_key, std::to_string(plan.axes.size()) + " axes",
                    "give one (bifurcation sweep) or two (classification map)");
-  plan.direction = parse_direction(spec.direction, spec.direction_key);
+  plan.direction = parse_direction(spec.direction, "direction");
   plan.chunks = spec.chunks;
   plan.section = spec.section;
   plan.period_tolerance = spec.period_tolerance;
@@ -69,7 +69,7 @@ SweepPlan make_sweep_plan(const SweepSpec& spec, const Scene& scene, const Scene
   plan.section.lyapunov = spec.lyapunov.value_or(plan.axes.size() == 2);
   validate_plan(plan, scene, schema);
   if (plan.axes.size() == 2 && plan.direction != SweepDirection::up)
-    throw BadInput(spec.direction_key, spec.direction,
+    throw BadInput("direction", spec.direction,
                    "a 2D sweep follows the first parameter upwards only");
   choose_classification_integrator(plan, spec, scene);
   return plan;
@@ -234,6 +234,19 @@ SweepTable sweep_table(const SweepPlan& plan, const std::vector<SweepTask>& task
     add_summary(table, r);
   }
   return table;
+}
+
+nlohmann::json sweep_counts(const std::map<SweepRecordKey, SweepRecord>& records) {
+  std::uint64_t steps = 0, rhs = 0, stopped_points = 0;
+  for (const auto& [key, record] : records) {
+    steps += record.result.steps;
+    rhs += record.result.rhs_evaluations;
+    if (record.result.termination != "completed") ++stopped_points;
+  }
+  return {{"points", records.size()},
+          {"points_stopped_early", stopped_points},
+          {"steps", steps},
+          {"rhs_evaluations", rhs}};
 }
 
 }  // namespace impactlab

@@ -19,8 +19,8 @@
 
 namespace impactlab {
 
-// A sweep as its options state it (the CLI's --param, --direction, ...);
-// `option_names` name the keys in BadInput messages.
+// A sweep as its options state it (the "sweep" table of api/job_options.hpp:
+// param, direction, ...); BadInput names the options by those names.
 struct SweepSpec {
   std::vector<std::string> params;  // NAME=FROM:TO:N, one or two
   std::string direction = "up";     // up | down | both (1D)
@@ -33,8 +33,8 @@ struct SweepSpec {
   // integrator.classification_* where it states them and no integrator key
   // was set by the user; off: always the scene's integrator
   std::string classification_tolerance = "auto";
-  std::string param_key = "--param", direction_key = "--direction",
-              classification_key = "--classification-tol";
+  // the option that gave `params` in BadInput messages (basins: "x/y")
+  std::string param_key = "param";
 };
 
 // The validated plan. Throws BadInput.
@@ -98,6 +98,11 @@ SweepTable sweep_table(const SweepPlan& plan, const std::vector<SweepTask>& task
 // points in this order.
 std::vector<SweepRecordKey> sweep_row_order(const SweepPlan& plan,
                                             const std::vector<SweepTask>& tasks);
+
+// What a finished sweep's records count (meta.json's "counts"): points,
+// points_stopped_early (termination other than completed), steps and
+// rhs_evaluations summed over the points.
+nlohmann::json sweep_counts(const std::map<SweepRecordKey, SweepRecord>& records);
 
 // A 1D sweep's bifurcation rows of one record (its section points).
 void add_bifurcation_rows(SweepTable& table, const SweepPlan& plan, const SweepRecord& record);

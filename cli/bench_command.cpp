@@ -19,6 +19,7 @@
 #include "command.hpp"
 #include "commands.hpp"
 #include "program_files.hpp"
+#include "table_options.hpp"
 #include <impactlab/platform/run_program.hpp>
 #include <impactlab/integrate/stepper_names.hpp>
 #include <impactlab/io/bad_input.hpp>
@@ -28,13 +29,14 @@ namespace impactlab::cli {
 
 namespace {
 
+// The values as given; their defaults come from the "bench" option table.
 struct BenchOptions {
-  std::string out = "notebooks_data/bench";
+  std::string out;
   bool quick = false;
-  bool scipy = true;
-  bool plots = true;
+  bool scipy = true;  // --no-scipy turns it off
+  bool plots = true;  // --no-plots turns it off
   int repetitions = 0;  // 0: 3, or 1 with --quick
-  std::string python = "/usr/bin/python3";
+  std::string python;
   bool quiet = false;
 };
 
@@ -477,20 +479,19 @@ Command add_bench_command(CLI::App& app) {
       "bench", "work-precision data: cost against impact-time error per stepper and tolerance, "
                "beside a SciPy solve_ivp event loop");
   auto options = std::make_shared<BenchOptions>();
-  command->add_option("--out", options->out, "output directory")->capture_default_str();
-  command->add_flag("--quick", options->quick, "a short study (seconds), for tests");
-  command->add_flag("!--no-scipy", options->scipy, "skip the SciPy event loop");
-  command->add_flag("!--no-plots", options->plots, "skip the plots");
-  command->add_option("--repetitions", options->repetitions,
-                      "timed repetitions per point (median; default 3, 1 with --quick)")
-      ->check(CLI::Range(1, 100));
-  command->add_option("--python", options->python, "Python with NumPy, SciPy and matplotlib")
-      ->capture_default_str()
-      ->check(CLI::ExistingFile);
-  command->add_flag("--quiet", options->quiet, "print nothing but errors");
-  return {command, [options](const std::vector<std::string>& command_line) {
+  TableOptions table(*command, "bench");
+  table.add("out", options->out);
+  table.add("quick", options->quick);
+  table.add_negation("no_scipy", options->scipy);
+  table.add_negation("no_plots", options->plots);
+  table.add("repetitions", options->repetitions);
+  table.add("python", options->python);
+  table.add("quiet", options->quiet);
+  return {command,
+          [options](const std::vector<std::string>& command_line) {
             return run_bench(*options, command_line);
-          }};
+          },
+          "bench"};
 }
 
 }  // namespace impactlab::cli

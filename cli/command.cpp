@@ -1,4 +1,5 @@
 #include "command.hpp"
+#include "table_options.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -76,21 +77,21 @@ CLI::Validator count_in(std::uint64_t lower, std::uint64_t upper) {
       fmt::format("WHOLE in [{}, {}]", lower, upper));
 }
 
-void SceneOptions::add_to(CLI::App& command) {
-  command.add_option("scene", scene, "built-in scene name or path to a scene file (.toml)")
-      ->capture_default_str();
-  command.add_option("--set", assignments,
-                     "KEY=VALUE, repeatable: a parameter (omega, V0, e_n, ...) or a dotted key "
-                     "(initial.theta, integrator.rtol)");
-  t_end_option = command.add_option("--t-end", t_end, "end time (s), after t0; excludes --periods")
-                     ->check(finite_number());
-  command.add_option("--periods", periods, "forcing periods to run from t0 (default 100)")
-      ->check(positive_number())
-      ->excludes(t_end_option);
-  command.add_option("--out", out, "output directory (default out/<scene>)");
-  command.add_option("--threads", threads, "worker threads (a single run uses one)")
-      ->check(CLI::Range(1, 1024));
-  command.add_flag("--quiet", quiet, "print nothing but errors");
+void SceneOptions::add_scene(TableOptions& table) {
+  table.add("scene", scene);
+  table.add("set", assignments);
+  table.add("out", out);
+  table.add("quiet", quiet);
+}
+
+void SceneOptions::add_run(TableOptions& table) {
+  table.add("scene", scene);
+  table.add("set", assignments);
+  t_end_option = table.add("t_end", t_end);
+  table.add("periods", periods);
+  table.add("out", out);
+  table.add("threads", threads);
+  table.add("quiet", quiet);
 }
 
 Scene SceneOptions::load() const {

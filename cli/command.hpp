@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -26,11 +27,13 @@ constexpr int exit_failed = 1;
 constexpr int exit_bad_input = 2;
 constexpr int exit_stopped_early = 3;
 
-// A registered subcommand: its CLI11 node and what runs when it was parsed.
-// `run` receives the whole command line, for provenance.
+// A registered subcommand: its CLI11 node, what runs when it was parsed, and
+// the job whose option table (api/job_options.hpp) its options come from
+// (empty: none). `run` receives the whole command line, for provenance.
 struct Command {
   CLI::App* app;
   std::function<int(const std::vector<std::string>& command_line)> run;
+  std::string_view job = {};
 };
 
 // A finite number; a positive finite number. CLI11's own range checks let inf
@@ -42,18 +45,25 @@ const CLI::Validator& positive_number();
 CLI::Validator number_in(double lower, double upper);
 CLI::Validator count_in(std::uint64_t lower, std::uint64_t upper);
 
-// Options shared by the subcommands that run a scene.
+class TableOptions;
+
+// Options shared by the subcommands that run a scene; their defaults, help
+// and checks come from the job's option table.
 struct SceneOptions {
-  std::string scene = "jin2003";
+  std::string scene;
   std::vector<std::string> assignments;
   double t_end = 0.0;
   double periods = 0.0;
   std::string out;
   int threads = 1;
   bool quiet = false;
-  CLI::Option* t_end_option = nullptr;  // set by add_to: whether --t-end was given
+  CLI::Option* t_end_option = nullptr;  // set by add_run: whether --t-end was given
 
-  void add_to(CLI::App& command);
+  // the scene, --set, --out and --quiet
+  void add_scene(TableOptions& table);
+  // the scene, --set, the time span (--t-end, --periods), --out, --threads
+  // and --quiet (simulate, compare)
+  void add_run(TableOptions& table);
   // the scene with every --set applied (BadInput on a bad key or value)
   [[nodiscard]] Scene load() const;
   // the time span: --t-end T (an absolute end time, which must be after t0:

@@ -15,6 +15,7 @@
 #include "command.hpp"
 #include "commands.hpp"
 #include "program_files.hpp"
+#include "table_options.hpp"
 #include <impactlab/platform/run_program.hpp>
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/output.hpp>
@@ -144,13 +145,14 @@ Command add_compare_command(CLI::App& app) {
       "compare", "run a scene under several impact models; side-by-side CSV, plot and summary");
   auto options = std::make_shared<SceneOptions>();
   auto models = std::make_shared<std::string>();
-  options->add_to(*command);
-  command->add_option("--models", *models,
-                      "comma-separated models (newton,paper,rigid); default: every model the "
-                      "scene accepts");
-  return {command, [options, models](const std::vector<std::string>& command_line) {
+  TableOptions table(*command, "compare");
+  options->add_run(table);
+  table.add("models", *models);
+  return {command,
+          [options, models](const std::vector<std::string>& command_line) {
             return run_compare(*options, *models, command_line);
-          }};
+          },
+          "compare"};
 }
 
 }  // namespace impactlab::cli

@@ -12,11 +12,13 @@
 
 #include <impactlab/analysis/continuation.hpp>
 #include <impactlab/analysis/section.hpp>
+#include <impactlab/api/continuation_job.hpp>
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include "command.hpp"
 #include "commands.hpp"
 #include "section_options.hpp"
+#include "table_options.hpp"
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/output.hpp>
 
@@ -24,49 +26,13 @@ namespace impactlab::cli {
 
 namespace {
 
-struct ContinueOptions {
+// The values as given; their defaults come from the "continue" option table.
+struct ContinueCommandOptions {
   SceneOptions scene;
-  std::string param;  // NAME=FROM:TO
-  std::string param2;  // NAME=FROM:TO: the second parameter of a two-parameter curve
-  std::string curve;   // fold, period_doubling, grazing (empty: the first located)
-  int period = 1;
-  std::string section = "strobe";
-  bool switch_doubling = false;
-  std::vector<double> start;  // q,qdot (a model file: its N states)
-  double transient = 100.0;
-  int max_points = 5000;
-  double tolerance = 1e-10;
-  double max_step = 0.0;  // arclength; 0: 1/50 of the range
+  ContinueOptions job;     // the job's own options (api/continuation_job.hpp)
   bool plot = false;
   std::string with_sweep;  // a sweep's bifurcation.csv drawn under the branch
 };
-
-constexpr int doublings_followed = 3;  // --switch: the cascade, up to period 8n
-
-struct ParameterRange {
-  std::string name;
-  double from = 0.0, to = 0.0;
-};
-
-// NAME=FROM:TO (the key and its range are checked by the scene API)
-ParameterRange parse_range(const std::string& text, const std::string& option) {
-  const auto bad = [&](const std::string& why) { return BadInput(option, text, why); };
-  const auto equals = text.find('=');
-  const auto colon = text.find(':', equals == std::string::npos ? 0 : equals);
-  if (equals == std::string::npos || equals == 0 || colon == std::string::npos ||
-      text.find(':', colon + 1) != std::string::npos)
-    throw bad("expected NAME=FROM:TO");
-  ParameterRange range{text.substr(0, equals)};
-  const std::string from = text.substr(equals + 1, colon - equals - 1), to = text.substr(colon + 1);
-  char* end = nullptr;
-  range.from = std::strtod(from.c_str(), &end);
-  const bool from_ok = !from.empty() && *end == '\0' && std::isfinite(range.from);
-  range.to = std::strtod(to.c_str(), &end);
-  const bool to_ok = !to.empty() && *end == '\0' && std::isfinite(range.to);
-  if (!from_ok || !to_ok) throw bad("FROM and TO must be finite numbers");
-  if (range.from == range.to) throw bad("FROM and TO must differ");
-  return range;
-}
 
 // The columns of an orbit's state: q,qdot, then state3 ... stateN (a model
 // file's further states, in its order).
@@ -150,44 +116,22 @@ void write_curve_csv(AtomicFile& file, const std::string& name1, const std::stri
           << curve.branch << ',' << curve.period << '\n';
 }
 
-int run_continue(const ContinueOptions& options, const std::vector<std::string>& command_line) {
-  const Scene scene = options.scene.load();
-  const ParameterRange range = parse_range(options.param, "--param");
-  const bool two_parameter = !options.param2.empty();
-  const ParameterRange range2 = two_parameter ? parse_range(options.param2, "--param2")
-                                              : ParameterRange{};
-  if (!options.curve.empty() && !two_parameter)
-    throw BadInput("--curve", options.curve, "needs --param2");
-  if (!options.with_sweep.empty() && !std::filesystem::is_regular_file(options.with_sweep))
-    throw BadInput("--with-sweep", options.with_sweep,
+int run_continue(const ContinueCommandOptions& command_options,
+                 const std::vector<std::string>& command_line) {
+  const ContinueOptions& options = command_options.job;
+  const Scene scene = command_options.scene.load();
+  const ContinuationJob job = continuation_job(options);
+  const KeyRange range{job.parameter, job.from, job.to};
+  const bool two_parameter = !job.second_parameter.empty();
+  const KeyRange range2{job.second_parameter, job.second_from, job.second_to};
+  const std::string& with_sweep = command_options.with_sweep;
+  if (!with_sweep.empty() && !std::filesystem::is_regular_file(with_sweep))
+    throw BadInput("with_sweep", with_sweep,
                    two_parameter ? "no such file (a 2D sweep's classes.csv)"
                                  : "no such file (a sweep's bifurcation.csv)");
+  const SectionSpec section = parse_section(options.section, "section");
 
-  ContinuationJob job;
-  job.parameter = range.name;
-  job.from = range.from;
-  job.to = range.to;
-  job.period = options.period;
-  job.transient_periods = options.transient;
-  job.doublings = options.switch_doubling ? doublings_followed : 0;
-  if (two_parameter) {
-    job.second_parameter = range2.name;
-    job.second_from = range2.from;
-    job.second_to = range2.to;
-    job.curve_type = options.curve;
-  }
-  set_continuation_section(job, options.section, "--section");
-  const SectionSpec section = parse_section(options.section, "--section");
-  if (!options.start.empty()) {
-    job.has_start = true;
-    job.start = options.start;
-  }
-  job.numerics.max_points = options.max_points;
-  job.numerics.tolerance = options.tolerance;
-  job.numerics.max_step = options.max_step;
-  if (options.max_step > 0.0) job.numerics.initial_step = options.max_step;
-
-  const auto directory = options.scene.output_directory();
+  const auto directory = command_options.scene.output_directory();
   const auto started = std::chrono::steady_clock::now();
   const ContinuationJobResult result = continue_orbit(scene, job);
   const double wall_time =
@@ -323,19 +267,19 @@ int run_continue(const ContinueOptions& options, const std::vector<std::string>&
   }
   run_files.commit();
 
-  if (options.plot || !options.with_sweep.empty()) {
+  if (command_options.plot || !with_sweep.empty()) {
     std::vector<std::string> names = {range.name,
                                       std::string(scene_schema(scene).main_coordinate)};
-    if (!options.with_sweep.empty() && !two_parameter) names.push_back(options.with_sweep);
+    if (!with_sweep.empty() && !two_parameter) names.push_back(with_sweep);
     plot_with_python("continuation", directory / "branch.csv", directory / "continuation.png",
                      names);
     if (two_parameter) {
       std::vector<std::string> curve_names = {range.name, range2.name};
-      if (!options.with_sweep.empty()) curve_names.push_back(options.with_sweep);
+      if (!with_sweep.empty()) curve_names.push_back(with_sweep);
       plot_with_python("curve", directory / "curve.csv", directory / "curve.png", curve_names);
     }
   }
-  if (!options.scene.quiet) {
+  if (!command_options.scene.quiet) {
     for (const ContinuedBranch& branch : result.branches) {
       std::cout << fmt::format("period-{} branch: {} points, stopped: {} ({})\n", branch.period,
                                branch.result.branch.size(), branch.result.stop_reason,
@@ -375,58 +319,28 @@ Command add_continue_command(CLI::App& app) {
       "continue",
       "continue a period-n orbit in one parameter (pseudo-arclength), locating folds, period "
       "doublings, Neimark-Sacker and grazing points");
-  auto options = std::make_shared<ContinueOptions>();
-  command->add_option("scene", options->scene.scene, "built-in scene name or path")
-      ->capture_default_str();
-  command->add_option("--set", options->scene.assignments, "KEY=VALUE, repeatable");
-  command->add_option("--out", options->scene.out, "output directory (default out/<scene>)");
-  command->add_flag("--quiet", options->scene.quiet, "print nothing but errors");
-  command->add_option("--param", options->param, "NAME=FROM:TO: the scene key continued")
-      ->required();
-  command->add_option("--param2", options->param2,
-                      "NAME=FROM:TO: follow the first located fold, period doubling or grazing "
-                      "point of the branch (run at NAME=FROM) in (--param, NAME) to NAME=TO "
-                      "(with --switch: of each doubled branch too); writes curve.csv");
-  command->add_option("--curve", options->curve,
-                      "fold|period_doubling|grazing: the bifurcation whose curve --param2 follows "
-                      "(default: the first located)");
-  command->add_option("--period", options->period, "n: the orbit's period in forcing periods")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
-  command->add_option("--section", options->section,
-                      "strobe[:PHASE], or impact:WALL (+1 or -1): the impact map, state (the "
-                      "impact's forcing phase, the rate before it)")
-      ->capture_default_str();
-  command->add_flag("--switch", options->switch_doubling,
-                    "at a period doubling, continue the doubled orbit (the cascade, up to 3 "
-                    "doublings)");
-  command->add_option("--start", options->start,
-                      "Q,QDOT (a model file: its N states): the start on the section (else the "
-                      "transient's end); impact section: PHASE,QDOT")
-      ->delimiter(',');
-  command->add_option("--transient", options->transient, "forcing periods run for the start")
-      ->check(CLI::Range(0.0, 1e9))
-      ->capture_default_str();
-  command->add_option("--max-points", options->max_points, "points per branch")
-      ->check(CLI::Range(2, 1000000))
-      ->capture_default_str();
-  command->add_option("--tolerance", options->tolerance, "Newton residual |P^n(x) - x| / (1 + |x|)")
-      ->check(positive_number())
-      ->capture_default_str();
-  command->add_option("--max-step", options->max_step,
-                      "largest arclength step in (q, qdot, parameter) (default: 1/50 of the range)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  command->add_flag("--plot", options->plot,
-                    "draw continuation.png (scripts/plot_continuation.py): stable solid, "
-                    "unstable dashed, bifurcations marked");
-  command->add_option("--with-sweep", options->with_sweep,
-                      "a brute-force sweep's bifurcation.csv of the same parameter, drawn under "
-                      "the branch; with --param2 a 2D sweep's classes.csv under the curve "
-                      "(implies --plot)");
-  return {command, [options](const std::vector<std::string>& command_line) {
+  auto options = std::make_shared<ContinueCommandOptions>();
+  ContinueOptions& job = options->job;
+  TableOptions table(*command, "continue");
+  options->scene.add_scene(table);
+  table.add("param", job.param);
+  table.add("param2", job.param2);
+  table.add("curve", job.curve);
+  table.add("period", job.period);
+  table.add("section", job.section);
+  table.add("switch", job.switch_doubling);
+  table.add("start", job.start);
+  table.add("transient", job.transient);
+  table.add("max_points", job.max_points);
+  table.add("tolerance", job.tolerance);
+  table.add("max_step", job.max_step);
+  table.add("plot", options->plot);
+  table.add("with_sweep", options->with_sweep);
+  return {command,
+          [options](const std::vector<std::string>& command_line) {
             return run_continue(*options, command_line);
-          }};
+          },
+          "continue"};
 }
 
 }  // namespace impactlab::cli

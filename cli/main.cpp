@@ -16,6 +16,7 @@
 
 #include "command.hpp"
 #include "commands.hpp"
+#include "table_options.hpp"
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/message_text.hpp>
 
@@ -53,11 +54,14 @@ int main(int argc, char** argv) {
     return exit_bad_input;
   }
 
+  const Command* parsed = nullptr;
+  for (const auto& command : commands)
+    if (command.app->parsed()) parsed = &command;
   try {
-    for (const auto& command : commands)
-      if (command.app->parsed()) return command.run(command_line);
+    if (parsed != nullptr) return parsed->run(command_line);
   } catch (const impactlab::BadInput& bad) {
-    std::cerr << "impactlab: " << impactlab::one_line(bad.what()) << '\n';
+    // the library names options by their names; the message spells them as flags
+    std::cerr << "impactlab: " << bad_input_line(bad, parsed->job) << '\n';
     return exit_bad_input;
   } catch (const std::domain_error& error) {
     // a numerical library (Boost.Math's root finders and special functions)

@@ -13,6 +13,7 @@
 #include "command.hpp"
 #include "commands.hpp"
 #include "section_options.hpp"
+#include "table_options.hpp"
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/output.hpp>
 
@@ -20,24 +21,15 @@ namespace impactlab::cli {
 
 namespace {
 
+// The values as given; their defaults come from the "periodic" option table.
 struct PeriodicOptions {
   SceneOptions scene;
-  std::string period = "auto";  // n, or auto: the period of the stroboscopic points
-  double phase = 0.0;
-  double transient = 100.0;
-  int max_iterations = 30;
-  double tolerance = 1e-11;
+  PeriodicJob job;
 };
 
 int run_periodic(const PeriodicOptions& options, const std::vector<std::string>& command_line) {
   const Scene scene = options.scene.load();
-  PeriodicJob job;
-  job.period = options.period;
-  job.phase = options.phase;
-  job.transient = options.transient;
-  job.max_iterations = options.max_iterations;
-  job.tolerance = options.tolerance;
-  const PeriodicJobResult found = find_periodic_orbit(scene, job);
+  const PeriodicJobResult found = find_periodic_orbit(scene, options.job);
   const auto directory = options.scene.output_directory();
   RunFiles run_files(directory);
   const PeriodicRequest& request = found.request;
@@ -70,30 +62,18 @@ Command add_periodic_command(CLI::App& app) {
   auto* command = app.add_subcommand(
       "periodic", "locate a period-n orbit (Newton shooting) and its Floquet multipliers");
   auto options = std::make_shared<PeriodicOptions>();
-  command->add_option("scene", options->scene.scene, "built-in scene name or path")
-      ->capture_default_str();
-  command->add_option("--set", options->scene.assignments, "KEY=VALUE, repeatable");
-  command->add_option("--out", options->scene.out, "output directory (default out/<scene>)");
-  command->add_flag("--quiet", options->scene.quiet, "print nothing but errors");
-  command->add_option("--period", options->period,
-                      "n: the orbit's period in forcing periods, or auto (the period of the "
-                      "stroboscopic points after the transient)")
-      ->capture_default_str();
-  command->add_option("--phase", options->phase, "section phase omega t mod 2 pi (rad)")
-      ->check(number_in(0.0, 6.283185307179586))
-      ->capture_default_str();
-  command->add_option("--transient", options->transient, "forcing periods run first")
-      ->check(number_in(0.0, 1e9))
-      ->capture_default_str();
-  command->add_option("--max-iterations", options->max_iterations, "Newton iterations")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
-  command->add_option("--tolerance", options->tolerance, "relative residual")
-      ->check(positive_number())
-      ->capture_default_str();
-  return {command, [options](const std::vector<std::string>& command_line) {
+  TableOptions table(*command, "periodic");
+  options->scene.add_scene(table);
+  table.add("period", options->job.period);
+  table.add("phase", options->job.phase);
+  table.add("transient", options->job.transient);
+  table.add("max_iterations", options->job.max_iterations);
+  table.add("tolerance", options->job.tolerance);
+  return {command,
+          [options](const std::vector<std::string>& command_line) {
             return run_periodic(*options, command_line);
-          }};
+          },
+          "periodic"};
 }
 
 }  // namespace impactlab::cli

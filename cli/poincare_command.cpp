@@ -125,12 +125,14 @@ Command add_poincare_command(CLI::App& app) {
       "poincare", "a Poincare section after a transient; write poincare.csv and meta.json");
   auto options = std::make_shared<SectionOptions>();
   auto lyapunov = std::make_shared<bool>(false);
-  options->add_to(*command, "section points recorded (strobe: forcing periods; impact: impacts)");
-  command->add_flag("--lyapunov", *lyapunov,
-                    "also the largest Lyapunov exponent over the recorded periods (meta.json)");
-  return {command, [options, lyapunov](const std::vector<std::string>& command_line) {
+  TableOptions table(*command, "poincare");
+  options->add_to(table);
+  table.add("lyapunov", *lyapunov);
+  return {command,
+          [options, lyapunov](const std::vector<std::string>& command_line) {
             return run_poincare(*options, *lyapunov, command_line);
-          }};
+          },
+          "poincare"};
 }
 
 }  // namespace impactlab::cli

@@ -14,6 +14,7 @@
 #include "command.hpp"
 #include "commands.hpp"
 #include "program_files.hpp"
+#include "table_options.hpp"
 #include <impactlab/platform/run_program.hpp>
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/output.hpp>
@@ -22,12 +23,13 @@ namespace impactlab::cli {
 
 namespace {
 
+// The values as given; their defaults come from the "reproduce" option table.
 struct ReproduceOptions {
   std::string paper;
   std::vector<std::string> assignments;
-  std::vector<std::string> models = Jin2003Settings{}.models;
-  std::string out = "notebooks_data/jin2003";
-  int threads = 0;
+  std::vector<std::string> models;
+  std::string out;
+  int threads = 0;  // 0: all cores
   bool quick = false;
   bool no_plot = false;
   bool quiet = false;
@@ -109,23 +111,20 @@ Command add_reproduce_command(CLI::App& app) {
   auto* command = app.add_subcommand(
       "reproduce", "reproduce a paper's figures (jin2003: Fig. 4 of Jin, Hu & Bishop 2003)");
   auto options = std::make_shared<ReproduceOptions>();
-  command->add_option("paper", options->paper, "the figure set: jin2003")->required();
-  command->add_option("--set", options->assignments,
-                      "KEY=VALUE, repeatable: a scene key of jin2003 (e_n, mu, integrator.rtol, ...)");
-  command->add_option("--models", options->models,
-                      "impact models, comma-separated; NAME[:KEY=VALUE]... gives a model scene "
-                      "settings of its own; the first model with a slip sets Fig. 4(d)'s window")
-      ->delimiter(',')
-      ->capture_default_str();
-  command->add_option("--out", options->out, "output directory")->capture_default_str();
-  command->add_option("--threads", options->threads, "worker threads (default: all cores)")
-      ->check(CLI::Range(1, 1024));
-  command->add_flag("--quick", options->quick, "coarse grids, for tests");
-  command->add_flag("--no-plot", options->no_plot, "write the data only, no PNGs");
-  command->add_flag("--quiet", options->quiet, "print nothing but errors");
-  return {command, [options](const std::vector<std::string>& command_line) {
+  TableOptions table(*command, "reproduce");
+  table.add("paper", options->paper);
+  table.add("set", options->assignments);
+  table.add("models", options->models);
+  table.add("out", options->out);
+  table.add("threads", options->threads);
+  table.add("quick", options->quick);
+  table.add("no_plot", options->no_plot);
+  table.add("quiet", options->quiet);
+  return {command,
+          [options](const std::vector<std::string>& command_line) {
             return run_reproduce(*options, command_line);
-          }};
+          },
+          "reproduce"};
 }
 
 }  // namespace impactlab::cli

@@ -11,34 +11,18 @@
 
 namespace impactlab::cli {
 
-void SectionOptions::add_to(CLI::App& command, const std::string& points_help) {
-  command.add_option("scene", scene.scene, "built-in scene name or path to a scene file (.toml)")
-      ->capture_default_str();
-  command.add_option("--set", scene.assignments,
-                     "KEY=VALUE, repeatable: a parameter (omega, V0, e_n, ...) or a dotted key");
-  command.add_option("--out", scene.out, "output directory (default out/<scene>)");
-  command.add_flag("--quiet", scene.quiet, "print nothing but errors");
-  command.add_option("--section", section,
-                     "strobe[:PHASE] (forcing phase wt mod 2pi, rad), impact[:WALL] "
-                     "(+1, -1, 0 = any wall), or a user-given section q=LEVEL[:up|down|both] "
-                     "or qdot=LEVEL[:up|down|both]")
-      ->capture_default_str();
-  auto* by_impacts = command.add_option("--transient-impacts", transient_impacts,
-                                        "discard this many impacts instead of periods")
-                        ->check(count_in(0, 1000000000));
-  command.add_option("--transient", transient, "forcing periods discarded first")
-      ->check(number_in(0.0, 1e9))
-      ->capture_default_str()
-      ->excludes(by_impacts);
-  command.add_option("--points", points, points_help)
-      ->check(count_in(1, 100000000))
-      ->capture_default_str();
-  command.add_flag("--plot", plot, "also write a PNG (matplotlib through /usr/bin/python3)");
+void SectionOptions::add_to(TableOptions& table) {
+  scene.add_scene(table);
+  table.add("section", section);
+  table.add("transient_impacts", transient_impacts);
+  table.add("transient", transient);
+  table.add("points", points);
+  table.add("plot", plot);
 }
 
 SectionRequest SectionOptions::request() const {
   SectionRequest request;
-  request.section = parse_section(section, "--section");
+  request.section = parse_section(section, "section");
   request.transient_periods = transient;
   request.transient_impacts = transient_impacts;
   request.points = points;

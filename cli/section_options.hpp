@@ -13,20 +13,21 @@
 
 #include <impactlab/analysis/section.hpp>
 #include "command.hpp"
+#include "table_options.hpp"
 
 namespace impactlab::cli {
 
+// The values as given; their defaults come from the job's option table.
 struct SectionOptions {
-  SceneOptions scene;              // scene, --set, --out, --quiet (its other fields unused)
-  std::string section = "strobe";  // strobe[:PHASE] | impact[:WALL]
-  double transient = 100.0;        // forcing periods discarded
+  SceneOptions scene;       // scene, --set, --out, --quiet (its other fields unused)
+  std::string section;      // strobe[:PHASE] | impact[:WALL]
+  double transient = 0.0;   // forcing periods discarded
   std::uint64_t transient_impacts = 0;
-  std::uint64_t points = 50;
+  std::uint64_t points = 0;
   bool plot = false;
 
-  // adds the scene arguments and the section options; `points_help` says
-  // what --points counts for this command
-  void add_to(CLI::App& command, const std::string& points_help);
+  // adds the scene arguments and the section options of the job's table
+  void add_to(TableOptions& table);
   // the section request (BadInput on a malformed --section)
   [[nodiscard]] SectionRequest request() const;
   [[nodiscard]] nlohmann::json record() const;

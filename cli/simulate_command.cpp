@@ -10,6 +10,7 @@
 #include <impactlab/api/scene_loading.hpp>
 #include "command.hpp"
 #include "commands.hpp"
+#include "table_options.hpp"
 #include <impactlab/io/output.hpp>
 
 namespace impactlab::cli {
@@ -76,12 +77,14 @@ Command add_simulate_command(CLI::App& app) {
       "simulate", "run a scene; write events.csv and meta.json (and trajectory.csv with --sample)");
   auto options = std::make_shared<SceneOptions>();
   auto sample_step = std::make_shared<double>(0.0);
-  options->add_to(*command);
-  command->add_option("--sample", *sample_step, "also write trajectory.csv sampled every DT s")
-      ->check(positive_number());
-  return {command, [options, sample_step](const std::vector<std::string>& command_line) {
+  TableOptions table(*command, "simulate");
+  options->add_run(table);
+  table.add("sample", *sample_step);
+  return {command,
+          [options, sample_step](const std::vector<std::string>& command_line) {
             return run_simulate(*options, command_line, *sample_step);
-          }};
+          },
+          "simulate"};
 }
 
 }  // namespace impactlab::cli

@@ -14,17 +14,19 @@
 #include <impactlab/api/scene_loading.hpp>
 #include "command.hpp"
 #include "commands.hpp"
+#include "table_options.hpp"
 #include <impactlab/io/output.hpp>
 
 namespace impactlab::cli {
 
 namespace {
 
+// The values as given; their defaults come from the "spectrum" option table.
 struct SpectrumOptions {
   SceneOptions scene;
-  double transient = 100.0;
-  int periods = 64;
-  int samples_per_period = 64;
+  double transient = 0.0;      // forcing periods discarded first
+  int periods = 0;             // forcing periods analysed
+  int samples_per_period = 0;
 };
 
 int run_spectrum(const SpectrumOptions& options, const std::vector<std::string>& command_line) {
@@ -96,24 +98,16 @@ Command add_spectrum_command(CLI::App& app) {
   auto* command = app.add_subcommand(
       "spectrum", "amplitude spectrum of q(t) after a transient (FFTW); write spectrum.csv");
   auto options = std::make_shared<SpectrumOptions>();
-  command->add_option("scene", options->scene.scene, "built-in scene name or path")
-      ->capture_default_str();
-  command->add_option("--set", options->scene.assignments, "KEY=VALUE, repeatable");
-  command->add_option("--out", options->scene.out, "output directory (default out/<scene>)");
-  command->add_flag("--quiet", options->scene.quiet, "print nothing but errors");
-  command->add_option("--transient", options->transient, "forcing periods discarded first")
-      ->check(number_in(0.0, 1e9))
-      ->capture_default_str();
-  command->add_option("--periods", options->periods, "forcing periods analysed")
-      ->check(CLI::Range(1, 1000000))
-      ->capture_default_str();
-  command->add_option("--samples-per-period", options->samples_per_period,
-                      "samples per forcing period")
-      ->check(CLI::Range(2, 100000))
-      ->capture_default_str();
-  return {command, [options](const std::vector<std::string>& command_line) {
+  TableOptions table(*command, "spectrum");
+  options->scene.add_scene(table);
+  table.add("transient", options->transient);
+  table.add("periods", options->periods);
+  table.add("samples_per_period", options->samples_per_period);
+  return {command,
+          [options](const std::vector<std::string>& command_line) {
             return run_spectrum(*options, command_line);
-          }};
+          },
+          "spectrum"};
 }
 
 }  // namespace impactlab::cli

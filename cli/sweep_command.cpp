@@ -23,6 +23,7 @@
 #include "commands.hpp"
 #include "mpi_session.hpp"
 #include "section_options.hpp"
+#include "table_options.hpp"
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/output.hpp>
 
@@ -30,20 +31,22 @@ namespace impactlab::cli {
 
 namespace {
 
+// The values as given; their defaults come from the "sweep" or "basins"
+// option table.
 struct SweepOptions {
   SectionOptions section;
   std::vector<std::string> params;
-  std::string direction = "up";
-  int threads = 1;
-  int chunks = 1;
+  std::string direction;
+  int threads = 0;
+  int chunks = 0;
   bool lyapunov = false, no_lyapunov = false;
   bool resume = false;
   long stop_after = 0;  // hidden, for tests: stop after this many new points per rank
-  double period_tolerance = 1e-6;
-  int max_period = 16;
-  std::string classification_tolerance = "auto";  // auto | off (api/sweep_job.hpp)
-  bool basins = false;                // `impactlab basins`: params are --x, --y
-  double attractor_tolerance = 1e-4;  // basins: relative distance of canonical points
+  double period_tolerance = 0.0;
+  int max_period = 0;
+  std::string classification_tolerance;  // auto | off (api/sweep_job.hpp)
+  bool basins = false;                 // `impactlab basins`: params are --x, --y
+  double attractor_tolerance = 0.0;    // basins: relative distance of canonical points
 };
 
 std::string number(double value) { return fmt::format("{}", value); }
@@ -55,7 +58,6 @@ using RecordKey = SweepRecordKey;
 void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<SweepTask>& tasks,
                   const std::map<RecordKey, SweepRecord>& records, std::vector<std::string>& files) {
   const BasinsTable table = basins_table(plan, tasks, records);
-  auto flag = [](bool value) { return value ? 1 : 0; };
   AtomicFile& basins = run_files.add("basins.csv");
   basins.stream() << plan.axes[0].name << ',' << plan.axes[1].name
                   << ",attractor,period,impacts_per_period,contact,termination\n";
@@ -66,12 +68,12 @@ void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<
                     << table.termination[k] << '\n';
   AtomicFile& attractors = run_files.add("attractors.csv");
   attractors.stream() << "attractor,period,impacts_per_period,contact,q,qdot,basin_points\n";
-  if (table.map.unclassified > 0)
-    attractors.stream() << "0,0,nan,0,nan,nan," << table.map.unclassified << '\n';
-  for (const Attractor& a : table.map.attractors)
-    attractors.stream() << a.id << ',' << a.period << ',' << number(a.impacts_per_period) << ','
-                        << flag(a.contact) << ',' << number(a.point[0]) << ','
-                        << number(a.point[1]) << ',' << a.basin_points << '\n';
+  const AttractorRows rows = attractor_rows(table.map);
+  for (std::size_t k = 0; k < rows.id.size(); ++k)
+    attractors.stream() << rows.id[k] << ',' << rows.period[k] << ','
+                        << number(rows.impacts_per_period[k]) << ',' << rows.contact[k] << ','
+                        << number(rows.q[k]) << ',' << number(rows.qdot[k]) << ','
+                        << rows.basin_points[k] << '\n';
   files = {"basins.csv", "attractors.csv"};
 }
 
@@ -181,12 +183,6 @@ void write_meta(RunFiles& run_files, const nlohmann::json& definition,
                 const Scene& scene, const SceneSchema& schema,
                 const std::map<RecordKey, SweepRecord>& all, nlohmann::json run,
                 const std::vector<std::string>& command_line, std::vector<std::string> files) {
-  std::uint64_t steps = 0, rhs = 0, stopped_points = 0;
-  for (const auto& [key, record] : all) {
-    steps += record.result.steps;
-    rhs += record.result.rhs_evaluations;
-    if (record.result.termination != "completed") ++stopped_points;
-  }
   files.push_back("meta.json");
   const std::string q_name(schema.main_coordinate);
   const nlohmann::json meta = {
@@ -196,11 +192,7 @@ void write_meta(RunFiles& run_files, const nlohmann::json& definition,
       {"sweep", definition},
       {"scene", scene_record(scene)},
       {"run", std::move(run)},
-      {"counts",
-       {{"points", all.size()},
-        {"points_stopped_early", stopped_points},
-        {"steps", steps},
-        {"rhs_evaluations", rhs}}},
+      {"counts", sweep_counts(all)},
       {"columns",
        {{"k", "index of the section point at this parameter value"},
         {"t", "time of the section point (scene time unit)"},
@@ -337,48 +329,24 @@ Command add_sweep_command(CLI::App& app) {
       "1D bifurcation sweep (bifurcation.csv, summary.csv) or 2D classification map "
       "(classes.csv) over scene parameters");
   auto options = std::make_shared<SweepOptions>();
-  options->section.add_to(*command,
-                          "section points recorded per value (strobe: forcing periods; "
-                          "impact: impacts)");
-  command->add_option("--param", options->params,
-                      "NAME=FROM:TO:N, once (1D bifurcation sweep) or twice (2D map)")
-      ->required()
-      ->expected(1, 2);
-  command->add_option("--direction", options->direction,
-                      "1D: follow the attractor up, down or both ways")
-      ->capture_default_str();
-  command->add_option("--threads", options->threads, "worker threads")
-      ->check(CLI::Range(1, 1024))
-      ->capture_default_str();
-  command->add_option("--chunks", options->chunks,
-                      "1D: split each direction into this many continuation runs, each from "
-                      "the scene's initial state (lets threads share a 1D sweep)")
-      ->check(CLI::Range(1, 1000000))
-      ->capture_default_str();
-  auto* lyapunov = command->add_flag(
-      "--lyapunov", options->lyapunov,
-      "compute the largest Lyapunov exponent (default: on for 2D, off for 1D)");
-  command->add_flag("--no-lyapunov", options->no_lyapunov, "do not compute it in a 2D map")
-      ->excludes(lyapunov);
-  command->add_option("--period-tol", options->period_tolerance,
-                      "relative distance under which section points count as repeating")
-      ->check(positive_number())
-      ->capture_default_str();
-  command->add_option("--max-period", options->max_period, "longest period looked for")
-      ->check(CLI::Range(1, 10000))
-      ->capture_default_str();
-  command->add_option("--classification-tol", options->classification_tolerance,
-                      "auto: a 2D map (classes only) integrates at the scene's "
-                      "integrator.classification_* unless an integrator key is --set; off: at "
-                      "the scene's integrator (the Lyapunov exponent always is)")
-      ->capture_default_str();
-  command->add_flag("--resume", options->resume,
-                    "reuse the finished points of an interrupted run of the same sweep in --out");
-  // for tests of --resume: stop (exit 3, checkpoint kept) after this many new points per rank
-  command->add_option("--stop-after", options->stop_after)->group("")->check(CLI::Range(1L, 1L << 40));
-  return {command, [options](const std::vector<std::string>& command_line) {
+  TableOptions table(*command, "sweep");
+  options->section.add_to(table);
+  table.add("param", options->params);
+  table.add("direction", options->direction);
+  table.add("threads", options->threads);
+  table.add("chunks", options->chunks);
+  table.add("lyapunov", options->lyapunov);
+  table.add("no_lyapunov", options->no_lyapunov);
+  table.add("period_tol", options->period_tolerance);
+  table.add("max_period", options->max_period);
+  table.add("classification_tol", options->classification_tolerance);
+  table.add("resume", options->resume);
+  table.add("stop_after", options->stop_after);
+  return {command,
+          [options](const std::vector<std::string>& command_line) {
             return run_sweep_command(*options, command_line);
-          }};
+          },
+          "sweep"};
 }
 
 Command add_basins_command(CLI::App& app) {
@@ -389,34 +357,22 @@ Command add_basins_command(CLI::App& app) {
   auto options = std::make_shared<SweepOptions>();
   options->basins = true;
   options->params.resize(2);
-  options->section.add_to(*command,
-                          "section points recorded per initial condition (strobe: forcing "
-                          "periods; impact: impacts)");
-  command->add_option("--x", options->params[0], "KEY=FROM:TO:N: the first grid key (fastest)")
-      ->required();
-  command->add_option("--y", options->params[1], "KEY=FROM:TO:N: the second grid key")->required();
-  command->add_option("--threads", options->threads, "worker threads")
-      ->check(CLI::Range(1, 1024))
-      ->capture_default_str();
-  command->add_flag("--lyapunov", options->lyapunov, "also compute the largest Lyapunov exponent");
-  command->add_option("--period-tol", options->period_tolerance,
-                      "relative distance under which section points count as repeating")
-      ->check(positive_number())
-      ->capture_default_str();
-  command->add_option("--max-period", options->max_period, "longest period looked for")
-      ->check(CLI::Range(1, 10000))
-      ->capture_default_str();
-  command->add_option("--attractor-tol", options->attractor_tolerance,
-                      "relative distance under which two canonical section points are one "
-                      "attractor")
-      ->check(positive_number())
-      ->capture_default_str();
-  command->add_flag("--resume", options->resume,
-                    "reuse the finished points of an interrupted run of the same map in --out");
-  command->add_option("--stop-after", options->stop_after)->group("")->check(CLI::Range(1L, 1L << 40));
-  return {command, [options](const std::vector<std::string>& command_line) {
+  TableOptions table(*command, "basins");
+  options->section.add_to(table);
+  table.add("x", options->params[0]);
+  table.add("y", options->params[1]);
+  table.add("threads", options->threads);
+  table.add("lyapunov", options->lyapunov);
+  table.add("period_tol", options->period_tolerance);
+  table.add("max_period", options->max_period);
+  table.add("attractor_tol", options->attractor_tolerance);
+  table.add("resume", options->resume);
+  table.add("stop_after", options->stop_after);
+  return {command,
+          [options](const std::vector<std::string>& command_line) {
             return run_sweep_command(*options, command_line);
-          }};
+          },
+          "basins"};
 }
 
 }  // namespace impactlab::cli

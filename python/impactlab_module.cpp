@@ -4,6 +4,7 @@
 // the GIL released; its progress callback takes the GIL back now and then to
 // call the user's callback and to look for Ctrl-C, and a Python exception
 // there cancels the job and comes out of the call unchanged.
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <complex>
@@ -13,6 +14,9 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include <pybind11/complex.h>
@@ -25,6 +29,8 @@
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/api/basins_job.hpp>
 #include <impactlab/api/compare.hpp>
+#include <impactlab/api/continuation_job.hpp>
+#include <impactlab/api/job_options.hpp>
 #include <impactlab/api/periodic_job.hpp>
 #include <impactlab/api/run_record.hpp>
 #include <impactlab/api/scene_jobs.hpp>
@@ -35,6 +41,7 @@
 #include <impactlab/integrate/stepper_names.hpp>
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/builtin_scenes.hpp>
+#include <impactlab/io/message_text.hpp>
 
 namespace py = pybind11;
 using namespace impactlab;
@@ -272,14 +279,6 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
                        std::optional<bool> lyapunov, double period_tolerance, int max_period,
                        const std::string& classification_tolerance, int threads,
                        py::object progress) {
-  if (threads < 1 || threads > 1024)
-    throw BadInput("threads", std::to_string(threads), "expected 1 to 1024");
-  if (chunks < 1 || chunks > 1000000)
-    throw BadInput("chunks", std::to_string(chunks), "expected 1 to 1000000");
-  if (max_period < 1 || max_period > 10000)
-    throw BadInput("max_period", std::to_string(max_period), "expected 1 to 10000");
-  if (!(period_tolerance > 0.0))
-    throw BadInput("period_tol", std::to_string(period_tolerance), "must be > 0");
   SweepSpec spec;
   spec.params = params;
   spec.direction = direction;
@@ -289,9 +288,6 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
   spec.period_tolerance = period_tolerance;
   spec.max_period = max_period;
   spec.classification_tolerance = classification_tolerance;
-  spec.param_key = "param";
-  spec.direction_key = "direction";
-  spec.classification_key = "classification_tol";
   const SweepTarget target = sweep_target(scene);
   const SweepPlan plan = make_sweep_plan(spec, scene, *target.schema);
   const PlanRun run = run_plan(scene, target, plan, threads, std::move(progress));
@@ -333,12 +329,6 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
                         std::uint64_t transient_impacts, std::uint64_t points, bool lyapunov,
                         double period_tolerance, int max_period, double attractor_tolerance,
                         int threads, py::object progress) {
-  if (threads < 1 || threads > 1024)
-    throw BadInput("threads", std::to_string(threads), "expected 1 to 1024");
-  if (max_period < 1 || max_period > 10000)
-    throw BadInput("max_period", std::to_string(max_period), "expected 1 to 10000");
-  if (!(period_tolerance > 0.0))
-    throw BadInput("period_tol", std::to_string(period_tolerance), "must be > 0");
   BasinsSpec spec;
   spec.x = x;
   spec.y = y;
@@ -347,43 +337,12 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
   spec.period_tolerance = period_tolerance;
   spec.max_period = max_period;
   spec.attractor_tolerance = attractor_tolerance;
-  spec.x_key = "x";
-  spec.y_key = "y";
-  spec.grid_key = "x/y";
-  spec.attractor_tolerance_key = "attractor_tol";
   const SweepTarget target = sweep_target(scene);
   const SweepPlan plan = make_basins_plan(spec, scene, *target.schema);
   const PlanRun run = run_plan(scene, target, plan, threads, std::move(progress));
   const double wall_time = run.wall_time;
-  std::uint64_t steps = 0, rhs = 0, stopped_points = 0;
-  for (const auto& [key, record] : run.records) {
-    steps += record.result.steps;
-    rhs += record.result.rhs_evaluations;
-    if (record.result.termination != "completed") ++stopped_points;
-  }
   BasinsTable table = basins_table(plan, run.tasks, run.records);
-
-  // attractors.csv's rows: attractor 0 ("none found") first when a point has none
-  std::vector<int> id, period, contact, basin_points;
-  std::vector<double> impacts, q, qdot;
-  if (table.map.unclassified > 0) {
-    id.push_back(0);
-    period.push_back(0);
-    impacts.push_back(std::nan(""));
-    contact.push_back(0);
-    q.push_back(std::nan(""));
-    qdot.push_back(std::nan(""));
-    basin_points.push_back(table.map.unclassified);
-  }
-  for (const Attractor& a : table.map.attractors) {
-    id.push_back(a.id);
-    period.push_back(a.period);
-    impacts.push_back(a.impacts_per_period);
-    contact.push_back(a.contact ? 1 : 0);
-    q.push_back(a.point[0]);
-    qdot.push_back(a.point[1]);
-    basin_points.push_back(a.basin_points);
-  }
+  AttractorRows attractors = attractor_rows(table.map);
 
   nlohmann::json section_record = {
       {"section", section},
@@ -395,11 +354,7 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
       {"sweep", basins_definition(plan, scene, *target.schema, section_record)},
       {"scene", scene_record(scene)},
       {"run", {{"threads", threads}, {"tasks", run.tasks.size()}, {"wall_time_s", wall_time}}},
-      {"counts",
-       {{"points", run.records.size()},
-        {"points_stopped_early", stopped_points},
-        {"steps", steps},
-        {"rhs_evaluations", rhs}}}};
+      {"counts", sweep_counts(run.records)}};
   py::dict out;
   out["meta"] = json_to_python(meta);
   out["axes"] = py::cast(std::vector<std::string>{plan.axes[0].name, plan.axes[1].name});
@@ -411,13 +366,13 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
   out["impacts_per_period"] = owning_array(std::move(table.impacts_per_period));
   out["contact"] = owning_array(std::move(table.contact));
   out["termination"] = py::cast(table.termination);
-  out["attractor_id"] = owning_array(std::move(id));
-  out["attractor_period"] = owning_array(std::move(period));
-  out["attractor_impacts_per_period"] = owning_array(std::move(impacts));
-  out["attractor_contact"] = owning_array(std::move(contact));
-  out["attractor_q"] = owning_array(std::move(q));
-  out["attractor_qdot"] = owning_array(std::move(qdot));
-  out["attractor_basin_points"] = owning_array(std::move(basin_points));
+  out["attractor_id"] = owning_array(std::move(attractors.id));
+  out["attractor_period"] = owning_array(std::move(attractors.period));
+  out["attractor_impacts_per_period"] = owning_array(std::move(attractors.impacts_per_period));
+  out["attractor_contact"] = owning_array(std::move(attractors.contact));
+  out["attractor_q"] = owning_array(std::move(attractors.q));
+  out["attractor_qdot"] = owning_array(std::move(attractors.qdot));
+  out["attractor_basin_points"] = owning_array(std::move(attractors.basin_points));
   out["wall_time_s"] = wall_time;
   return out;
 }
@@ -431,7 +386,6 @@ py::dict periodic_binding(const Scene& scene, const std::string& period, double 
   job.transient = transient;
   job.max_iterations = max_iterations;
   job.tolerance = tolerance;
-  job.period_key = "period";
   ProgressRelay relay(std::move(progress));
   const PeriodicJobResult found = relay.run([&] { return find_periodic_orbit(scene, job); });
   relay(1.0);
@@ -595,45 +549,12 @@ py::dict curve_columns(const BranchCurve& curve, const std::string& parameter,
   return one;
 }
 
-py::dict continue_binding(const Scene& scene, const std::string& parameter, double from, double to,
-                          int period, const std::string& section, bool switch_doubling,
-                          std::optional<std::vector<double>> start, double transient,
-                          int max_points, double tolerance, double max_step,
-                          const std::string& parameter2, double from2, double to2,
-                          const std::string& curve_type, py::object progress) {
-  if (period < 1 || period > 1000)
-    throw BadInput("period", std::to_string(period), "expected 1 to 1000");
-  if (max_points < 2 || max_points > 1000000)
-    throw BadInput("max_points", std::to_string(max_points), "expected 2 to 1000000");
-  if (!(transient >= 0.0 && transient <= 1e9))
-    throw BadInput("transient", std::to_string(transient), "expected 0 to 1e9");
-  if (start && start->size() < 2)
-    throw BadInput("start", std::to_string(start->size()) + " numbers",
-                   "expected Q,QDOT (a model file: its N states)");
-  ContinuationJob job;
-  job.parameter = parameter;
-  job.from = from;
-  job.to = to;
-  job.period = period;
-  if (!curve_type.empty() && parameter2.empty())
-    throw BadInput("curve", curve_type, "needs param2");
-  if (!parameter2.empty()) {
-    job.second_parameter = parameter2;
-    job.second_from = from2;
-    job.second_to = to2;
-    job.curve_type = curve_type;
-  }
-  set_continuation_section(job, section, "section");
-  job.transient_periods = transient;
-  job.doublings = switch_doubling ? 3 : 0;  // the CLI's --switch: the cascade, up to 8n
-  if (start) {
-    job.has_start = true;
-    job.start = *start;
-  }
-  job.numerics.max_points = max_points;
-  job.numerics.tolerance = tolerance;
-  job.numerics.max_step = max_step;
-  if (max_step > 0.0) job.numerics.initial_step = max_step;
+py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
+                          py::object progress) {
+  const ContinuationJob job = continuation_job(options);
+  const std::string& parameter = job.parameter;
+  const std::string& parameter2 = job.second_parameter;
+  const int period = job.period;
   ProgressRelay relay(std::move(progress));
   // the continuation reports no progress of its own: the check runs once after it
   const ContinuationJobResult result = relay.run([&] { return continue_orbit(scene, job); });
@@ -728,6 +649,7 @@ py::dict continue_binding(const Scene& scene, const std::string& parameter, doub
   points["graze_witness"] = owning_array(std::move(graze_witness));
   points["note"] = py::cast(note);
   py::dict out;
+  out["parameter"] = parameter;
   out["available"] = result.available;
   out["note"] = result.note;
   out["branches"] = branches;
@@ -746,6 +668,84 @@ py::dict continue_binding(const Scene& scene, const std::string& parameter, doub
     out["curve_note"] = result.has_curve ? std::string() : result.curve_note;
   }
   return out;
+}
+
+// `text` with each command-line flag in it (`--period-tol`) as its Python
+// keyword (`period_tol`): parts of the library older than the option tables
+// still name options by their flags.
+std::string keywords_for_flags(std::string_view text) {
+  std::string spelled;
+  for (std::size_t k = 0; k < text.size(); ++k) {
+    const bool flag = text.substr(k, 2) == "--" && k + 2 < text.size() &&
+                      std::islower(static_cast<unsigned char>(text[k + 2])) &&
+                      (k == 0 || text[k - 1] == ' ' || text[k - 1] == '(' || text[k - 1] == '/');
+    if (!flag) {
+      spelled += text[k];
+      continue;
+    }
+    for (k += 2; k < text.size() && (std::isalnum(static_cast<unsigned char>(text[k])) ||
+                                     text[k] == '-');
+         ++k)
+      spelled += text[k] == '-' ? '_' : text[k];
+    --k;
+  }
+  return spelled;
+}
+
+// The line of a BadInput with every option it names spelled as the Python
+// keyword: the key, and the options the reason names (`param`, or as flags).
+std::string keyword_message(const BadInput& bad) {
+  const std::string what = bad.what();
+  const std::string prefix = elide_value(bad.key()) + " = " + elide_value(bad.value()) + ": ";
+  const auto keyword = [](std::string_view name) { return std::string(name); };
+  if (!what.starts_with(prefix)) return spell_options(what, keyword);
+  return keywords_for_flags(elide_value(bad.key())) + " = " + elide_value(bad.value()) + ": " +
+         keywords_for_flags(spell_options(std::string_view(what).substr(prefix.size()), keyword));
+}
+
+// A job's option table (api/job_options.hpp) as a list of dicts, one per
+// option: name, type, default (None where unset; an int for whole numbers, a
+// tuple for a list of numbers), lower, upper, lower_open, unit, help (other
+// options named as `name`), choices, front_ends, required, for_tests_only.
+py::list job_option_rows(const std::string& job) {
+  static constexpr const char* type_names[] = {"number", "integer", "count", "text",
+                                               "file", "flag", "text_list", "number_list"};
+  static constexpr const char* front_end_names[] = {"both", "cli", "python"};
+  py::list rows;
+  for (const OptionSpec& spec : job_options(job)) {
+    py::dict row;
+    row["name"] = std::string(spec.name);
+    row["type"] = type_names[static_cast<int>(spec.type)];
+    const bool whole = spec.type == OptionType::integer || spec.type == OptionType::count;
+    row["default"] = std::visit(
+        [whole](const auto& value) -> py::object {
+          using Value = std::decay_t<decltype(value)>;
+          if constexpr (std::is_same_v<Value, Unset>) return py::none();
+          else if constexpr (std::is_same_v<Value, double>)
+            return whole ? py::object(py::int_(static_cast<long long>(value)))
+                         : py::object(py::float_(value));
+          else if constexpr (std::is_same_v<Value, std::string_view>)
+            return py::str(std::string(value));
+          else if constexpr (std::is_same_v<Value, std::vector<double>>)
+            return py::tuple(py::cast(value));
+          else
+            return py::bool_(value);
+        },
+        spec.default_value);
+    row["lower"] = spec.lower;
+    row["upper"] = spec.upper;
+    row["lower_open"] = spec.lower_open;
+    row["unit"] = std::string(spec.unit);
+    row["help"] = std::string(spec.help);
+    py::list choices;
+    for (std::string_view choice : spec.choices) choices.append(std::string(choice));
+    row["choices"] = choices;
+    row["front_ends"] = front_end_names[static_cast<int>(spec.front_ends)];
+    row["required"] = spec.required;
+    row["for_tests_only"] = spec.for_tests_only;
+    rows.append(row);
+  }
+  return rows;
 }
 
 py::list scene_keys(const Scene& scene) {
@@ -792,7 +792,7 @@ PYBIND11_MODULE(_impactlab, m) {
     try {
       if (pointer) std::rethrow_exception(pointer);
     } catch (const BadInput& bad) {
-      PyErr_SetString(PyExc_ValueError, bad.what());
+      PyErr_SetString(PyExc_ValueError, keyword_message(bad).c_str());
     }
   });
 
@@ -822,7 +822,30 @@ PYBIND11_MODULE(_impactlab, m) {
   m.def("periodic", &periodic_binding);
   m.def("compare", &compare_binding);
   m.def("bench", &bench_binding);
-  m.def("continue_", &continue_binding);
+  m.def("continue_", [](const Scene& scene, const std::string& param, const std::string& param2,
+                        const std::string& curve, int period, const std::string& section,
+                        bool switch_doubling, const std::vector<double>& start, double transient,
+                        int max_points, double tolerance, double max_step, py::object progress) {
+    ContinueOptions options;
+    options.param = param;
+    options.param2 = param2;
+    options.curve = curve;
+    options.period = period;
+    options.section = section;
+    options.switch_doubling = switch_doubling;
+    options.start = start;
+    options.transient = transient;
+    options.max_points = max_points;
+    options.tolerance = tolerance;
+    options.max_step = max_step;
+    return continue_binding(scene, options, std::move(progress));
+  });
+  m.def("job_names", [] {
+    std::vector<std::string> names;
+    for (std::string_view job : job_names()) names.emplace_back(job);
+    return names;
+  });
+  m.def("job_options", &job_option_rows);
   m.def("event_kind_names", [] {
     std::vector<std::string> names;
     for (int kind = 0; kind <= static_cast<int>(EventKind::painleve); ++kind)

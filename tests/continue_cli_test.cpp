@@ -147,32 +147,57 @@ TEST(ContinueCommand, SwitchWithACurveWritesTheDoubledBranchsCurveToo) {
   EXPECT_EQ(meta["doubled_curves"][0]["stop_reason"], "end_of_range");
 }
 
-TEST(ContinueCommand, BadInputExitsWithTwoAndOneLine) {
-  const std::vector<std::string> bad = {
-      "continue linear_impact --param omega=-1:2",       // outside the key's range
-      "continue linear_impact --param zeta2=0:1",        // no such key
-      "continue linear_impact --param omega=2",          // malformed range
-      "continue linear_impact --param omega=2:2.5 --period 0",     // no such period
-      "continue jin2003 --set model=paper --param omega=6:7",      // no Jacobians (Model P)
-      "continue jin2003 --set model=rigid --param omega=6:7",      // the rigid model
-      "continue linear_impact --param omega=2:2.5 --section impact:0",   // no one wall
-      "continue linear_impact --param omega=2:2.5 --section impact:-1",  // a wall never hit
-      "continue linear_impact --param omega=2:2.5 --section q=0.1",      // not strobe or impact
-      "continue linear_impact --param omega=2:2.5 --period 3 --transient 0 --start 5,5",  // no start
-      "continue linear_impact --param omega=2:2.5 --param2 omega=3:4",   // the same key twice
-      "continue linear_impact --param omega=2:2.5 --param2 sigma=0.2",   // malformed range
-      "continue linear_impact --param omega=2:2.5 --param2 r=0.8:1.5",   // outside r's range
-      "continue linear_impact --param omega=2:2.5 --param2 zeta2=0:1",   // no such key
-      "continue linear_impact --param omega=2:2.5 --curve fold",         // --curve without --param2
-      "continue linear_impact --param omega=2:2.5 --param2 r=0.8:0.6 --curve torus",
+TEST(ContinueCommand, BadInputExitsWithTwoAndOneLineNamingTheKey) {
+  // each command line and the key its message must name ("impactlab: KEY = ...")
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      // outside the key's range; no such key; a malformed range; no such period
+      {"continue linear_impact --param omega=-1:2", "omega"},
+      {"continue linear_impact --param zeta2=0:1", "--param"},
+      {"continue linear_impact --param omega=2", "--param"},
+      {"continue linear_impact --param omega=2:2.5 --period 0", "--period"},
+      // no Jacobians (Model P); the rigid model
+      {"continue jin2003 --set model=paper --param omega=6:7", "oscillator"},
+      {"continue jin2003 --set model=rigid --param omega=6:7", "model"},
+      // no one wall; a wall never hit; neither strobe nor impact
+      {"continue linear_impact --param omega=2:2.5 --section impact:0", "--section"},
+      {"continue linear_impact --param omega=2:2.5 --section impact:-1", "--param"},
+      {"continue linear_impact --param omega=2:2.5 --section q=0.1", "--section"},
+      // no orbit from this start
+      {"continue linear_impact --param omega=2:2.5 --period 3 --transient 0 --start 5,5",
+       "--param"},
+      // the same key twice; a malformed range; outside r's range; no such key
+      {"continue linear_impact --param omega=2:2.5 --param2 omega=3:4", "--param2"},
+      {"continue linear_impact --param omega=2:2.5 --param2 sigma=0.2", "--param2"},
+      {"continue linear_impact --param omega=2:2.5 --param2 r=0.8:1.5", "r"},
+      {"continue linear_impact --param omega=2:2.5 --param2 zeta2=0:1", "--param2"},
+      // --curve without --param2; an unknown curve; one start number
+      {"continue linear_impact --param omega=2:2.5 --curve fold", "--curve"},
+      {"continue linear_impact --param omega=2:2.5 --param2 r=0.8:0.6 --curve torus", "--curve"},
+      {"continue linear_impact --param omega=2:2.5 --start 0.1", "--start"},
   };
-  for (const auto& arguments : bad) {
+  for (const auto& [arguments, key] : bad) {
     const auto dir = scratch("bad");
     const Outcome outcome = run(arguments + " --out " + (dir / "out").string(), dir);
     EXPECT_EQ(outcome.status, 2) << arguments << "\n" << outcome.err;
     EXPECT_EQ(line_count(outcome.err), 1) << arguments << "\n" << outcome.err;
+    // "KEY = VALUE: reason" from the scene API, "FLAG: reason" from the parser
+    const bool names_key = outcome.err.starts_with("impactlab: " + key + " = ") ||
+                           outcome.err.starts_with("impactlab: " + key + ": ");
+    EXPECT_TRUE(names_key) << arguments << "\nexpected the key " << key << " in: " << outcome.err;
     EXPECT_FALSE(fs::exists(dir / "out" / "branch.csv")) << arguments;
   }
+}
+
+// The library names the option by its own name; the command line spells it
+// and every option the message mentions as a flag, as it always has.
+TEST(ContinueCommand, SameKeyTwiceNamesBothFlags) {
+  const auto dir = scratch("same_key");
+  const Outcome outcome =
+      run("continue linear_impact --param omega=2:2.5 --param2 omega=0.1:0.2 --out " +
+              (dir / "out").string(),
+          dir);
+  EXPECT_EQ(outcome.status, 2);
+  EXPECT_EQ(outcome.err, "impactlab: --param2 = omega: must differ from --param's key\n");
 }
 
 }  // namespace

@@ -13,6 +13,7 @@ checks them: bad input raises ValueError naming the key and the value.
 
 import math
 import numbers
+import re
 import warnings
 
 import numpy as np
@@ -112,21 +113,86 @@ def scene(name_or_scene="jin2003", **keys):
     return loaded
 
 
-def _number(key, value, positive=False, allow_zero=False):
+#: every job's options, declared once in the scene API (api/job_options.hpp):
+#: {job: {name: row}}, a row holding type, default, lower, upper, lower_open,
+#: unit, help, choices, front_ends, required
+_OPTIONS = {job: {row["name"]: row for row in _impactlab.job_options(job)}
+            for job in _impactlab.job_names()}
+
+
+def _default(job, name):
+    """The keyword default of an option: its table's default (None: unset)."""
+    return _OPTIONS[job][name]["default"]
+
+
+def _spelled(text):
+    """A help text with the options it names (`name`) as Python keywords."""
+    return re.sub(r"`([A-Za-z0-9_]+)`", r"\1", text)
+
+
+def _documented(job):
+    """Appends the job's options (name, help, unit, default) to the docstring."""
+    def document(function):
+        lines = ["", "", "Options (the scene API's option table {!r}):".format(job)]
+        for row in _OPTIONS[job].values():
+            if row["front_ends"] == "cli" or row["for_tests_only"]:
+                continue
+            unit = " ({})".format(row["unit"]) if row["unit"] else ""
+            default = "required" if row["required"] else "default {!r}".format(row["default"])
+            lines.append("    {}: {}{}; {}".format(row["name"], _spelled(row["help"]), unit,
+                                                  default))
+        function.__doc__ = (function.__doc__ or "") + "\n".join(lines) + "\n"
+        return function
+    return document
+
+
+def _number(key, value, row=None):
+    """`value` as a float within the range of the option's table row."""
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ValueError("{} = {!r}: expected a number".format(key, value))
     number = float(value)
     if not math.isfinite(number):
         raise ValueError("{} = {!r}: not a finite number".format(key, value))
-    if positive and not (number > 0.0 or (allow_zero and number == 0.0)):
-        raise ValueError("{} = {!r}: must be > 0".format(key, value))
+    if row is None:
+        return number
+    lower, upper = row["lower"], row["upper"]
+    if math.isinf(upper) and lower == 0.0:
+        if row["lower_open"] and not number > 0.0:
+            raise ValueError("{} = {!r}: must be > 0".format(key, value))
+        if not row["lower_open"] and not number >= 0.0:
+            raise ValueError("{} = {!r}: must be >= 0".format(key, value))
+    elif not (lower <= number <= upper) or (row["lower_open"] and number == lower):
+        raise ValueError("{} = {!r}: expected {:g} to {:g}{}".format(
+            key, value, lower, upper, " " + row["unit"] if row["unit"] else ""))
     return number
 
 
-def _whole(key, value, lowest=0):
+def _whole(key, value, row):
+    """`value` as an int within the range of the option's table row."""
+    lowest = int(row["lower"])
     if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < lowest:
         raise ValueError("{} = {!r}: expected a whole number >= {}".format(key, value, lowest))
+    if value > row["upper"]:
+        raise ValueError("{} = {!r}: expected {} to {:.0f}".format(
+            key, value, lowest, row["upper"]))
     return int(value)
+
+
+def _option(job, name, value):
+    """`value` checked against the option `name` of `job`'s table; ValueError naming it."""
+    row = _OPTIONS[job][name]
+    if row["type"] == "number":
+        return _number(name, value, row)
+    if row["type"] in ("integer", "count"):
+        return _whole(name, value, row)
+    if row["type"] == "flag":
+        if not isinstance(value, bool):
+            raise ValueError("{} = {!r}: expected True or False".format(name, value))
+        return value
+    if row["type"] == "text" and not isinstance(value, str):
+        raise ValueError("{} = {!r}: expected text{}".format(
+            name, value, " such as " + " or ".join(row["choices"]) if row["choices"] else ""))
+    return value
 
 
 def _progress(progress, total_label):
@@ -164,21 +230,24 @@ def _warn_if_stopped(result, what):
                       PhysicalDiagnosticWarning, stacklevel=3)
 
 
-def _time_span(periods, t_end):
+def _time_span(job, periods, t_end):
     if t_end is not None and periods is not None:
         raise ValueError("t_end = {!r}: give periods or t_end, not both".format(t_end))
     if t_end is not None:
-        return 0.0, _number("t_end", t_end)
-    return _number("periods", 100.0 if periods is None else periods, positive=True), 0.0
+        return 0.0, _option(job, "t_end", t_end)
+    return _option(job, "periods", 100.0 if periods is None else periods), 0.0
 
 
-def simulate(scene_=None, *, periods=None, t_end=None, sample=None, progress=None, **keys):
+@_documented("simulate")
+def simulate(scene_=None, *, periods=_default("simulate", "periods"),
+             t_end=_default("simulate", "t_end"), sample=_default("simulate", "sample"),
+             progress=None, **keys):
     """One run of the scene (the CLI's `simulate`). Returns a Result with
     events (EventArray), trajectory (t, q, qdot arrays and mode list; with
     sample=DT), meta (meta.json's content) and termination."""
     loaded = scene(scene_ if scene_ is not None else "jin2003", **keys)
-    periods, t_end = _time_span(periods, t_end)
-    sample_step = 0.0 if sample is None else _number("sample", sample, positive=True)
+    periods, t_end = _time_span("simulate", periods, t_end)
+    sample_step = 0.0 if sample is None else _option("simulate", "sample", sample)
     raw = _run(lambda callback: _impactlab.simulate(loaded, periods, t_end, sample_step, callback),
                progress, "simulate")
     result = RunResult(
@@ -191,18 +260,19 @@ def simulate(scene_=None, *, periods=None, t_end=None, sample=None, progress=Non
     return result
 
 
-def poincare(scene_=None, *, section="strobe", transient=100.0, transient_impacts=0, points=50,
-             lyapunov=False, progress=None, **keys):
+@_documented("poincare")
+def poincare(scene_=None, *, section=_default("poincare", "section"),
+             transient=_default("poincare", "transient"),
+             transient_impacts=_default("poincare", "transient_impacts"),
+             points=_default("poincare", "points"), lyapunov=_default("poincare", "lyapunov"),
+             progress=None, **keys):
     """The scene's orbit on a Poincaré section (the CLI's `poincare`): t, q,
     qdot, wall arrays (poincare.csv's rows), phase, counts, Lyapunov exponent."""
     loaded = scene(scene_ if scene_ is not None else "jin2003", **keys)
-    if not isinstance(section, str):
-        raise ValueError("section = {!r}: expected text such as strobe or impact:+1".format(section))
-    transient = _number("transient", transient)
-    if not 0.0 <= transient <= 1e9:
-        raise ValueError("transient = {!r}: expected 0 to 1e9 forcing periods".format(transient))
-    transient_impacts = _whole("transient_impacts", transient_impacts)
-    points = _whole("points", points, lowest=1)
+    section = _option("poincare", "section", section)
+    transient = _option("poincare", "transient", transient)
+    transient_impacts = _option("poincare", "transient_impacts", transient_impacts)
+    points = _option("poincare", "points", points)
     raw = _run(lambda callback: _impactlab.poincare(loaded, section, transient, transient_impacts,
                                                     points, bool(lyapunov), callback),
                progress, "poincare")
@@ -213,9 +283,14 @@ def poincare(scene_=None, *, section="strobe", transient=100.0, transient_impact
     return result
 
 
-def sweep(scene_=None, *, param, direction="up", threads=1, chunks=1, section="strobe",
-          transient=100.0, transient_impacts=0, points=50, lyapunov=None, period_tol=1e-6,
-          max_period=16, classification_tol="auto", progress=None, **keys):
+@_documented("sweep")
+def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
+          threads=_default("sweep", "threads"), chunks=_default("sweep", "chunks"),
+          section=_default("sweep", "section"), transient=_default("sweep", "transient"),
+          transient_impacts=_default("sweep", "transient_impacts"),
+          points=_default("sweep", "points"), lyapunov=_default("sweep", "lyapunov"),
+          period_tol=_default("sweep", "period_tol"), max_period=_default("sweep", "max_period"),
+          classification_tol=_default("sweep", "classification_tol"), progress=None, **keys):
     """A 1D bifurcation sweep (param="omega=FROM:TO:N") or a 2D map (a list of
     two). Returns bifurcation (1D: the rows of bifurcation.csv), summary (the
     rows of summary.csv, or of classes.csv for a 2D map), definition.
@@ -230,14 +305,16 @@ def sweep(scene_=None, *, param, direction="up", threads=1, chunks=1, section="s
         raise ValueError("lyapunov = {!r}: expected True, False or None".format(lyapunov))
     for key, value in (("direction", direction), ("section", section),
                        ("classification_tol", classification_tol)):
-        if not isinstance(value, str):
-            raise ValueError("{} = {!r}: expected text".format(key, value))
-    transient = _number("transient", transient)
+        _option("sweep", key, value)
+    checked = {key: _option("sweep", key, value) for key, value in (
+        ("threads", threads), ("chunks", chunks), ("transient", transient),
+        ("transient_impacts", transient_impacts), ("points", points),
+        ("period_tol", period_tol), ("max_period", max_period))}
     raw = _run(lambda callback: _impactlab.sweep(
-        loaded, params, direction, _whole("chunks", chunks, 1), section, transient,
-        _whole("transient_impacts", transient_impacts), _whole("points", points, 1), lyapunov,
-        _number("period_tol", period_tol, positive=True), _whole("max_period", max_period, 1),
-        classification_tol, _whole("threads", threads, 1), callback), progress, "sweep")
+        loaded, params, direction, checked["chunks"], section, checked["transient"],
+        checked["transient_impacts"], checked["points"], lyapunov, checked["period_tol"],
+        checked["max_period"], classification_tol, checked["threads"], callback),
+        progress, "sweep")
     axes = raw["axes"]
     names = ["up" if d > 0 else "down" for d in raw["direction"]]
     summary = {axes[0]: raw["value"]}
@@ -258,9 +335,14 @@ def sweep(scene_=None, *, param, direction="up", threads=1, chunks=1, section="s
                   definition=raw["definition"], wall_time_s=raw["wall_time_s"])
 
 
-def basins(scene_, *, x, y, threads=1, section="strobe", transient=100.0,
-           transient_impacts=0, points=50, lyapunov=False, period_tol=1e-6, max_period=16,
-           attractor_tol=1e-4, progress=None, **keys):
+@_documented("basins")
+def basins(scene_, *, x, y, threads=_default("basins", "threads"),
+           section=_default("basins", "section"), transient=_default("basins", "transient"),
+           transient_impacts=_default("basins", "transient_impacts"),
+           points=_default("basins", "points"), lyapunov=_default("basins", "lyapunov"),
+           period_tol=_default("basins", "period_tol"),
+           max_period=_default("basins", "max_period"),
+           attractor_tol=_default("basins", "attractor_tol"), progress=None, **keys):
     """Basins of attraction (the CLI's `basins`): every initial condition of
     the grid x="KEY=FROM:TO:N" (fastest) by y="KEY=FROM:TO:N", run from the
     scene's state with the two keys set, labelled by the attractor it settles
@@ -268,17 +350,16 @@ def basins(scene_, *, x, y, threads=1, section="strobe", transient=100.0,
     values), grid (the rows of basins.csv), attractors (a structured array:
     the rows of attractors.csv) and meta."""
     loaded = scene(scene_, **keys)
-    for key, value in (("x", x), ("y", y), ("section", section)):
-        if not isinstance(value, str):
-            raise ValueError("{} = {!r}: expected text such as KEY=FROM:TO:N".format(key, value))
-    if not isinstance(lyapunov, bool):
-        raise ValueError("lyapunov = {!r}: expected True or False".format(lyapunov))
+    for key, value in (("x", x), ("y", y), ("section", section), ("lyapunov", lyapunov)):
+        _option("basins", key, value)
+    checked = {key: _option("basins", key, value) for key, value in (
+        ("threads", threads), ("transient", transient), ("transient_impacts", transient_impacts),
+        ("points", points), ("period_tol", period_tol), ("max_period", max_period),
+        ("attractor_tol", attractor_tol))}
     raw = _run(lambda callback: _impactlab.basins(
-        loaded, x, y, section, _number("transient", transient),
-        _whole("transient_impacts", transient_impacts), _whole("points", points, 1), lyapunov,
-        _number("period_tol", period_tol, positive=True), _whole("max_period", max_period, 1),
-        _number("attractor_tol", attractor_tol, positive=True), _whole("threads", threads, 1),
-        callback), progress, "basins")
+        loaded, x, y, section, checked["transient"], checked["transient_impacts"],
+        checked["points"], lyapunov, checked["period_tol"], checked["max_period"],
+        checked["attractor_tol"], checked["threads"], callback), progress, "basins")
     axes = raw["axes"]
     nx, ny = raw["counts"]
     grid = {axes[0]: raw["x"], axes[1]: raw["y"], "attractor": raw["attractor"],
@@ -300,20 +381,22 @@ def basins(scene_, *, x, y, threads=1, section="strobe", transient=100.0,
     return result
 
 
-def periodic(scene_=None, *, period="auto", phase=0.0, transient=100.0, max_iterations=30,
-             tolerance=1e-11, progress=None, **keys):
+@_documented("periodic")
+def periodic(scene_=None, *, period=_default("periodic", "period"),
+             phase=_default("periodic", "phase"), transient=_default("periodic", "transient"),
+             max_iterations=_default("periodic", "max_iterations"),
+             tolerance=_default("periodic", "tolerance"), progress=None, **keys):
     """A period-n orbit by Newton shooting and its Floquet multipliers (the
     CLI's `periodic`). meta holds periodic.json's content."""
     loaded = scene(scene_ if scene_ is not None else "jin2003", **keys)
     if isinstance(period, bool) or not isinstance(period, (str, numbers.Integral)):
         raise ValueError("period = {!r}: expected auto or a whole number from 1 to 1000".format(period))
-    phase = _number("phase", phase)
-    if not 0.0 <= phase <= 6.283185307179586:
-        raise ValueError("phase = {!r}: expected 0 to 2 pi".format(phase))
+    checked = {key: _option("periodic", key, value) for key, value in (
+        ("phase", phase), ("transient", transient), ("max_iterations", max_iterations),
+        ("tolerance", tolerance))}
     raw = _run(lambda callback: _impactlab.periodic(
-        loaded, str(period), phase, _number("transient", transient),
-        _whole("max_iterations", max_iterations, 1), _number("tolerance", tolerance, positive=True),
-        callback), progress, "periodic")
+        loaded, str(period), checked["phase"], checked["transient"], checked["max_iterations"],
+        checked["tolerance"], callback), progress, "periodic")
     meta = raw["meta"]
     result = Result(scene=loaded, meta=meta, converged=raw["converged"],
                     termination=raw["termination"], state=np.array(meta["state"]),
@@ -326,7 +409,10 @@ def periodic(scene_=None, *, period="auto", phase=0.0, transient=100.0, max_iter
     return result
 
 
-def compare(scene_=None, *, models="", periods=None, t_end=None, progress=None, **keys):
+@_documented("compare")
+def compare(scene_=None, *, models=_default("compare", "models"),
+            periods=_default("compare", "periods"), t_end=_default("compare", "t_end"),
+            progress=None, **keys):
     """The scene under several impact models (the CLI's `compare`): runs (per
     model: events, meta), numbers (compare.json's numbers), summary (summary.md),
     and the CSV tables' text (impacts_csv, contacts_csv, section_csv)."""
@@ -334,7 +420,7 @@ def compare(scene_=None, *, models="", periods=None, t_end=None, progress=None, 
     if not isinstance(models, (str, list, tuple)):
         raise ValueError("models = {!r}: expected a list of model names".format(models))
     model_list = models if isinstance(models, str) else ",".join(models)
-    periods, t_end = _time_span(periods, t_end)
+    periods, t_end = _time_span("compare", periods, t_end)
     raw = _run(lambda callback: _impactlab.compare(loaded, model_list, periods, t_end, callback),
                progress, "compare")
     for run in raw["runs"].values():
@@ -342,8 +428,14 @@ def compare(scene_=None, *, models="", periods=None, t_end=None, progress=None, 
     return Result(scene=loaded, **raw)
 
 
-def bench(scene_=None, *, methods=None, rtols=(1e-6, 1e-8, 1e-10), atol_ratio=1e-2, periods=50.0,
-          reference_periods=20.0, max_reference_impacts=20, repetitions=1, progress=None, **keys):
+@_documented("work_precision")
+def bench(scene_=None, *, methods=_default("work_precision", "methods"),
+          rtols=_default("work_precision", "rtols"),
+          atol_ratio=_default("work_precision", "atol_ratio"),
+          periods=_default("work_precision", "periods"),
+          reference_periods=_default("work_precision", "reference_periods"),
+          max_reference_impacts=_default("work_precision", "max_reference_impacts"),
+          repetitions=_default("work_precision", "repetitions"), progress=None, **keys):
     """Work against precision on one scene (what the CLI's `bench` measures on
     its fixed cases): per method and rtol, CPU and wall seconds per impact,
     right-hand sides and steps per impact, and the largest impact-time and
@@ -355,37 +447,25 @@ def bench(scene_=None, *, methods=None, rtols=(1e-6, 1e-8, 1e-10), atol_ratio=1e
     if methods is not None and (isinstance(methods, str) or
                                 not all(isinstance(m, str) for m in methods)):
         raise ValueError("methods = {!r}: expected a list of stepper names".format(methods))
-    rtol_list = [_number("rtols", r, positive=True) for r in rtols]
+    rtol_list = [_number("rtols", r, _OPTIONS["work_precision"]["rtols"]) for r in rtols]
+    checked = {key: _option("work_precision", key, value) for key, value in (
+        ("atol_ratio", atol_ratio), ("periods", periods), ("reference_periods", reference_periods),
+        ("max_reference_impacts", max_reference_impacts), ("repetitions", repetitions))}
     raw = _run(lambda callback: _impactlab.bench(
-        loaded, list(methods or []), rtol_list, _number("atol_ratio", atol_ratio, positive=True),
-        _number("periods", periods, positive=True),
-        _number("reference_periods", reference_periods, positive=True),
-        _whole("max_reference_impacts", max_reference_impacts, 1),
-        _whole("repetitions", repetitions, 1), callback), progress, "bench")
+        loaded, list(methods or []), rtol_list, checked["atol_ratio"], checked["periods"],
+        checked["reference_periods"], checked["max_reference_impacts"], checked["repetitions"],
+        callback), progress, "bench")
     return Result(scene=loaded, **raw)
 
 
-def _parameter_range(param, key="param"):
-    """NAME=FROM:TO as (name, from, to); the key and its range are checked by the job."""
-    if isinstance(param, str):
-        name, equals, span = param.partition("=")
-        low, colon, high = span.partition(":")
-        if name and equals and colon and ":" not in high:
-            try:
-                low, high = float(low), float(high)
-            except ValueError:
-                low = high = math.nan
-            if not (math.isfinite(low) and math.isfinite(high)):
-                raise ValueError("{} = {!r}: FROM and TO must be finite numbers".format(key, param))
-            if low == high:
-                raise ValueError("{} = {!r}: FROM and TO must differ".format(key, param))
-            return name, low, high
-    raise ValueError("{} = {!r}: expected NAME=FROM:TO".format(key, param))
-
-
-def continue_(scene_=None, *, param, period=1, section="strobe", switch=False, start=None,
-              transient=100.0, max_points=5000, tolerance=1e-10, max_step=0.0, param2=None,
-              curve=None, progress=None, **keys):
+@_documented("continue")
+def continue_(scene_=None, *, param, period=_default("continue", "period"),
+              section=_default("continue", "section"), switch=_default("continue", "switch"),
+              start=_default("continue", "start"), transient=_default("continue", "transient"),
+              max_points=_default("continue", "max_points"),
+              tolerance=_default("continue", "tolerance"),
+              max_step=_default("continue", "max_step"), param2=_default("continue", "param2"),
+              curve=_default("continue", "curve"), progress=None, **keys):
     """Pseudo-arclength continuation of a period-n orbit in one scene key (the
     CLI's `continue`): branches (per branch: the columns of branch.csv, its
     period and why it stopped) and points (the rows of points.csv: folds,
@@ -402,25 +482,23 @@ def continue_(scene_=None, *, param, period=1, section="strobe", switch=False, s
     curve.csv, the first branch's curve first, then each doubled branch's
     (switch=True); curve_note says why there is none."""
     loaded = scene(scene_ if scene_ is not None else "linear_impact", **keys)
-    name, low, high = _parameter_range(param)
-    name2, low2, high2 = "", 0.0, 0.0
-    if param2 is not None:
-        name2, low2, high2 = _parameter_range(param2, "param2")
-    if curve is not None and not isinstance(curve, str):
-        raise ValueError("curve = {!r}: expected fold, period_doubling or grazing".format(curve))
-    if not isinstance(section, str):
-        raise ValueError("section = {!r}: expected text such as strobe, strobe:PHASE or impact:+1".format(section))
-    if not isinstance(switch, bool):
-        raise ValueError("switch = {!r}: expected True or False".format(switch))
+    # NAME=FROM:TO is read by the scene API (continuation_job), as the CLI's
+    for key, value in (("param", param), ("param2", param2), ("curve", curve),
+                       ("section", section), ("switch", switch)):
+        if value is not None:
+            _option("continue", key, value)
     if start is not None:
         if not isinstance(start, (list, tuple, np.ndarray)):
             raise ValueError("start = {!r}: expected (q, qdot), or a model file's N states".format(start))
         start = [_number("start", value) for value in start]
+        if not start:  # the scene API reads an empty start as none given
+            raise ValueError("start = 0 numbers: expected Q,QDOT (a model file: its N states)")
+    checked = {key: _option("continue", key, value) for key, value in (
+        ("period", period), ("transient", transient), ("max_points", max_points),
+        ("tolerance", tolerance), ("max_step", max_step))}
     raw = _run(lambda callback: _impactlab.continue_(
-        loaded, name, low, high, _whole("period", period, 1), section, switch, start,
-        _number("transient", transient), _whole("max_points", max_points, 2),
-        _number("tolerance", tolerance, positive=True),
-        _number("max_step", max_step, positive=True, allow_zero=True), name2, low2, high2,
-        curve or "", callback),
+        loaded, param, param2 or "", curve or "", checked["period"], section, switch,
+        start or [], checked["transient"], checked["max_points"], checked["tolerance"],
+        checked["max_step"], callback),
         progress, "continue")
-    return Result(scene=loaded, parameter=name, **raw)
+    return Result(scene=loaded, **raw)

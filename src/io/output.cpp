@@ -94,7 +94,7 @@ void prepare_output_directory(const std::filesystem::path& directory) {
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error || !std::filesystem::is_directory(directory))
-    throw BadInput("--out", directory.string(), "cannot create the output directory");
+    throw BadInput("out", directory.string(), "cannot create the output directory");
 }
 
 std::string csv_field(double value) {

@@ -48,7 +48,7 @@ class AtomicFile {
 };
 
 // The files of one run in one output directory, committed together.
-// The directory is created if needed (BadInput, key --out, if it cannot).
+// The directory is created if needed (BadInput, key `out`, if it cannot).
 // commit() finishes every file first and renames them into place only when
 // all are complete, in the order they were added (meta.json last, so a
 // directory with meta.json holds a complete run); a rename that fails takes
@@ -73,7 +73,7 @@ class RunFiles {
   std::vector<std::unique_ptr<AtomicFile>> files_;
 };
 
-// Creates the output directory; BadInput (key --out) if it cannot.
+// Creates the output directory; BadInput (key `out`) if it cannot.
 void prepare_output_directory(const std::filesystem::path& directory);
 
 // events.csv, written row by row as the events happen (an EventSink):

@@ -256,7 +256,7 @@ Scene read_scene(std::string_view name_or_path, const SchemaLookup& schema_of) {
 void set_scene_key(Scene& scene, const SceneSchema& schema, std::string_view assignment) {
   const auto equals = assignment.find('=');
   if (equals == std::string_view::npos || equals == 0)
-    throw BadInput("--set", std::string(assignment), "expected KEY=VALUE");
+    throw BadInput("set", std::string(assignment), "expected KEY=VALUE");
   const std::string key(assignment.substr(0, equals));
   const std::string text(assignment.substr(equals + 1));
   const KeySpec* spec = find_key(schema, key);

@@ -1,0 +1,46 @@
+// `continue` as a job that any front end runs: its options as the user gives
+// them (the CLI's flags, Python's keywords; defaults from
+// api/job_options.hpp's "continue" table) made into the ContinuationJob that
+// continue_orbit (api/scene_jobs.hpp) runs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <impactlab/analysis/continuation.hpp>
+
+namespace impactlab {
+
+// The period doublings that `switch` follows: the cascade, up to period 8n.
+constexpr int doublings_followed = 3;
+
+struct ContinueOptions {
+  std::string param;                  // NAME=FROM:TO: the scene key continued
+  std::string param2;                 // NAME=FROM:TO: a two-parameter curve; empty: none
+  std::string curve;                  // fold | period_doubling | grazing; empty: the first located
+  int period = 1;                     // n: forcing periods of the orbit
+  std::string section = "strobe";     // strobe[:PHASE] | impact:WALL
+  bool switch_doubling = false;       // follow the doubling cascade (`switch`)
+  std::vector<double> start;          // N numbers on the section; empty: the transient's end
+  double transient = 100.0;           // forcing periods run for the start
+  int max_points = 5000;              // points per branch
+  double tolerance = 1e-10;           // Newton residual |P^n(x) - x| / (1 + |x|)
+  double max_step = 0.0;              // largest arclength step; 0: 1/50 of the range
+};
+
+// A scene key and its range, NAME=FROM:TO.
+struct KeyRange {
+  std::string name;
+  double from = 0.0, to = 0.0;
+};
+
+// NAME=FROM:TO, FROM and TO finite and different (the key and its range are
+// checked by continue_orbit). BadInput names `option`.
+KeyRange parse_parameter_range(const std::string& text, const std::string& option);
+
+// The job the options describe. BadInput (named by the option) for a
+// malformed range or section, a value outside the option's range, fewer than
+// two start numbers, or `curve` without `param2`.
+ContinuationJob continuation_job(const ContinueOptions& options);
+
+}  // namespace impactlab
