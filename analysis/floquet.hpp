@@ -21,6 +21,7 @@
 
 #include <Eigen/Dense>
 
+#include <impactlab/analysis/decorated_system.hpp>
 #include <impactlab/analysis/flow_setup.hpp>
 #include <impactlab/analysis/variational.hpp>
 #include <impactlab/simulate/simulator.hpp>
@@ -55,14 +56,21 @@ flow_with_jacobian(const Variational<System>& tangent, Stepper& stepper, const F
           run.termination, log.count(EventKind::impact)};
 }
 
+// The tangent dynamics the analyses run for a system: the variational
+// equations of the system decorated with nothing switched on (its base,
+// number for number, analysis/decorated_system.hpp), one tangent type per
+// oscillator shared by Floquet, Lyapunov and continuation.
+template <HasJacobian System>
+using TangentOf = Variational<DecoratedSystem<System>>;
+
 // The flow from (t0, x0) to t1 and its Jacobian, with a stepper of its own.
 template <HasJacobian System>
 FlowWithJacobian<typename System::State, typename System::Mode, tangent_dimension_of<System>>
 flow_with_jacobian(
     const System& system, const FlowSetup& setup, const typename System::State& x0,
     typename System::Mode mode, double t0, double t1) {
-  using Tangent = Variational<System>;
-  const Tangent tangent(system);
+  using Tangent = TangentOf<System>;
+  const Tangent tangent{DecoratedSystem<System>(system)};
   return with_flow<Tangent>(
       setup.method, stepper_settings(tangent, setup), [&](auto& stepper) {
         return flow_with_jacobian(tangent, stepper, setup, x0, mode, t0, t1);
@@ -228,8 +236,8 @@ PeriodicOrbit<typename System::State, typename System::Mode, tangent_dimension_o
 locate_periodic_orbit(const System& system, const FlowSetup& setup, typename System::State guess,
                       typename System::Mode mode, double t0, double span,
                       int max_iterations = 30, double tolerance = 1e-11) {
-  using Tangent = Variational<System>;
-  const Tangent tangent(system);
+  using Tangent = TangentOf<System>;
+  const Tangent tangent{DecoratedSystem<System>(system)};
   return with_flow<Tangent>(setup.method, stepper_settings(tangent, setup), [&](auto& stepper) {
     return locate_periodic_orbit(tangent, stepper, setup, guess, mode, t0, span, max_iterations,
                                  tolerance);
@@ -295,8 +303,8 @@ LyapunovResult largest_lyapunov_exponent(const System& system, const FlowSetup& 
                                          typename System::State x, typename System::Mode mode,
                                          double t0, double period, int periods,
                                          int alignment_periods) {
-  using Tangent = Variational<System>;
-  const Tangent tangent(system);
+  using Tangent = TangentOf<System>;
+  const Tangent tangent{DecoratedSystem<System>(system)};
   return with_flow<Tangent>(setup.method, stepper_settings(tangent, setup), [&](auto& stepper) {
     return largest_lyapunov_exponent(tangent, stepper, setup, x, mode, t0, period, periods,
                                      alignment_periods);

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <numbers>
 
-#include <impactlab/analysis/decorated_system.hpp>
 #include <impactlab/analysis/floquet.hpp>
 #include <impactlab/analysis/periodic.hpp>
 #include <impactlab/analysis/section.hpp>
@@ -48,9 +47,7 @@ PeriodicResult run_periodic(const System& system, const typename System::State& 
       result.termination = std::string(to_string(transient.termination));
       return result;
     }
-    // on the decorated system with nothing switched on (its base, number for
-    // number): one tangent type per oscillator, shared with the other analyses
-    const auto orbit = locate_periodic_orbit(DecoratedSystem<System>(system), setup, transient.state, transient.mode,
+    const auto orbit = locate_periodic_orbit(system, setup, transient.state, transient.mode,
                                              result.t_section, result.orbit_period,
                                              request.max_iterations, request.tolerance);
     result.state.assign(orbit.state.begin(), orbit.state.end());

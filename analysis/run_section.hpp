@@ -197,10 +197,8 @@ SectionResult run_section(const System& system, const typename System::State& x0
     if (request.lyapunov) {
       if constexpr (HasJacobian<System>) {
         const int periods = std::max(1, static_cast<int>(std::lround(result.periods_recorded)));
-        // the tangent dynamics of the decorated system with nothing switched
-        // on (its base, number for number): one tangent type per oscillator
         const LyapunovResult lyapunov = largest_lyapunov_exponent(
-            DecoratedSystem<System>(system), lyapunov_setup, x_record, mode_record, result.record_start, period, periods,
+            system, lyapunov_setup, x_record, mode_record, result.record_start, period, periods,
             request.lyapunov_alignment_periods);
         result.lyapunov = lyapunov.exponent;
         if (lyapunov.termination != Termination::completed)

@@ -12,6 +12,10 @@
 //               accumulation and a sustained-contact phase
 // Counters: impacts_per_second (impacts / CPU second), rhs_per_impact and
 // steps_per_impact (right-hand-side evaluations and accepted steps per impact).
+// The flow_* cases run the same through Flow<PendulumWalls>
+// (simulate/flow.hpp), the stepper chosen by name at run time as the scene
+// API runs every analysis, beside the loop instantiated for the stepper
+// directly: what the run-time choice costs.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -20,6 +24,7 @@
 #include <string_view>
 
 #include <impactlab/core/event_log.hpp>
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/stepper_dispatch.hpp>
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
@@ -35,8 +40,11 @@ using impactlab::StepperSettings;
 
 constexpr double forcing_periods = 2000.0;
 
-void impacts_per_second(benchmark::State& state, std::string_view method, double V0,
-                        double rtol = 1e-10) {
+enum class Dispatch { compiled, flow };
+
+template <Dispatch dispatch>
+void impacts_per_second_through(benchmark::State& state, std::string_view method, double V0,
+                                double rtol) {
   PendulumWallsParameters parameters;
   parameters.V0 = V0;
   const PendulumWalls system(parameters);
@@ -50,11 +58,16 @@ void impacts_per_second(benchmark::State& state, std::string_view method, double
   std::uint64_t impacts = 0, rhs_evaluations = 0, steps = 0;
   for (auto _ : state) {
     EventLog log(false);
-    const auto result =
-        impactlab::with_stepper<PendulumWalls>(method, settings, [&](auto& stepper) {
+    const auto result = [&] {
+      if constexpr (dispatch == Dispatch::flow)
+        return impactlab::run_flow(system, method, settings, x0, PendulumWalls::Mode::free, 0.0,
+                                   t_end, LoopOptions{}, log);
+      else
+        return impactlab::with_stepper<PendulumWalls>(method, settings, [&](auto& stepper) {
           return impactlab::simulate(system, stepper, x0, PendulumWalls::Mode::free, 0.0, t_end,
                                      LoopOptions{}, log);
         });
+    }();
     benchmark::DoNotOptimize(result.state);
     if (result.termination != impactlab::Termination::completed) {
       state.SkipWithError("run did not complete");
@@ -69,6 +82,16 @@ void impacts_per_second(benchmark::State& state, std::string_view method, double
       benchmark::Counter(static_cast<double>(impacts), benchmark::Counter::kIsRate);
   state.counters["rhs_per_impact"] = static_cast<double>(rhs_evaluations) * per_impact;
   state.counters["steps_per_impact"] = static_cast<double>(steps) * per_impact;
+}
+
+void impacts_per_second(benchmark::State& state, std::string_view method, double V0,
+                        double rtol = 1e-10) {
+  impacts_per_second_through<Dispatch::compiled>(state, method, V0, rtol);
+}
+
+void flow_impacts_per_second(benchmark::State& state, std::string_view method, double V0,
+                             double rtol = 1e-10) {
+  impacts_per_second_through<Dispatch::flow>(state, method, V0, rtol);
 }
 
 BENCHMARK_CAPTURE(impacts_per_second, periodic_dopri5, "dopri5", 1.5)
@@ -99,3 +122,11 @@ BENCHMARK_CAPTURE(impacts_per_second, chattering_rk8pd, "rk8pd", 4.163)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
+BENCHMARK_CAPTURE(flow_impacts_per_second, periodic_rkf78, "rkf78", 1.5)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(flow_impacts_per_second, periodic_taylor, "taylor", 1.5)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(flow_impacts_per_second, chattering_taylor, "taylor", 4.163)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(flow_impacts_per_second, chattering_rkf78, "rkf78", 4.163)
+    ->Unit(benchmark::kMillisecond);

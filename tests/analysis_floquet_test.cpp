@@ -23,6 +23,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <impactlab/integrate/stepper_dispatch.hpp>
 #include <impactlab/analysis/floquet.hpp>
 #include <impactlab/analysis/sweep.hpp>
 #include <impactlab/api/scene_jobs.hpp>

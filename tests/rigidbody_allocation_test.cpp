@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <impactlab/integrate/stepper_dispatch.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/odeint_dopri5.hpp>
 #include <impactlab/integrate/gsl_rk8pd.hpp>

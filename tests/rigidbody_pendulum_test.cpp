@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include <impactlab/integrate/stepper_dispatch.hpp>
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/api/system_jobs.hpp>
