@@ -157,7 +157,7 @@ struct ContinuationRequest {
   double max_step = 0.0;             // (0: 1/50 of the range)
   int max_points = 5000;
   int max_newton_iterations = 12;
-  double tolerance = 1e-11;          // |F| ≤ tolerance (1 + |x|)
+  double tolerance = 1e-10;          // |F| ≤ tolerance (1 + |x|): continue's default (api/job_options)
   double parameter_difference = 0.0; // h of ∂F/∂p ≈ (P(p+h) − P(p−h)) / 2h (0: 1e-6 (1 + |p|))
   bool locate = true;                // locate the bifurcations detected
 };

@@ -11,10 +11,9 @@
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/api/system_jobs.hpp>
+#include <impactlab/api/visit_scene.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/taylor_stepper.hpp>
-#include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
-#include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 
 namespace impactlab {
@@ -75,32 +74,15 @@ ReferenceImpacts closed_form_reference(const Scene& scene, double t_end, std::si
   ReferenceImpacts reference;
   reference.method = "closed_form";
   const double t0 = scene.number("t0");
-  if (scene.oscillator == "linear_impact") {
-    LinearImpactParameters p;
-    p.zeta = scene.number("zeta");
-    p.A = scene.number("A");
-    p.omega = scene.number("omega");
-    p.sigma = scene.number("sigma");
-    p.r = scene.number("r");
-    p.accumulation = accumulation_tolerance(scene, 1.0 / p.omega, p.sigma);
-    const LinearImpact system(p);
-    reference.impacts = closed_form_impacts(
-        system, LinearImpact::State{scene.number("initial.x"), scene.number("initial.x_dot")},
-        LinearImpact::Mode::free, t0, t_end, max_impacts);
-  } else if (scene.oscillator == "bouncing_ball") {
-    BouncingBallParameters p;
-    p.g = scene.number("g");
-    p.A = scene.number("A");
-    p.omega = scene.number("omega");
-    p.r = scene.number("r");
-    p.accumulation = accumulation_tolerance(scene, 1.0 / p.omega, p.A);
-    const BouncingBall system(p);
-    reference.impacts = closed_form_impacts(
-        system, BouncingBall::State{scene.number("initial.y"), scene.number("initial.y_dot")},
-        BouncingBall::Mode::free, t0, t_end, max_impacts);
-  } else {
-    throw std::invalid_argument("closed_form_reference: no closed form for " + scene.oscillator);
-  }
+  reference.impacts = visit_scene(
+      scene, [&]<class Binding>(const SceneSystem<Binding>& bound) -> std::vector<ImpactSample> {
+        if constexpr (HasExactFlow<typename Binding::System>)
+          return closed_form_impacts(bound.system(), bound.initial_state(), bound.flight_mode(),
+                                     t0, t_end, max_impacts);
+        else
+          throw std::invalid_argument("closed_form_reference: no closed form for " +
+                                      scene.oscillator);
+      });
   reference.impacts_computed = reference.impacts.size();
   return reference;
 }
@@ -272,7 +254,9 @@ std::vector<SpeedRatio> speed_ratios(const std::vector<WorkPrecisionPoint>& slow
 }
 
 bool has_closed_form(const Scene& scene) {
-  return scene.oscillator == "linear_impact" || scene.oscillator == "bouncing_ball";
+  return visit_scene(scene, []<class Binding>(const SceneSystem<Binding>&) {
+    return HasExactFlow<typename Binding::System>;
+  });
 }
 
 ReferenceImpacts bench_reference(const Scene& scene, double t_end, std::size_t max_impacts) {

@@ -440,6 +440,9 @@ TEST(Continuation, LinearImpactOnTheImpactSectionHasTheStrobesPeriodDoublingAndM
   job.from = 2.0;
   job.to = 2.4;  // below 2.448, where the impact itself grazes and the section degenerates
   job.impact_wall = 1;
+  // the closed-form comparison below is to 1e-9: Newton to 1e-11, tighter
+  // than continue's default
+  job.numerics.tolerance = 1e-11;
   const auto result = impactlab::continue_orbit(scene, job);
   const auto& branch = result.branches.at(0).result;
   EXPECT_EQ(branch.stop_reason, "end_of_range") << branch.stop_detail;
@@ -695,6 +698,7 @@ TEST(Continuation, NeimarkSackerOfARotatingMapAtItsClosedForm) {
   request.from = 0.2;
   request.to = 1.2;
   request.start = {0.1, 0.1};  // a guess; Newton finds c(0.2)
+  request.tolerance = 1e-11;  // tighter than the default: the point is checked to 1e-12
   const auto result = impactlab::continue_branch(problem, request);
   EXPECT_EQ(result.stop_reason, "end_of_range") << result.stop_detail;
   const auto points = points_of_type(result, "neimark_sacker");
