@@ -164,12 +164,13 @@ class DecoratedSystem {
       if (crossing == CrossingKind::crossing && wanted) points_->add({t, x[0], x[1], 0});
       return {x, mode, t, false};
     }
-    const std::size_t before = log.records().size();
     if (crossings_ && crossing == CrossingKind::crossing && mode == flight_mode_)
       crossings_->crossings.push_back(
           {t, static_cast<int>(k), std::fabs(base_.witness(mode, k, x, t).rate)});
+    if (wall_impacts_ == nullptr) return base_.on_event(mode, k, crossing, x, t, log);
+    // the records the base's event adds: is one of them an impact with the wall?
+    const std::size_t before = log.records().size();
     auto after = base_.on_event(mode, k, crossing, x, t, log);
-    if (wall_impacts_ == nullptr) return after;
     const auto& records = log.records();
     for (std::size_t j = before; j < records.size(); ++j) {
       if (records[j].kind != EventKind::impact || records[j].wall != stop_wall_) continue;

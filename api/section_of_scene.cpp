@@ -8,11 +8,10 @@
 namespace impactlab {
 
 SectionResult section_of_scene(const Scene& scene, const SectionRequest& request) {
-  return visit_analysable_scene(scene, [&](const auto& bound) {
+  return visit_analysable_scene(scene, [&]<class Binding>(const SceneSystem<Binding>& bound) {
     // a continued run does not start from the scene's initial state (which a
     // swept key may have made inadmissible)
-    const auto x0 = request.start ? typename std::remove_cvref_t<decltype(bound)>::State{}
-                                  : bound.initial_state();
+    const auto x0 = request.start ? typename SceneSystem<Binding>::State{} : bound.initial_state();
     const std::string without = bound.without_linearisation();
     if (request.lyapunov && !without.empty()) {
       SectionRequest plain = request;

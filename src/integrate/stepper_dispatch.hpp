@@ -19,47 +19,42 @@
 
 namespace impactlab {
 
-// Calls `body(stepper)` with a freshly constructed stepper of the named method
-// for `System`, and returns what it returns. `exact` needs HasExactFlow,
-// `taylor` HasSeriesRhs.
+// Calls `body.template operator()<Stepper>()` with the stepper type of the
+// named method for `System`, and returns what it returns: the one table from
+// integrator.method to stepper. `exact` needs HasExactFlow, `taylor`
+// HasSeriesRhs; std::invalid_argument otherwise, and for an unknown name.
 template <HybridSystem System, class Body>
-decltype(auto) with_stepper(std::string_view method, const StepperSettings& settings, Body&& body) {
+decltype(auto) with_stepper_type(std::string_view method, Body&& body) {
   using State = typename System::State;
-  if (method == "dopri5") {
-    OdeintDopri5<State> stepper(settings);
-    return body(stepper);
-  }
-  if (method == "rkf78") {
-    OdeintFehlberg78<State> stepper(settings);
-    return body(stepper);
-  }
-  if (method == "bulirsch_stoer") {
-    OdeintBulirschStoer<State> stepper(settings);
-    return body(stepper);
-  }
-  if (method == "rk8pd") {
-    GslRk8pd<State> stepper(settings);
-    return body(stepper);
-  }
+  if (method == "dopri5") return body.template operator()<OdeintDopri5<State>>();
+  if (method == "rkf78") return body.template operator()<OdeintFehlberg78<State>>();
+  if (method == "bulirsch_stoer") return body.template operator()<OdeintBulirschStoer<State>>();
+  if (method == "rk8pd") return body.template operator()<GslRk8pd<State>>();
   if (method == "taylor") {
-    if constexpr (HasSeriesRhs<System>) {
-      TaylorStepper<System> stepper(settings);
-      return body(stepper);
-    } else {
+    if constexpr (HasSeriesRhs<System>)
+      return body.template operator()<TaylorStepper<System>>();
+    else
       throw std::invalid_argument(
           "integrator.method = taylor: this system's right-hand side is not written over a "
           "number type (no Taylor series for it)");
-    }
   }
   if (method == "exact") {
-    if constexpr (HasExactFlow<System>) {
-      ExactFlowStepper<System> stepper(settings);
-      return body(stepper);
-    } else {
+    if constexpr (HasExactFlow<System>)
+      return body.template operator()<ExactFlowStepper<System>>();
+    else
       throw std::invalid_argument("integrator.method = exact: this oscillator has no closed-form flow");
-    }
   }
   throw std::invalid_argument("integrator.method = " + std::string(method) + ": unknown method");
+}
+
+// Calls `body(stepper)` with a freshly constructed stepper of the named method
+// for `System`, and returns what it returns.
+template <HybridSystem System, class Body>
+decltype(auto) with_stepper(std::string_view method, const StepperSettings& settings, Body&& body) {
+  return with_stepper_type<System>(method, [&]<class Stepper>() -> decltype(auto) {
+    Stepper stepper(settings);
+    return body(stepper);
+  });
 }
 
 }  // namespace impactlab

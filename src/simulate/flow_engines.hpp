@@ -5,8 +5,6 @@
 #pragma once
 
 #include <memory>
-#include <stdexcept>
-#include <string>
 #include <string_view>
 
 #include <impactlab/integrate/stepper_dispatch.hpp>
@@ -44,32 +42,10 @@ class SteppedFlowEngine final : public FlowEngine<System> {
 template <HybridSystem System>
 std::unique_ptr<FlowEngine<System>> make_flow_engine(std::string_view method,
                                                      const StepperSettings& settings) {
-  using State = typename System::State;
-  if (method == "dopri5")
-    return std::make_unique<detail::SteppedFlowEngine<System, OdeintDopri5<State>>>(settings);
-  if (method == "rkf78")
-    return std::make_unique<detail::SteppedFlowEngine<System, OdeintFehlberg78<State>>>(settings);
-  if (method == "bulirsch_stoer")
-    return std::make_unique<detail::SteppedFlowEngine<System, OdeintBulirschStoer<State>>>(
-        settings);
-  if (method == "rk8pd")
-    return std::make_unique<detail::SteppedFlowEngine<System, GslRk8pd<State>>>(settings);
-  if (method == "taylor") {
-    if constexpr (HasSeriesRhs<System>)
-      return std::make_unique<detail::SteppedFlowEngine<System, TaylorStepper<System>>>(settings);
-    else
-      throw std::invalid_argument(
-          "integrator.method = taylor: this system's right-hand side is not written over a "
-          "number type (no Taylor series for it)");
-  }
-  if (method == "exact") {
-    if constexpr (HasExactFlow<System>)
-      return std::make_unique<detail::SteppedFlowEngine<System, ExactFlowStepper<System>>>(
-          settings);
-    else
-      throw std::invalid_argument("integrator.method = exact: this oscillator has no closed-form flow");
-  }
-  throw std::invalid_argument("integrator.method = " + std::string(method) + ": unknown method");
+  return with_stepper_type<System>(
+      method, [&]<class Stepper>() -> std::unique_ptr<FlowEngine<System>> {
+        return std::make_unique<detail::SteppedFlowEngine<System, Stepper>>(settings);
+      });
 }
 
 }  // namespace impactlab
