@@ -22,10 +22,11 @@ struct ContinueOptions {
   std::string section = "strobe";     // strobe[:PHASE] | impact:WALL
   bool switch_doubling = false;       // follow the doubling cascade (`switch`)
   std::vector<double> start;          // N numbers on the section; empty: the transient's end
-  double transient = 100.0;           // forcing periods run for the start
-  int max_points = 5000;              // points per branch
-  double tolerance = 1e-10;           // Newton residual |P^n(x) - x| / (1 + |x|)
-  double max_step = 0.0;              // largest arclength step; 0: 1/50 of the range
+  // the numbers' defaults are the library's own (analysis/continuation.hpp)
+  double transient = ContinuationJob{}.transient_periods;  // forcing periods run for the start
+  int max_points = ContinuationRequest{}.max_points;       // points per branch
+  double tolerance = ContinuationRequest{}.tolerance;      // |P^n(x) - x| / (1 + |x|)
+  double max_step = ContinuationRequest{}.max_step;        // largest arclength step; 0: 1/50 of the range
 };
 
 // A scene key and its range, NAME=FROM:TO.

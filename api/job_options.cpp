@@ -4,6 +4,7 @@
 #include <array>
 #include <stdexcept>
 
+#include <impactlab/analysis/continuation.hpp>
 #include <impactlab/io/bad_input.hpp>
 
 namespace impactlab {
@@ -235,15 +236,17 @@ Options continue_options() {
                "transient's end); impact section: PHASE,QDOT",
        .comma_separated = true},
       {.name = "transient", .type = OptionType::number, .help = "forcing periods run for the start",
-       .default_value = 100.0, .lower = 0, .upper = 1e9, .unit = "forcing periods"},
+       .default_value = ContinuationJob{}.transient_periods, .lower = 0, .upper = 1e9,
+       .unit = "forcing periods"},
       {.name = "max_points", .type = OptionType::integer, .help = "points per branch",
-       .default_value = 5000.0, .lower = 2, .upper = 1000000},
+       .default_value = static_cast<double>(ContinuationRequest{}.max_points), .lower = 2,
+       .upper = 1000000},
       {.name = "tolerance", .type = OptionType::number,
-       .help = "Newton residual |P^n(x) - x| / (1 + |x|)", .default_value = 1e-10, .lower = 0.0,
-       .lower_open = true},
+       .help = "Newton residual |P^n(x) - x| / (1 + |x|)",
+       .default_value = ContinuationRequest{}.tolerance, .lower = 0.0, .lower_open = true},
       {.name = "max_step", .type = OptionType::number,
        .help = "largest arclength step in (q, qdot, parameter) (default: 1/50 of the range)",
-       .default_value = 0.0, .lower = 0.0},
+       .default_value = ContinuationRequest{}.max_step, .lower = 0.0},
       {.name = "plot", .type = OptionType::flag,
        .help = "draw continuation.png (scripts/plot_continuation.py): stable solid, unstable "
                "dashed, bifurcations marked",
