@@ -19,9 +19,8 @@
 #include <limits>
 #include <optional>
 
-#include <Eigen/Dense>
-
 #include <impactlab/analysis/decorated_system.hpp>
+#include <impactlab/analysis/floquet_algebra.hpp>
 #include <impactlab/analysis/flow_setup.hpp>
 #include <impactlab/analysis/variational.hpp>
 #include <impactlab/simulate/simulator.hpp>
@@ -77,38 +76,6 @@ flow_with_jacobian(
       });
 }
 
-// Eigenvalues of an N × N matrix, largest modulus first (of a complex pair,
-// the one with the positive imaginary part first): for N = 2 from the trace
-// and determinant, otherwise from Eigen's real Schur form.
-template <std::size_t N>
-std::array<std::complex<double>, N> eigenvalues(const TangentMatrixOf<N>& m) {
-  if constexpr (N == 2) {
-    const double half_trace = 0.5 * (m[0][0] + m[1][1]);
-    const double determinant = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-    const std::complex<double> root =
-        std::sqrt(std::complex<double>(half_trace * half_trace - determinant));
-    std::complex<double> a = half_trace + root, b = half_trace - root;
-    if (std::abs(b) > std::abs(a)) std::swap(a, b);
-    return {a, b};
-  } else {
-    Eigen::Matrix<double, N, N> matrix;
-    for (std::size_t i = 0; i < N; ++i)
-      for (std::size_t j = 0; j < N; ++j) matrix(i, j) = m[i][j];
-    std::array<std::complex<double>, N> values;
-    const Eigen::EigenSolver<Eigen::Matrix<double, N, N>> solver(matrix, false);
-    if (solver.info() != Eigen::Success) {
-      values.fill({std::numeric_limits<double>::quiet_NaN(), 0.0});
-      return values;
-    }
-    for (std::size_t i = 0; i < N; ++i) values[i] = solver.eigenvalues()[i];
-    std::sort(values.begin(), values.end(), [](const auto& a, const auto& b) {
-      if (std::abs(a) != std::abs(b)) return std::abs(a) > std::abs(b);
-      return a.imag() > b.imag();
-    });
-    return values;
-  }
-}
-
 // |v| on the tangent space (std::hypot for N = 2)
 template <std::size_t N>
 double tangent_norm(const TangentVectorOf<N>& v) {
@@ -129,34 +96,6 @@ TangentVectorOf<N> tangent_part(const State& x) {
   return v;
 }
 
-// δ solving (M − I) δ = −r; none where M − I is singular: Cramer's rule for
-// N = 2, a fully pivoted LU decomposition otherwise.
-template <std::size_t N>
-std::optional<TangentVectorOf<N>> newton_step(const TangentMatrixOf<N>& monodromy,
-                                              const TangentVectorOf<N>& residual) {
-  if constexpr (N == 2) {
-    const double r0 = residual[0], r1 = residual[1];
-    const double a = monodromy[0][0] - 1.0, b = monodromy[0][1];
-    const double c = monodromy[1][0], d = monodromy[1][1] - 1.0;
-    const double determinant = a * d - b * c;
-    if (determinant == 0.0 || !std::isfinite(determinant)) return std::nullopt;
-    return TangentVectorOf<N>{(-r0 * d + r1 * b) / determinant, (-a * r1 + c * r0) / determinant};
-  } else {
-    Eigen::Matrix<double, N, N> matrix;
-    Eigen::Matrix<double, N, 1> right;
-    for (std::size_t i = 0; i < N; ++i) {
-      for (std::size_t j = 0; j < N; ++j) matrix(i, j) = monodromy[i][j] - (i == j ? 1.0 : 0.0);
-      right[i] = -residual[i];
-    }
-    if (!matrix.allFinite()) return std::nullopt;
-    const Eigen::FullPivLU<Eigen::Matrix<double, N, N>> lu(matrix);
-    if (!lu.isInvertible()) return std::nullopt;
-    const Eigen::Matrix<double, N, 1> solution = lu.solve(right);
-    TangentVectorOf<N> step;
-    for (std::size_t i = 0; i < N; ++i) step[i] = solution[i];
-    return step;
-  }
-}
 
 template <class State, class Mode, std::size_t N = default_tangent_dimension>
 struct PeriodicOrbit {

@@ -475,9 +475,10 @@ int run_bench(const BenchOptions& options, const std::vector<std::string>& comma
 }  // namespace
 
 Command add_bench_command(CLI::App& app) {
-  auto* command = app.add_subcommand(
-      "bench", "work-precision data: cost against impact-time error per stepper and tolerance, "
-               "beside a SciPy solve_ivp event loop");
+  auto* command = add_subcommand(
+      app, "bench",
+      "work-precision data: cost against impact-time error per stepper and tolerance, "
+      "beside a SciPy solve_ivp event loop");
   auto options = std::make_shared<BenchOptions>();
   TableOptions table(*command, "bench");
   table.add("out", options->out);

@@ -1,6 +1,6 @@
 // What every subcommand of the `impactlab` program shares: the exit statuses,
-// the number validators, the options of a command that runs a scene, a
-// progress bar, and the provenance written beside every output.
+// the options of a command that runs a scene, a progress bar, and the
+// provenance written beside every output.
 //
 // A subcommand lives in its own cli/<name>_command.cpp and exposes one
 // `Command add_<name>_command(CLI::App&)`; main.cpp lists them.
@@ -14,11 +14,18 @@
 #include <string_view>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
+
+// CLI11 itself is included only where the command line is parsed
+// (main.cpp) and where options are made (table_options.cpp): a subcommand
+// sees its nodes by name.
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
 
 namespace impactlab::cli {
 
@@ -35,15 +42,6 @@ struct Command {
   std::function<int(const std::vector<std::string>& command_line)> run;
   std::string_view job = {};
 };
-
-// A finite number; a positive finite number. CLI11's own range checks let inf
-// through and print the whole double range.
-const CLI::Validator& finite_number();
-const CLI::Validator& positive_number();
-// A finite number in [lower, upper]; a whole number (digits only, so that -1
-// cannot wrap around) in [lower, upper].
-CLI::Validator number_in(double lower, double upper);
-CLI::Validator count_in(std::uint64_t lower, std::uint64_t upper);
 
 class TableOptions;
 

@@ -141,8 +141,9 @@ int run_compare(const SceneOptions& options, const std::string& model_list,
 }  // namespace
 
 Command add_compare_command(CLI::App& app) {
-  auto* command = app.add_subcommand(
-      "compare", "run a scene under several impact models; side-by-side CSV, plot and summary");
+  auto* command = add_subcommand(
+      app, "compare",
+      "run a scene under several impact models; side-by-side CSV, plot and summary");
   auto options = std::make_shared<SceneOptions>();
   auto models = std::make_shared<std::string>();
   TableOptions table(*command, "compare");

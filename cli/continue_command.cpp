@@ -315,8 +315,8 @@ int run_continue(const ContinueCommandOptions& command_options,
 }  // namespace
 
 Command add_continue_command(CLI::App& app) {
-  auto* command = app.add_subcommand(
-      "continue",
+  auto* command = add_subcommand(
+      app, "continue",
       "continue a period-n orbit in one parameter (pseudo-arclength), locating folds, period "
       "doublings, Neimark-Sacker and grazing points");
   auto options = std::make_shared<ContinueCommandOptions>();

@@ -59,8 +59,8 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
 }  // namespace
 
 Command add_periodic_command(CLI::App& app) {
-  auto* command = app.add_subcommand(
-      "periodic", "locate a period-n orbit (Newton shooting) and its Floquet multipliers");
+  auto* command = add_subcommand(
+      app, "periodic", "locate a period-n orbit (Newton shooting) and its Floquet multipliers");
   auto options = std::make_shared<PeriodicOptions>();
   TableOptions table(*command, "periodic");
   options->scene.add_scene(table);

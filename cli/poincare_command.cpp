@@ -13,6 +13,7 @@
 #include <impactlab/api/scene_loading.hpp>
 #include "command.hpp"
 #include "commands.hpp"
+#include "table_options.hpp"
 #include "section_options.hpp"
 #include <impactlab/io/output.hpp>
 
@@ -121,8 +122,8 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
 }  // namespace
 
 Command add_poincare_command(CLI::App& app) {
-  auto* command = app.add_subcommand(
-      "poincare", "a Poincare section after a transient; write poincare.csv and meta.json");
+  auto* command = add_subcommand(
+      app, "poincare", "a Poincare section after a transient; write poincare.csv and meta.json");
   auto options = std::make_shared<SectionOptions>();
   auto lyapunov = std::make_shared<bool>(false);
   TableOptions table(*command, "poincare");

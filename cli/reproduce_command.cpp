@@ -108,8 +108,8 @@ int run_reproduce(const ReproduceOptions& options, const std::vector<std::string
 }  // namespace
 
 Command add_reproduce_command(CLI::App& app) {
-  auto* command = app.add_subcommand(
-      "reproduce", "reproduce a paper's figures (jin2003: Fig. 4 of Jin, Hu & Bishop 2003)");
+  auto* command = add_subcommand(
+      app, "reproduce", "reproduce a paper's figures (jin2003: Fig. 4 of Jin, Hu & Bishop 2003)");
   auto options = std::make_shared<ReproduceOptions>();
   TableOptions table(*command, "reproduce");
   table.add("paper", options->paper);

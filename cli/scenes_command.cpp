@@ -8,6 +8,7 @@
 #include <impactlab/api/scene_loading.hpp>
 #include "command.hpp"
 #include "commands.hpp"
+#include "table_options.hpp"
 #include <impactlab/io/builtin_scenes.hpp>
 
 namespace impactlab::cli {
@@ -47,9 +48,9 @@ int run_scenes(const std::string& name) {
 }  // namespace
 
 Command add_scenes_command(CLI::App& app) {
-  auto* command = app.add_subcommand("scenes", "list the built-in scenes, or one scene's keys");
+  auto* command = add_subcommand(app, "scenes", "list the built-in scenes, or one scene's keys");
   auto name = std::make_shared<std::string>();
-  command->add_option("scene", *name, "a scene whose keys, values, units and ranges to list");
+  add_positional(*command, "scene", *name, "a scene whose keys, values, units and ranges to list");
   return {command, [name](const std::vector<std::string>&) { return run_scenes(*name); }};
 }
 

@@ -73,8 +73,9 @@ int run_simulate(const SceneOptions& options, const std::vector<std::string>& co
 }  // namespace
 
 Command add_simulate_command(CLI::App& app) {
-  auto* command = app.add_subcommand(
-      "simulate", "run a scene; write events.csv and meta.json (and trajectory.csv with --sample)");
+  auto* command = add_subcommand(
+      app, "simulate",
+      "run a scene; write events.csv and meta.json (and trajectory.csv with --sample)");
   auto options = std::make_shared<SceneOptions>();
   auto sample_step = std::make_shared<double>(0.0);
   TableOptions table(*command, "simulate");

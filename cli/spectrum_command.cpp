@@ -95,8 +95,8 @@ int run_spectrum(const SpectrumOptions& options, const std::vector<std::string>&
 }  // namespace
 
 Command add_spectrum_command(CLI::App& app) {
-  auto* command = app.add_subcommand(
-      "spectrum", "amplitude spectrum of q(t) after a transient (FFTW); write spectrum.csv");
+  auto* command = add_subcommand(
+      app, "spectrum", "amplitude spectrum of q(t) after a transient (FFTW); write spectrum.csv");
   auto options = std::make_shared<SpectrumOptions>();
   TableOptions table(*command, "spectrum");
   options->scene.add_scene(table);

@@ -324,8 +324,8 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
 }  // namespace
 
 Command add_sweep_command(CLI::App& app) {
-  auto* command = app.add_subcommand(
-      "sweep",
+  auto* command = add_subcommand(
+      app, "sweep",
       "1D bifurcation sweep (bifurcation.csv, summary.csv) or 2D classification map "
       "(classes.csv) over scene parameters");
   auto options = std::make_shared<SweepOptions>();
@@ -350,8 +350,8 @@ Command add_sweep_command(CLI::App& app) {
 }
 
 Command add_basins_command(CLI::App& app) {
-  auto* command = app.add_subcommand(
-      "basins",
+  auto* command = add_subcommand(
+      app, "basins",
       "basins of attraction: each initial condition of a 2D grid (e.g. initial.theta x "
       "initial.theta_dot) classified by the attractor it settles on (basins.csv, attractors.csv)");
   auto options = std::make_shared<SweepOptions>();

@@ -1,7 +1,12 @@
 #include "table_options.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include <impactlab/io/message_text.hpp>
 #include "command.hpp"
@@ -9,6 +14,63 @@
 namespace impactlab::cli {
 
 namespace {
+
+// CLI11 puts the validator's text after the option's name; the value is
+// shortened so that the message stays one short line
+std::string shown(const std::string& text) { return elide_value(text); }
+
+std::string check_number(const std::string& text, bool positive) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0') return "not a number: " + shown(text);
+  if (!std::isfinite(value)) return "not a finite number: " + shown(text);
+  if (positive && !(value > 0.0)) return "must be > 0: " + shown(text);
+  return {};
+}
+
+std::string check_number_in(const std::string& text, double lower, double upper) {
+  if (auto error = check_number(text, false); !error.empty()) return error;
+  const double value = std::strtod(text.c_str(), nullptr);
+  if (value < lower || value > upper)
+    return fmt::format("{} is outside [{}, {}]", shown(text), lower, upper);
+  return {};
+}
+
+std::string check_count_in(const std::string& text, std::uint64_t lower, std::uint64_t upper) {
+  std::uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size())
+    return "not a whole number >= 0: " + shown(text);
+  if (value < lower || value > upper)
+    return fmt::format("{} is outside [{}, {}]", shown(text), lower, upper);
+  return {};
+}
+
+// A finite number; a positive finite number. CLI11's own range checks let inf
+// through and print the whole double range.
+const CLI::Validator& finite_number() {
+  static const CLI::Validator validator(
+      [](std::string& text) { return check_number(text, false); }, "FINITE");
+  return validator;
+}
+
+const CLI::Validator& positive_number() {
+  static const CLI::Validator validator(
+      [](std::string& text) { return check_number(text, true); }, "POSITIVE");
+  return validator;
+}
+
+CLI::Validator number_in(double lower, double upper) {
+  return CLI::Validator(
+      [lower, upper](std::string& text) { return check_number_in(text, lower, upper); },
+      fmt::format("FINITE in [{}, {}]", lower, upper));
+}
+
+CLI::Validator count_in(std::uint64_t lower, std::uint64_t upper) {
+  return CLI::Validator(
+      [lower, upper](std::string& text) { return check_count_in(text, lower, upper); },
+      fmt::format("WHOLE in [{}, {}]", lower, upper));
+}
 
 double number_default(const OptionSpec& spec) {
   if (const auto* number = std::get_if<double>(&spec.default_value)) return *number;
@@ -43,6 +105,17 @@ CLI::Validator whole_check(const OptionSpec& spec) {
 }  // namespace
 
 std::string flag_spelling(std::string_view name) { return option_flag(name); }
+
+CLI::App* add_subcommand(CLI::App& program, const std::string& name, const std::string& help) {
+  return program.add_subcommand(name, help);
+}
+
+bool option_given(const CLI::Option* option) { return option != nullptr && option->count() > 0; }
+
+void add_positional(CLI::App& command, const std::string& name, std::string& value,
+                    const std::string& help) {
+  command.add_option(name, value, help);
+}
 
 TableOptions::TableOptions(CLI::App& command, std::string_view job)
     : command_(command), job_(job) {}

@@ -11,12 +11,23 @@
 #include <string_view>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include <impactlab/api/job_options.hpp>
 #include <impactlab/io/bad_input.hpp>
 
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
+
 namespace impactlab::cli {
+
+// A subcommand `name` of the program, with its one-line help.
+CLI::App* add_subcommand(CLI::App& program, const std::string& name, const std::string& help);
+// Whether the option was given on the command line (false for none).
+bool option_given(const CLI::Option* option);
+// An optional positional argument of a command that runs no job.
+void add_positional(CLI::App& command, const std::string& name, std::string& value,
+                    const std::string& help);
 
 class TableOptions {
  public:

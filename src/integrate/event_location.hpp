@@ -32,6 +32,7 @@
 #include <boost/math/tools/roots.hpp>
 
 #include <impactlab/core/hybrid_system.hpp>
+#include <impactlab/platform/function_ref.hpp>
 
 namespace impactlab {
 
@@ -109,11 +110,15 @@ double bracketed_root(F&& f, double a, double b, double fa, double fb) {
 // `just_grazed` names a witness whose grazing was the event at ta: the state
 // there may still be closing on zero by the integrator's error, and the same
 // minimum must not be found again in the first sub-interval.
-template <HybridSystem System, class StateAt, class ScanAt>
+// The two are views (platform/function_ref.hpp), so that this is compiled once
+// per system, not once per stepper.
+template <HybridSystem System>
 LocatedEvent locate_first_event(const System& system, typename System::Mode mode, double ta,
                                 double tb, const typename System::State& x_start,
-                                const typename System::State& x_end, StateAt&& state_at,
-                                ScanAt&& scan_at, bool cheap_scan,
+                                const typename System::State& x_end,
+                                FunctionRef<void(double, typename System::State&)> state_at,
+                                FunctionRef<void(double, typename System::State&)> scan_at,
+                                bool cheap_scan,
                                 const EventLocationOptions& options,
                                 std::size_t just_grazed = static_cast<std::size_t>(-1)) {
   using State = typename System::State;
