@@ -1,0 +1,71 @@
+// The rigid-body pendulum's contact problem at rest on a wall
+// (rigid_pendulum_walls.hpp): whether it sticks, slides or releases, and the
+// slip's changes.
+#include <impactlab/oscillators/pendulum_walls/rigid_pendulum_walls.hpp>
+
+namespace impactlab {
+
+auto RigidPendulumWalls::settle(Mode from, int wall, const State& resting, double t, EventKind kind,
+                                EventLog& log, bool slip_stopped) const -> Transition<State, Mode> {
+  const double slip = slip_stopped ? 0.0 : tangential_velocity(wall, resting, t);
+  const rigidbody::ContactForces forces =
+      spin_free_
+          ? rigidbody::contact_forces<2>(free_spin_contact(wall, resting, t), p_.mu, slip, 0.0)
+          : rigidbody::contact_forces<1>(locked_spin_contact(wall, resting, t), p_.mu, slip, 0.0);
+  if (forces.regime == rigidbody::ContactRegime::painleve_no_solution ||
+      forces.regime == rigidbody::ContactRegime::painleve_ambiguous)
+    return stop_painleve(from, wall, resting, t, 0.0, log);
+  if (forces.regime == rigidbody::ContactRegime::detached) {
+    if (kind != EventKind::contact_start) {
+      EventRecord end{t, EventKind::contact_end, wall, resting[0], 0.0, 0.0};
+      end.normal_force = 0.0;
+      end.tangential_velocity = slip;
+      end.friction_work = resting[4];
+      log.record(end);
+    }
+    return {resting, Mode::free, t, false};
+  }
+  EventRecord record{t, kind, wall, resting[0], 0.0, 0.0};
+  record.normal_force = forces.normal;
+  record.tangential_velocity = slip;
+  record.friction_work = resting[4];
+  log.record(record);
+  const Mode next = forces.regime == rigidbody::ContactRegime::stick
+                        ? stick_mode(wall)
+                        : slide_mode(wall, forces.slip_sign);
+  return {resting, next, t, false};
+}
+
+auto RigidPendulumWalls::enter_contact(int wall, const State& after, double t, double time_error,
+                                       EventLog& log) const -> Transition<State, Mode> {
+  const State resting = on_wall(wall, after);
+  EventRecord accumulation{t, EventKind::accumulation, wall, resting[0], 0.0, 0.0};
+  accumulation.accumulation_error = time_error;
+  log.record(accumulation);
+  return settle(Mode::free, wall, resting, t, EventKind::contact_start, log);
+}
+
+auto RigidPendulumWalls::slip_stops(Mode mode, int wall, const State& x, double t,
+                                    EventLog& log) const -> Transition<State, Mode> {
+  State resting = on_wall(wall, x);
+  if (spin_free_) resting[3] = wall * pivot_velocity(t) / r_;  // γ_T = 0 exactly
+  return settle(mode, wall, resting, t, EventKind::slip_reversal, log, true);
+}
+
+auto RigidPendulumWalls::stick_breaks(Mode mode, int wall, std::size_t k, const State& x, double t,
+                                      EventLog& log) const -> Transition<State, Mode> {
+  // the slip starts from zero: the integrated spin's round-off must not
+  // start it on the wrong side of its witness
+  State resting = on_wall(wall, x);
+  resting[3] = wall * pivot_velocity(t) / r_;
+  const double s = k == 1 ? -1.0 : 1.0;
+  if (!(friction_denominator(s) > 1e-9)) return stop_painleve(mode, wall, resting, t, 0.0, log);
+  EventRecord record{t, EventKind::slip_reversal, wall, resting[0], 0.0, 0.0};
+  record.normal_force = sliding_normal_force(t, s);
+  record.tangential_velocity = 0.0;
+  record.friction_work = resting[4];
+  log.record(record);
+  return {resting, slide_mode(wall, s), t, false};
+}
+
+}  // namespace impactlab

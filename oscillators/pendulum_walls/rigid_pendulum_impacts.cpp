@@ -1,0 +1,56 @@
+// The rigid-body pendulum's impacts (rigid_pendulum_walls.hpp): the
+// Newton–Coulomb impulse on the collision matrix at a wall, and the
+// accumulation of impacts that ends in a contact.
+#include <impactlab/oscillators/pendulum_walls/rigid_pendulum_walls.hpp>
+
+namespace impactlab {
+
+auto RigidPendulumWalls::impact_at(int wall, const State& x, double t) const -> WallImpact {
+  const rigidbody::ImpactCoefficients coefficients{p_.e_n, p_.mu, 0.0};
+  if (spin_free_) {
+    const auto result = rigidbody::generalized_impact<2>(free_spin_contact(wall, x, t),
+                                                         Eigen::Vector2d(x[1], x[3]), coefficients);
+    return {result.qdot_after(0), result.qdot_after(1), result.impulse};
+  }
+  const auto result = rigidbody::generalized_impact<1>(
+      locked_spin_contact(wall, x, t), Eigen::Matrix<double, 1, 1>(x[1]), coefficients);
+  return {result.qdot_after(0), result.qdot_after(0), result.impulse};
+}
+
+auto RigidPendulumWalls::on_wall_reached(int wall, CrossingKind crossing, const State& x, double t,
+                                         EventLog& log) const -> Transition<State, Mode> {
+  const double gamma_t = tangential_velocity(wall, x, t);
+  if (crossing == CrossingKind::grazing) {
+    EventRecord graze{t, EventKind::grazing, wall, x[0], x[1], x[1]};
+    graze.tangential_velocity = gamma_t;
+    log.record(graze);
+    return {x, Mode::free, t, false};
+  }
+  const WallImpact impact = impact_at(wall, x, t);
+  if (impact.impulse.regime == rigidbody::ImpulseRegime::inconsistent)
+    return stop_painleve(Mode::free, wall, x, t, x[1], log);
+  State after{wall * theta0_, impact.theta_dot, x[2], impact.phi_dot, x[4]};
+  EventRecord record{t, EventKind::impact, wall, x[0], x[1], impact.theta_dot};
+  record.normal_impulse = impact.impulse.normal_impulse;
+  record.tangential_velocity = gamma_t;
+  record.tangential_velocity_after = tangential_velocity(wall, after, t);
+  log.record(record);
+
+  // chattering, with Model N's rule: normal acceleration towards the wall
+  // at rest, −γ̈_N = −(m l² / M_θ) g_e sin θ0 cos θ0, and its two rates
+  const double share = rod_inertia_ / theta_inertia_;
+  const double approach = -effective_gravity(t) * sin0_ * cos0_ * share;
+  const double approach_rate = -effective_gravity_rate(t) * sin0_ * cos0_ * share;
+  const double approach_curvature = -effective_gravity_curvature(t) * sin0_ * cos0_ * share;
+  // damping d / M_θ (1/s); the gap's stiffness m l g_e cos θ0 / M_θ (1/s²)
+  const double damping = p_.d / theta_inertia_;
+  const double gap_stiffness = p_.m * p_.l * effective_gravity(t) * cos0_ / theta_inertia_;
+  const auto estimate =
+      accept_accumulation({p_.l * cos0_ * std::fabs(impact.theta_dot), approach, approach_rate,
+                           p_.e_n, approach_curvature, damping, gap_stiffness},
+                          p_.accumulation);
+  if (!estimate) return {after, Mode::free, t, false};
+  return enter_contact(wall, after, t + estimate->remaining, estimate->error_bound, log);
+}
+
+}  // namespace impactlab
