@@ -8,7 +8,7 @@ import pytest
 import impactlab
 from conftest import read_csv, read_json, same_numbers
 
-# the bouncing ball of tests/basins_test.cpp (Γ = Aω²/g = 0.9): rest on the
+# the bouncing ball of tests/analysis/basins_test.cpp (Γ = Aω²/g = 0.9): rest on the
 # table and a period-1 bouncing orbit coexist; a 6 x 4 grid of initial states
 GRID_X, GRID_Y = "initial.y=0:0.1:6", "initial.y_dot=-1:1:4"
 

@@ -30,7 +30,7 @@
 #include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
 #include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
-#include "base_flow.hpp"
+#include "support/base_flow.hpp"
 
 namespace {
 
@@ -272,7 +272,7 @@ TEST(VariationalTaylor, PendulumFlowJacobianAcrossImpacts) {
 
 TEST(VariationalTaylor, PendulumContactPhasesCollapseTheJacobian) {
   // jin2003 at V0 = 4.163 m/s chatters into contact phases on the walls
-  // (tests/accumulation_test.cpp): the contact modes' series (the largest
+  // (tests/contact/accumulation_test.cpp): the contact modes' series (the largest
   // right-hand sides of the tangent) are run, and an accumulation merges
   // nearby states, so the
   // Jacobian is zero after it, as rkf78's on the base's Jacobian is

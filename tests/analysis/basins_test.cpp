@@ -24,7 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include <impactlab/analysis/basins.hpp>
-#include "mpi_launch.hpp"
+#include "support/mpi_launch.hpp"
 
 namespace {
 

@@ -17,7 +17,7 @@
 #include <impactlab/api/sweep_job.hpp>
 #include <impactlab/io/bad_input.hpp>
 
-#include "run_binary.hpp"
+#include "support/run_binary.hpp"
 
 namespace {
 

@@ -79,7 +79,7 @@ TEST(ModelFileCli, EveryCommandRunsAModelFileAndTheCacheIsReused) {
   for (const auto& entry : fs::directory_iterator(cache)) shared_objects += entry.path().extension() == ".so";
   EXPECT_EQ(shared_objects, 1);
   // continue: the branch's period doubling and grazing (their closed forms are
-  // checked in tests/analysis_continuation_test.cpp)
+  // checked in tests/analysis/continuation_test.cpp)
   const std::string points = slurp(out / "e" / "points.csv");
   EXPECT_NE(points.find("period_doubling,2.265"), std::string::npos) << points;
   EXPECT_NE(points.find("grazing,2.44"), std::string::npos) << points;

@@ -35,7 +35,7 @@
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/io/scene.hpp>
-#include "run_binary.hpp"
+#include "support/run_binary.hpp"
 
 namespace {
 

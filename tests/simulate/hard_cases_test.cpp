@@ -1,13 +1,15 @@
 // The hard cases of impact simulation, each against a closed form or an
 // independent computation written here (the cost of each belongs to
 // `impactlab bench`). Related cases elsewhere, not repeated here:
-// * simulator_test.cpp: a grazing double root inside one step, a pair of
-//   roots 1e-7 inside the stop, a near miss, an event at t0 and at the end
-//   time on the linear oscillator, no event twice, the unresolved Zeno stop;
-// * pendulum_walls_test.cpp: the contact phases of V0 = 4.163 (release
-//   times, friction work), the impacts before an accumulation bounded,
-//   energy at e_n = 1, μ above and below the Painlevé limit;
-// * bouncing_ball_test.cpp: chattering at r = 0.5 into riding and release.
+// * simulate/simulator_test.cpp: a grazing double root inside one step, a
+//   pair of roots 1e-7 inside the stop, a near miss, an event at t0 and at
+//   the end time on the linear oscillator, no event twice, the unresolved
+//   Zeno stop;
+// * oscillators/pendulum_walls_test.cpp: the contact phases of V0 = 4.163
+//   (release times, friction work), the impacts before an accumulation
+//   bounded, energy at e_n = 1, μ above and below the Painlevé limit;
+// * oscillators/bouncing_ball_test.cpp: chattering at r = 0.5 into riding
+//   and release.
 //
 // Cases here:
 //   chattering to rest   BouncingBall r = 0.05; pendulum V0 = 4.163 (the

@@ -5,7 +5,7 @@
 // * a 4-state model file made of the linear impact oscillator beside an
 //   uncoupled, wall-free damped oscillator u'' + 2ζ₂u' + u = 0: the Floquet
 //   multipliers of its period-1 orbit are the closed-form ones of the linear
-//   impact oscillator (tests/linear_impact_closed_form.hpp) and
+//   impact oscillator (tests/support/linear_impact_closed_form.hpp) and
 //   exp((−ζ₂ ± i√(1 − ζ₂²)) T) of the free pair, to 1e-10; its largest
 //   Lyapunov exponent just below the period doubling is log |μ_max| / T of
 //   that closed form; `continue` in ω (the dynamic-size driver) locates the
@@ -41,10 +41,10 @@
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/stepper_dispatch.hpp>
-#include "linear_impact_closed_form.hpp"
+#include "support/linear_impact_closed_form.hpp"
 #include <impactlab/oscillators/model_file/compiled_model.hpp>
 #include <impactlab/oscillators/model_file/model_system.hpp>
-#include "run_binary.hpp"
+#include "support/run_binary.hpp"
 
 namespace {
 

@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "run_binary.hpp"
+#include "support/run_binary.hpp"
 
 namespace {
 

@@ -18,7 +18,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "mpi_launch.hpp"
+#include "support/mpi_launch.hpp"
 
 namespace {
 

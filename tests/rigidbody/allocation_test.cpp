@@ -1,8 +1,8 @@
 // The rigid pendulum's hot loop allocates nothing: fixed-size Eigen matrices
 // in the impulse and contact problems, closed forms in the right-hand side
 // and the witnesses. Every allocation of this test program is counted by
-// replacing the global operator new (as tests/allocation_test.cpp does for
-// the other oscillators).
+// replacing the global operator new (as tests/simulate/allocation_test.cpp
+// does for the other oscillators).
 #include <atomic>
 #include <cstdlib>
 #include <new>
