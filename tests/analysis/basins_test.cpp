@@ -8,28 +8,27 @@
 //   cos φ = π(1 − r)/(Γ(1 + r)) at speed gT/2 (stable for Γ below the period
 //   doubling at Γ² = (π(1 − r)/(1 + r))² + (2(1 + r²)/(1 + r)²)²).
 // Serial, threaded, MPI and resumed runs write identical files.
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
-#include <cstdlib>
+#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <impactlab/analysis/basins.hpp>
-#include "support/mpi_launch.hpp"
+
+#include "support/test_support.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using impactlab::SweepRecord;
+using namespace impactlab::testing;
 
 SweepRecord record_with_cycle(const std::vector<std::array<double, 2>>& points, int period,
                               double impacts_per_period) {
@@ -60,51 +59,16 @@ TEST(Basins, OneCycleSeenFromEitherPointIsOneAttractorNumberedByFirstAppearance)
   EXPECT_EQ(map.unclassified, 1);
 }
 
-struct Outcome {
-  int status;
-  std::string err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-fs::path scratch(const std::string& name) {
-  auto dir = fs::temp_directory_path() / ("impactlab_basins_test_" + std::to_string(::getpid())) /
-             name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-Outcome run(const std::string& arguments, const fs::path& dir, const std::string& prefix = "") {
-  const std::string command = prefix + std::string(IMPACTLAB_BINARY) + " " + arguments + " >" +
-                              (dir / "stdout").string() + " 2>" + (dir / "stderr").string() +
-                              " </dev/null";
-  const int raw = std::system(command.c_str());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(dir / "stderr")};
-}
-
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> result;
-  std::stringstream stream(text);
-  for (std::string line; std::getline(stream, line);) result.push_back(line);
-  return result;
-}
-
 constexpr double g = 9.81, omega = 30.0, r = 0.8, A = 0.00981;  // Γ = 0.9
 const std::string basins = "basins bouncing_ball --set A=0.00981 --x initial.y=0:0.1:12 "
                            "--y initial.y_dot=-1:1:8 --quiet";
 
 TEST(Basins, BouncingBallRestAndPeriodOneOrbitCoexistAsTheClosedFormsSay) {
-  const auto dir = scratch("ball");
-  const auto out = dir / "out";
-  const Outcome o = run(basins + " --out " + out.string(), dir);
+  const ScratchFolder scratch;
+  const auto out = scratch / "out";
+  const ProgramRun o = run_command_line(basins + " --out " + out.string());
   ASSERT_EQ(o.status, 0) << o.err;
-  const auto basin_lines = lines(slurp(out / "basins.csv"));
+  const auto basin_lines = split_lines(slurp(out / "basins.csv"));
   EXPECT_EQ(basin_lines[0], "initial.y,initial.y_dot,attractor,period,impacts_per_period,contact,"
                             "termination");
   EXPECT_EQ(basin_lines.size(), 1u + 96u);
@@ -151,44 +115,55 @@ TEST(Basins, BouncingBallRestAndPeriodOneOrbitCoexistAsTheClosedFormsSay) {
 }
 
 TEST(Basins, SerialThreadedMpiAndResumedRunsWriteIdenticalFiles) {
-  const auto dir = scratch("same");
-  ASSERT_EQ(run(basins + " --threads 1 --out " + (dir / "serial").string(), dir).status, 0);
-  ASSERT_EQ(run(basins + " --threads 2 --out " + (dir / "threaded").string(), dir).status, 0);
+  const ScratchFolder scratch;
+  ASSERT_EQ(run_command_line(basins + " --threads 1 --out " + (scratch / "serial").string()).status,
+            0);
+  ASSERT_EQ(
+      run_command_line(basins + " --threads 2 --out " + (scratch / "threaded").string()).status, 0);
   for (const char* file : {"basins.csv", "attractors.csv"})
-    EXPECT_EQ(slurp(dir / "serial" / file), slurp(dir / "threaded" / file)) << file;
+    EXPECT_EQ(slurp(scratch / "serial" / file), slurp(scratch / "threaded" / file)) << file;
   // stopped after 30 points, then resumed
-  EXPECT_EQ(run(basins + " --stop-after 30 --out " + (dir / "resumed").string(), dir).status, 3);
-  EXPECT_FALSE(fs::exists(dir / "resumed" / "basins.csv"));
-  ASSERT_EQ(run(basins + " --resume --out " + (dir / "resumed").string(), dir).status, 0);
+  EXPECT_EQ(
+      run_command_line(basins + " --stop-after 30 --out " + (scratch / "resumed").string()).status,
+      3);
+  EXPECT_FALSE(fs::exists(scratch / "resumed" / "basins.csv"));
+  ASSERT_EQ(run_command_line(basins + " --resume --out " + (scratch / "resumed").string()).status,
+            0);
   for (const char* file : {"basins.csv", "attractors.csv"})
-    EXPECT_EQ(slurp(dir / "serial" / file), slurp(dir / "resumed" / file)) << file;
-  if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "no mpirun";
-  const Outcome mpi =
-      run(basins + " --out " + (dir / "mpi").string(), dir, impactlab::test::mpirun_two_ranks());
+    EXPECT_EQ(slurp(scratch / "serial" / file), slurp(scratch / "resumed" / file)) << file;
+  if (!mpirun_found()) GTEST_SKIP() << "no mpirun";
+  const ProgramRun mpi =
+      run_command_line(basins + " --out " + (scratch / "mpi").string(), {.mpi_ranks = 2});
   if (mpi.err.find("built without MPI") != std::string::npos) GTEST_SKIP() << "built without MPI";
   ASSERT_EQ(mpi.status, 0) << mpi.err;
   for (const char* file : {"basins.csv", "attractors.csv"})
-    EXPECT_EQ(slurp(dir / "serial" / file), slurp(dir / "mpi" / file)) << file;
+    EXPECT_EQ(slurp(scratch / "serial" / file), slurp(scratch / "mpi" / file)) << file;
 }
 
 TEST(Basins, BadInputExitsWithTwoAndOneLine) {
-  const std::vector<std::string> bad = {
-      "basins bouncing_ball --x initial.y=0:0.1:4 --y initial.y=0:1:4",    // the same key twice
-      "basins bouncing_ball --x initial.y=0:0.1 --y initial.y_dot=0:1:4",  // malformed
-      "basins bouncing_ball --x colour=0:1:4 --y initial.y_dot=0:1:4",     // no such key
-      "basins bouncing_ball --x initial.y=0:0.1:4 --y r=0:2:4",            // r outside [0, 1]
-      "basins bouncing_ball --x initial.y=0:0.1:4",                        // --y missing
-      "basins bouncing_ball --x initial.y=0:0.1:4 --y initial.y_dot=0:1:4 --attractor-tol 0",
+  // each command line and the key or option its message must name
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      // the same key twice
+      {"basins bouncing_ball --x initial.y=0:0.1:4 --y initial.y=0:1:4", "--y"},
+      // malformed
+      {"basins bouncing_ball --x initial.y=0:0.1 --y initial.y_dot=0:1:4", "--x"},
+      // no such key
+      {"basins bouncing_ball --x colour=0:1:4 --y initial.y_dot=0:1:4", "--x"},
+      // r outside [0, 1]
+      {"basins bouncing_ball --x initial.y=0:0.1:4 --y r=0:2:4", "r"},
+      // --y missing
+      {"basins bouncing_ball --x initial.y=0:0.1:4", "--y"},
+      {"basins bouncing_ball --x initial.y=0:0.1:4 --y initial.y_dot=0:1:4 --attractor-tol 0",
+       "--attractor-tol"},
   };
-  for (const auto& arguments : bad) {
-    const auto dir = scratch("bad");
-    const Outcome o = run(arguments + " --out " + (dir / "out").string(), dir);
-    EXPECT_EQ(o.status, 2) << arguments << "\n" << o.err;
+  for (const auto& [arguments, key] : bad) {
+    const ScratchFolder scratch;
+    const ProgramRun o = run_command_line(arguments + " --out " + (scratch / "out").string());
+    EXPECT_TRUE(refused_naming(o, key)) << arguments;
     if (arguments.find("colour") != std::string::npos) {
       EXPECT_NE(o.err.find("--x = colour"), std::string::npos) << o.err;
     }
-    EXPECT_EQ(lines(o.err).size(), 1u) << arguments << "\n" << o.err;
-    EXPECT_FALSE(fs::exists(dir / "out" / "basins.csv")) << arguments;
+    EXPECT_FALSE(fs::exists(scratch / "out" / "basins.csv")) << arguments;
   }
 }
 

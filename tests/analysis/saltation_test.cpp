@@ -21,6 +21,7 @@
 #include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
 #include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
+
 #include "support/base_flow.hpp"
 
 namespace {

@@ -2,13 +2,7 @@
 // back line for line; the response of a period-1 orbit (linear impact
 // oscillator) has lines only at multiples of ω, that of the period-2 orbit of
 // jin2003 at multiples of ω/2 with the odd ones present.
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -17,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include <impactlab/analysis/spectrum.hpp>
+
+#include "support/test_support.hpp"
 
 namespace {
 
@@ -45,21 +41,13 @@ TEST(Spectrum, RejectsTooFewSamples) {
   EXPECT_THROW(impactlab::amplitude_spectrum(one, 0.1), std::invalid_argument);
 }
 
-std::filesystem::path scratch(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() /
-             ("impactlab_spectrum_test_" + std::to_string(::getpid())) / name;
-  std::filesystem::remove_all(dir);
-  return dir;
-}
-
 // (harmonic, amplitude) rows of spectrum.csv from `impactlab spectrum ARGUMENTS`
 std::vector<std::pair<double, double>> spectrum_of(const std::string& arguments) {
-  const auto out = scratch("run");
-  const std::string command = std::string(IMPACTLAB_BINARY) + " spectrum " + arguments +
-                              " --quiet --out " + out.string();
-  const int raw = std::system(command.c_str());
-  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << command;
-  std::ifstream in(out / "spectrum.csv");
+  const impactlab::testing::ScratchFolder scratch;
+  const auto run = impactlab::testing::run_command_line(
+      "spectrum " + arguments + " --quiet --out " + (scratch / "out").string());
+  EXPECT_EQ(run.status, 0) << arguments << ": " << run.err;
+  std::istringstream in(impactlab::testing::slurp(scratch / "out" / "spectrum.csv"));
   std::string line;
   std::getline(in, line);
   EXPECT_EQ(line, "omega,amplitude,harmonic");

@@ -18,8 +18,6 @@
 //   orbit against log |μ_max| / T of its multipliers;
 // * `periodic` and `continue` from the command line on impact_damper.toml:
 //   exit 0 and four multipliers in periodic.json, branch.csv and points.csv.
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -41,10 +39,11 @@
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/stepper_dispatch.hpp>
-#include "support/linear_impact_closed_form.hpp"
 #include <impactlab/oscillators/model_file/compiled_model.hpp>
 #include <impactlab/oscillators/model_file/model_system.hpp>
-#include "support/run_binary.hpp"
+
+#include "support/linear_impact_closed_form.hpp"
+#include "support/test_support.hpp"
 
 namespace {
 
@@ -59,18 +58,12 @@ static_assert(tangent_dimension_of<System4> == 4);
 static_assert(tangent_dimension_of<ModelSystem<2>> == 2);
 static_assert(tangent_dimension_of<LinearImpact> == 2);
 
-// this process's scratch directories: CTest runs the cases of this file as
-// parallel processes, which must not clear each other's files
-fs::path scratch_root() {
-  return fs::path(::testing::TempDir()) /
-         ("impactlab_tangent_dimension_" + std::to_string(::getpid()));
-}
+using impactlab::testing::ScratchFolder;
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = scratch_root() / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+// where composite() writes the 4-state model's scene file, for this process
+const ScratchFolder& composite_folder() {
+  static const ScratchFolder folder;
+  return folder;
 }
 
 CompileOptions compile_options() {
@@ -124,7 +117,7 @@ reset = { velocity = "x_dot", restitution = "r", position = "x" }
 
 std::shared_ptr<const CompiledModel> composite() {
   static const std::shared_ptr<const CompiledModel> model = [] {
-    const fs::path file = scratch("composite") / "composite.toml";
+    const fs::path file = composite_folder() / "composite.toml";
     std::ofstream(file) << composite_model;
     return compile_model(read_model_file(file.string()), compile_options());
   }();
@@ -225,7 +218,7 @@ TEST(TangentDimension, FourStateContinuationLocatesTheLinearImpactPeriodDoubling
       2.24, 2.29);
   composite();  // writes the scene file
   const Scene scene = load_scene(
-      (scratch_root() / "composite" / "composite.toml").string());
+      (composite_folder() / "composite.toml").string());
   ContinuationJob job;
   job.parameter = "omega";
   job.from = 2.2;
@@ -268,7 +261,8 @@ TEST(TangentDimension, FourStateModelWithAStickingWallIsRefusedTheAnalyses) {
           "u_dot = \"-2*zeta2*u_dot - u\" }, state = { x = \"sigma\", x_dot = \"0\", u = \"u\", "
           "u_dot = \"u_dot\" }, "
           "force = \"A*cos(omega*t) - sigma\" }\n";
-  const fs::path file = scratch("sticking") / "sticking.toml";
+  const ScratchFolder scratch;
+  const fs::path file = scratch / "sticking.toml";
   std::ofstream(file) << text;
   const Scene scene = load_scene(file.string());
   const PeriodicResult periodic_result = periodic(scene, PeriodicRequest{});
@@ -405,16 +399,16 @@ std::vector<std::string> csv_row(const std::string& line) {
 }
 
 TEST(TangentDimension, PeriodicAndContinueRunOnTheImpactDamperFromTheCommandLine) {
-  const fs::path dir = scratch("cli");
-  ::setenv("IMPACTLAB_CACHE_DIR", (dir / "cache").c_str(), 1);
+  const ScratchFolder dir;
+  const std::vector<std::string> cache = {"IMPACTLAB_CACHE_DIR=" + (dir / "cache").string()};
   const std::string scene = examples + "impact_damper.toml";
   {
-    const auto run = impactlab::testing::run_binary(
+    const auto run = impactlab::testing::run_impactlab(
         {"periodic", scene, "--period", "1", "--set", "omega=1.5", "--quiet", "--out",
          (dir / "periodic").string()},
-        dir / "run-periodic", 120.0);
+        {.environment = cache, .limit_s = 120});
     ASSERT_EQ(run.status, 0) << run.err;
-    const auto document = nlohmann::json::parse(impactlab::testing::read_text(dir / "periodic" / "periodic.json"));
+    const auto document = nlohmann::json::parse(impactlab::testing::slurp(dir / "periodic" / "periodic.json"));
     EXPECT_TRUE(document["converged"].get<bool>());
     ASSERT_EQ(document["floquet_multipliers"].size(), 4u);
     ASSERT_EQ(document["monodromy"].size(), 4u);
@@ -424,10 +418,10 @@ TEST(TangentDimension, PeriodicAndContinueRunOnTheImpactDamperFromTheCommandLine
     EXPECT_GT(product, 0.0);
   }
   {
-    const auto run = impactlab::testing::run_binary({"continue", scene, "--param", "omega=1.5:1.6",
-                                          "--max-points", "20", "--quiet", "--out",
-                                          (dir / "continue").string()},
-                                         dir / "run-continue", 300.0);
+    const auto run = impactlab::testing::run_impactlab({"continue", scene, "--param", "omega=1.5:1.6",
+                                             "--max-points", "20", "--quiet", "--out",
+                                             (dir / "continue").string()},
+                                            {.environment = cache, .limit_s = 300});
     ASSERT_EQ(run.status, 0) << run.err;
     std::ifstream branch(dir / "continue" / "branch.csv");
     std::string header, line;
@@ -463,13 +457,11 @@ TEST(TangentDimension, PeriodicAndContinueRunOnTheImpactDamperFromTheCommandLine
     // a 4-state model is refused it with exit 2, one line naming --section,
     // and no output directory
     const auto out = dir / "impact_section";
-    const auto run = impactlab::testing::run_binary(
+    const auto run = impactlab::testing::run_impactlab(
         {"continue", scene, "--param", "omega=1.5:1.6", "--section", "impact:1", "--quiet",
          "--out", out.string()},
-        dir / "run-impact-section", 300.0);
-    EXPECT_EQ(run.status, 2) << run.err;
-    EXPECT_NE(run.err.find("--section"), std::string::npos) << run.err;
-    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+        {.environment = cache, .limit_s = 300});
+    EXPECT_TRUE(impactlab::testing::refused_naming(run, "--section"));
     EXPECT_FALSE(std::filesystem::exists(out));
   }
 }

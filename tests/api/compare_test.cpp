@@ -6,11 +6,8 @@
 //   impact columns agree to 1e-9 (MODEL.md §2's reduction);
 // * a model the scene rejects (an unknown one) exits 2 with one line naming
 //   the key and the value, and writes nothing.
-#include <sys/wait.h>
-#include <unistd.h>
-
+#include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -23,8 +20,12 @@
 #include <impactlab/api/compare.hpp>
 #include <impactlab/io/bad_input.hpp>
 
+#include "support/test_support.hpp"
+
 namespace impactlab {
 namespace {
+
+using namespace impactlab::testing;
 
 EventRecord impact(double t, int wall) {
   EventRecord e;
@@ -71,34 +72,6 @@ TEST(CompareNumbers, ModelListIsParsedAndChecked) {
 
 // ------------------------------------------------------------ the program
 
-struct Outcome {
-  int status;
-  std::string err;
-};
-
-std::filesystem::path scratch(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() /
-             ("impactlab_compare_test_" + std::to_string(::getpid())) / name;
-  std::filesystem::remove_all(dir);
-  return dir;
-}
-
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-Outcome run(const std::string& arguments) {
-  const auto err = scratch("stderr_dir");
-  std::filesystem::create_directories(err);
-  const std::string command = std::string(IMPACTLAB_BINARY) + " " + arguments + " >/dev/null 2>" +
-                              (err / "stderr").string() + " </dev/null";
-  const int raw = std::system(command.c_str());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(err / "stderr")};
-}
-
 std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path) {
   std::ifstream in(path);
   std::vector<std::vector<std::string>> rows;
@@ -115,9 +88,10 @@ std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path
 }
 
 TEST(CompareCommand, NewtonAndReducedRigidAgreeOnJin2003) {
-  const auto out = scratch("jin2003");
-  const Outcome outcome =
-      run("compare jin2003 --models newton,rigid --periods 30 --quiet --out " + out.string());
+  const ScratchFolder scratch;
+  const auto out = scratch / "jin2003";
+  const ProgramRun outcome =
+      run_command_line("compare jin2003 --models newton,rigid --periods 30 --quiet --out " + out.string());
   ASSERT_EQ(outcome.status, 0) << outcome.err;
   for (const char* file : {"compare_impacts.csv", "compare_contacts.csv", "compare_section.csv",
                            "summary.md", "compare.json"})
@@ -148,11 +122,11 @@ TEST(CompareCommand, NewtonAndReducedRigidAgreeOnJin2003) {
 }
 
 TEST(CompareCommand, RejectedModelExitsTwoAndWritesNothing) {
-  const auto out = scratch("unknown");
-  const Outcome outcome =
-      run("compare jin2003 --models newton,bogus --periods 2 --quiet --out " + out.string());
-  EXPECT_EQ(outcome.status, 2);
-  EXPECT_EQ(std::count(outcome.err.begin(), outcome.err.end(), '\n'), 1) << outcome.err;
+  const ScratchFolder scratch;
+  const auto out = scratch / "unknown";
+  const ProgramRun outcome =
+      run_command_line("compare jin2003 --models newton,bogus --periods 2 --quiet --out " + out.string());
+  EXPECT_TRUE(refused_naming(outcome, "model"));
   EXPECT_NE(outcome.err.find("model = bogus"), std::string::npos) << outcome.err;
   EXPECT_FALSE(std::filesystem::exists(out / "compare_impacts.csv"));
   EXPECT_FALSE(std::filesystem::exists(out / "compare.json"));
@@ -161,22 +135,21 @@ TEST(CompareCommand, RejectedModelExitsTwoAndWritesNothing) {
 // A path is data, never shell text: an --out that would close a quoted
 // shell word and run `touch` must reach the plot script whole (issue 13).
 TEST(CompareCommand, HostileOutDirectoryIsNotShellText) {
-  const auto base = scratch("hostile");
-  std::filesystem::create_directories(base);
-  const auto marker = base / "INJECTED";
-  const std::string hostile = (base / ("d';touch " + marker.string() + ";'")).string();
-  // double quotes for the test's own shell: the single quotes reach impactlab
-  const Outcome outcome =
-      run("compare jin2003 --models newton --periods 2 --quiet --out \"" + hostile + "\"");
+  const ScratchFolder scratch;
+  const auto marker = scratch / "INJECTED";
+  const std::string hostile = (scratch / ("d';touch " + marker.string() + ";'")).string();
+  const ProgramRun outcome = run_impactlab(
+      {"compare", "jin2003", "--models", "newton", "--periods", "2", "--quiet", "--out", hostile});
   EXPECT_EQ(outcome.status, 0) << outcome.err;
   EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(hostile) / "compare.json"));
   EXPECT_FALSE(std::filesystem::exists(marker)) << "the plot command ran shell text";
 }
 
 TEST(CompareCommand, MalformedModelListExitsTwo) {
-  const Outcome outcome = run("compare jin2003 --models newton,,rigid --periods 2 --quiet --out " +
-                              scratch("list").string());
-  EXPECT_EQ(outcome.status, 2);
+  const ScratchFolder scratch;
+  const ProgramRun outcome = run_command_line(
+      "compare jin2003 --models newton,,rigid --periods 2 --quiet --out " + (scratch / "list").string());
+  EXPECT_TRUE(refused_naming(outcome, "--models"));
   EXPECT_NE(outcome.err.find("--models = newton,,rigid"), std::string::npos) << outcome.err;
 }
 

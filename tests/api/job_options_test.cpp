@@ -3,7 +3,6 @@
 // and the messages of bad input agree with the tables. The Python side is
 // checked by tests/python/test_job_options.py.
 #include <cmath>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -17,7 +16,7 @@
 #include <impactlab/api/sweep_job.hpp>
 #include <impactlab/io/bad_input.hpp>
 
-#include "support/run_binary.hpp"
+#include "support/test_support.hpp"
 
 namespace {
 
@@ -179,15 +178,13 @@ std::string help_entry(const std::string& help, const std::string& flag) {
 // The command line's `--help` of every job shows each of its options with its
 // help text and, where the table says so, its default.
 TEST(JobOptions, CommandLineHelpAgreesWithTheTables) {
-  const auto scratch = std::filesystem::temp_directory_path() /
-                       ("impactlab_job_options_test_" + std::to_string(::getpid()));
   for (std::string_view job : impactlab::job_names()) {
     const auto options = impactlab::job_options(job);
     const bool on_command_line = std::any_of(options.begin(), options.end(), [](const auto& spec) {
       return spec.front_ends != FrontEnds::python;
     });
     if (!on_command_line) continue;  // Python's bench of one scene
-    const auto run = impactlab::testing::run_binary({std::string(job), "--help"}, scratch);
+    const auto run = impactlab::testing::run_impactlab({std::string(job), "--help"});
     ASSERT_EQ(run.status, 0) << job << run.err;
     const std::string help = "\n" + run.out;
     for (const OptionSpec& spec : options) {
@@ -227,7 +224,6 @@ TEST(JobOptions, CommandLineHelpAgreesWithTheTables) {
       }
     }
   }
-  std::filesystem::remove_all(scratch);
 }
 
 }  // namespace

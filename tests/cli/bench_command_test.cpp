@@ -2,43 +2,25 @@
 // that the measured errors fall as the tolerance tightens (speed is not
 // tested: it is what the bench reports). The bad-input contract of its
 // options is checked here too.
-#include <gtest/gtest.h>
-
-#include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+
+#include "support/test_support.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CommandResult {
-  int status;
-  std::string stderr_text;
-};
-
-CommandResult run_impactlab(const std::string& arguments, const fs::path& directory) {
-  const fs::path err = directory / "stderr.txt";
-  const std::string command = std::string(IMPACTLAB_BINARY) + " " + arguments + " > " +
-                              (directory / "stdout.txt").string() + " 2> " + err.string();
-  const int raw = std::system(command.c_str());
-  std::ifstream in(err);
-  std::stringstream text;
-  text << in.rdbuf();
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, text.str()};
-}
+using namespace impactlab::testing;
 
 std::vector<std::string> split(const std::string& line) {
   std::vector<std::string> fields;
@@ -52,21 +34,18 @@ std::vector<std::string> split(const std::string& line) {
 class BenchQuick : public testing::Test {
  protected:
   static void SetUpTestSuite() {
-    directory_ = fs::temp_directory_path() / ("impactlab_bench_test_" + std::to_string(::getpid()));
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-    result_ = run_impactlab("bench --quick --quiet --out " + (directory_ / "out").string(),
-                            directory_);
+    scratch_ = std::make_unique<ScratchFolder>();
+    result_ = run_command_line("bench --quick --quiet --out " + (*scratch_ / "out").string());
   }
-  static void TearDownTestSuite() { fs::remove_all(directory_); }
+  static void TearDownTestSuite() { scratch_.reset(); }
 
-  static inline fs::path directory_;
-  static inline CommandResult result_;
+  static inline std::unique_ptr<ScratchFolder> scratch_;
+  static inline ProgramRun result_;
 };
 
 TEST_F(BenchQuick, WritesTheDataItsSidecarAndOnePlotPerCase) {
-  ASSERT_EQ(result_.status, 0) << result_.stderr_text;
-  const fs::path out = directory_ / "out";
+  ASSERT_EQ(result_.status, 0) << result_.err;
+  const fs::path out = *scratch_ / "out";
   std::ifstream meta_file(out / "work_precision.json");
   ASSERT_TRUE(meta_file.good());
   const auto meta = nlohmann::json::parse(meta_file);
@@ -94,8 +73,8 @@ TEST_F(BenchQuick, WritesTheDataItsSidecarAndOnePlotPerCase) {
 }
 
 TEST_F(BenchQuick, ErrorsFallAsTheToleranceTightens) {
-  ASSERT_EQ(result_.status, 0) << result_.stderr_text;
-  std::ifstream csv(directory_ / "out" / "work_precision.csv");
+  ASSERT_EQ(result_.status, 0) << result_.err;
+  std::ifstream csv(*scratch_ / "out" / "work_precision.csv");
   std::string line;
   ASSERT_TRUE(std::getline(csv, line));
   const auto header = split(line);
@@ -149,22 +128,15 @@ TEST_F(BenchQuick, ErrorsFallAsTheToleranceTightens) {
 
 // bad options are refused before any work: exit 2, one line naming the option
 TEST(BenchBadInput, ExitsTwoWithOneLineNamingTheOption) {
-  const fs::path directory =
-      fs::temp_directory_path() / ("impactlab_bench_bad_" + std::to_string(::getpid()));
-  fs::create_directories(directory);
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"--repetitions 0", "--repetitions"},
       {"--python /nonexistent/python", "--python"},
       {"--out /proc/impactlab/bench", "--out"},
   };
   for (const auto& [arguments, option] : cases) {
-    const CommandResult result = run_impactlab("bench --quick " + arguments, directory);
-    EXPECT_EQ(result.status, 2) << arguments;
-    EXPECT_NE(result.stderr_text.find(option), std::string::npos) << result.stderr_text;
-    EXPECT_EQ(std::count(result.stderr_text.begin(), result.stderr_text.end(), '\n'), 1)
-        << result.stderr_text;
+    const ProgramRun result = run_command_line("bench --quick " + arguments);
+    EXPECT_TRUE(refused_naming(result, option)) << arguments;
   }
-  fs::remove_all(directory);
 }
 
 }  // namespace

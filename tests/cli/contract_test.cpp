@@ -1,9 +1,6 @@
 // The command-line contract of DESIGN.md: bad input exits with status 2 and
 // one line on stderr naming the key and the value, writes nothing; a good run
 // writes complete events.csv and meta.json.
-#include <sys/wait.h>
-
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -13,49 +10,16 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "support/test_support.hpp"
+
 namespace {
 
-struct Outcome {
-  int status;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::filesystem::path scratch(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() /
-             ("impactlab_cli_test_" + std::to_string(::getpid())) / name;
-  std::filesystem::remove_all(dir);
-  return dir;
-}
-
-Outcome run(const std::string& arguments) {
-  const auto dir = scratch("io");
-  std::filesystem::create_directories(dir);
-  const auto out = dir / "stdout";
-  const auto err = dir / "stderr";
-  const std::string command = std::string(IMPACTLAB_BINARY) + " " + arguments + " >" +
-                              out.string() + " 2>" + err.string() + " </dev/null";
-  const int raw = std::system(command.c_str());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
-}
-
-int line_count(const std::string& text) {
-  int lines = 0;
-  for (char c : text) lines += c == '\n';
-  return lines;
-}
+using namespace impactlab::testing;
 
 struct BadCase {
   std::string name;        // test name
   std::string arguments;   // "{scene}" stands for a scene file written from scene_text
-  std::string key;
+  std::string key;         // the subject of the message
   std::string value;
   std::string scene_text{};
 };
@@ -64,20 +28,17 @@ class BadInput : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadInput, ExitsTwoWithOneLineNamingKeyAndValue) {
   const auto& c = GetParam();
+  const ScratchFolder scratch;
   std::string arguments = c.arguments;
   if (!c.scene_text.empty()) {
-    const auto dir = scratch("scenes");
-    std::filesystem::create_directories(dir);
-    const auto path = dir / (c.name + ".toml");
+    const auto path = scratch / (c.name + ".toml");
     std::ofstream(path) << c.scene_text;
     arguments.replace(arguments.find("{scene}"), 7, path.string());
   }
-  const auto out_dir = scratch("bad_out");
-  const Outcome outcome = run(arguments + " --out " + out_dir.string());
-  EXPECT_EQ(outcome.status, 2) << outcome.err;
-  EXPECT_EQ(line_count(outcome.err), 1) << outcome.err;
-  EXPECT_NE(outcome.err.find(c.key), std::string::npos) << outcome.err;
-  EXPECT_NE(outcome.err.find(c.value), std::string::npos) << outcome.err;
+  const auto out_dir = scratch / "bad_out";
+  const ProgramRun run = run_command_line(arguments + " --out " + out_dir.string());
+  EXPECT_TRUE(refused_naming(run, c.key));
+  EXPECT_NE(run.err.find(c.value), std::string::npos) << run.err;
   // nothing half-written
   EXPECT_FALSE(std::filesystem::exists(out_dir / "events.csv"));
   EXPECT_FALSE(std::filesystem::exists(out_dir / "meta.json"));
@@ -123,11 +84,12 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; });
 
 TEST(Simulate, WritesCompleteEventsAndMeta) {
-  const auto out_dir = scratch("good");
-  const Outcome outcome =
-      run("simulate jin2003 --periods 20 --quiet --sample 0.01 --out " + out_dir.string());
-  ASSERT_EQ(outcome.status, 0) << outcome.err;
-  EXPECT_TRUE(outcome.out.empty());
+  const ScratchFolder scratch;
+  const auto out_dir = scratch / "good";
+  const ProgramRun run = run_impactlab(
+      {"simulate", "jin2003", "--periods", "20", "--quiet", "--sample", "0.01", "--out", out_dir});
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_TRUE(run.out.empty());
   const std::string events = slurp(out_dir / "events.csv");
   ASSERT_EQ(events.rfind("t,kind,wall,q,qdot_before,qdot_after", 0), 0u);
   const auto meta = nlohmann::json::parse(slurp(out_dir / "meta.json"));
@@ -137,17 +99,19 @@ TEST(Simulate, WritesCompleteEventsAndMeta) {
   EXPECT_GT(meta["counts"]["impacts"].get<int>(), 0);
   EXPECT_EQ(meta["scene"]["keys"]["omega"]["unit"], "rad/s");
   // one line per event after the header
-  EXPECT_EQ(line_count(events) - 1, meta["counts"]["events"].get<int>());
+  EXPECT_EQ(count_lines(events) - 1, meta["counts"]["events"].get<int>());
   // no temporary left behind
   for (const auto& entry : std::filesystem::directory_iterator(out_dir))
     EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
 }
 
 TEST(Simulate, SetOverridesReachTheRun) {
-  const auto out_dir = scratch("override");
-  const Outcome outcome = run("simulate jin2003 --periods 5 --quiet --set omega=6.5 --set "
-                              "integrator.method=rk8pd --out " + out_dir.string());
-  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const ScratchFolder scratch;
+  const auto out_dir = scratch / "override";
+  const ProgramRun run =
+      run_impactlab({"simulate", "jin2003", "--periods", "5", "--quiet", "--set", "omega=6.5",
+                     "--set", "integrator.method=rk8pd", "--out", out_dir});
+  ASSERT_EQ(run.status, 0) << run.err;
   const auto meta = nlohmann::json::parse(slurp(out_dir / "meta.json"));
   EXPECT_EQ(meta["scene"]["keys"]["omega"]["value"].get<double>(), 6.5);
   EXPECT_EQ(meta["integrator"]["method"], "rk8pd");
@@ -158,10 +122,11 @@ TEST(Simulate, SetOverridesReachTheRun) {
 // events.csv, although the run streams its events to the file instead of
 // keeping them (the tally sees each event as it passes: api/event_tap.hpp).
 TEST(Simulate, DerivedFrictionWorkIsTheLastContactPhasesOfTheStreamedEvents) {
-  const auto out_dir = scratch("friction");
-  const Outcome outcome =
-      run("simulate jin2003 --periods 30 --quiet --set V0=4.163 --out " + out_dir.string());
-  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const ScratchFolder scratch;
+  const auto out_dir = scratch / "friction";
+  const ProgramRun run = run_impactlab(
+      {"simulate", "jin2003", "--periods", "30", "--quiet", "--set", "V0=4.163", "--out", out_dir});
+  ASSERT_EQ(run.status, 0) << run.err;
   std::stringstream events(slurp(out_dir / "events.csv"));
   std::string last_contact_end;
   for (std::string line; std::getline(events, line);)
@@ -181,11 +146,13 @@ TEST(Simulate, DerivedFrictionWorkIsTheLastContactPhasesOfTheStreamedEvents) {
 // is a Painlevé configuration, so the run stops there with exit status 3 and
 // complete outputs that say why.
 TEST(Simulate, PainleveStopExitsThreeWithCompleteOutputs) {
-  const auto out_dir = scratch("painleve");
-  const Outcome outcome = run("simulate jin2003 --quiet --set mu=15 --out " + out_dir.string());
-  EXPECT_EQ(outcome.status, 3) << outcome.err;
-  EXPECT_EQ(line_count(outcome.err), 1) << outcome.err;
-  EXPECT_NE(outcome.err.find("painleve"), std::string::npos) << outcome.err;
+  const ScratchFolder scratch;
+  const auto out_dir = scratch / "painleve";
+  const ProgramRun run =
+      run_impactlab({"simulate", "jin2003", "--quiet", "--set", "mu=15", "--out", out_dir});
+  EXPECT_EQ(run.status, 3) << run.err;
+  EXPECT_EQ(count_lines(run.err), 1) << run.err;
+  EXPECT_NE(run.err.find("painleve"), std::string::npos) << run.err;
   const auto meta = nlohmann::json::parse(slurp(out_dir / "meta.json"));
   EXPECT_EQ(meta["run"]["termination"], "stopped_by_model");
   const std::string events = slurp(out_dir / "events.csv");
@@ -202,21 +169,21 @@ TEST(Simulate, PainleveStopExitsThreeWithCompleteOutputs) {
 }
 
 TEST(Scenes, ListsTheDefaultScene) {
-  const Outcome outcome = run("scenes");
-  ASSERT_EQ(outcome.status, 0) << outcome.err;
-  EXPECT_NE(outcome.out.find("jin2003"), std::string::npos);
-  const Outcome keys = run("scenes jin2003");
+  const ProgramRun run = run_impactlab({"scenes"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("jin2003"), std::string::npos);
+  const ProgramRun keys = run_impactlab({"scenes", "jin2003"});
   ASSERT_EQ(keys.status, 0) << keys.err;
   EXPECT_NE(keys.out.find("initial.theta_dot"), std::string::npos);
 }
 
 TEST(Help, EverySubcommandHasHelp) {
   for (const std::string sub : {"", "simulate ", "scenes "}) {
-    const Outcome outcome = run(sub + "--help");
-    EXPECT_EQ(outcome.status, 0) << sub;
-    EXPECT_NE(outcome.out.find("Usage"), std::string::npos) << sub;
+    const ProgramRun run = run_command_line(sub + "--help");
+    EXPECT_EQ(run.status, 0) << sub;
+    EXPECT_NE(run.out.find("Usage"), std::string::npos) << sub;
   }
-  EXPECT_EQ(run("--version").status, 0);
+  EXPECT_EQ(run_impactlab({"--version"}).status, 0);
 }
 
 }  // namespace

@@ -5,8 +5,6 @@
 // typed termination, never "completed"; runs past the resource limits are
 // refused up front; library errors never come out as exit 1; every error is
 // one line under 200 characters.
-#include <unistd.h>
-
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -14,32 +12,21 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "support/run_binary.hpp"
+#include "support/test_support.hpp"
 
 namespace {
 
-using impactlab::testing::count_lines;
-using impactlab::testing::ProgramRun;
-using impactlab::testing::read_text;
-using impactlab::testing::run_binary;
-
-std::filesystem::path scratch(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() /
-             ("impactlab_robustness_" + std::to_string(::getpid())) / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+using namespace impactlab::testing;
 
 // The promise for bad input: exit 2, one line on stderr under 200 characters
-// that contains `names`.
-void expect_bad_input(const ProgramRun& run, const std::string& names) {
+// whose subject is `key`, and that shows `shown` too.
+void expect_bad_input(const ProgramRun& run, const std::string& key,
+                      const std::string& shown = {}) {
   EXPECT_FALSE(run.timed_out);
   EXPECT_EQ(run.signal, 0);
-  EXPECT_EQ(run.status, 2) << run.err;
-  EXPECT_EQ(count_lines(run.err), 1) << run.err;
+  EXPECT_TRUE(refused_naming(run, key));
   EXPECT_LT(run.err.size(), 200u) << run.err;
-  EXPECT_NE(run.err.find(names), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find(shown), std::string::npos) << run.err;
 }
 
 // The promise for a run stopped by a diagnostic: exit 3, the typed reason on
@@ -51,7 +38,7 @@ void expect_stopped(const ProgramRun& run, const std::filesystem::path& out,
   EXPECT_EQ(run.status, 3) << run.err;
   EXPECT_NE(run.err.find(reason), std::string::npos) << run.err;
   if (std::filesystem::exists(out / "meta.json")) {
-    const auto meta = nlohmann::json::parse(read_text(out / "meta.json"));
+    const auto meta = nlohmann::json::parse(slurp(out / "meta.json"));
     const std::string termination = meta.contains("run") ? meta["run"]["termination"]
                                                          : meta["termination"];
     EXPECT_EQ(termination, reason);
@@ -59,10 +46,11 @@ void expect_stopped(const ProgramRun& run, const std::filesystem::path& out,
 }
 
 TEST(ShellInjection, HostileOutDirectoryIsDataNotShellText) {
-  const auto dir = scratch("injection");
+  const ScratchFolder dir;
   const std::string hostile = "d';touch INJECTED;'";
   const ProgramRun run =
-      run_binary({"compare", "jin2003", "--periods", "1", "--quiet", "--out", hostile}, dir, 120);
+      run_impactlab({"compare", "jin2003", "--periods", "1", "--quiet", "--out", hostile},
+                    {.directory = dir.path(), .limit_s = 120});
   EXPECT_EQ(run.status, 0) << run.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "INJECTED"));
   EXPECT_FALSE(std::filesystem::exists(dir / hostile / "INJECTED"));
@@ -73,15 +61,17 @@ TEST(ShellInjection, HostileOutDirectoryIsDataNotShellText) {
 struct BadOption {
   std::string name;
   std::vector<std::string> arguments;
-  std::string names;  // what the one line must name
+  std::string key;         // the subject of the one line
+  std::string shown = {};  // what else the line must show
 };
 
 class BadOptions : public ::testing::TestWithParam<BadOption> {};
 
 TEST_P(BadOptions, ExitTwoWithOneShortLineNamingTheOption) {
-  const auto dir = scratch("bad_" + GetParam().name);
-  const ProgramRun run = run_binary(GetParam().arguments, dir, 60);
-  expect_bad_input(run, GetParam().names);
+  const ScratchFolder dir;
+  const ProgramRun run =
+      run_impactlab(GetParam().arguments, {.directory = dir.path(), .limit_s = 60});
+  expect_bad_input(run, GetParam().key, GetParam().shown);
   // nothing written: no output directory
   EXPECT_FALSE(std::filesystem::exists(dir / "out"));
 }
@@ -126,7 +116,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadOption{"simulate_t_end_zero", {"simulate", "jin2003", "--t-end", "0"}, "--t-end"},
         // messages: one line (a newline in a value is escaped), long values elided
         BadOption{"set_value_with_newline", {"simulate", "jin2003", "--set", "omega=1\n2"},
-                  "omega = 1\\n2"},
+                  "omega", "omega = 1\\n2"},
         BadOption{"set_value_100k_characters", {"simulate", "jin2003", "--set", "omega=x" + long_value},
                   "omega"},
         BadOption{"scene_name_100k_characters", {"simulate", long_value}, "scene"},
@@ -135,28 +125,31 @@ INSTANTIATE_TEST_SUITE_P(
         BadOption{"omega_tiny_names_omega",
                   {"simulate", "linear_impact", "--set", "omega=1e-308"}, "omega"},
         // resource limits, refused up front with the estimate and how to raise them
-        BadOption{"periods_huge", {"simulate", "jin2003", "--periods", "1e308"},
+        // (the subject: the option that sets how long the run is, or how
+        // many rows it writes)
+        BadOption{"periods_huge", {"simulate", "jin2003", "--periods", "1e308"}, "--periods",
                   "limits.max_steps"},
-        BadOption{"sample_tiny", {"simulate", "jin2003", "--sample", "1e-308"}, "limits.max_rows"},
-        BadOption{"sample_a_billion_rows",
-                  {"simulate", "jin2003", "--sample", "1e-9", "--periods", "1"},
+        BadOption{"sample_tiny", {"simulate", "jin2003", "--sample", "1e-308"}, "--sample",
                   "limits.max_rows"},
-        BadOption{"pendulum_g_huge", {"simulate", "jin2003", "--set", "g=1e20"},
+        BadOption{"sample_a_billion_rows",
+                  {"simulate", "jin2003", "--sample", "1e-9", "--periods", "1"}, "--sample",
+                  "limits.max_rows"},
+        BadOption{"pendulum_g_huge", {"simulate", "jin2003", "--set", "g=1e20"}, "--periods",
                   "limits.max_steps"},
-        BadOption{"pendulum_m_tiny", {"simulate", "jin2003", "--set", "m=1e-12"},
+        BadOption{"pendulum_m_tiny", {"simulate", "jin2003", "--set", "m=1e-12"}, "--periods",
                   "limits.max_steps"},
-        BadOption{"pendulum_d_huge", {"simulate", "jin2003", "--set", "d=1e12"},
+        BadOption{"pendulum_d_huge", {"simulate", "jin2003", "--set", "d=1e12"}, "--periods",
                   "limits.max_steps"},
         // these ran to "completed" with NaN states: the damping time m l^2/d
         // (1e-200 s, 1e-200 s) sizes them up front now
         BadOption{"pendulum_m_1em200", {"simulate", "jin2003", "--set", "m=1e-200"},
-                  "limits.max_steps"},
-        BadOption{"pendulum_d_1e200", {"simulate", "jin2003", "--set", "d=1e200"},
+                  "--periods", "limits.max_steps"},
+        BadOption{"pendulum_d_1e200", {"simulate", "jin2003", "--set", "d=1e200"}, "--periods",
                   "limits.max_steps"},
         // 5 periods (4.5 s) after t0 = 1e17 s round to t0 itself (a double's
         // resolution there is 16 s): refused up front, naming t0
         BadOption{"simulate_t0_1e17",
-                  {"simulate", "jin2003", "--set", "t0=1e17", "--periods", "5"}, "t0 = 1e+17"},
+                  {"simulate", "jin2003", "--set", "t0=1e17", "--periods", "5"}, "t0", "t0 = 1e+17"},
         BadOption{"poincare_transient_huge", {"poincare", "jin2003", "--transient", "1e9"},
                   "--transient"},
         BadOption{"periodic_omega_tiny", {"periodic", "linear_impact", "--set", "omega=1e-308"},
@@ -166,21 +159,24 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& info) { return info.param.name; });
 
 TEST(BadOptions, TEndNeverNamedWhenNotGiven) {
-  const auto dir = scratch("no_t_end");
-  const ProgramRun run = run_binary({"simulate", "linear_impact", "--set", "omega=1e-308"}, dir);
+  const ScratchFolder dir;
+  const ProgramRun run = run_impactlab({"simulate", "linear_impact", "--set", "omega=1e-308"},
+                                       {.directory = dir.path(), .limit_s = 60});
   EXPECT_EQ(run.err.find("--t-end"), std::string::npos) << run.err;
 }
 
 TEST(BadOptions, RaisedLimitLetsTheRunThrough) {
   // the same run as sample_a_billion_rows, shortened, with limits.max_rows raised
-  const auto dir = scratch("raised");
+  const ScratchFolder dir;
   const ProgramRun refused =
-      run_binary({"simulate", "jin2003", "--sample", "1e-5", "--t-end", "1", "--quiet",
-                  "--set", "limits.max_rows=1e4", "--out", "o"}, dir);
-  expect_bad_input(refused, "limits.max_rows");
+      run_impactlab({"simulate", "jin2003", "--sample", "1e-5", "--t-end", "1", "--quiet", "--set",
+                     "limits.max_rows=1e4", "--out", "o"},
+                    {.directory = dir.path(), .limit_s = 60});
+  expect_bad_input(refused, "--sample", "limits.max_rows");
   const ProgramRun allowed =
-      run_binary({"simulate", "jin2003", "--sample", "1e-5", "--t-end", "1", "--quiet",
-                  "--set", "limits.max_rows=2e5", "--out", "o"}, dir);
+      run_impactlab({"simulate", "jin2003", "--sample", "1e-5", "--t-end", "1", "--quiet", "--set",
+                     "limits.max_rows=2e5", "--out", "o"},
+                    {.directory = dir.path(), .limit_s = 60});
   EXPECT_EQ(allowed.status, 0) << allowed.err;
 }
 
@@ -193,10 +189,10 @@ struct StoppedCase {
 class StoppedRuns : public ::testing::TestWithParam<StoppedCase> {};
 
 TEST_P(StoppedRuns, ExitThreeWithTypedReasonNeverCompleted) {
-  const auto dir = scratch("stopped_" + GetParam().name);
+  const ScratchFolder dir;
   std::vector<std::string> arguments = GetParam().arguments;
   arguments.insert(arguments.end(), {"--out", "o", "--quiet"});
-  const ProgramRun run = run_binary(arguments, dir, 60);
+  const ProgramRun run = run_impactlab(arguments, {.directory = dir.path(), .limit_s = 60});
   expect_stopped(run, dir / "o", GetParam().reason);
   EXPECT_EQ(count_lines(run.err), 1) << run.err;
 }
@@ -232,10 +228,10 @@ TEST(LibraryErrors, NeverExitOne) {
         std::vector<std::string>{"simulate", "jin2003", "--set", "t0=1e15", "--periods", "2"},
         std::vector<std::string>{"poincare", "jin2003", "--set", "t0=1e15", "--points", "3",
                                  "--transient", "1"}}) {
-    const auto dir = scratch("library_errors");
+    const ScratchFolder dir;
     std::vector<std::string> with_out = arguments;
     with_out.insert(with_out.end(), {"--out", "o", "--quiet"});
-    const ProgramRun run = run_binary(with_out, dir, 60);
+    const ProgramRun run = run_impactlab(with_out, {.directory = dir.path(), .limit_s = 60});
     EXPECT_FALSE(run.timed_out) << arguments[3];
     EXPECT_TRUE(run.status == 0 || run.status == 2 || run.status == 3)
         << arguments[3] << ": exit " << run.status << ": " << run.err;
@@ -248,9 +244,10 @@ TEST(LibraryErrors, NeverExitOne) {
 // A spectrum whose run stops early writes nothing, and leaves no output
 // directory behind (its files are one run's, committed together).
 TEST(RunAtomicity, StoppedSpectrumLeavesNoDirectory) {
-  const auto dir = scratch("spectrum_stopped");
+  const ScratchFolder dir;
   const ProgramRun run =
-      run_binary({"spectrum", "jin2003", "--set", "V0=1e308", "--quiet", "--out", "o"}, dir, 60);
+      run_impactlab({"spectrum", "jin2003", "--set", "V0=1e308", "--quiet", "--out", "o"},
+                    {.directory = dir.path(), .limit_s = 60});
   EXPECT_EQ(run.status, 3) << run.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "o"));
 }

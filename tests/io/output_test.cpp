@@ -1,11 +1,6 @@
 // Output files (src/io/output.hpp): the files of a run appear together or not
 // at all; a failed run leaves no directory behind; events stream to the file
 // as the run goes, so the memory of `simulate` does not grow with its length.
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -18,22 +13,12 @@
 
 #include <impactlab/io/output.hpp>
 
+#include "support/test_support.hpp"
+
 namespace impactlab {
 namespace {
 
-std::filesystem::path scratch(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() /
-             ("impactlab_output_test_" + std::to_string(::getpid())) / name;
-  std::filesystem::remove_all(dir);
-  return dir;
-}
-
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using namespace impactlab::testing;
 
 std::vector<std::string> entries(const std::filesystem::path& directory) {
   std::vector<std::string> names;
@@ -42,50 +27,25 @@ std::vector<std::string> entries(const std::filesystem::path& directory) {
   return names;
 }
 
-struct ChildRun {
-  int status = -1;           // exit status, -1 if killed by a signal
-  long max_rss_kb = 0;       // the child's peak resident memory (KiB)
-};
-
-// Runs the program with arguments (no shell), output to /dev/null, and
-// measures its peak memory with wait4. Under AddressSanitizer
-// (scripts/test.sh --sanitize) the child runs without the allocator's
-// quarantine, which holds every freed block back (256 MB by default) and so
-// makes the peak grow with the number of allocations rather than with what
-// the program keeps; the peak then measures the program again, shadow memory
-// included.
-ChildRun run_program(const std::vector<std::string>& arguments) {
+// Runs the program for its peak memory (ProgramRun::max_rss_kb). Under
+// AddressSanitizer (scripts/test.sh --sanitize) the child runs without the
+// allocator's quarantine, which holds every freed block back (256 MB by
+// default) and so makes the peak grow with the number of allocations rather
+// than with what the program keeps; the peak then measures the program again,
+// shadow memory included.
+ProgramRun run_measured(const std::vector<std::string>& arguments) {
+  RunSettings settings;
 #if defined(__SANITIZE_ADDRESS__)
-  const char* sanitizer_options = std::getenv("ASAN_OPTIONS");
-  std::string options = sanitizer_options ? sanitizer_options : "";
-  if (options.find("quarantine_size_mb=0") == std::string::npos) {
-    options += ":quarantine_size_mb=0";
-    ::setenv("ASAN_OPTIONS", options.c_str(), 1);
-  }
+  const char* options = std::getenv("ASAN_OPTIONS");
+  settings.environment = {std::string("ASAN_OPTIONS=") + (options != nullptr ? options : "") +
+                          ":quarantine_size_mb=0"};
 #endif
-  std::vector<std::string> argv_text = {IMPACTLAB_BINARY};
-  argv_text.insert(argv_text.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_text) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const pid_t child = ::fork();
-  if (child == 0) {
-    std::freopen("/dev/null", "w", stdout);
-    std::freopen("/dev/null", "w", stderr);
-    ::execv(argv[0], argv.data());
-    ::_exit(127);
-  }
-  ChildRun run;
-  int status = 0;
-  rusage usage{};
-  ::wait4(child, &status, 0, &usage);
-  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.max_rss_kb = usage.ru_maxrss;
-  return run;
+  return run_impactlab(arguments, settings);
 }
 
 TEST(RunFiles, CommitPutsEveryFileInPlace) {
-  const auto dir = scratch("commit");
+  const ScratchFolder scratch;
+  const auto dir = scratch / "commit";
   {
     RunFiles files(dir);
     files.add("a.csv").stream() << "a\n";
@@ -102,7 +62,8 @@ TEST(RunFiles, CommitPutsEveryFileInPlace) {
 // A run that stops before its commit (an exception) leaves nothing, not even
 // the directory it created.
 TEST(RunFiles, WithoutCommitNothingIsLeftBehind) {
-  const auto dir = scratch("abandoned") / "out";
+  const ScratchFolder scratch;
+  const auto dir = scratch / "abandoned" / "out";
   {
     RunFiles files(dir);
     files.add("events.csv").stream() << "t\n1\n";
@@ -113,7 +74,8 @@ TEST(RunFiles, WithoutCommitNothingIsLeftBehind) {
 
 // A directory that existed before is kept, with what it held.
 TEST(RunFiles, AnExistingDirectoryIsKept) {
-  const auto dir = scratch("existing");
+  const ScratchFolder scratch;
+  const auto dir = scratch / "existing";
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "notes.txt") << "mine\n";
   { RunFiles files(dir); files.add("events.csv").stream() << "t\n"; }
@@ -123,7 +85,8 @@ TEST(RunFiles, AnExistingDirectoryIsKept) {
 // One file that cannot be put in place (its name taken by a directory):
 // none of the run's files appears.
 TEST(RunFiles, IfOneFileFailsNoneAppears) {
-  const auto dir = scratch("one_fails");
+  const ScratchFolder scratch;
+  const auto dir = scratch / "one_fails";
   std::filesystem::create_directories(dir / "meta.json");
   RunFiles files(dir);
   files.add("events.csv").stream() << "t\n1\n";
@@ -137,7 +100,8 @@ TEST(RunFiles, IfOneFileFailsNoneAppears) {
 // Every field reads back to the same double (fmt's shortest round-trip
 // form: the fewest digits that do, so 0.1 is written "0.1")
 TEST(EventsCsvWriter, WritesEachEventWithAllItsDigits) {
-  const auto dir = scratch("writer");
+  const ScratchFolder scratch;
+  const auto dir = scratch / "writer";
   RunFiles files(dir);
   AtomicFile& file = files.add("events.csv");
   EventsCsvWriter writer(file);
@@ -172,9 +136,10 @@ TEST(EventsCsvWriter, WritesEachEventWithAllItsDigits) {
 // The command line: meta.json cannot be written (its name is a directory),
 // so neither events.csv nor anything else of the run appears.
 TEST(SimulateFiles, MetaUnwritableMeansNoEventsCsv) {
-  const auto dir = scratch("meta_unwritable");
+  const ScratchFolder scratch;
+  const auto dir = scratch / "meta_unwritable";
   std::filesystem::create_directories(dir / "meta.json");
-  const ChildRun run = run_program({"simulate", "jin2003", "--periods", "2", "--sample", "0.01",
+  const ProgramRun run = run_impactlab({"simulate", "jin2003", "--periods", "2", "--sample", "0.01",
                                     "--quiet", "--out", dir.string()});
   EXPECT_NE(run.status, 0);
   EXPECT_EQ(entries(dir), std::vector<std::string>{"meta.json"});
@@ -183,10 +148,11 @@ TEST(SimulateFiles, MetaUnwritableMeansNoEventsCsv) {
 // A run that fails on its input after the directory was named leaves no
 // empty --out directory behind.
 TEST(SimulateFiles, AFailedRunLeavesNoDirectory) {
-  const auto dir = scratch("failed") / "out";
-  const ChildRun run = run_program({"simulate", "jin2003", "--set", "t0=5", "--t-end", "1",
+  const ScratchFolder scratch;
+  const auto dir = scratch / "failed" / "out";
+  const ProgramRun run = run_impactlab({"simulate", "jin2003", "--set", "t0=5", "--t-end", "1",
                                     "--quiet", "--out", dir.string()});
-  EXPECT_EQ(run.status, 2);
+  EXPECT_TRUE(refused_naming(run, "--t-end"));
   EXPECT_FALSE(std::filesystem::exists(dir));
 }
 
@@ -195,12 +161,13 @@ TEST(SimulateFiles, AFailedRunLeavesNoDirectory) {
 // (about 9.5 MB). Held in memory at 190 bytes per event, the longer run's
 // events alone would add about 2 MB, over 20 %.
 TEST(SimulateFiles, PeakMemoryDoesNotGrowWithTheRunLength) {
-  const auto short_dir = scratch("memory_short");
-  const auto long_dir = scratch("memory_long");
-  const ChildRun short_run =
-      run_program({"simulate", "jin2003", "--t-end", "1e3", "--quiet", "--out", short_dir.string()});
-  const ChildRun long_run =
-      run_program({"simulate", "jin2003", "--t-end", "1e4", "--quiet", "--out", long_dir.string()});
+  const ScratchFolder scratch;
+  const auto short_dir = scratch / "memory_short";
+  const auto long_dir = scratch / "memory_long";
+  const ProgramRun short_run =
+      run_measured({"simulate", "jin2003", "--t-end", "1e3", "--quiet", "--out", short_dir.string()});
+  const ProgramRun long_run =
+      run_measured({"simulate", "jin2003", "--t-end", "1e4", "--quiet", "--out", long_dir.string()});
   ASSERT_EQ(short_run.status, 0);
   ASSERT_EQ(long_run.status, 0);
   const auto meta_short = nlohmann::json::parse(slurp(short_dir / "meta.json"));
@@ -223,13 +190,14 @@ TEST(SimulateFiles, PeakMemoryDoesNotGrowWithTheRunLength) {
 // impact oscillator's strobe, exact flow) within 10 % of the same peak. Held
 // in memory at 32 bytes a point, 3e5 points alone would add 9.6 MB.
 TEST(PoincareFiles, PeakMemoryDoesNotGrowWithThePointCount) {
-  const auto short_dir = scratch("poincare_memory_short");
-  const auto long_dir = scratch("poincare_memory_long");
-  const ChildRun short_run =
-      run_program({"poincare", "linear_impact", "--points", "10000", "--transient", "10",
+  const ScratchFolder scratch;
+  const auto short_dir = scratch / "poincare_memory_short";
+  const auto long_dir = scratch / "poincare_memory_long";
+  const ProgramRun short_run =
+      run_measured({"poincare", "linear_impact", "--points", "10000", "--transient", "10",
                    "--quiet", "--out", short_dir.string()});
-  const ChildRun long_run =
-      run_program({"poincare", "linear_impact", "--points", "300000", "--transient", "10",
+  const ProgramRun long_run =
+      run_measured({"poincare", "linear_impact", "--points", "300000", "--transient", "10",
                    "--quiet", "--out", long_dir.string()});
   ASSERT_EQ(short_run.status, 0);
   ASSERT_EQ(long_run.status, 0);
@@ -248,13 +216,14 @@ TEST(PoincareFiles, PeakMemoryDoesNotGrowWithThePointCount) {
 // record: 30 times more parameter values (and section points) must not raise
 // the peak memory, and every point must reach the file.
 TEST(SweepFiles, PeakMemoryDoesNotGrowWithTheNumberOfValues) {
-  const auto short_dir = scratch("sweep_memory_short");
-  const auto long_dir = scratch("sweep_memory_long");
-  const ChildRun short_run =
-      run_program({"sweep", "linear_impact", "--param", "omega=2.0:2.2:4", "--points", "3000",
+  const ScratchFolder scratch;
+  const auto short_dir = scratch / "sweep_memory_short";
+  const auto long_dir = scratch / "sweep_memory_long";
+  const ProgramRun short_run =
+      run_measured({"sweep", "linear_impact", "--param", "omega=2.0:2.2:4", "--points", "3000",
                    "--transient", "10", "--quiet", "--out", short_dir.string()});
-  const ChildRun long_run =
-      run_program({"sweep", "linear_impact", "--param", "omega=2.0:2.2:120", "--points", "3000",
+  const ProgramRun long_run =
+      run_measured({"sweep", "linear_impact", "--param", "omega=2.0:2.2:120", "--points", "3000",
                    "--transient", "10", "--quiet", "--out", long_dir.string()});
   ASSERT_EQ(short_run.status, 0);
   ASSERT_EQ(long_run.status, 0);

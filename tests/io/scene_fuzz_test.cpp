@@ -14,8 +14,6 @@
 // * through the program: exit status 0, 2 or 3 only, never a signal or a hang;
 //   on 2, one line under 200 characters naming a key; on 0 and 3 a complete
 //   meta.json beside its data and no NaN in events.csv; no temporary file left.
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -35,23 +33,13 @@
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/io/scene.hpp>
-#include "support/run_binary.hpp"
+
+#include "support/test_support.hpp"
 
 namespace {
 
 using namespace impactlab;
-using impactlab::testing::count_lines;
-using impactlab::testing::ProgramRun;
-using impactlab::testing::read_text;
-using impactlab::testing::run_binary;
-
-std::filesystem::path scratch(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() /
-             ("impactlab_fuzz_" + std::to_string(::getpid())) / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+using namespace impactlab::testing;
 
 // Values a scene file may hold, as TOML text.
 const std::vector<std::string>& hostile_toml_values() {
@@ -71,13 +59,6 @@ const std::vector<std::string>& hostile_set_values() {
       std::string(100000, '9'), "1\n2", "\t3", "0.5", "2", "100", "1e6", "rigid", "paper",
       "newton", "exact", "rk8pd", "bulirsch_stoer"};
   return values;
-}
-
-std::vector<std::string> split_lines(std::string_view text) {
-  std::vector<std::string> lines;
-  std::stringstream in{std::string(text)};
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
 }
 
 std::string mutate(std::string_view scene_text, std::mt19937_64& rng) {
@@ -126,7 +107,7 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
 
 // The library's side: a scene either reads or throws BadInput naming its key.
 TEST(SceneFuzz, MutatedBuiltinScenesReadOrThrowBadInputNamingTheKey) {
-  const auto dir = scratch("library");
+  const ScratchFolder dir;
   std::mt19937_64 rng(13);
   int accepted = 0, refused = 0;
   constexpr int per_scene = 400;
@@ -208,7 +189,7 @@ void expect_complete_outputs(const std::filesystem::path& out, const std::string
     EXPECT_TRUE(std::filesystem::exists(out / "meta.json")) << context;
     // t, q, qdot_before, qdot_after of every row: present and finite (the
     // writer leaves a NaN field empty)
-    const std::vector<std::string> rows = split_lines(read_text(out / "events.csv"));
+    const std::vector<std::string> rows = split_lines(slurp(out / "events.csv"));
     for (std::size_t row = 1; row < rows.size(); ++row) {
       std::vector<std::string> fields;
       std::stringstream line(rows[row]);
@@ -223,7 +204,7 @@ void expect_complete_outputs(const std::filesystem::path& out, const std::string
     }
   }
   if (std::filesystem::exists(out / "meta.json")) {
-    EXPECT_TRUE(nlohmann::json::accept(read_text(out / "meta.json"))) << context;
+    EXPECT_TRUE(nlohmann::json::accept(slurp(out / "meta.json"))) << context;
   }
 }
 
@@ -250,7 +231,7 @@ void expect_promise(const ProgramRun& run, const std::filesystem::path& out,
 // Through the program: random --set pairs on short runs. The step budget is
 // set last (after the fuzzed pairs) so that each run stays short.
 TEST(SceneFuzz, ProgramKeepsItsPromiseOnRandomSetPairs) {
-  const auto dir = scratch("program_set");
+  const ScratchFolder dir;
   std::mt19937_64 rng(131313);
   const std::vector<std::string> scenes = {"jin2003", "bouncing_ball", "linear_impact"};
   int runs = 0;
@@ -266,7 +247,7 @@ TEST(SceneFuzz, ProgramKeepsItsPromiseOnRandomSetPairs) {
       arguments.insert(arguments.end(), {"--set", std::string(spec.key) + "=" + value});
     }
     arguments.insert(arguments.end(), {"--set", "limits.max_steps=200000"});
-    const ProgramRun run = run_binary(arguments, dir, 60);
+    const ProgramRun run = run_impactlab(arguments, {.directory = dir.path(), .limit_s = 60});
     expect_promise(run, dir / ("o" + std::to_string(k)),
                    arguments[1] + " " + arguments[8] + " " + arguments[10]);
     ++runs;
@@ -276,16 +257,17 @@ TEST(SceneFuzz, ProgramKeepsItsPromiseOnRandomSetPairs) {
 
 // Through the program: mutated scene files, short runs.
 TEST(SceneFuzz, ProgramKeepsItsPromiseOnMutatedSceneFiles) {
-  const auto dir = scratch("program_files");
+  const ScratchFolder dir;
   std::mt19937_64 rng(1313131);
   int runs = 0;
   for (const auto& builtin : builtin_scenes()) {
     for (int k = 0; k < 30; ++k) {
       const std::string name = std::string(builtin.name) + std::to_string(k);
       write_text(dir / (name + ".toml"), mutate(builtin.text, rng));
-      const ProgramRun run = run_binary({"simulate", name + ".toml", "--periods", "0.5", "--quiet",
-                                         "--out", "o" + name, "--set", "limits.max_steps=200000"},
-                                        dir, 60);
+      const ProgramRun run = run_impactlab({"simulate", name + ".toml", "--periods", "0.5",
+                                            "--quiet", "--out", "o" + name, "--set",
+                                            "limits.max_steps=200000"},
+                                           {.directory = dir.path(), .limit_s = 60});
       expect_promise(run, dir / ("o" + name), name + ".toml");
       ++runs;
     }

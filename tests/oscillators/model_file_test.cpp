@@ -4,8 +4,6 @@
 // multipliers as the hand-written C++ under the same numerical integrator;
 // the interpreted slow path agrees with the compiled code; the cache is
 // reused; every kind of bad model file is reported at its line and column.
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdlib>
 #include <complex>
@@ -26,6 +24,8 @@
 #include <impactlab/oscillators/model_file/compiled_model.hpp>
 #include <impactlab/oscillators/model_file/model_system.hpp>
 
+#include "support/test_support.hpp"
+
 namespace {
 
 using namespace impactlab;
@@ -34,7 +34,7 @@ const std::string examples = std::string(IMPACTLAB_SOURCE_DIR) + "/oscillators/m
 
 CompileOptions test_options() {
   CompileOptions options;
-  options.cache_directory = testing::TempDir() + "impactlab_model_cache_test";
+  options.cache_directory = ::testing::TempDir() + "impactlab_model_cache_test";
   return options;
 }
 
@@ -252,9 +252,7 @@ TEST(ModelFile, TheCacheIsReusedAndTheSlowPathSaysSo) {
 // substitutions and spaces compiles and loads, and none of the commands
 // written into it runs.
 TEST(ModelFile, ACacheDirectoryWithShellSyntaxCompilesAndRunsNoCommand) {
-  const std::filesystem::path base =
-      std::filesystem::path(testing::TempDir()) / ("impactlab_injection_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(base);
+  const impactlab::testing::ScratchFolder base;
   const std::filesystem::path marker = base / "injected";
   CompileOptions hostile = test_options();
   hostile.cache_directory = (base / ("it's a cache; touch " + marker.string() + "; $(touch " +
@@ -273,7 +271,6 @@ TEST(ModelFile, ACacheDirectoryWithShellSyntaxCompilesAndRunsNoCommand) {
   model->free_rhs(x, t, p.data(), rhs);
   EXPECT_EQ(rhs[0], -0.7);
   EXPECT_NEAR(rhs[1], 1.0 * std::cos(2.0 * t) - 2 * 0.05 * -0.7 - 0.3, 1e-15);
-  std::filesystem::remove_all(base);
 }
 
 // $IMPACTLAB_CC may carry flags of its own: split on spaces into the argument
@@ -310,7 +307,8 @@ TEST(ModelFile, TheCompilerCommandMayCarryFlags) {
 // --- bad model files: one line FILE:LINE:COL: message ---
 
 std::string error_of(const std::string& text) {
-  const std::string path = testing::TempDir() + "impactlab_bad_model.toml";
+  const impactlab::testing::ScratchFolder scratch;
+  const std::string path = (scratch / "bad_model.toml").string();
   std::ofstream(path) << text;
   try {
     const auto model = compile_model(read_model_file(path), test_options());

@@ -1,11 +1,7 @@
 // Running a program from an argument vector (src/platform/run_program.hpp):
 // every argument reaches the program as data, whatever shell syntax it holds;
 // exit statuses come back; a command string splits on spaces.
-#include <unistd.h>
-
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -13,29 +9,19 @@
 
 #include <impactlab/platform/run_program.hpp>
 
+#include "support/test_support.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 using impactlab::run_program;
 using impactlab::run_program_logged;
 using impactlab::split_on_spaces;
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / ("impactlab_run_program_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using impactlab::testing::ScratchFolder;
+using impactlab::testing::slurp;
 
 TEST(RunProgram, ShellSyntaxInAnArgumentIsPassedAsData) {
-  const fs::path dir = scratch();
+  const ScratchFolder dir;
   const fs::path marker = dir / "injected";
   const std::string hostile = "it's; touch " + marker.string() + "; $(touch " + marker.string() +
                               ") `touch " + marker.string() + "` | > \"x\" *";
@@ -46,7 +32,8 @@ TEST(RunProgram, ShellSyntaxInAnArgumentIsPassedAsData) {
 }
 
 TEST(RunProgram, ExitStatusesAndStartFailuresComeBack) {
-  const fs::path log = scratch() / "log";
+  const ScratchFolder dir;
+  const fs::path log = dir / "log";
   EXPECT_EQ(run_program({"true"}), 0);
   EXPECT_EQ(run_program({"sh", "-c", "exit 3"}, impactlab::ProgramOutput::discard), 3);
   EXPECT_EQ(run_program({"/nonexistent/program"}), -1);
