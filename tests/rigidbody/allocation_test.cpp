@@ -1,11 +1,8 @@
 // The rigid pendulum's hot loop allocates nothing: fixed-size Eigen matrices
 // in the impulse and contact problems, closed forms in the right-hand side
-// and the witnesses. Every allocation of this test program is counted by
-// replacing the global operator new (as tests/simulate/allocation_test.cpp
-// does for the other oscillators).
-#include <atomic>
-#include <cstdlib>
-#include <new>
+// and the witnesses. Every allocation of this test program is counted
+// (support/allocation_counter.hpp, as in tests/simulate/allocation_test.cpp
+// for the other oscillators).
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -16,19 +13,7 @@
 #include <impactlab/integrate/gsl_rk8pd.hpp>
 #include <impactlab/oscillators/pendulum_walls/rigid_pendulum_walls.hpp>
 
-namespace {
-std::atomic<long> allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  ++allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-// matching the replaced operator new above, which allocates with malloc
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "support/allocation_counter.hpp"
 
 namespace impactlab {
 namespace {
@@ -46,11 +31,11 @@ void expect_no_allocation(bool spin_free, double V0) {
   settings.max_step = system.max_step();
   Stepper stepper(settings);
   EventLog log(false);
-  const long before = allocations.load();
+  const long before = testing::allocations_so_far();
   simulate(system, stepper, RigidPendulumWalls::State{0.0, 0.1, 0.0, 0.0, 0.0},
            RigidPendulumWalls::Mode::free, 0.0, 100 * 2 * std::numbers::pi / p.pendulum.omega,
            LoopOptions{}, log);
-  EXPECT_EQ(allocations.load() - before, 0);
+  EXPECT_EQ(testing::allocations_so_far() - before, 0);
   EXPECT_GT(log.count(EventKind::impact), 90u);
 }
 

@@ -1,13 +1,10 @@
 // The event loop allocates nothing: with the stepper built and the event log
 // only counting, a run of many impacts (and contact phases) makes no heap
-// allocation. Every allocation in this test program is counted by replacing
-// the global operator new. One exception, outside this project's code:
-// Boost.Odeint 1.74's bulirsch_stoer_dense_out::try_step builds two small
-// std::vector work arrays per attempted step; for that stepper the test
+// allocation. Every allocation in this test program is counted
+// (support/allocation_counter.hpp). One exception, outside this project's
+// code: Boost.Odeint 1.74's bulirsch_stoer_dense_out::try_step builds two
+// small std::vector work arrays per attempted step; for that stepper the test
 // bounds the count by those.
-#include <atomic>
-#include <cstdlib>
-#include <new>
 #include <numbers>
 #include <string_view>
 
@@ -19,20 +16,7 @@
 #include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 
-namespace {
-std::atomic<long> allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  ++allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-// matching the replaced operator new above, which allocates with malloc (GCC
-// cannot see that the two replacements pair up)
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "support/allocation_counter.hpp"
 
 namespace {
 
@@ -55,10 +39,10 @@ RunCount count_run(const System& system, typename System::State x0, std::string_
   EventLog log(false);
   LoopOptions options;
   return with_stepper<System>(method, settings, [&](auto& stepper) {
-    const long before = allocations.load();
+    const long before = impactlab::testing::allocations_so_far();
     const auto result =
         simulate(system, stepper, x0, typename System::Mode{}, 0.0, t_end, options, log);
-    const long made = allocations.load() - before;
+    const long made = impactlab::testing::allocations_so_far() - before;
     return RunCount{made, log.count(EventKind::impact), result.counters.steps};
   });
 }
