@@ -276,6 +276,7 @@ TEST(TangentDimension, FourStateModelWithAStickingWallIsRefusedTheAnalyses) {
     continue_orbit(scene, job);
     ADD_FAILURE() << "continue_orbit ran on a 4-state model with a sticking wall";
   } catch (const BadInput& error) {
+    EXPECT_EQ(error.key(), "oscillator");
     EXPECT_NE(std::string(error.what()).find("sticking"), std::string::npos) << error.what();
   }
 }

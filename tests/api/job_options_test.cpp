@@ -66,7 +66,8 @@ TEST(JobOptions, EveryTableIsConsistent) {
       if (!spec.excludes.empty()) EXPECT_NO_THROW(job_option(job, spec.excludes));
     }
   }
-  EXPECT_THROW(impactlab::job_options("no_such_job"), impactlab::BadInput);
+  EXPECT_EQ(impactlab::testing::bad_input_key([] { impactlab::job_options("no_such_job"); }),
+            "job");
 }
 
 TEST(JobOptions, FlagsAndMentionsAreSpelledPerFrontEnd) {

@@ -29,6 +29,8 @@
 #include <impactlab/oscillators/pendulum_walls/rigid_pendulum_walls.hpp>
 #include <impactlab/rigidbody/contact_phase.hpp>
 
+#include "support/test_support.hpp"
+
 namespace impactlab {
 namespace {
 
@@ -295,8 +297,11 @@ TEST(RigidPendulum, StickEndsOnTheConeEdgeOnTheTaylorStepper) {
 }
 
 TEST(RigidPendulum, RadiusMustFitAndSpinNeedsARadius) {
-  EXPECT_THROW(run_scene({"model=rigid", "radius=0.05"}, 1.0), BadInput);
-  EXPECT_THROW(run_scene({"model=rigid", "spin=free", "radius=0"}, 1.0), BadInput);
+  EXPECT_EQ(testing::bad_input_key([] { run_scene({"model=rigid", "radius=0.05"}, 1.0); }),
+            "radius");
+  EXPECT_EQ(
+      testing::bad_input_key([] { run_scene({"model=rigid", "spin=free", "radius=0"}, 1.0); }),
+      "spin");
   try {
     run_scene({"model=rigid", "radius=0.06"}, 1.0);
     FAIL() << "no BadInput";

@@ -1,8 +1,8 @@
 // What the tests share: scratch folders, running the built impactlab program
 // from an argument vector (no shell, so that any byte of an argument reaches
 // it as data) and collecting how it ended and what it wrote, reading a whole
-// file or a text's lines, and the check of a refusal for bad input: which
-// key its message names.
+// file or a text's lines, and the checks of bad input: which key a refusal
+// names.
 #pragma once
 
 #include <filesystem>
@@ -10,9 +10,12 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
+
+#include <impactlab/io/bad_input.hpp>
 
 namespace impactlab::testing {
 
@@ -94,5 +97,18 @@ bool mpirun_found();
 // refused) and "KEY is required", or its last, as in "The following argument
 // was not expected: KEY".
 ::testing::AssertionResult refused_naming(const ProgramRun& run, std::string_view key);
+
+// The key that the BadInput thrown by `action` names (its message is "KEY =
+// VALUE: reason"), or "(no BadInput)" when `action` returns: a test compares
+// it with the key it expects. Any other exception passes through.
+template <class Action>
+std::string bad_input_key(Action&& action) {
+  try {
+    std::forward<Action>(action)();
+  } catch (const BadInput& bad) {
+    return bad.key();
+  }
+  return "(no BadInput)";
+}
 
 }  // namespace impactlab::testing
