@@ -133,7 +133,7 @@ TEST(CompareCommand, RejectedModelExitsTwoAndWritesNothing) {
 }
 
 // A path is data, never shell text: an --out that would close a quoted
-// shell word and run `touch` must reach the plot script whole (issue 13).
+// shell word and run `touch` must reach the plot script whole.
 TEST(CompareCommand, HostileOutDirectoryIsNotShellText) {
   const ScratchFolder scratch;
   const auto marker = scratch / "INJECTED";

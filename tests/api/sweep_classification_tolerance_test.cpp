@@ -1,4 +1,4 @@
-// The classification tolerance of sweeps (issue 14, part 2). A scene's
+// The classification tolerance of sweeps. A scene's
 // integrator.classification_method/rtol/atol is the loosest integrator at
 // which the classes of its reference grid do not change (docs/performance.md,
 // "Classification tolerance"); a 2D map, which writes classes only, runs at it

@@ -1,6 +1,6 @@
-// Regression tests for issue 13, part 0 (security and honesty), through the
-// program as a user runs it: no shell injection through a path; every
-// numeric option rejects NaN, infinities and negative counts; runs whose time
+// Regression tests of security and honesty, through the program as a user
+// runs it: no shell injection through a path; every numeric option rejects
+// NaN, infinities and negative counts; runs whose time
 // cannot advance or whose state stops being finite end with exit 3 and a
 // typed termination, never "completed"; runs past the resource limits are
 // refused up front; library errors never come out as exit 1; every error is

@@ -247,10 +247,9 @@ TEST(ModelFile, TheCacheIsReusedAndTheSlowPathSaysSo) {
   expect_same_events(fast_events, slow_events, 1e-12);
 }
 
-// The compiler runs from an argument vector, never a shell (issue 12, "no
-// shell string"): a cache directory whose path holds quotes, ';', command
-// substitutions and spaces compiles and loads, and none of the commands
-// written into it runs.
+// The compiler runs from an argument vector, never a shell: a cache
+// directory whose path holds quotes, ';', command substitutions and spaces
+// compiles and loads, and none of the commands written into it runs.
 TEST(ModelFile, ACacheDirectoryWithShellSyntaxCompilesAndRunsNoCommand) {
   const impactlab::testing::ScratchFolder base;
   const std::filesystem::path marker = base / "injected";

@@ -1,4 +1,4 @@
-"""Oscillators defined in a scene file's [model] section (issue 12), from
+"""Oscillators defined in a scene file's [model] section, from
 Python: a scene path runs like a built-in scene name, gives the CLI's numbers
 bit for bit, and the physics of the built-in oscillator it rewrites."""
 import os

@@ -7,7 +7,7 @@
 // * no event is found twice at the same instant;
 // * a run whose time cannot advance, whose state overflows, whose end time is
 //   NaN, or that takes its whole step budget stops with a termination naming
-//   that, never `completed` (issue 13).
+//   that, never `completed`.
 // The motions: LinearImpact with ζ = 0, A = 0 is the harmonic oscillator,
 // x = x0 cos t + ẋ0 sin t between impacts.
 #include <algorithm>
@@ -292,7 +292,7 @@ TEST_P(EventLoop, UnresolvedZenoStopsWithNoProgress) {
   for (const EventRecord& e : log.records()) EXPECT_LE(e.t, accumulation + 1e-6);
 }
 
-// issue 13: at t0 = 1e17 s the spacing of doubles is 16 s, so that t + step
+// At t0 = 1e17 s the spacing of doubles is 16 s, so that t + step
 // == t for any step of this oscillator (max step 0.5): the run must say so,
 // not report `completed` with the initial state (it did, with five identical
 // section points).
