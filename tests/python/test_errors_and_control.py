@@ -39,6 +39,7 @@ def test_scene_message_equals_the_cli_set_message(cli, tmp_path):
     assert completed.returncode == 2
     with pytest.raises(ValueError) as raised:
         impactlab.scene("jin2003", e_n=1.5)
+    assert str(raised.value).startswith("e_n = 1.5: "), str(raised.value)
     assert str(raised.value) in completed.stderr
 
 
