@@ -409,7 +409,8 @@ TEST(TangentDimension, PeriodicAndContinueRunOnTheImpactDamperFromTheCommandLine
          (dir / "periodic").string()},
         {.environment = cache, .limit_s = 120});
     ASSERT_EQ(run.status, 0) << run.err;
-    const auto document = nlohmann::json::parse(impactlab::testing::slurp(dir / "periodic" / "periodic.json"));
+    const auto document =
+        nlohmann::json::parse(impactlab::testing::slurp(dir / "periodic" / "periodic.json"));
     EXPECT_TRUE(document["converged"].get<bool>());
     ASSERT_EQ(document["floquet_multipliers"].size(), 4u);
     ASSERT_EQ(document["monodromy"].size(), 4u);
@@ -419,10 +420,10 @@ TEST(TangentDimension, PeriodicAndContinueRunOnTheImpactDamperFromTheCommandLine
     EXPECT_GT(product, 0.0);
   }
   {
-    const auto run = impactlab::testing::run_impactlab({"continue", scene, "--param", "omega=1.5:1.6",
-                                             "--max-points", "20", "--quiet", "--out",
-                                             (dir / "continue").string()},
-                                            {.environment = cache, .limit_s = 300});
+    const auto run = impactlab::testing::run_impactlab(
+        {"continue", scene, "--param", "omega=1.5:1.6", "--max-points", "20", "--quiet", "--out",
+         (dir / "continue").string()},
+        {.environment = cache, .limit_s = 300});
     ASSERT_EQ(run.status, 0) << run.err;
     std::ifstream branch(dir / "continue" / "branch.csv");
     std::string header, line;

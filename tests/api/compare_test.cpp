@@ -90,8 +90,8 @@ std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path
 TEST(CompareCommand, NewtonAndReducedRigidAgreeOnJin2003) {
   const ScratchFolder scratch;
   const auto out = scratch / "jin2003";
-  const ProgramRun outcome =
-      run_command_line("compare jin2003 --models newton,rigid --periods 30 --quiet --out " + out.string());
+  const ProgramRun outcome = run_command_line(
+      "compare jin2003 --models newton,rigid --periods 30 --quiet --out " + out.string());
   ASSERT_EQ(outcome.status, 0) << outcome.err;
   for (const char* file : {"compare_impacts.csv", "compare_contacts.csv", "compare_section.csv",
                            "summary.md", "compare.json"})
@@ -124,8 +124,8 @@ TEST(CompareCommand, NewtonAndReducedRigidAgreeOnJin2003) {
 TEST(CompareCommand, RejectedModelExitsTwoAndWritesNothing) {
   const ScratchFolder scratch;
   const auto out = scratch / "unknown";
-  const ProgramRun outcome =
-      run_command_line("compare jin2003 --models newton,bogus --periods 2 --quiet --out " + out.string());
+  const ProgramRun outcome = run_command_line(
+      "compare jin2003 --models newton,bogus --periods 2 --quiet --out " + out.string());
   EXPECT_TRUE(refused_naming(outcome, "model"));
   EXPECT_NE(outcome.err.find("model = bogus"), std::string::npos) << outcome.err;
   EXPECT_FALSE(std::filesystem::exists(out / "compare_impacts.csv"));
@@ -147,8 +147,9 @@ TEST(CompareCommand, HostileOutDirectoryIsNotShellText) {
 
 TEST(CompareCommand, MalformedModelListExitsTwo) {
   const ScratchFolder scratch;
-  const ProgramRun outcome = run_command_line(
-      "compare jin2003 --models newton,,rigid --periods 2 --quiet --out " + (scratch / "list").string());
+  const ProgramRun outcome =
+      run_command_line("compare jin2003 --models newton,,rigid --periods 2 --quiet --out " +
+                       (scratch / "list").string());
   EXPECT_TRUE(refused_naming(outcome, "--models"));
   EXPECT_NE(outcome.err.find("--models = newton,,rigid"), std::string::npos) << outcome.err;
 }

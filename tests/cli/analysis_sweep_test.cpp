@@ -42,8 +42,10 @@ TEST(Poincare, StroboscopicPointsAtTheForcingPhase) {
   const ScratchFolder scratch;
   const auto out = scratch / "strobe";
   const double phase = 1.0;
-  const ProgramRun o = run_command_line("poincare linear_impact --section strobe:1 --transient 20 --points 7 "
-                        "--quiet --out " + out.string());
+  const ProgramRun o = run_command_line(
+      "poincare linear_impact --section strobe:1 --transient 20 --points 7 "
+      "--quiet --out " +
+      out.string());
   ASSERT_EQ(o.status, 0) << o.err;
   const auto rows = split_lines(slurp(out / "poincare.csv"));
   ASSERT_EQ(rows.size(), 8u);
@@ -64,8 +66,10 @@ TEST(Poincare, StroboscopicPointsAtTheForcingPhase) {
 TEST(Poincare, ImpactMapPointsLieOnTheStop) {
   const ScratchFolder scratch;
   const auto out = scratch / "impact";
-  const ProgramRun o = run_command_line("poincare linear_impact --section impact:1 --transient-impacts 30 "
-                        "--points 9 --quiet --out " + out.string());
+  const ProgramRun o = run_command_line(
+      "poincare linear_impact --section impact:1 --transient-impacts 30 "
+      "--points 9 --quiet --out " +
+      out.string());
   ASSERT_EQ(o.status, 0) << o.err;
   const auto rows = split_lines(slurp(out / "poincare.csv"));
   ASSERT_EQ(rows.size(), 10u);
@@ -103,9 +107,10 @@ TEST(Poincare, UserGivenSectionCrossesTheLevelInItsDirection) {
 TEST(Poincare, PaperModelImpactMapWithoutLyapunov) {
   const ScratchFolder scratch;
   const auto out = scratch / "paper";
-  const ProgramRun o = run_command_line("poincare jin2003 --set model=paper --set V0=4.163 --section impact:1 "
-                        "--transient-impacts 20 --points 6 --lyapunov --quiet --out " +
-                        out.string());
+  const ProgramRun o = run_command_line(
+      "poincare jin2003 --set model=paper --set V0=4.163 --section impact:1 "
+      "--transient-impacts 20 --points 6 --lyapunov --quiet --out " +
+      out.string());
   ASSERT_EQ(o.status, 0) << o.err;
   const auto rows = split_lines(slurp(out / "poincare.csv"));
   ASSERT_EQ(rows.size(), 7u);
@@ -140,8 +145,10 @@ TEST(Sweep, OneDimensionalColumnsAndBothDirections) {
 TEST(Sweep, SerialAndThreadedRunsWriteIdenticalFiles) {
   const ScratchFolder scratch;
   const auto serial = scratch / "serial", threaded = scratch / "threaded";
-  ASSERT_EQ(run_command_line(sweep_1d + " --chunks 3 --threads 1 --out " + serial.string()).status, 0);
-  ASSERT_EQ(run_command_line(sweep_1d + " --chunks 3 --threads 2 --out " + threaded.string()).status, 0);
+  ASSERT_EQ(run_command_line(sweep_1d + " --chunks 3 --threads 1 --out " + serial.string()).status,
+            0);
+  ASSERT_EQ(
+      run_command_line(sweep_1d + " --chunks 3 --threads 2 --out " + threaded.string()).status, 0);
   EXPECT_EQ(slurp(serial / "bifurcation.csv"), slurp(threaded / "bifurcation.csv"));
   EXPECT_EQ(slurp(serial / "summary.csv"), slurp(threaded / "summary.csv"));
 
@@ -149,7 +156,8 @@ TEST(Sweep, SerialAndThreadedRunsWriteIdenticalFiles) {
   ASSERT_EQ(run_command_line(sweep_2d + " --threads 1 --out " + serial_2d.string()).status, 0);
   ASSERT_EQ(run_command_line(sweep_2d + " --threads 2 --out " + threaded_2d.string()).status, 0);
   const std::string classes = slurp(serial_2d / "classes.csv");
-  EXPECT_EQ(split_lines(classes)[0], "omega,V0,period,impacts_per_period,contact,lyapunov,termination");
+  EXPECT_EQ(split_lines(classes)[0],
+            "omega,V0,period,impacts_per_period,contact,lyapunov,termination");
   EXPECT_EQ(split_lines(classes).size(), 1u + 24u);
   EXPECT_EQ(classes, slurp(threaded_2d / "classes.csv"));
 }
@@ -162,9 +170,13 @@ TEST(Sweep, MetaRecordsTheClassificationAndLyapunovIntegrators) {
   const auto map = scratch / "integrators_2d", set = scratch / "integrators_set",
              one = scratch / "integrators_1d";
   ASSERT_EQ(run_command_line(sweep_2d + " --out " + map.string()).status, 0);
-  ASSERT_EQ(run_command_line(sweep_2d + " --set integrator.rtol=1e-11 --out " + set.string()).status, 0);
-  ASSERT_EQ(run_command_line("sweep jin2003 --param omega=6:8:3 --transient 5 --points 4 --quiet --out " +
-                one.string()).status, 0);
+  ASSERT_EQ(
+      run_command_line(sweep_2d + " --set integrator.rtol=1e-11 --out " + set.string()).status, 0);
+  ASSERT_EQ(
+      run_command_line("sweep jin2003 --param omega=6:8:3 --transient 5 --points 4 --quiet --out " +
+                       one.string())
+          .status,
+      0);
   const auto sweep_of = [](const fs::path& dir) {
     return nlohmann::json::parse(slurp(dir / "meta.json"))["sweep"];
   };
@@ -202,14 +214,17 @@ TEST(Sweep, InterruptedSweepResumesWithoutRecomputingFinishedPoints) {
   const auto whole = scratch / "whole", resumed = scratch / "resumed";
   ASSERT_EQ(run_command_line(sweep_1d + " --out " + whole.string()).status, 0);
   // stopped after 10 new points: exit 3, a checkpoint, no data file
-  const ProgramRun stopped = run_command_line(sweep_1d + " --stop-after 10 --out " + resumed.string());
+  const ProgramRun stopped =
+      run_command_line(sweep_1d + " --stop-after 10 --out " + resumed.string());
   EXPECT_EQ(stopped.status, 3) << stopped.err;
   EXPECT_FALSE(fs::exists(resumed / "bifurcation.csv"));
   EXPECT_FALSE(fs::exists(resumed / "meta.json"));
   EXPECT_EQ(split_lines(slurp(resumed / "checkpoint-0.jsonl")).size(), 1u + 10u);
   // a different sweep in the same directory does not reuse them
-  const ProgramRun other = run_command_line("sweep jin2003 --param omega=6:8:5 --transient 30 --points 12 "
-                            "--quiet --stop-after 1 --resume --out " + resumed.string());
+  const ProgramRun other = run_command_line(
+      "sweep jin2003 --param omega=6:8:5 --transient 30 --points 12 "
+      "--quiet --stop-after 1 --resume --out " +
+      resumed.string());
   EXPECT_EQ(other.status, 3);
   ASSERT_EQ(run_command_line(sweep_1d + " --stop-after 10 --out " + resumed.string()).status, 3);
   // resumed: 10 points reused, the rest computed, the same file as one whole run
@@ -245,8 +260,10 @@ TEST(Sweep, KilledSweepLeavesNoDataFileAndResumes) {
 TEST(Sweep, PlotWritesAPngOrSaysWhyNot) {
   const ScratchFolder scratch;
   const auto out = scratch / "plot";
-  const ProgramRun o = run_command_line("sweep linear_impact --param omega=2:2.5:6 --transient 20 --points 8 "
-                        "--quiet --plot --out " + out.string());
+  const ProgramRun o = run_command_line(
+      "sweep linear_impact --param omega=2:2.5:6 --transient 20 --points 8 "
+      "--quiet --plot --out " +
+      out.string());
   ASSERT_EQ(o.status, 0) << o.err;
   EXPECT_TRUE(fs::exists(out / "bifurcation.csv"));
   if (run_program({"/usr/bin/python3", "-c", "import matplotlib"}, ProgramOutput::discard) == 0)

@@ -39,8 +39,10 @@ TEST(ContinueCommand, WritesTheBranchThePointsAndTheSidecar) {
 TEST(ContinueCommand, ImpactSectionWritesThePhaseAndRateOfTheImpact) {
   const ScratchFolder scratch;
   const auto out = scratch / "out";
-  const ProgramRun outcome = run_command_line("continue linear_impact --param omega=2:2.4 --section impact:+1 "
-                              "--quiet --out " + out.string());
+  const ProgramRun outcome = run_command_line(
+      "continue linear_impact --param omega=2:2.4 --section impact:+1 "
+      "--quiet --out " +
+      out.string());
   ASSERT_EQ(outcome.status, 0) << outcome.err;
   const std::string points = slurp(out / "points.csv");
   EXPECT_NE(points.find("period_doubling,2.265297"), std::string::npos) << points;
@@ -56,9 +58,10 @@ TEST(ContinueCommand, ImpactSectionWritesThePhaseAndRateOfTheImpact) {
 TEST(ContinueCommand, ImpactSectionLocatesItsOwnGrazeAndFollowsItsCurve) {
   const ScratchFolder scratch;
   const auto out = scratch / "out";
-  const ProgramRun outcome = run_command_line("continue linear_impact --param omega=2:2.5 --section impact:+1 "
-                              "--param2 sigma=0.2:0.3 --curve grazing --quiet --out " +
-                                  out.string());
+  const ProgramRun outcome = run_command_line(
+      "continue linear_impact --param omega=2:2.5 --section impact:+1 "
+      "--param2 sigma=0.2:0.3 --curve grazing --quiet --out " +
+      out.string());
   ASSERT_EQ(outcome.status, 0) << outcome.err;
   const std::string points = slurp(out / "points.csv");
   EXPECT_NE(points.find("grazing,2.448265181"), std::string::npos) << points;
@@ -77,8 +80,10 @@ TEST(ContinueCommand, ImpactSectionLocatesItsOwnGrazeAndFollowsItsCurve) {
 TEST(ContinueCommand, TwoParameterCurveWritesTheCurveAndItsSidecar) {
   const ScratchFolder scratch;
   const auto out = scratch / "out";
-  const ProgramRun outcome = run_command_line("continue linear_impact --param omega=2:2.5 --param2 sigma=0.2:0.3 "
-                              "--curve grazing --quiet --out " + out.string());
+  const ProgramRun outcome = run_command_line(
+      "continue linear_impact --param omega=2:2.5 --param2 sigma=0.2:0.3 "
+      "--curve grazing --quiet --out " +
+      out.string());
   ASSERT_EQ(outcome.status, 0) << outcome.err;
   const std::string curve = slurp(out / "curve.csv");
   EXPECT_EQ(curve.rfind("omega,sigma,q,qdot,multiplier1_re,", 0), 0u) << curve;
@@ -95,9 +100,11 @@ TEST(ContinueCommand, TwoParameterCurveWritesTheCurveAndItsSidecar) {
 TEST(ContinueCommand, SwitchWithACurveWritesTheDoubledBranchsCurveToo) {
   const ScratchFolder scratch;
   const auto out = scratch / "out";
-  const ProgramRun outcome = run_command_line("continue bouncing_ball --param A=0.0112:0.025 --start "
-                              "0.044286522498880876,-0.6269934342801218 --param2 r=0.8:0.75 "
-                              "--curve period_doubling --switch --quiet --out " + out.string());
+  const ProgramRun outcome = run_command_line(
+      "continue bouncing_ball --param A=0.0112:0.025 --start "
+      "0.044286522498880876,-0.6269934342801218 --param2 r=0.8:0.75 "
+      "--curve period_doubling --switch --quiet --out " +
+      out.string());
   ASSERT_EQ(outcome.status, 0) << outcome.err;
   const std::string curve = slurp(out / "curve.csv");
   EXPECT_NE(curve.find("newton_iterations,branch,period\n"), std::string::npos) << curve;

@@ -134,12 +134,12 @@ void check_residuals(const fs::path& directory, const std::string& figure) {
 TEST(QuickReproduction, RangesResidualsSlipsAndThreadIndependence) {
   const ScratchFolder scratch;
   const fs::path one_thread = scratch / "quick1", two_threads = scratch / "quick2";
-  ASSERT_EQ(run_command_line(fmt::format("reproduce jin2003 --quick --no-plot --quiet --threads 1 --out {}",
-                            one_thread.string()))
+  ASSERT_EQ(run_command_line("reproduce jin2003 --quick --no-plot --quiet --threads 1 --out " +
+                             one_thread.string())
                 .status,
             0);
-  ASSERT_EQ(run_command_line(fmt::format("reproduce jin2003 --quick --no-plot --quiet --threads 2 --out {}",
-                            two_threads.string()))
+  ASSERT_EQ(run_command_line("reproduce jin2003 --quick --no-plot --quiet --threads 2 --out " +
+                             two_threads.string())
                 .status,
             0);
   {
@@ -197,7 +197,8 @@ TEST(CommittedReproduction, RangesAreRederivedFromTheCsv) {
 TEST(ReproduceBadInput, UnknownPaperExitsTwo) {
   const ScratchFolder scratch;
   const fs::path out = scratch / "bad";
-  const ProgramRun outcome = run_command_line(fmt::format("reproduce nosuch --out {}", out.string()));
+  const ProgramRun outcome =
+      run_command_line(fmt::format("reproduce nosuch --out {}", out.string()));
   EXPECT_TRUE(refused_naming(outcome, "paper"));
   EXPECT_NE(outcome.err.find("nosuch"), std::string::npos) << outcome.err;
   EXPECT_FALSE(fs::exists(out));
@@ -206,7 +207,8 @@ TEST(ReproduceBadInput, UnknownPaperExitsTwo) {
 TEST(ReproduceBadInput, BadSceneValueExitsTwo) {
   const ScratchFolder scratch;
   const fs::path out = scratch / "bad_value";
-  const ProgramRun outcome = run_command_line(fmt::format("reproduce jin2003 --set e_n=2 --out {}", out.string()));
+  const ProgramRun outcome =
+      run_command_line(fmt::format("reproduce jin2003 --set e_n=2 --out {}", out.string()));
   EXPECT_TRUE(refused_naming(outcome, "e_n"));
   EXPECT_FALSE(fs::exists(out));
 }

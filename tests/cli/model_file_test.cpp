@@ -38,8 +38,8 @@ TEST(ModelFileCli, EveryCommandRunsAModelFileAndTheCacheIsReused) {
   const fs::path cache = scratch / "cache";
   const fs::path out = scratch / "out";
   const std::string scene = examples + "linear_impact_model.toml";
-  const ProgramRun first =
-      run_with_cache("simulate " + scene + " --periods 20 --quiet --out " + (out / "a").string(), cache);
+  const ProgramRun first = run_with_cache(
+      "simulate " + scene + " --periods 20 --quiet --out " + (out / "a").string(), cache);
   ASSERT_EQ(first.status, 0) << first.err;
   int shared_objects = 0;
   for (const auto& entry : fs::directory_iterator(cache)) shared_objects += entry.path().extension() == ".so";

@@ -149,7 +149,8 @@ INSTANTIATE_TEST_SUITE_P(
         // 5 periods (4.5 s) after t0 = 1e17 s round to t0 itself (a double's
         // resolution there is 16 s): refused up front, naming t0
         BadOption{"simulate_t0_1e17",
-                  {"simulate", "jin2003", "--set", "t0=1e17", "--periods", "5"}, "t0", "t0 = 1e+17"},
+                  {"simulate", "jin2003", "--set", "t0=1e17", "--periods", "5"}, "t0",
+                  "t0 = 1e+17"},
         BadOption{"poincare_transient_huge", {"poincare", "jin2003", "--transient", "1e9"},
                   "--transient"},
         BadOption{"periodic_omega_tiny", {"periodic", "linear_impact", "--set", "omega=1e-308"},

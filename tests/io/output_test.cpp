@@ -164,10 +164,10 @@ TEST(SimulateFiles, PeakMemoryDoesNotGrowWithTheRunLength) {
   const ScratchFolder scratch;
   const auto short_dir = scratch / "memory_short";
   const auto long_dir = scratch / "memory_long";
-  const ProgramRun short_run =
-      run_measured({"simulate", "jin2003", "--t-end", "1e3", "--quiet", "--out", short_dir.string()});
-  const ProgramRun long_run =
-      run_measured({"simulate", "jin2003", "--t-end", "1e4", "--quiet", "--out", long_dir.string()});
+  const ProgramRun short_run = run_measured(
+      {"simulate", "jin2003", "--t-end", "1e3", "--quiet", "--out", short_dir.string()});
+  const ProgramRun long_run = run_measured(
+      {"simulate", "jin2003", "--t-end", "1e4", "--quiet", "--out", long_dir.string()});
   ASSERT_EQ(short_run.status, 0);
   ASSERT_EQ(long_run.status, 0);
   const auto meta_short = nlohmann::json::parse(slurp(short_dir / "meta.json"));

@@ -169,7 +169,8 @@ ProgramRun run_impactlab(const std::vector<std::string>& arguments, const RunSet
                            {"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1",
                             "OMPI_MCA_rmaps_base_oversubscribe=1"});
 #if defined(__SANITIZE_ADDRESS__)
-  ranks.environment.push_back("ASAN_OPTIONS=detect_leaks=0:abort_on_error=0:strict_string_checks=1");
+  ranks.environment.push_back(
+      "ASAN_OPTIONS=detect_leaks=0:abort_on_error=0:strict_string_checks=1");
 #endif
   return run_words(std::move(words), ranks);
 }
