@@ -1,4 +1,4 @@
-"""Oscillators defined in a scene file's [model] section (issue 12), from
+"""Oscillators defined in a scene file's [model] section, from
 Python: a scene path runs like a built-in scene name, gives the CLI's numbers
 bit for bit, and the physics of the built-in oscillator it rewrites."""
 import os
@@ -14,7 +14,7 @@ LINEAR_MODEL = os.path.join(EXAMPLES, "linear_impact_model.toml")
 
 # ω at the period doubling of the linear impact oscillator's period-1 orbit
 # (ζ = 0.05, r = 0.8, σ = 0.2, A = 1), from the closed form of
-# tests/analysis_continuation_test.cpp (PeriodOneOrbit: 1 + tr M + det M = 0)
+# tests/analysis/continuation_test.cpp (PeriodOneOrbit: 1 + tr M + det M = 0)
 PERIOD_DOUBLING_OMEGA = 2.2652971759636387
 
 

@@ -1,0 +1,337 @@
+// The `poincare`, `sweep` and `periodic` commands end to end: the output contract
+// (columns, sidecar), serial, threaded and MPI sweeps giving byte-identical
+// files, a sweep interrupted midway resuming without recomputing its finished
+// points (and leaving no data file before it is complete), and bad input
+// exiting with status 2 and one line naming the key and the value.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <impactlab/platform/run_program.hpp>
+
+#include "support/test_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using impactlab::ProgramOutput;
+using impactlab::run_program;
+using namespace impactlab::testing;
+
+std::vector<double> fields(const std::string& line) {
+  std::vector<double> values;
+  std::stringstream stream(line);
+  for (std::string field; std::getline(stream, field, ',');)
+    values.push_back(std::strtod(field.c_str(), nullptr));
+  return values;
+}
+
+const std::string sweep_1d =
+    "sweep jin2003 --param omega=6:8:24 --direction both --transient 30 --points 12 --quiet";
+const std::string sweep_2d =
+    "sweep jin2003 --param omega=6.5:7.5:6 --param V0=1:2:4 --transient 30 --points 12 --quiet";
+
+TEST(Poincare, StroboscopicPointsAtTheForcingPhase) {
+  const ScratchFolder scratch;
+  const auto out = scratch / "strobe";
+  const double phase = 1.0;
+  const ProgramRun o = run_command_line(
+      "poincare linear_impact --section strobe:1 --transient 20 --points 7 "
+      "--quiet --out " +
+      out.string());
+  ASSERT_EQ(o.status, 0) << o.err;
+  const auto rows = split_lines(slurp(out / "poincare.csv"));
+  ASSERT_EQ(rows.size(), 8u);
+  EXPECT_EQ(rows[0], "k,t,q,qdot");
+  const double omega = 2.0;  // the scene's
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const auto v = fields(rows[k]);
+    // ωt ≡ phase (mod 2π), one period apart, after the 20-period transient
+    const double turns = (omega * v[1] - phase) / (2.0 * std::numbers::pi);
+    EXPECT_NEAR(turns, std::round(turns), 1e-9) << rows[k];
+    EXPECT_GE(v[1], 20.0 * 2.0 * std::numbers::pi / omega);
+  }
+  const auto meta = nlohmann::json::parse(slurp(out / "meta.json"));
+  EXPECT_EQ(meta["counts"]["points"], 7);
+  EXPECT_EQ(meta["scene"]["oscillator"], "linear_impact");
+}
+
+TEST(Poincare, ImpactMapPointsLieOnTheStop) {
+  const ScratchFolder scratch;
+  const auto out = scratch / "impact";
+  const ProgramRun o = run_command_line(
+      "poincare linear_impact --section impact:1 --transient-impacts 30 "
+      "--points 9 --quiet --out " +
+      out.string());
+  ASSERT_EQ(o.status, 0) << o.err;
+  const auto rows = split_lines(slurp(out / "poincare.csv"));
+  ASSERT_EQ(rows.size(), 10u);
+  EXPECT_EQ(rows[0], "k,t,q,qdot,wall,phase");
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const auto v = fields(rows[k]);
+    EXPECT_NEAR(v[2], 0.2, 1e-9) << rows[k];  // x = σ
+    EXPECT_GT(v[3], 0.0) << rows[k];           // moving into the stop
+    EXPECT_EQ(v[4], 1.0);
+    EXPECT_NEAR(v[5], std::fmod(2.0 * v[1], 2.0 * std::numbers::pi), 1e-9);
+  }
+}
+
+TEST(Poincare, UserGivenSectionCrossesTheLevelInItsDirection) {
+  const ScratchFolder scratch;
+  for (const std::string direction : {"up", "down"}) {
+    const auto out = scratch / ("crossing-" + direction);
+    const ProgramRun o = run_command_line("poincare linear_impact --section q=-1.5:" + direction +
+                          " --transient 20 --points 6 --quiet --out " + out.string());
+    ASSERT_EQ(o.status, 0) << o.err;
+    const auto rows = split_lines(slurp(out / "poincare.csv"));
+    ASSERT_EQ(rows.size(), 7u);
+    EXPECT_EQ(rows[0], "k,t,q,qdot,phase");
+    for (std::size_t k = 1; k < rows.size(); ++k) {
+      const auto v = fields(rows[k]);
+      EXPECT_NEAR(v[2], -1.5, 1e-9) << rows[k];
+      EXPECT_GT(direction == "up" ? v[3] : -v[3], 0.0) << rows[k];
+    }
+  }
+}
+
+// Model P through the section hook: the impact map of the right wall lies on
+// the wall (θ = asin(b/l)) with the bob moving in, and the Lyapunov exponent
+// is reported as not available (Model P has no Jacobians) rather than computed.
+TEST(Poincare, PaperModelImpactMapWithoutLyapunov) {
+  const ScratchFolder scratch;
+  const auto out = scratch / "paper";
+  const ProgramRun o = run_command_line(
+      "poincare jin2003 --set model=paper --set V0=4.163 --section impact:1 "
+      "--transient-impacts 20 --points 6 --lyapunov --quiet --out " +
+      out.string());
+  ASSERT_EQ(o.status, 0) << o.err;
+  const auto rows = split_lines(slurp(out / "poincare.csv"));
+  ASSERT_EQ(rows.size(), 7u);
+  const double theta0 = std::asin(0.05 / 0.7);
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const auto v = fields(rows[k]);
+    EXPECT_NEAR(v[2], theta0, 1e-12) << rows[k];
+    EXPECT_GT(v[3], 0.0) << rows[k];
+  }
+  const auto meta = nlohmann::json::parse(slurp(out / "meta.json"));
+  EXPECT_EQ(meta["scene"]["keys"]["model"]["value"], "paper");
+  EXPECT_EQ(meta["lyapunov"]["largest_exponent_per_time"], "nan");
+}
+
+TEST(Sweep, OneDimensionalColumnsAndBothDirections) {
+  const ScratchFolder scratch;
+  const auto out = scratch / "columns";
+  const ProgramRun o = run_command_line(sweep_1d + " --out " + out.string());
+  ASSERT_EQ(o.status, 0) << o.err;
+  const auto rows = split_lines(slurp(out / "bifurcation.csv"));
+  EXPECT_EQ(rows[0], "omega,k,t,q,qdot,wall,direction");
+  EXPECT_EQ(rows.size(), 1u + 2u * 24u * 12u);  // both directions, 24 values, 12 points
+  const auto summary = split_lines(slurp(out / "summary.csv"));
+  EXPECT_EQ(summary.size(), 1u + 48u);
+  EXPECT_EQ(summary[1].rfind("6,up,", 0), 0u) << summary[1];
+  EXPECT_EQ(summary[25].rfind("8,down,", 0), 0u) << summary[25];
+  const auto meta = nlohmann::json::parse(slurp(out / "meta.json"));
+  EXPECT_EQ(meta["counts"]["points"], 48);
+  EXPECT_FALSE(fs::exists(out / "checkpoint-0.jsonl"));
+}
+
+TEST(Sweep, SerialAndThreadedRunsWriteIdenticalFiles) {
+  const ScratchFolder scratch;
+  const auto serial = scratch / "serial", threaded = scratch / "threaded";
+  ASSERT_EQ(run_command_line(sweep_1d + " --chunks 3 --threads 1 --out " + serial.string()).status,
+            0);
+  ASSERT_EQ(
+      run_command_line(sweep_1d + " --chunks 3 --threads 2 --out " + threaded.string()).status, 0);
+  EXPECT_EQ(slurp(serial / "bifurcation.csv"), slurp(threaded / "bifurcation.csv"));
+  EXPECT_EQ(slurp(serial / "summary.csv"), slurp(threaded / "summary.csv"));
+
+  const auto serial_2d = scratch / "serial2d", threaded_2d = scratch / "threaded2d";
+  ASSERT_EQ(run_command_line(sweep_2d + " --threads 1 --out " + serial_2d.string()).status, 0);
+  ASSERT_EQ(run_command_line(sweep_2d + " --threads 2 --out " + threaded_2d.string()).status, 0);
+  const std::string classes = slurp(serial_2d / "classes.csv");
+  EXPECT_EQ(split_lines(classes)[0],
+            "omega,V0,period,impacts_per_period,contact,lyapunov,termination");
+  EXPECT_EQ(split_lines(classes).size(), 1u + 24u);
+  EXPECT_EQ(classes, slurp(threaded_2d / "classes.csv"));
+}
+
+TEST(Sweep, MetaRecordsTheClassificationAndLyapunovIntegrators) {
+  const ScratchFolder scratch;
+  // a 2D map classifies at the scene's classification integrator (the
+  // Lyapunov exponent at the scene's own); a 1D sweep and a 2D map with an
+  // integrator key set stay at the scene's or the user's integrator throughout
+  const auto map = scratch / "integrators_2d", set = scratch / "integrators_set",
+             one = scratch / "integrators_1d";
+  ASSERT_EQ(run_command_line(sweep_2d + " --out " + map.string()).status, 0);
+  ASSERT_EQ(
+      run_command_line(sweep_2d + " --set integrator.rtol=1e-11 --out " + set.string()).status, 0);
+  ASSERT_EQ(
+      run_command_line("sweep jin2003 --param omega=6:8:3 --transient 5 --points 4 --quiet --out " +
+                       one.string())
+          .status,
+      0);
+  const auto sweep_of = [](const fs::path& dir) {
+    return nlohmann::json::parse(slurp(dir / "meta.json"))["sweep"];
+  };
+  const auto m = sweep_of(map), s = sweep_of(set), o = sweep_of(one);
+  // the built-in jin2003 states no classification tolerance
+  // (oscillators/pendulum_walls/jin2003.toml): its own integrator, and the note says why
+  EXPECT_EQ(m["classification_integrator"]["method"], "taylor") << m.dump(1);
+  EXPECT_EQ(m["classification_integrator"]["rtol"], 1e-12) << m.dump(1);
+  EXPECT_NE(m["classification_integrator_note"].get<std::string>().find("states no classification"),
+            std::string::npos)
+      << m.dump(1);
+  EXPECT_EQ(m["lyapunov_integrator"]["method"], "taylor");
+  EXPECT_EQ(m["lyapunov_integrator"]["rtol"], 1e-12);
+  EXPECT_EQ(s["classification_integrator"]["rtol"], 1e-11);
+  EXPECT_EQ(s["lyapunov_integrator"]["rtol"], 1e-11);
+  EXPECT_EQ(o["classification_integrator"]["rtol"], 1e-12);
+  EXPECT_TRUE(o["lyapunov_integrator"].is_null());
+}
+
+TEST(Sweep, MpiRunWritesTheSameFileAsTheSerialRun) {
+  if (!mpirun_found()) GTEST_SKIP() << "no mpirun";
+  const ScratchFolder scratch;
+  const auto serial = scratch / "mpi_serial", parallel = scratch / "mpi_parallel";
+  ASSERT_EQ(run_command_line(sweep_2d + " --out " + serial.string()).status, 0);
+  const ProgramRun o = run_command_line(sweep_2d + " --out " + parallel.string(), {.mpi_ranks = 2});
+  if (o.err.find("built without MPI") != std::string::npos) GTEST_SKIP() << "built without MPI";
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_EQ(slurp(serial / "classes.csv"), slurp(parallel / "classes.csv"));
+  const auto meta = nlohmann::json::parse(slurp(parallel / "meta.json"));
+  EXPECT_EQ(meta["run"]["mpi_ranks"], 2);
+}
+
+TEST(Sweep, InterruptedSweepResumesWithoutRecomputingFinishedPoints) {
+  const ScratchFolder scratch;
+  const auto whole = scratch / "whole", resumed = scratch / "resumed";
+  ASSERT_EQ(run_command_line(sweep_1d + " --out " + whole.string()).status, 0);
+  // stopped after 10 new points: exit 3, a checkpoint, no data file
+  const ProgramRun stopped =
+      run_command_line(sweep_1d + " --stop-after 10 --out " + resumed.string());
+  EXPECT_EQ(stopped.status, 3) << stopped.err;
+  EXPECT_FALSE(fs::exists(resumed / "bifurcation.csv"));
+  EXPECT_FALSE(fs::exists(resumed / "meta.json"));
+  EXPECT_EQ(split_lines(slurp(resumed / "checkpoint-0.jsonl")).size(), 1u + 10u);
+  // a different sweep in the same directory does not reuse them
+  const ProgramRun other = run_command_line(
+      "sweep jin2003 --param omega=6:8:5 --transient 30 --points 12 "
+      "--quiet --stop-after 1 --resume --out " +
+      resumed.string());
+  EXPECT_EQ(other.status, 3);
+  ASSERT_EQ(run_command_line(sweep_1d + " --stop-after 10 --out " + resumed.string()).status, 3);
+  // resumed: 10 points reused, the rest computed, the same file as one whole run
+  const ProgramRun finished = run_command_line(sweep_1d + " --resume --out " + resumed.string());
+  ASSERT_EQ(finished.status, 0) << finished.err;
+  const auto meta = nlohmann::json::parse(slurp(resumed / "meta.json"));
+  EXPECT_EQ(meta["run"]["points_reused_from_checkpoint"], 10);
+  EXPECT_EQ(slurp(whole / "bifurcation.csv"), slurp(resumed / "bifurcation.csv"));
+  EXPECT_EQ(slurp(whole / "summary.csv"), slurp(resumed / "summary.csv"));
+}
+
+TEST(Sweep, KilledSweepLeavesNoDataFileAndResumes) {
+  const ScratchFolder scratch;
+  const std::string sweep = "sweep jin2003 --param omega=5:9:200 --direction both --transient 50 "
+                            "--points 20 --quiet";
+  const auto whole = scratch / "kill_whole", killed = scratch / "killed";
+  ASSERT_EQ(run_command_line(sweep + " --out " + whole.string()).status, 0);
+  // SIGKILL once the checkpoint holds a few points
+  const fs::path checkpoint = killed / "checkpoint-0.jsonl";
+  run_command_line(sweep + " --out " + killed.string(),
+                   {.kill_when = [&] { return count_lines(slurp(checkpoint)) >= 6; }});
+  if (fs::exists(killed / "bifurcation.csv")) GTEST_SKIP() << "the sweep finished before the kill";
+  EXPECT_FALSE(fs::exists(killed / "summary.csv"));
+  EXPECT_FALSE(fs::exists(killed / "meta.json"));
+  const ProgramRun resumed = run_command_line(sweep + " --resume --out " + killed.string());
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  const auto meta = nlohmann::json::parse(slurp(killed / "meta.json"));
+  EXPECT_GE(meta["run"]["points_reused_from_checkpoint"].get<int>(), 5);
+  EXPECT_EQ(slurp(whole / "bifurcation.csv"), slurp(killed / "bifurcation.csv"));
+  EXPECT_EQ(slurp(whole / "summary.csv"), slurp(killed / "summary.csv"));
+}
+
+TEST(Sweep, PlotWritesAPngOrSaysWhyNot) {
+  const ScratchFolder scratch;
+  const auto out = scratch / "plot";
+  const ProgramRun o = run_command_line(
+      "sweep linear_impact --param omega=2:2.5:6 --transient 20 --points 8 "
+      "--quiet --plot --out " +
+      out.string());
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_TRUE(fs::exists(out / "bifurcation.csv"));
+  if (run_program({"/usr/bin/python3", "-c", "import matplotlib"}, ProgramOutput::discard) == 0)
+    EXPECT_TRUE(fs::exists(out / "bifurcation.png")) << o.err;
+  else
+    EXPECT_NE(o.err.find("plot skipped"), std::string::npos) << o.err;
+}
+
+TEST(Periodic, DetectsThePeriodAndReportsFloquetMultipliers) {
+  const ScratchFolder scratch;
+  // jin2003: the stroboscopic points repeat every second period
+  const auto out = scratch / "periodic";
+  ASSERT_EQ(run_command_line("periodic jin2003 --quiet --out " + out.string()).status, 0);
+  auto result = nlohmann::json::parse(slurp(out / "periodic.json"));
+  EXPECT_EQ(result["request"]["period"], 2);
+  EXPECT_TRUE(result["converged"]);
+  EXPECT_LT(result["floquet_multipliers"][0]["abs"].get<double>(), 1.0);
+
+  // the linear impact oscillator's one-impact orbit: det M = r² e^{−2ζT}
+  // (the flow contracts areas by e^{−2ζT}, the impact by r²)
+  ASSERT_EQ(run_command_line("periodic linear_impact --quiet --out " + out.string()).status, 0);
+  result = nlohmann::json::parse(slurp(out / "periodic.json"));
+  EXPECT_EQ(result["request"]["period"], 1);
+  const double product = result["floquet_multipliers"][0]["abs"].get<double>() *
+                         result["floquet_multipliers"][1]["abs"].get<double>();
+  EXPECT_NEAR(product, 0.8 * 0.8 * std::exp(-2.0 * 0.05 * std::numbers::pi), 1e-10);
+}
+
+struct BadCase {
+  std::string arguments;
+  std::string key, value;
+};
+
+class SweepBadInput : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(SweepBadInput, ExitsTwoWithOneLineNamingKeyAndValue) {
+  const ScratchFolder scratch;
+  const auto out = scratch / "bad";
+  const ProgramRun o = run_command_line(GetParam().arguments + " --out " + out.string());
+  EXPECT_TRUE(refused_naming(o, GetParam().key));
+  EXPECT_NE(o.err.find(GetParam().value), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(out / "bifurcation.csv"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, SweepBadInput,
+    ::testing::Values(BadCase{"sweep jin2003 --param omega=5:9", "--param", "omega=5:9"},
+                      BadCase{"sweep jin2003 --param omega=5:x:4", "--param", "omega=5:x:4"},
+                      BadCase{"sweep jin2003 --param e_n=0:2:5", "e_n", "2"},
+                      BadCase{"sweep jin2003 --param colour=0:1:5", "--param", "colour"},
+                      BadCase{"sweep jin2003 --param model=0:1:5", "--param", "model"},
+                      BadCase{"sweep jin2003 --param omega=5:9:4 --direction sideways",
+                              "--direction", "sideways"},
+                      BadCase{"sweep jin2003 --param omega=5:9:4 --section moon", "--section",
+                              "moon"},
+                      BadCase{"sweep jin2003 --param omega=5:9:4 --param V0=1:2:2 "
+                              "--classification-tol sometimes",
+                              "--classification-tol", "sometimes"},
+                      BadCase{"sweep jin2003 --param omega=5:9:4 --param V0=1:2:2 "
+                              "--set integrator.classification_method=euler",
+                              "integrator.classification_method", "euler"},
+                      BadCase{"poincare jin2003 --section impact:2", "--section", "impact:2"},
+                      BadCase{"poincare jin2003 --section strobe:nan", "--section",
+                              "strobe:nan"},
+                      BadCase{"poincare jin2003 --section q=0.01:sideways", "--section",
+                              "q=0.01:sideways"},
+                      BadCase{"periodic jin2003 --period 0", "--period", "0"},
+                      BadCase{"sweep jin2003 --set model=rigid --param omega=6:7:3", "model",
+                              "rigid"}));
+
+}  // namespace

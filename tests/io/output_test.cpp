@@ -1,0 +1,240 @@
+// Output files (src/io/output.hpp): the files of a run appear together or not
+// at all; a failed run leaves no directory behind; events stream to the file
+// as the run goes, so the memory of `simulate` does not grow with its length.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <impactlab/io/output.hpp>
+
+#include "support/test_support.hpp"
+
+namespace impactlab {
+namespace {
+
+using namespace impactlab::testing;
+
+std::vector<std::string> entries(const std::filesystem::path& directory) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(directory))
+    names.push_back(entry.path().filename().string());
+  return names;
+}
+
+// Runs the program for its peak memory (ProgramRun::max_rss_kb). Under
+// AddressSanitizer (scripts/test.sh --sanitize) the child runs without the
+// allocator's quarantine, which holds every freed block back (256 MB by
+// default) and so makes the peak grow with the number of allocations rather
+// than with what the program keeps; the peak then measures the program again,
+// shadow memory included.
+ProgramRun run_measured(const std::vector<std::string>& arguments) {
+  RunSettings settings;
+#if defined(__SANITIZE_ADDRESS__)
+  const char* options = std::getenv("ASAN_OPTIONS");
+  settings.environment = {std::string("ASAN_OPTIONS=") + (options != nullptr ? options : "") +
+                          ":quarantine_size_mb=0"};
+#endif
+  return run_impactlab(arguments, settings);
+}
+
+TEST(RunFiles, CommitPutsEveryFileInPlace) {
+  const ScratchFolder scratch;
+  const auto dir = scratch / "commit";
+  {
+    RunFiles files(dir);
+    files.add("a.csv").stream() << "a\n";
+    files.add("meta.json").stream() << "{}\n";
+    EXPECT_TRUE(entries(dir).size() == 2u);  // the temporaries only
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.csv"));
+    files.commit();
+  }
+  EXPECT_EQ(slurp(dir / "a.csv"), "a\n");
+  EXPECT_EQ(slurp(dir / "meta.json"), "{}\n");
+  EXPECT_EQ(entries(dir).size(), 2u);
+}
+
+// A run that stops before its commit (an exception) leaves nothing, not even
+// the directory it created.
+TEST(RunFiles, WithoutCommitNothingIsLeftBehind) {
+  const ScratchFolder scratch;
+  const auto dir = scratch / "abandoned" / "out";
+  {
+    RunFiles files(dir);
+    files.add("events.csv").stream() << "t\n1\n";
+    EXPECT_TRUE(std::filesystem::is_directory(dir));
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+// A directory that existed before is kept, with what it held.
+TEST(RunFiles, AnExistingDirectoryIsKept) {
+  const ScratchFolder scratch;
+  const auto dir = scratch / "existing";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "notes.txt") << "mine\n";
+  { RunFiles files(dir); files.add("events.csv").stream() << "t\n"; }
+  EXPECT_EQ(entries(dir), std::vector<std::string>{"notes.txt"});
+}
+
+// One file that cannot be put in place (its name taken by a directory):
+// none of the run's files appears.
+TEST(RunFiles, IfOneFileFailsNoneAppears) {
+  const ScratchFolder scratch;
+  const auto dir = scratch / "one_fails";
+  std::filesystem::create_directories(dir / "meta.json");
+  RunFiles files(dir);
+  files.add("events.csv").stream() << "t\n1\n";
+  files.add("trajectory.csv").stream() << "t\n1\n";
+  files.add("meta.json").stream() << "{}\n";
+  EXPECT_THROW(files.commit(), std::exception);
+  EXPECT_FALSE(std::filesystem::exists(dir / "events.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "trajectory.csv"));
+}
+
+// Every field reads back to the same double (fmt's shortest round-trip
+// form: the fewest digits that do, so 0.1 is written "0.1")
+TEST(EventsCsvWriter, WritesEachEventWithAllItsDigits) {
+  const ScratchFolder scratch;
+  const auto dir = scratch / "writer";
+  RunFiles files(dir);
+  AtomicFile& file = files.add("events.csv");
+  EventsCsvWriter writer(file);
+  EventRecord impact{0.1, EventKind::impact, 1, 0.07142857142857142, -1.0 / 3.0, 0.1};
+  writer.write(impact);
+  EventRecord accumulation{1.5, EventKind::accumulation, -1, -0.25, 0.0, 0.0};
+  accumulation.accumulation_error = 2.5e-14;
+  writer.write(accumulation);
+  files.commit();
+  std::istringstream text(slurp(dir / "events.csv"));
+  std::string header, first, second;
+  std::getline(text, header);
+  std::getline(text, first);
+  std::getline(text, second);
+  EXPECT_EQ(header.rfind("t,kind,wall,q,qdot_before,qdot_after,", 0), 0u);
+  EXPECT_NE(header.find(",accumulation_error"), std::string::npos);
+  EXPECT_EQ(first.rfind("0.1,impact,1,0.07142857142857142,-0.3333333333333333,0.1,", 0), 0u) << first;
+  EXPECT_EQ(first.back(), ',');  // not computed: empty
+  EXPECT_EQ(second.substr(second.rfind(',') + 1), "2.5e-14");
+  // read back, bit for bit
+  std::vector<std::string> fields;
+  std::stringstream row(first);
+  for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+  ASSERT_GE(fields.size(), 6u);
+  EXPECT_EQ(std::stod(fields[0]), impact.t);
+  EXPECT_EQ(std::stod(fields[3]), impact.q);
+  EXPECT_EQ(std::stod(fields[4]), impact.qdot_before);
+  EXPECT_EQ(std::stod(fields[5]), impact.qdot_after);
+  EXPECT_EQ(std::stod(second.substr(second.rfind(',') + 1)), accumulation.accumulation_error);
+}
+
+// The command line: meta.json cannot be written (its name is a directory),
+// so neither events.csv nor anything else of the run appears.
+TEST(SimulateFiles, MetaUnwritableMeansNoEventsCsv) {
+  const ScratchFolder scratch;
+  const auto dir = scratch / "meta_unwritable";
+  std::filesystem::create_directories(dir / "meta.json");
+  const ProgramRun run = run_impactlab({"simulate", "jin2003", "--periods", "2", "--sample", "0.01",
+                                    "--quiet", "--out", dir.string()});
+  EXPECT_NE(run.status, 0);
+  EXPECT_EQ(entries(dir), std::vector<std::string>{"meta.json"});
+}
+
+// A run that fails on its input after the directory was named leaves no
+// empty --out directory behind.
+TEST(SimulateFiles, AFailedRunLeavesNoDirectory) {
+  const ScratchFolder scratch;
+  const auto dir = scratch / "failed" / "out";
+  const ProgramRun run = run_impactlab({"simulate", "jin2003", "--set", "t0=5", "--t-end", "1",
+                                    "--quiet", "--out", dir.string()});
+  EXPECT_TRUE(refused_naming(run, "--t-end"));
+  EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+// Memory that does not grow with the run: ten times the run length (about
+// 1.1 k and 11 k events at V0 = 1.5 m/s) within 10 % of the same peak
+// (about 9.5 MB). Held in memory at 190 bytes per event, the longer run's
+// events alone would add about 2 MB, over 20 %.
+TEST(SimulateFiles, PeakMemoryDoesNotGrowWithTheRunLength) {
+  const ScratchFolder scratch;
+  const auto short_dir = scratch / "memory_short";
+  const auto long_dir = scratch / "memory_long";
+  const ProgramRun short_run = run_measured(
+      {"simulate", "jin2003", "--t-end", "1e3", "--quiet", "--out", short_dir.string()});
+  const ProgramRun long_run = run_measured(
+      {"simulate", "jin2003", "--t-end", "1e4", "--quiet", "--out", long_dir.string()});
+  ASSERT_EQ(short_run.status, 0);
+  ASSERT_EQ(long_run.status, 0);
+  const auto meta_short = nlohmann::json::parse(slurp(short_dir / "meta.json"));
+  const auto meta_long = nlohmann::json::parse(slurp(long_dir / "meta.json"));
+  const auto events_short = meta_short["counts"]["events"].get<std::uint64_t>();
+  const auto events_long = meta_long["counts"]["events"].get<std::uint64_t>();
+  EXPECT_GT(events_long, 5 * events_short);
+  // every event is in the file: one row each after the header
+  std::ifstream in(long_dir / "events.csv");
+  std::uint64_t rows = 0;
+  for (std::string line; std::getline(in, line);) ++rows;
+  EXPECT_EQ(rows, events_long + 1);
+  EXPECT_LE(static_cast<double>(long_run.max_rss_kb), 1.10 * static_cast<double>(short_run.max_rss_kb))
+      << "peak memory " << short_run.max_rss_kb << " KiB at t-end 1e3, " << long_run.max_rss_kb
+      << " KiB at 1e4";
+}
+
+
+// The same for a long Poincaré record: 30 times the points (the linear
+// impact oscillator's strobe, exact flow) within 10 % of the same peak. Held
+// in memory at 32 bytes a point, 3e5 points alone would add 9.6 MB.
+TEST(PoincareFiles, PeakMemoryDoesNotGrowWithThePointCount) {
+  const ScratchFolder scratch;
+  const auto short_dir = scratch / "poincare_memory_short";
+  const auto long_dir = scratch / "poincare_memory_long";
+  const ProgramRun short_run =
+      run_measured({"poincare", "linear_impact", "--points", "10000", "--transient", "10",
+                   "--quiet", "--out", short_dir.string()});
+  const ProgramRun long_run =
+      run_measured({"poincare", "linear_impact", "--points", "300000", "--transient", "10",
+                   "--quiet", "--out", long_dir.string()});
+  ASSERT_EQ(short_run.status, 0);
+  ASSERT_EQ(long_run.status, 0);
+  std::ifstream in(long_dir / "poincare.csv");
+  std::uint64_t rows = 0;
+  for (std::string line; std::getline(in, line);) ++rows;
+  EXPECT_EQ(rows, 300000u + 1);
+  const auto meta_long = nlohmann::json::parse(slurp(long_dir / "meta.json"));
+  EXPECT_EQ(meta_long["counts"]["points"].get<std::uint64_t>(), 300000u);
+  EXPECT_LE(static_cast<double>(long_run.max_rss_kb), 1.10 * static_cast<double>(short_run.max_rss_kb))
+      << "peak memory " << short_run.max_rss_kb << " KiB at 1e4 points, " << long_run.max_rss_kb
+      << " KiB at 3e5";
+}
+
+// A 1D sweep writes bifurcation.csv from its checkpoint lines record by
+// record: 30 times more parameter values (and section points) must not raise
+// the peak memory, and every point must reach the file.
+TEST(SweepFiles, PeakMemoryDoesNotGrowWithTheNumberOfValues) {
+  const ScratchFolder scratch;
+  const auto short_dir = scratch / "sweep_memory_short";
+  const auto long_dir = scratch / "sweep_memory_long";
+  const ProgramRun short_run =
+      run_measured({"sweep", "linear_impact", "--param", "omega=2.0:2.2:4", "--points", "3000",
+                   "--transient", "10", "--quiet", "--out", short_dir.string()});
+  const ProgramRun long_run =
+      run_measured({"sweep", "linear_impact", "--param", "omega=2.0:2.2:120", "--points", "3000",
+                   "--transient", "10", "--quiet", "--out", long_dir.string()});
+  ASSERT_EQ(short_run.status, 0);
+  ASSERT_EQ(long_run.status, 0);
+  std::ifstream in(long_dir / "bifurcation.csv");
+  std::uint64_t rows = 0;
+  for (std::string line; std::getline(in, line);) ++rows;
+  EXPECT_EQ(rows, 120u * 3000u + 1);
+  EXPECT_LE(static_cast<double>(long_run.max_rss_kb), 1.10 * static_cast<double>(short_run.max_rss_kb))
+      << "peak memory " << short_run.max_rss_kb << " KiB at 4 values, " << long_run.max_rss_kb
+      << " KiB at 120";
+}
+
+}  // namespace
+}  // namespace impactlab
