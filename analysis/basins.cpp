@@ -9,7 +9,7 @@ namespace impactlab {
 std::optional<std::array<double, 2>> canonical_point(const SweepRecord& record) {
   const int period = record.classification.period;
   const auto& points = record.result.points;
-  if (period <= 0 || record.result.termination != "completed" ||
+  if (period <= 0 || record.result.termination != SectionTermination::completed ||
       points.size() < static_cast<std::size_t>(period))
     return std::nullopt;
   std::optional<std::array<double, 2>> smallest;

@@ -7,6 +7,9 @@
 
 #include <Eigen/Dense>
 
+#include <impactlab/analysis/bifurcation_location.hpp>
+#include <impactlab/analysis/floquet_multipliers.hpp>
+
 namespace impactlab {
 
 namespace {
@@ -33,7 +36,7 @@ class CurveDriver {
  public:
   CurveDriver(const TwoParameterProblem& problem, const CurveRequest& request)
       : problem_(problem), request_(request) {
-    grazing_ = request.type == "grazing";
+    grazing_ = request.type == CurveType::grazing;
     at_start_ = problem.at(request.from2);
     n_ = static_cast<int>(at_start_.dimension);
     p1_ = n_;
@@ -57,14 +60,15 @@ class CurveDriver {
   CurveResult run() {
     result_.type = request_.type;
     if (request_.state.size() != at_start_.dimension)
-      return stop("start_not_converged", "the start's state does not match the orbit's");
+      return stop(StopReason::start_not_converged, "the start's state does not match the orbit's");
     Vector z = Vector::Zero(size_);
     for (int i = 0; i < n_; ++i) z[i] = request_.state[i];
     z[p1_] = request_.p1 / scale1_;
     z[p2_] = request_.from2 / scale2_;
     if (grazing_) {
       if (request_.graze_witness < 0 || !std::isfinite(request_.graze_time))
-        return stop("start_not_converged", "a grazing curve needs the graze time and wall");
+        return stop(StopReason::start_not_converged,
+                    "a grazing curve needs the graze time and wall");
       z[tg_] = request_.graze_time / time_scale_;
       window_center_ = request_.graze_time;
     }
@@ -74,12 +78,12 @@ class CurveDriver {
     fixed_p2[p2_] = 1.0;
     Corrected start = correct(z, fixed_p2, z);
     if (!start.converged)
-      return stop("start_not_converged", "Newton at the located point did not converge");
+      return stop(StopReason::start_not_converged, "Newton at the located point did not converge");
     const double direction2 = request_.to2 >= request_.from2 ? 1.0 : -1.0;
     Vector along = Vector::Zero(size_);
     along[p2_] = direction2;
     auto tangent = tangent_of(start.jacobian, along);
-    if (!tangent) return stop("start_not_converged", "no curve tangent at the start");
+    if (!tangent) return stop(StopReason::start_not_converged, "no curve tangent at the start");
     accept(start, *tangent, 0.0);
 
     const double to2 = request_.to2 / scale2_;
@@ -92,7 +96,7 @@ class CurveDriver {
       const double remaining = (to2 - last[p2_]) * direction2;
       if (remaining <= 1e-12 * (1.0 + std::fabs(to2))) return finish();
       if (last[p1_] < low1 - 1e-9 || last[p1_] > high1 + 1e-9)
-        return stop("left_range", "the curve left the first parameter's range");
+        return stop(StopReason::left_range, "the curve left the first parameter's range");
       const double toward_end = tau[p2_] * direction2;
       if (toward_end > 0.0 && h * toward_end >= remaining) {
         const double h_end = remaining / toward_end;
@@ -107,7 +111,8 @@ class CurveDriver {
           }
         }
         h = 0.5 * std::min(h, h_end);
-        if (h < h_min_) return stop("branch_point", "the corrector fails before the end of the range");
+        if (h < h_min_)
+          return stop(StopReason::branch_point, "the corrector fails before the end of the range");
         continue;
       }
       const Vector predicted = last + h * tau;
@@ -122,9 +127,10 @@ class CurveDriver {
       }
       h *= 0.5;
       if (h < h_min_)
-        return stop("branch_point", "step below the smallest: the corrector cannot pass this point");
+        return stop(StopReason::branch_point,
+                    "step below the smallest: the corrector cannot pass this point");
     }
-    return stop("max_points", "the curve reached the point limit");
+    return stop(StopReason::max_points, "the curve reached the point limit");
   }
 
  private:
@@ -151,7 +157,7 @@ class CurveDriver {
       if (!gap.completed) return e;
       e.residual[n_] = gap.value;
       e.residual[n_ + 1] = gap.rate;
-    } else if (request_.type == "period_doubling") {
+    } else if (request_.type == CurveType::period_doubling) {
       e.residual[n_] = det_plus_identity(e.orbit.monodromy);
     } else {
       e.residual[n_] = det_minus_identity(e.orbit.monodromy);
@@ -304,7 +310,7 @@ class CurveDriver {
     }
   }
 
-  CurveResult stop(const std::string& reason, const std::string& detail) {
+  CurveResult stop(StopReason reason, const std::string& detail) {
     result_.stop_reason = reason;
     result_.stop_detail = detail;
     return finish();

@@ -1,6 +1,6 @@
 // Two-parameter continuation: the curve of a fold, period doubling or grazing
 // point in the plane of two parameters (p₁, p₂), followed by pseudo-arclength
-// from a point located on a one-parameter branch (analysis/continuation.hpp).
+// from a point located on a one-parameter branch (branch_continuation.hpp).
 //
 // Defining systems, each with the orbit condition F = Pⁿ(x; p₁, p₂) − x = 0:
 //  * fold:             det(M − I) = 0       unknowns (q, q̇, p₁, p₂)
@@ -27,6 +27,7 @@
 #include <vector>
 
 #include <impactlab/analysis/continuation.hpp>
+#include <impactlab/analysis/continuation_problem.hpp>
 
 namespace impactlab {
 
@@ -37,7 +38,7 @@ struct TwoParameterProblem {
 };
 
 struct CurveRequest {
-  std::string type;                  // fold, period_doubling, grazing (branch_point: as fold)
+  CurveType type = CurveType::fold;
   double from1 = 0.0, to1 = 1.0;     // p₁'s range (the curve stops where p₁ leaves it)
   double from2 = 0.0, to2 = 1.0;     // p₂ runs from from2 towards to2
   double p1 = 0.0;                   // the start: a located point at p₂ = from2 (a guess; corrected)

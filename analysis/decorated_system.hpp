@@ -7,11 +7,12 @@
 // * suppressed contacts: witness `window.witness` does not fire in flight
 //   mode between the absolute times window.from and window.to (it reads +1
 //   there), and every crossing in flight mode is noted (the grazing extended
-//   system of continuation, analysis/run_continuation.hpp);
+//   system of continuation, analysis/map_evaluation.hpp);
 // * a stop at a wall impact: the run stops just before the reset of the
 //   `target`-th impact with wall `wall` (counted from 0, a run that starts on
 //   the wall moving into it has that impact as its 0th), noting the times of
-//   those impacts (the impact map of continuation). The log must keep its
+//   those impacts (the impact map of continuation, analysis/impact_map_problem.hpp).
+//   The log must keep its
 //   records: the wall of an impact is read from them.
 //
 // With nothing switched on it is its base: the same witnesses, values,
@@ -29,7 +30,7 @@
 #include <limits>
 #include <vector>
 
-#include <impactlab/analysis/continuation.hpp>
+#include <impactlab/analysis/continuation_problem.hpp>
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/core/event_log.hpp>
 #include <impactlab/core/has_jacobian.hpp>

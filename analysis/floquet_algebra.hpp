@@ -23,7 +23,7 @@ namespace detail {
 
 // The n eigenvalues of the row-major n × n `matrix` into `values`, largest
 // modulus first (of a complex pair, the positive imaginary part first); NaN
-// where the real Schur form does not converge.
+// where the matrix is not finite or its real Schur form does not converge.
 void dense_eigenvalues(const double* matrix, std::size_t n, std::complex<double>* values);
 
 // `step` solving (M − I) step = −residual for the row-major n × n `monodromy`

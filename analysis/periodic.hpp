@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <impactlab/simulate/termination.hpp>
+
 namespace impactlab {
 
 struct PeriodicRequest {
@@ -32,7 +34,7 @@ struct PeriodicResult {
   bool converged = false;
   int iterations = 0;
   double residual = std::numeric_limits<double>::quiet_NaN();
-  std::string termination = "completed";
+  Termination termination = Termination::completed;
 };
 
 }  // namespace impactlab

@@ -44,7 +44,7 @@ PeriodicResult run_periodic(const System& system, const typename System::State& 
                           log);
         });
     if (transient.termination != Termination::completed) {
-      result.termination = std::string(to_string(transient.termination));
+      result.termination = transient.termination;
       return result;
     }
     const auto orbit = locate_periodic_orbit(system, setup, transient.state, transient.mode,
@@ -57,7 +57,7 @@ PeriodicResult run_periodic(const System& system, const typename System::State& 
     result.converged = orbit.converged;
     result.iterations = orbit.iterations;
     result.residual = orbit.residual;
-    result.termination = std::string(to_string(orbit.termination));
+    result.termination = orbit.termination;
     return result;
   }
 }

@@ -54,11 +54,6 @@ class StrobeObserver {
   SectionPoints& points_;
 };
 
-template <class Result>
-std::string termination_text(const Result& run) {
-  return std::string(to_string(run.termination));
-}
-
 }  // namespace detail
 
 // x0, mode0: the scene's initial state; omega: the forcing frequency (rad per
@@ -102,7 +97,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
       mode = run.mode;
       t = run.t;
       if (run.termination == Termination::completed) return true;
-      result.termination = detail::termination_text(run);
+      result.termination = section_termination(run.termination);
       return false;
     };
     const auto max_periods = static_cast<std::uint64_t>(request.max_periods);
@@ -117,7 +112,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
       for (std::uint64_t k = 1; transient_log.count(EventKind::impact) < request.transient_impacts;
            ++k) {
         if (k > max_periods) {
-          result.termination = "transient_impacts_not_reached";
+          result.termination = SectionTermination::transient_impacts_not_reached;
           return result;
         }
         if (!advance(t0 + static_cast<double>(k) * period, transient_log, NoObserver{}))
@@ -147,7 +142,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
       const std::uint64_t chunk = std::max<std::uint64_t>(request.points, 1);
       for (std::uint64_t periods = 0; !collected.full(); periods += chunk) {
         if (periods >= max_periods) {
-          result.termination = "crossings_not_reached";
+          result.termination = SectionTermination::crossings_not_reached;
           break;
         }
         const auto run = with_flow<DecoratedSystem<System>>(
@@ -161,7 +156,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
         mode = run.mode;
         t = run.t;
         if (run.termination != Termination::completed) {
-          result.termination = detail::termination_text(run);
+          result.termination = section_termination(run.termination);
           break;
         }
       }
@@ -169,7 +164,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
       const std::uint64_t chunk = std::max<std::uint64_t>(request.points, 1);
       for (std::uint64_t periods = 0; !collected.full(); periods += chunk) {
         if (periods >= max_periods) {
-          result.termination = "impacts_not_reached";
+          result.termination = SectionTermination::impacts_not_reached;
           break;
         }
         if (!advance(t + static_cast<double>(chunk) * period, record_log, NoObserver{})) break;
@@ -189,7 +184,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
     result.impacts = record_log.count(EventKind::impact);
     result.contact_phases =
         std::max(record_log.count(EventKind::contact_start), record_log.count(EventKind::contact_end));
-    if (result.termination == "completed")
+    if (result.termination == SectionTermination::completed)
       result.final_state = ContinuationState{std::vector<double>(x.begin(), x.end()),
                                              static_cast<int>(mode)};
 

@@ -89,10 +89,10 @@ void check_section_size(const SectionRequest& request, double omega, double max_
     // name the larger of the two parts
     const bool transient_larger =
         request.transient_impacts == 0 && request.transient_periods > record_periods;
-    throw BadInput(transient_larger ? "--transient" : "--points",
+    throw BadInput(transient_larger ? "transient" : "points",
                    fmt::format("{}", transient_larger ? request.transient_periods : record_periods),
                    fmt::format("needs at least {:.3g} steps, over limits.max_steps = {} (raise "
-                               "it with --set limits.max_steps=N)",
+                               "it with `set` limits.max_steps=N)",
                                least_steps, step_budget));
   }
 }

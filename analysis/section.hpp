@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include <impactlab/simulate/termination.hpp>
+
 namespace impactlab {
 
 enum class SectionKind {
@@ -112,11 +114,47 @@ struct SectionRequest {
   SectionPointSink* point_sink = nullptr;
 };
 
+// How a section run ended: its event loop's Termination (the same values in
+// the same order), or, the loop complete, a record counted in events that
+// max_periods did not fill.
+enum class SectionTermination {
+  completed, stopped_by_model, no_progress, frozen_time, non_finite_state, step_budget,
+  integrator_failure,
+  transient_impacts_not_reached,  // the transient's impacts (transient_impacts)
+  crossings_not_reached,          // the crossings of a user-given section
+  impacts_not_reached,            // the impacts of the impact section
+};
+static_assert(static_cast<int>(SectionTermination::integrator_failure) ==
+              static_cast<int>(Termination::integrator_failure));
+
+constexpr SectionTermination section_termination(Termination termination) {
+  return static_cast<SectionTermination>(termination);
+}
+
+// The names poincare.json, sweep checkpoints and Python use (the event
+// loop's own for its values).
+constexpr std::string_view to_string(SectionTermination termination) {
+  switch (termination) {
+    case SectionTermination::transient_impacts_not_reached: return "transient_impacts_not_reached";
+    case SectionTermination::crossings_not_reached: return "crossings_not_reached";
+    case SectionTermination::impacts_not_reached: return "impacts_not_reached";
+    default: return to_string(static_cast<Termination>(termination));
+  }
+}
+
+// The termination named `text` (a sweep checkpoint's); none for another word.
+constexpr std::optional<SectionTermination> parse_section_termination(std::string_view text) {
+  for (int value = 0; value <= static_cast<int>(SectionTermination::impacts_not_reached); ++value)
+    if (to_string(static_cast<SectionTermination>(value)) == text)
+      return static_cast<SectionTermination>(value);
+  return std::nullopt;
+}
+
 struct SectionResult {
   std::vector<SectionPoint> points;  // empty when they went to a point_sink
   std::uint64_t point_count = 0;     // points recorded, wherever they went
   std::optional<ContinuationState> final_state;  // none when the run stopped early
-  std::string termination = "completed";  // completed, stopped_by_model, no_progress
+  SectionTermination termination = SectionTermination::completed;
   double omega = 0.0;              // forcing frequency (rad per time unit)
   double forcing_period = 0.0;     // 2π/ω
   double record_start = 0.0;       // time the recording began
@@ -131,7 +169,7 @@ struct SectionResult {
 // Refuses (BadInput) a section run that cannot be sized: a forcing period
 // 2π/ω that is not a finite positive time (key `omega`), or a transient and
 // record that need more than `step_budget` steps at the least
-// (periods × forcing period / max_step; key --transient or --points).
+// (periods × forcing period / max_step; key `transient` or `points`).
 void check_section_size(const SectionRequest& request, double omega, double max_step,
                         std::uint64_t step_budget);
 

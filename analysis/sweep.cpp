@@ -82,14 +82,14 @@ Scene scene_at(const Scene& base, const SceneSchema& schema, const SweepPlan& pl
 
 void validate_plan(const SweepPlan& plan, const Scene& scene, const SceneSchema& schema) {
   if (plan.axes.empty() || plan.axes.size() > 2)
-    throw BadInput("--param", std::to_string(plan.axes.size()), "give one or two --param");
+    throw BadInput("param", std::to_string(plan.axes.size()), "give one or two `param`");
   if (plan.axes.size() == 2 && plan.axes[0].name == plan.axes[1].name)
-    throw BadInput("--param", plan.axes[1].name, "the two swept parameters must differ");
+    throw BadInput("param", plan.axes[1].name, "the two swept parameters must differ");
   for (const auto& axis : plan.axes) {
     const auto spec = std::find_if(schema.keys.begin(), schema.keys.end(),
                                    [&](const KeySpec& k) { return k.key == axis.name; });
     if (spec == schema.keys.end() || spec->is_text)
-      throw BadInput("--param", axis.name,
+      throw BadInput("param", axis.name,
                      fmt::format("not a numeric key of oscillator {}", schema.oscillator));
     // the ends of the range are admissible (BadInput names the key and value otherwise)
     Scene probe = scene;
@@ -98,7 +98,7 @@ void validate_plan(const SweepPlan& plan, const Scene& scene, const SceneSchema&
       validate(probe, schema);
     }
   }
-  if (plan.chunks < 1) throw BadInput("--chunks", std::to_string(plan.chunks), "must be >= 1");
+  if (plan.chunks < 1) throw BadInput("chunks", std::to_string(plan.chunks), "must be >= 1");
 }
 
 std::vector<SweepTask> sweep_tasks(const SweepPlan& plan) {
@@ -169,7 +169,7 @@ std::string to_json_line(const SweepRecord& record) {
       {"position", record.position},
       {"index", record.index},
       {"direction", record.direction},
-      {"termination", r.termination},
+      {"termination", to_string(r.termination)},
       {"omega", r.omega},
       {"forcing_period", r.forcing_period},
       {"record_start", r.record_start},
@@ -205,7 +205,9 @@ std::optional<SweepRecord> from_json_line(std::string_view text) {
     record.index = line.at("index");
     record.direction = line.at("direction");
     SectionResult& r = record.result;
-    r.termination = line.at("termination");
+    const auto termination = parse_section_termination(line.at("termination").get<std::string>());
+    if (!termination) return std::nullopt;
+    r.termination = *termination;
     r.omega = line.at("omega");
     r.forcing_period = line.at("forcing_period");
     r.record_start = line.at("record_start");

@@ -44,7 +44,7 @@ struct BasinsTable {
   std::vector<int> attractor, period;
   std::vector<double> impacts_per_period;
   std::vector<int> contact;
-  std::vector<std::string> termination;
+  std::vector<SectionTermination> termination;
   BasinMap map;  // the attractors (by id) and the count of unclassified points
 };
 

@@ -185,7 +185,7 @@ nlohmann::json comparison_numbers(const Comparison& comparison) {
         {"contact_phases", run.contacts.size()},
         {"contact_time_s", contact_time},
         {"friction_work_J", friction_work},
-        {"termination", run.output.termination},
+        {"termination", to_string(run.output.termination)},
         {"t_final_s", run.output.t_final},
         {"steps", run.output.steps},
         {"wall_time_s", run.output.wall_time},

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -49,6 +50,9 @@ ContinuationJob continuation_job(const ContinueOptions& options) {
       two_parameter ? parse_parameter_range(options.param2, "param2") : KeyRange{};
   if (!options.curve.empty() && !two_parameter)
     throw BadInput("curve", options.curve, "needs " + mention("param2"));
+  const std::optional<CurveType> curve_type = parse_curve_type(options.curve);
+  if (!options.curve.empty() && !curve_type)
+    throw BadInput("curve", options.curve, "expected fold, period_doubling or grazing");
   check_whole("period", options.period);
   check_whole("max_points", options.max_points);
   const OptionSpec& transient = job_option("continue", "transient");
@@ -70,7 +74,7 @@ ContinuationJob continuation_job(const ContinueOptions& options) {
     job.second_parameter = range2.name;
     job.second_from = range2.from;
     job.second_to = range2.to;
-    job.curve_type = options.curve;
+    job.curve_type = curve_type;
   }
   set_continuation_section(job, options.section, "section");
   if (!options.start.empty()) {

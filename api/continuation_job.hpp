@@ -41,7 +41,7 @@ KeyRange parse_parameter_range(const std::string& text, const std::string& optio
 
 // The job the options describe. BadInput (named by the option) for a
 // malformed range or section, a value outside the option's range, fewer than
-// two start numbers, or `curve` without `param2`.
+// two start numbers, or `curve` without `param2` or naming no curve type.
 ContinuationJob continuation_job(const ContinueOptions& options);
 
 }  // namespace impactlab

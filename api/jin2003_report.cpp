@@ -108,7 +108,8 @@ void write_values_csv(const ResidualPanel& panel, AtomicFile& file) {
                             "termination\n";
   for (const auto& s : panel.summaries)
     out << csv_field(s.parameter) << ',' << s.model << ',' << s.impacts << ',' << s.recorded << ','
-        << csv_field(s.min_abs_residual) << ',' << s.sliding_impacts << ',' << s.termination
+        << csv_field(s.min_abs_residual) << ',' << s.sliding_impacts << ','
+        << to_string(s.termination)
         << '\n';
 }
 

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include <impactlab/io/scene.hpp>
+#include <impactlab/simulate/termination.hpp>
 
 namespace impactlab {
 
@@ -67,7 +68,7 @@ struct ParameterSummary {
   int recorded;                // steady-state impacts kept (≤ recorded_impacts)
   double min_abs_residual;     // over the kept impacts (m/s); NaN if none
   int sliding_impacts;         // kept impacts that started a sliding phase
-  std::string termination;     // completed, stopped_by_model, no_progress
+  Termination termination;
 };
 
 struct ResidualPanel {

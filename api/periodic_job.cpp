@@ -72,7 +72,7 @@ nlohmann::json periodic_record(const Scene& scene, const PeriodicJobResult& job)
       {"converged", result.converged},
       {"iterations", result.iterations},
       {"residual", result.residual},
-      {"termination", result.termination},
+      {"termination", to_string(result.termination)},
       {"t_section", result.t_section},
       {"orbit_period", result.orbit_period},
       {"state", result.state},

@@ -31,4 +31,8 @@ RunOutput run_of_scene(const Scene& scene, const RunRequest& request) {
   });
 }
 
+EventExtender event_extender_of_scene(const Scene& scene) {
+  return visit_scene(scene, [](const auto& bound) { return bound.event_extender(); });
+}
+
 }  // namespace impactlab

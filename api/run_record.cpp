@@ -20,7 +20,7 @@ nlohmann::json run_record(const Scene& scene, const RunOutput& output) {
        {{"t0_s", output.t0},
         {"t_end_s", output.t_end},
         {"t_final_s", output.t_final},
-        {"termination", output.termination}}},
+        {"termination", to_string(output.termination)}}},
       {"counts",
        {{"steps", output.steps},
         {"rhs_evaluations", output.rhs_evaluations},

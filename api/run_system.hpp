@@ -69,14 +69,15 @@ class SamplingObserver {
 // after t0, or whose size passes the scene's limits: the steps it needs at the
 // least (span / max_step, the system's longest step) over limits.max_steps,
 // or its trajectory samples over limits.max_rows. BadInput names the option
-// the user gave (--t-end, --periods, --sample) or the scene key at fault.
+// the user gave by its own name (`t_end`, `periods`, `sample`,
+// api/job_options.hpp) or the scene key at fault.
 inline void check_run_size(const RunRequest& request, const Scene& scene, double forcing_period,
                            double max_step) {
   const double t0 = scene.number("t0");
   const auto step_budget = static_cast<std::uint64_t>(scene.number("limits.max_steps"));
   const auto row_budget = static_cast<std::uint64_t>(scene.number("limits.max_rows"));
   const bool by_periods = request.periods > 0.0;
-  const std::string length_key = by_periods ? "--periods" : "--t-end";
+  const std::string length_key = by_periods ? "periods" : "t_end";
   const std::string length_value = fmt::format("{}", by_periods ? request.periods : request.t_end);
   if (by_periods && !(std::isfinite(forcing_period) && forcing_period > 0.0))
     throw BadInput("omega", scene.values.contains("omega") ? to_text(scene.values.at("omega")) : "",
@@ -100,14 +101,14 @@ inline void check_run_size(const RunRequest& request, const Scene& scene, double
   if (least_steps > static_cast<double>(step_budget))
     throw BadInput(length_key, length_value,
                    fmt::format("needs at least {:.3g} steps, over limits.max_steps = {} (raise "
-                               "it with --set limits.max_steps=N)",
+                               "it with `set` limits.max_steps=N)",
                                least_steps, step_budget));
   if (request.sample_step > 0.0) {
     const double rows = span / request.sample_step;
     if (!(rows <= static_cast<double>(row_budget)))
-      throw BadInput("--sample", fmt::format("{}", request.sample_step),
+      throw BadInput("sample", fmt::format("{}", request.sample_step),
                      fmt::format("would write {:.3g} rows, over limits.max_rows = {} (raise it "
-                                 "with --set limits.max_rows=N)",
+                                 "with `set` limits.max_rows=N)",
                                  rows, row_budget));
   }
 }
@@ -149,7 +150,7 @@ RunOutput run_system(const System& system, const typename System::State& x0,
   if (const EventRecord* last = log.last()) output.last_event = *last;
   output.largest_accumulation_error = log.largest_accumulation_error();
   output.t_final = result.t;
-  output.termination = std::string(to_string(result.termination));
+  output.termination = result.termination;
   output.steps = result.counters.steps;
   output.rhs_evaluations = result.counters.rhs_evaluations;
   output.impacts = log.count(EventKind::impact);

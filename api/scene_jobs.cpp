@@ -15,6 +15,8 @@ RunOutput simulate(const Scene& scene, const RunRequest& request) {
   return run_of_scene(scene, request);
 }
 
+EventExtender event_extender(const Scene& scene) { return event_extender_of_scene(scene); }
+
 SectionResult poincare(const Scene& scene, const SectionRequest& request) {
   return sweep_target(scene).section(scene, request);
 }
@@ -46,13 +48,11 @@ ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& 
       throw BadInput("param2", job.second_parameter,
                      "must differ from " + mention("param") + "'s key");
     check_key("param2", job.second_parameter, job.second_from, job.second_to);
-    if (!job.curve_type.empty() && job.curve_type != "fold" && job.curve_type != "period_doubling" &&
-        job.curve_type != "grazing")
-      throw BadInput("curve", job.curve_type, "expected fold, period_doubling or grazing");
   }
   ContinuationJobResult result = continuation_of_scene(scene, job);
   if (!result.available) throw BadInput("oscillator", scene.oscillator, result.note);
-  if (result.branches.empty() || result.branches[0].result.stop_reason == "start_not_converged")
+  if (result.branches.empty() ||
+      result.branches[0].result.stop_reason == StopReason::start_not_converged)
     throw BadInput("param", fmt::format("{}={}:{}", job.parameter, job.from, job.to),
                    fmt::format("no period-{} orbit converged at {} = {}{} (try {}, {} or {})",
                                job.period, job.parameter, job.from,

@@ -8,6 +8,7 @@
 #include <impactlab/analysis/periodic.hpp>
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/analysis/sweep.hpp>
+#include <impactlab/io/event_extension.hpp>
 #include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
 
@@ -15,6 +16,11 @@ namespace impactlab {
 
 // One event-driven run of the scene (events, samples, counters).
 RunOutput simulate(const Scene& scene, const RunRequest& request);
+
+// What the events of the scene's model add to the core's record, for the
+// events writer and Python's events array (io/event_extension.hpp); empty
+// where nothing (every model but the pendulum's Model P).
+EventExtender event_extender(const Scene& scene);
 
 // The scene's orbit on a Poincaré section. BadInput (key `oscillator`) when
 // the scene's oscillator or model has no section binding.

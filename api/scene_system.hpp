@@ -23,6 +23,8 @@
 //                        why Floquet, Lyapunov and continuation cannot run (empty: they can)
 //   static Tally run_tally(const System&, const Scene&);  meta.json's derived quantities,
 //                        Tally: on_event(const EventRecord&), add_to(RunOutput&)
+//   static EventExtender event_extender(const System&);   what its events add to the
+//                        core's record (io/event_extension.hpp): events.csv's own columns
 //   static constexpr bool runs_analyses = false;          simulate only; analyses refuse it
 //   static BadInput analysis_refusal(const Scene&);       ...with this message
 //
@@ -36,6 +38,7 @@
 
 #include <impactlab/analysis/scene_boundary.hpp>
 #include <impactlab/core/has_jacobian.hpp>
+#include <impactlab/io/event_extension.hpp>
 #include <impactlab/io/scene.hpp>
 
 namespace impactlab {
@@ -61,6 +64,14 @@ class SceneSystem {
   // admit(State&, Mode&): moves a continued state into the admissible set
   [[nodiscard]] auto admissible() const {
     return [this](State& x, Mode& mode) { Binding::admit(system_, scene_, x, mode); };
+  }
+
+  // what the system's events add to the core's record; empty where nothing
+  [[nodiscard]] EventExtender event_extender() const {
+    if constexpr (requires { Binding::event_extender(system_); })
+      return Binding::event_extender(system_);
+    else
+      return {};
   }
 
   // the system another scene (the same oscillator, other keys) describes

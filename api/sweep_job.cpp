@@ -241,7 +241,7 @@ nlohmann::json sweep_counts(const std::map<SweepRecordKey, SweepRecord>& records
   for (const auto& [key, record] : records) {
     steps += record.result.steps;
     rhs += record.result.rhs_evaluations;
-    if (record.result.termination != "completed") ++stopped_points;
+    if (record.result.termination != SectionTermination::completed) ++stopped_points;
   }
   return {{"points", records.size()},
           {"points_stopped_early", stopped_points},

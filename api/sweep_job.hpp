@@ -85,7 +85,7 @@ struct SweepTable {
   std::vector<int> period;
   std::vector<double> impacts_per_period, lyapunov;
   std::vector<int> contact;
-  std::vector<std::string> termination;
+  std::vector<SectionTermination> termination;
   std::vector<int> points;
 };
 

@@ -8,6 +8,7 @@
 #include <impactlab/analysis/continuation.hpp>
 #include <impactlab/analysis/periodic.hpp>
 #include <impactlab/analysis/section.hpp>
+#include <impactlab/io/event_extension.hpp>
 #include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
 
@@ -16,6 +17,10 @@ namespace impactlab {
 // One event-driven run (events, samples, counters, the binding's derived
 // quantities).
 RunOutput run_of_scene(const Scene& scene, const RunRequest& request);
+
+// What the events of the scene's model add to the core's record (the
+// pendulum's Model P: its impact residuals); empty where nothing.
+EventExtender event_extender_of_scene(const Scene& scene);
 
 // The orbit on a Poincaré section, after a transient (analysis/run_section.hpp).
 SectionResult section_of_scene(const Scene& scene, const SectionRequest& request);

@@ -177,7 +177,7 @@ WorkPrecisionPoint measure_point(const Scene& scene, const std::string& method, 
 
     const std::vector<ImpactSample> impacts = impacts_of(output.events);
     point.impacts = impacts.size();
-    point.termination = output.termination;
+    point.termination = to_string(output.termination);
     const double per_impact = impacts.empty() ? 0.0 : 1.0 / static_cast<double>(impacts.size());
     point.rhs_per_impact = static_cast<double>(output.rhs_evaluations) * per_impact;
     point.steps_per_impact = static_cast<double>(output.steps) * per_impact;

@@ -69,7 +69,7 @@ int run_compare(const SceneOptions& options, const std::string& model_list,
                         {{"t0_s", run.output.t0},
                          {"t_end_s", run.output.t_end},
                          {"t_final_s", run.output.t_final},
-                         {"termination", run.output.termination}}},
+                         {"termination", to_string(run.output.termination)}}},
                        {"counts",
                         {{"steps", run.output.steps},
                          {"rhs_evaluations", run.output.rhs_evaluations},
@@ -130,11 +130,11 @@ int run_compare(const SceneOptions& options, const std::string& model_list,
     for (const auto& run : comparison.runs)
       std::cout << fmt::format("{:>8}: {} impacts, {} contact phases, {}, {:.3f} s wall\n",
                                run.model, run.impacts.size(), run.contacts.size(),
-                               run.output.termination, run.output.wall_time);
+                               to_string(run.output.termination), run.output.wall_time);
     std::cout << fmt::format("wrote {}\n", (directory / "summary.md").string());
   }
   for (const auto& run : comparison.runs)
-    if (run.output.termination != "completed") return exit_stopped_early;
+    if (run.output.termination != Termination::completed) return exit_stopped_early;
   return exit_done;
 }
 

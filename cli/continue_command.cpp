@@ -93,7 +93,8 @@ void write_points_csv(AtomicFile& file, const std::string& name, std::size_t dim
       << ",error_estimate,located,graze_time,graze_witness,note\n";
   for (std::size_t b = 0; b < branches.size(); ++b)
     for (const BifurcationPoint& p : branches[b].result.points)
-      out << p.type << ',' << csv_field(p.parameter) << ',' << state_fields(p.state, dimension)
+      out << type_name(p) << ',' << csv_field(p.parameter) << ','
+          << state_fields(p.state, dimension)
           << ',' << branches[b].period << ',' << b << ','
           << multiplier_fields(p.multipliers, dimension, false) << ','
           << csv_field(p.error_estimate) << ',' << (p.located ? 1 : 0) << ','
@@ -148,7 +149,7 @@ int run_continue(const ContinueCommandOptions& command_options,
     branches.push_back({{"period", branch.period},
                         {"points", branch.result.branch.size()},
                         {"bifurcations", branch.result.points.size()},
-                        {"stop_reason", branch.result.stop_reason},
+                        {"stop_reason", to_string(branch.result.stop_reason)},
                         {"stop_detail", branch.result.stop_detail},
                         {"map_evaluations", branch.result.map_evaluations}});
   const nlohmann::json document = {
@@ -209,9 +210,9 @@ int run_continue(const ContinueCommandOptions& command_options,
     for (const BranchCurve& curve : result.doubled_curves)
       curve_list.push_back({{"branch", curve.branch},
                             {"period", curve.period},
-                            {"type", curve.has_curve ? curve.curve.type : ""},
+                            {"type", curve.has_curve ? to_string(curve.curve.type) : ""},
                             {"points", curve.curve.curve.size()},
-                            {"stop_reason", curve.has_curve ? curve.curve.stop_reason
+                            {"stop_reason", curve.has_curve ? to_string(curve.curve.stop_reason)
                                                             : "no_start_point"},
                             {"stop_detail", curve.has_curve ? curve.curve.stop_detail : curve.note},
                             {"map_evaluations", curve.curve.map_evaluations}});
@@ -234,9 +235,9 @@ int run_continue(const ContinueCommandOptions& command_options,
           {"switch", options.switch_doubling},
           {"section", to_string(section)},
           {"tolerance", options.tolerance}}},
-        {"type", result.has_curve ? result.curve.type : ""},
+        {"type", result.has_curve ? to_string(result.curve.type) : ""},
         {"points", result.curve.curve.size()},
-        {"stop_reason", result.has_curve ? result.curve.stop_reason : "no_start_point"},
+        {"stop_reason", result.has_curve ? to_string(result.curve.stop_reason) : "no_start_point"},
         {"stop_detail", result.has_curve ? result.curve.stop_detail : result.curve_note},
         {"map_evaluations", result.curve.map_evaluations},
         {"doubled_curves", curve_list},
@@ -282,25 +283,27 @@ int run_continue(const ContinueCommandOptions& command_options,
   if (!command_options.scene.quiet) {
     for (const ContinuedBranch& branch : result.branches) {
       std::cout << fmt::format("period-{} branch: {} points, stopped: {} ({})\n", branch.period,
-                               branch.result.branch.size(), branch.result.stop_reason,
+                               branch.result.branch.size(), to_string(branch.result.stop_reason),
                                branch.result.stop_detail);
       for (const BifurcationPoint& p : branch.result.points)
-        std::cout << fmt::format("  {} at {} = {:.12g} (error {:.2g}){}\n", p.type, range.name,
+        std::cout << fmt::format("  {} at {} = {:.12g} (error {:.2g}){}\n", type_name(p),
+                                 range.name,
                                  p.parameter, p.error_estimate, p.note.empty() ? "" : ": " + p.note);
     }
     if (two_parameter) {
       if (result.has_curve)
         std::cout << fmt::format("{} curve in ({}, {}): {} points, stopped: {} ({})\n",
-                                 result.curve.type, range.name, range2.name,
-                                 result.curve.curve.size(), result.curve.stop_reason,
+                                 to_string(result.curve.type), range.name, range2.name,
+                                 result.curve.curve.size(), to_string(result.curve.stop_reason),
                                  result.curve.stop_detail);
       else
         std::cout << "no curve: " << result.curve_note << '\n';
       for (const BranchCurve& doubled : result.doubled_curves) {
         if (doubled.has_curve)
           std::cout << fmt::format("  period-{} branch's {} curve: {} points, stopped: {} ({})\n",
-                                   doubled.period, doubled.curve.type, doubled.curve.curve.size(),
-                                   doubled.curve.stop_reason, doubled.curve.stop_detail);
+                                   doubled.period, to_string(doubled.curve.type),
+                                   doubled.curve.curve.size(),
+                                   to_string(doubled.curve.stop_reason), doubled.curve.stop_detail);
         else
           std::cout << fmt::format("  period-{} branch: no curve: {}\n", doubled.period,
                                    doubled.note);

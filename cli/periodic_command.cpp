@@ -50,9 +50,9 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
         scene.name, request.period, result.converged ? "converged" : "NOT converged",
         result.iterations, result.residual, multipliers, (directory / "periodic.json").string());
   }
-  if (result.termination != "completed")
+  if (result.termination != Termination::completed)
     std::cerr << fmt::format("impactlab: run stopped early ({}) at the section time {} s\n",
-                             result.termination, result.t_section);
+                             to_string(result.termination), result.t_section);
   return result.converged ? exit_done : exit_stopped_early;
 }
 

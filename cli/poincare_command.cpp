@@ -77,7 +77,7 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
       {"created_utc", utc_now()},
       {"scene", scene_record(scene)},
       {"section", options.record()},
-      {"termination", result.termination},
+      {"termination", to_string(result.termination)},
       {"forcing_period", result.forcing_period},
       {"record_start", result.record_start},
       {"counts",
@@ -111,9 +111,9 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
     std::cout << fmt::format("{}: {} section points ({}), {:.3f} s wall\nwrote {}\n", scene.name,
                              result.point_count, to_string(request.section), wall_time,
                              (directory / "poincare.csv").string());
-  if (result.termination != "completed") {
+  if (result.termination != SectionTermination::completed) {
     std::cerr << fmt::format("impactlab: run stopped early ({}); {} points recorded\n",
-                             result.termination, result.point_count);
+                             to_string(result.termination), result.point_count);
     return exit_stopped_early;
   }
   return exit_done;

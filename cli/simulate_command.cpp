@@ -27,7 +27,7 @@ int run_simulate(const SceneOptions& options, const std::vector<std::string>& co
   // them as the run goes (memory does not grow with the run's length)
   RunFiles files(directory);
   std::vector<std::string> names = {"events.csv", "meta.json"};
-  EventsCsvWriter events(files.add("events.csv"));
+  EventsCsvWriter events(files.add("events.csv"), event_extender(scene));
   request.keep_events = false;
   request.event_sink = &events;
   std::optional<TrajectoryCsvWriter> trajectory;
@@ -50,7 +50,7 @@ int run_simulate(const SceneOptions& options, const std::vector<std::string>& co
   // all files complete: put them in place together, meta.json last
   files.commit();
 
-  const bool stopped = output.termination != "completed";
+  const bool stopped = output.termination != Termination::completed;
   if (!options.quiet) {
     std::cout << fmt::format(
         "{}: t = {} .. {} s, {} impacts, {} contact phases, {} steps, {:.3f} s wall\n"
@@ -61,7 +61,7 @@ int run_simulate(const SceneOptions& options, const std::vector<std::string>& co
   if (stopped) {
     const EventRecord* last = output.last_event ? &*output.last_event : nullptr;
     std::cerr << fmt::format("impactlab: run stopped early ({}) at t = {} s{}\n",
-                             output.termination, output.t_final,
+                             to_string(output.termination), output.t_final,
                              last ? fmt::format(", last event {} on wall {} at q = {}",
                                                 to_string(last->kind), last->wall, last->q)
                                   : "");

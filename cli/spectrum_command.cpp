@@ -50,9 +50,9 @@ int run_spectrum(const SpectrumOptions& options, const std::vector<std::string>&
       static_cast<std::size_t>(options.periods) * static_cast<std::size_t>(options.samples_per_period);
   const std::size_t first =
       static_cast<std::size_t>(std::llround(options.transient * options.samples_per_period));
-  if (output.termination != "completed" || output.samples.size() < first + wanted) {
+  if (output.termination != Termination::completed || output.samples.size() < first + wanted) {
     std::cerr << fmt::format("impactlab: run stopped early ({}) at t = {}; no spectrum written\n",
-                             output.termination, output.t_final);
+                             to_string(output.termination), output.t_final);
     return exit_stopped_early;
   }
   std::vector<double> q(wanted);

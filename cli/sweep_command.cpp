@@ -65,7 +65,7 @@ void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<
     basins.stream() << number(table.x[k]) << ',' << number(table.y[k]) << ','
                     << table.attractor[k] << ',' << table.period[k] << ','
                     << number(table.impacts_per_period[k]) << ',' << table.contact[k] << ','
-                    << table.termination[k] << '\n';
+                    << to_string(table.termination[k]) << '\n';
   AtomicFile& attractors = run_files.add("attractors.csv");
   attractors.stream() << "attractor,period,impacts_per_period,contact,q,qdot,basin_points\n";
   const AttractorRows rows = attractor_rows(table.map);
@@ -85,7 +85,8 @@ void write_outputs(RunFiles& run_files, const SweepPlan& plan, const std::vector
                    std::vector<std::string>& files) {
   auto summary_fields = [&](std::size_t row) {
     return fmt::format("{},{},{},{},{}", table.period[row], number(table.impacts_per_period[row]),
-                       table.contact[row], number(table.lyapunov[row]), table.termination[row]);
+                       table.contact[row], number(table.lyapunov[row]),
+                       to_string(table.termination[row]));
   };
   auto direction_name = [](int direction) { return direction > 0 ? "up" : "down"; };
   if (plan.axes.size() == 1) {

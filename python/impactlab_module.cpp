@@ -4,7 +4,6 @@
 // the GIL released; its progress callback takes the GIL back now and then to
 // call the user's callback and to look for Ctrl-C, and a Python exception
 // there cancels the job and comes out of the call unchanged.
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <complex>
@@ -102,8 +101,16 @@ py::array owning_array(std::vector<T>&& values) {
   return py::array_t<T>({static_cast<py::ssize_t>(owner->size())}, owner->data(), base);
 }
 
-// The structured dtype of EventRecord, field by field at its C++ offsets, so
-// that the event log is one array without a copy.
+// One row of Python's events array: the core's record and what the model
+// adds to it (io/event_extension.hpp), in events.csv's column order.
+struct EventRow {
+  EventRecord event;
+  EventExtension extension;
+};
+
+// The structured dtype of EventRow, field by field at its C++ offsets, so
+// that the event log is one array (the rows copied once, with their
+// extensions).
 py::dtype event_dtype() {
   py::list names, formats, offsets;
   auto add = [&](const char* name, const char* format, std::size_t offset) {
@@ -111,37 +118,51 @@ py::dtype event_dtype() {
     formats.append(format);
     offsets.append(offset);
   };
-  add("t", "<f8", offsetof(EventRecord, t));
-  add("kind", "u1", offsetof(EventRecord, kind));
-  add("wall", "<i4", offsetof(EventRecord, wall));
-  add("q", "<f8", offsetof(EventRecord, q));
-  add("qdot_before", "<f8", offsetof(EventRecord, qdot_before));
-  add("qdot_after", "<f8", offsetof(EventRecord, qdot_after));
-  add("normal_impulse", "<f8", offsetof(EventRecord, normal_impulse));
-  add("tangential_velocity", "<f8", offsetof(EventRecord, tangential_velocity));
-  add("normal_force", "<f8", offsetof(EventRecord, normal_force));
-  add("friction_work", "<f8", offsetof(EventRecord, friction_work));
-  add("instantaneous_residual", "<f8", offsetof(EventRecord, instantaneous_residual));
-  add("sliding_residual", "<f8", offsetof(EventRecord, sliding_residual));
-  add("tangential_velocity_after", "<f8", offsetof(EventRecord, tangential_velocity_after));
-  add("accumulation_error", "<f8", offsetof(EventRecord, accumulation_error));
+  const std::size_t event = offsetof(EventRow, event), extension = offsetof(EventRow, extension);
+  add("t", "<f8", event + offsetof(EventRecord, t));
+  add("kind", "u1", event + offsetof(EventRecord, kind));
+  add("wall", "<i4", event + offsetof(EventRecord, wall));
+  add("q", "<f8", event + offsetof(EventRecord, q));
+  add("qdot_before", "<f8", event + offsetof(EventRecord, qdot_before));
+  add("qdot_after", "<f8", event + offsetof(EventRecord, qdot_after));
+  add("normal_impulse", "<f8", event + offsetof(EventRecord, normal_impulse));
+  add("tangential_velocity", "<f8", event + offsetof(EventRecord, tangential_velocity));
+  add("normal_force", "<f8", event + offsetof(EventRecord, normal_force));
+  add("friction_work", "<f8", event + offsetof(EventRecord, friction_work));
+  add("instantaneous_residual", "<f8",
+      extension + offsetof(EventExtension, instantaneous_residual));
+  add("sliding_residual", "<f8", extension + offsetof(EventExtension, sliding_residual));
+  add("tangential_velocity_after", "<f8", event + offsetof(EventRecord, tangential_velocity_after));
+  add("accumulation_error", "<f8", event + offsetof(EventRecord, accumulation_error));
   py::dict spec;
   spec["names"] = names;
   spec["formats"] = formats;
   spec["offsets"] = offsets;
-  spec["itemsize"] = sizeof(EventRecord);
+  spec["itemsize"] = sizeof(EventRow);
   return py::dtype::from_args(spec);
 }
 
-py::array event_array(std::vector<EventRecord>&& events) {
+// The events of a run of `scene`, each with its extension.
+py::array event_array(const std::vector<EventRecord>& events, const Scene& scene) {
   // built once: the dtype is the same for every run (never freed, so that it
   // outlives no interpreter)
   static const auto* dtype = new py::dtype(event_dtype());
-  auto* owner = new std::vector<EventRecord>(std::move(events));
+  const EventExtender extender = event_extender(scene);
+  auto* owner = new std::vector<EventRow>();
+  owner->reserve(events.size());
+  for (const EventRecord& event : events)
+    owner->push_back({event, extender ? extender(event) : EventExtension{}});
   py::capsule base(owner,
-                   [](void* pointer) { delete static_cast<std::vector<EventRecord>*>(pointer); });
+                   [](void* pointer) { delete static_cast<std::vector<EventRow>*>(pointer); });
   return py::array(*dtype, {static_cast<py::ssize_t>(owner->size())}, {},
                    owner->data(), base);
+}
+
+// The names of a table's terminations, as the CLI's files write them.
+py::list termination_names(const std::vector<SectionTermination>& terminations) {
+  py::list names;
+  for (const SectionTermination termination : terminations) names.append(to_string(termination));
+  return names;
 }
 
 py::object json_to_python(const nlohmann::json& document) {
@@ -172,7 +193,7 @@ py::dict simulate_binding(const Scene& scene, double periods, double t_end, doub
   RunOutput output = relay.run([&] { return simulate(scene, request); });
 
   py::dict result;
-  result["termination"] = output.termination;
+  result["termination"] = to_string(output.termination);
   // samples: t, q, qdot as arrays, the mode names as a list
   std::vector<double> t, q, qdot;
   py::list modes;
@@ -186,8 +207,8 @@ py::dict simulate_binding(const Scene& scene, double periods, double t_end, doub
   result["samples_q"] = owning_array(std::move(q));
   result["samples_qdot"] = owning_array(std::move(qdot));
   result["samples_mode"] = modes;
-  result["events"] = event_array(std::move(output.events));
-  output.events.clear();
+  result["events"] = event_array(output.events, scene);
+  output.events = {};  // the array holds its own rows
   output.samples.clear();
   result["record"] = PendingRunRecord{scene, std::move(output)};
   return result;
@@ -232,7 +253,7 @@ py::dict poincare_binding(const Scene& scene, const std::string& section, double
   const SectionResult result = relay.run([&] { return poincare(scene, request); });
   relay(1.0);
   py::dict out = section_arrays(result);
-  out["termination"] = result.termination;
+  out["termination"] = to_string(result.termination);
   out["omega"] = result.omega;
   out["forcing_period"] = result.forcing_period;
   out["record_start"] = result.record_start;
@@ -317,7 +338,7 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
   out["impacts_per_period"] = owning_array(std::move(table.impacts_per_period));
   out["contact"] = owning_array(std::move(table.contact));
   out["lyapunov"] = owning_array(std::move(table.lyapunov));
-  out["termination"] = py::cast(table.termination);
+  out["termination"] = termination_names(table.termination);
   out["points"] = owning_array(std::move(table.points));
   out["wall_time_s"] = wall_time;
   out["threads"] = threads;
@@ -365,7 +386,7 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
   out["period"] = owning_array(std::move(table.period));
   out["impacts_per_period"] = owning_array(std::move(table.impacts_per_period));
   out["contact"] = owning_array(std::move(table.contact));
-  out["termination"] = py::cast(table.termination);
+  out["termination"] = termination_names(table.termination);
   out["attractor_id"] = owning_array(std::move(attractors.id));
   out["attractor_period"] = owning_array(std::move(attractors.period));
   out["attractor_impacts_per_period"] = owning_array(std::move(attractors.impacts_per_period));
@@ -392,7 +413,7 @@ py::dict periodic_binding(const Scene& scene, const std::string& period, double 
   py::dict out;
   out["meta"] = json_to_python(periodic_record(scene, found));
   out["converged"] = found.result.converged;
-  out["termination"] = found.result.termination;
+  out["termination"] = to_string(found.result.termination);
   return out;
 }
 
@@ -428,8 +449,8 @@ py::dict compare_binding(const Scene& scene, const std::string& models, double p
   for (auto& run : comparison.runs) {
     py::dict one;
     one["meta"] = json_to_python(run_record(run.scene, run.output));
-    one["termination"] = run.output.termination;
-    one["events"] = event_array(std::move(run.output.events));
+    one["termination"] = to_string(run.output.termination);
+    one["events"] = event_array(run.output.events, run.scene);
     runs[py::str(run.model)] = one;
   }
   out["runs"] = runs;
@@ -532,8 +553,8 @@ py::dict curve_columns(const BranchCurve& curve, const std::string& parameter,
   py::dict one;
   one["branch"] = curve.branch;
   one["period"] = curve.period;
-  one["type"] = curve.curve.type;
-  one["stop_reason"] = curve.curve.stop_reason;
+  one["type"] = to_string(curve.curve.type);
+  one["stop_reason"] = to_string(curve.curve.stop_reason);
   one["stop_detail"] = curve.curve.stop_detail;
   one["map_evaluations"] = curve.curve.map_evaluations;
   one[py::str(parameter)] = owning_array(std::move(p1));
@@ -604,7 +625,7 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
     }
     py::dict one;
     one["period"] = continued.period;
-    one["stop_reason"] = continued.result.stop_reason;
+    one["stop_reason"] = to_string(continued.result.stop_reason);
     one["stop_detail"] = continued.result.stop_detail;
     one["map_evaluations"] = continued.result.map_evaluations;
     one[py::str(parameter)] = owning_array(std::move(value));
@@ -620,7 +641,7 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
     one["newton_iterations"] = owning_array(std::move(newton_iterations));
     branches.append(one);
     for (const BifurcationPoint& p : continued.result.points) {
-      type.push_back(p.type);
+      type.emplace_back(type_name(p));
       point_parameter.push_back(p.parameter);
       put_states(p.state, point_states);
       point_period.push_back(continued.period);
@@ -670,37 +691,15 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
   return out;
 }
 
-// `text` with each command-line flag in it (`--period-tol`) as its Python
-// keyword (`period_tol`): parts of the library older than the option tables
-// still name options by their flags.
-std::string keywords_for_flags(std::string_view text) {
-  std::string spelled;
-  for (std::size_t k = 0; k < text.size(); ++k) {
-    const bool flag = text.substr(k, 2) == "--" && k + 2 < text.size() &&
-                      std::islower(static_cast<unsigned char>(text[k + 2])) &&
-                      (k == 0 || text[k - 1] == ' ' || text[k - 1] == '(' || text[k - 1] == '/');
-    if (!flag) {
-      spelled += text[k];
-      continue;
-    }
-    for (k += 2; k < text.size() && (std::isalnum(static_cast<unsigned char>(text[k])) ||
-                                     text[k] == '-');
-         ++k)
-      spelled += text[k] == '-' ? '_' : text[k];
-    --k;
-  }
-  return spelled;
-}
-
 // The line of a BadInput with every option it names spelled as the Python
-// keyword: the key, and the options the reason names (`param`, or as flags).
+// keyword: the key is the option's own name already (api/job_options.hpp),
+// and the options the reason names (`param`) lose their backquotes.
 std::string keyword_message(const BadInput& bad) {
   const std::string what = bad.what();
   const std::string prefix = elide_value(bad.key()) + " = " + elide_value(bad.value()) + ": ";
   const auto keyword = [](std::string_view name) { return std::string(name); };
   if (!what.starts_with(prefix)) return spell_options(what, keyword);
-  return keywords_for_flags(elide_value(bad.key())) + " = " + elide_value(bad.value()) + ": " +
-         keywords_for_flags(spell_options(std::string_view(what).substr(prefix.size()), keyword));
+  return prefix + spell_options(std::string_view(what).substr(prefix.size()), keyword);
 }
 
 // A job's option table (api/job_options.hpp) as a list of dicts, one per

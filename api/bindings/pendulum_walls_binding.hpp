@@ -16,10 +16,12 @@
 #include <impactlab/api/bindings/pendulum_walls_parameters.hpp>
 #include <impactlab/core/event_log.hpp>
 #include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/event_extension.hpp>
 #include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 #include <impactlab/oscillators/pendulum_walls/rigid_pendulum_walls.hpp>
+#include <impactlab/oscillators/pendulum_walls/sliding_impact.hpp>
 
 namespace impactlab {
 
@@ -99,6 +101,15 @@ struct PendulumBinding {
   }
   static PendulumRunTally run_tally(const System& system, const Scene&) {
     return PendulumRunTally(system.parameters(), system.wall_angle(), System::is_paper_model);
+  }
+  // Model P's impact residuals (PaperImpactResiduals), events.csv's columns for them
+  static EventExtender event_extender(const System& system)
+    requires System::is_paper_model
+  {
+    return [system](const EventRecord& event) {
+      const PaperImpactResiduals residuals = system.impact_residuals(event);
+      return EventExtension{residuals.instantaneous, residuals.sliding};
+    };
   }
 };
 

@@ -245,8 +245,8 @@ void sweep(const Scene& scene) {
     for (const auto& record : records) {
       std::printf("  %.3f  %6d  %14g  %s\n", plan.axes[0].value(record.index[0]),
                   record.classification.period, record.classification.impacts_per_period,
-                  record.result.termination.c_str());
-      completed += record.result.termination == "completed";
+                  std::string(impactlab::to_string(record.result.termination)).c_str());
+      completed += record.result.termination == impactlab::SectionTermination::completed;
       ++points;
     }
   }

@@ -77,6 +77,18 @@ class BasicPendulumWalls {
   [[nodiscard]] const PendulumWallsParameters& parameters() const { return p_; }
   [[nodiscard]] double wall_angle() const { return theta0_; }
 
+  // Model P's extension of an event's record: the residuals of the impact
+  // conditions at an impact, from its rate before and tangential velocity
+  // (sliding_impact.hpp); NaN for another event.
+  [[nodiscard]] PaperImpactResiduals impact_residuals(const EventRecord& event) const
+    requires is_paper_model
+  {
+    if (event.kind != EventKind::impact) return {};
+    return {instantaneous_impact_residual(normal_speed(event), event.tangential_velocity, p_.e_n,
+                                          p_.e_t, sin0_ / cos0_),
+            sliding_condition_residual(p_.V0, p_.omega, p_.g, p_.e_t, event.tangential_velocity)};
+  }
+
   // effective gravity in the pivot's frame (m/s²) and its rate (m/s³);
   // like the right-hand side, written over a number type (a series type
   // runs through them: integrate/taylor_series.hpp)
@@ -248,6 +260,11 @@ class BasicPendulumWalls {
 
   static Mode contact_mode(int wall) { return wall > 0 ? Mode::contact_right : Mode::contact_left; }
 
+  // the normal approach speed of an impact, l cos θ0 |θ̇⁻| (m/s)
+  [[nodiscard]] double normal_speed(const EventRecord& impact) const {
+    return p_.l * cos0_ * std::fabs(impact.qdot_before);
+  }
+
   // the state resting on a wall; release_rate: θ̇ at the end of the contact
   // (Model P only)
   [[nodiscard]] State on_wall(int wall, double friction_work, double release_rate = 0.0) const {
@@ -294,11 +311,7 @@ class BasicPendulumWalls {
     record.normal_impulse = impact.normal_impulse;
     record.tangential_velocity = gamma_t;
     if constexpr (is_paper_model) {
-      const double normal_speed = p_.l * cos0_ * std::fabs(x[1]);
-      record.instantaneous_residual =
-          instantaneous_impact_residual(normal_speed, gamma_t, p_.e_n, p_.e_t, sin0_ / cos0_);
-      record.sliding_residual = sliding_condition_residual(p_.V0, p_.omega, p_.g, p_.e_t, gamma_t);
-      if (!is_instantaneous_impact(normal_speed, gamma_t, p_.e_n, p_.e_t, sin0_ / cos0_))
+      if (!is_instantaneous_impact(normal_speed(record), gamma_t, p_.e_n, p_.e_t, sin0_ / cos0_))
         if (auto held = sliding_impact(wall, x, t, record, log)) return *held;
     }
     log.record(record);

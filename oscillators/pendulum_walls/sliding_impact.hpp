@@ -62,4 +62,13 @@ inline double sliding_condition_residual(double V0, double omega, double g, doub
   return slip_end_velocity(V0, omega, g) + e_t * tangential_velocity;
 }
 
+// Model P's extension of the record of an impact (the core's record,
+// core/event_log.hpp, holds what every model computes): the residuals of its
+// impact conditions (m/s), NaN where not computed (another event, another
+// model). PaperPendulumWalls::impact_residuals fills it.
+struct PaperImpactResiduals {
+  double instantaneous = std::numeric_limits<double>::quiet_NaN();  // Eq. 26
+  double sliding = std::numeric_limits<double>::quiet_NaN();        // Eqs. 21-22 (Fig. 4)
+};
+
 }  // namespace impactlab

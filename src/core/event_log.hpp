@@ -51,11 +51,6 @@ struct EventRecord {
   double normal_force = not_computed;         // λ_N at the event (N)
   double friction_work = not_computed;        // work done by friction over the
                                               // contact phase that ends here (J)
-  // Model P of the pendulum (oscillators/pendulum_walls/sliding_impact.hpp),
-  // at each impact: the residual of the instantaneous-impact condition
-  // (paper's Eq. 26) and of the sliding-impact condition (Eqs. 21-22) (m/s)
-  double instantaneous_residual = not_computed;
-  double sliding_residual = not_computed;
   double tangential_velocity_after = not_computed;  // γ_T just after an impact (m/s)
   // an accumulation: the bound on the error of its time (s), from
   // contact/accumulation.hpp

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 #include <unistd.h>
 
@@ -114,7 +115,8 @@ void append_field(fmt::memory_buffer& row, double value) {
 
 }  // namespace
 
-EventsCsvWriter::EventsCsvWriter(AtomicFile& file) : out_(file.stream()) {
+EventsCsvWriter::EventsCsvWriter(AtomicFile& file, EventExtender extender)
+    : out_(file.stream()), extender_(std::move(extender)) {
   out_ << "t,kind,wall,q,qdot_before,qdot_after,normal_impulse,tangential_velocity,normal_force,"
           "friction_work,instantaneous_residual,sliding_residual,tangential_velocity_after,"
           "accumulation_error\n";
@@ -128,9 +130,10 @@ void EventsCsvWriter::write(const EventRecord& e) {
   const std::string_view kind = to_string(e.kind);
   row_.append(kind.data(), kind.data() + kind.size());
   fmt::format_to(fmt::appender(row_), FMT_COMPILE(",{},"), e.wall);
+  const EventExtension extension = extender_ ? extender_(e) : EventExtension{};
   for (double value : {e.q, e.qdot_before, e.qdot_after, e.normal_impulse, e.tangential_velocity,
-                       e.normal_force, e.friction_work, e.instantaneous_residual,
-                       e.sliding_residual, e.tangential_velocity_after}) {
+                       e.normal_force, e.friction_work, extension.instantaneous_residual,
+                       extension.sliding_residual, e.tangential_velocity_after}) {
     append_field(row_, value);
     comma();
   }
@@ -156,8 +159,9 @@ void TrajectoryCsvWriter::write(const TrajectorySample& s) {
   out_.write(row_.data(), static_cast<std::streamsize>(row_.size()));
 }
 
-void write_events_csv(AtomicFile& file, std::span<const EventRecord> events) {
-  EventsCsvWriter writer(file);
+void write_events_csv(AtomicFile& file, std::span<const EventRecord> events,
+                      EventExtender extender) {
+  EventsCsvWriter writer(file, std::move(extender));
   for (const auto& e : events) writer.write(e);
 }
 

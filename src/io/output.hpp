@@ -16,6 +16,7 @@
 
 #include <impactlab/core/event_log.hpp>
 #include <impactlab/core/event_sink.hpp>
+#include <impactlab/io/event_extension.hpp>
 #include <impactlab/io/run_output.hpp>
 
 namespace impactlab {
@@ -79,15 +80,17 @@ void prepare_output_directory(const std::filesystem::path& directory);
 // events.csv, written row by row as the events happen (an EventSink):
 // t,kind,wall,q,qdot_before,qdot_after, then normal_impulse,
 // tangential_velocity, normal_force, friction_work, instantaneous_residual,
-// sliding_residual, tangential_velocity_after, accumulation_error (empty
-// where not computed). Numbers with all their digits (round-trip).
+// sliding_residual (the model's EventExtension, asked of `extender` where it
+// is given), tangential_velocity_after, accumulation_error (empty where not
+// computed). Numbers with all their digits (round-trip).
 class EventsCsvWriter final : public EventSink {
  public:
-  explicit EventsCsvWriter(AtomicFile& file);  // writes the header
+  explicit EventsCsvWriter(AtomicFile& file, EventExtender extender = {});  // writes the header
   void write(const EventRecord& event) override;
 
  private:
   std::ofstream& out_;
+  EventExtender extender_;
   fmt::memory_buffer row_;
 };
 
@@ -103,7 +106,8 @@ class TrajectoryCsvWriter final : public SampleSink {
 };
 
 // The same files from events and samples held in memory.
-void write_events_csv(AtomicFile& file, std::span<const EventRecord> events);
+void write_events_csv(AtomicFile& file, std::span<const EventRecord> events,
+                      EventExtender extender = {});
 void write_trajectory_csv(AtomicFile& file, std::span<const TrajectorySample> samples);
 
 void write_json(AtomicFile& file, const nlohmann::json& document);

@@ -12,6 +12,7 @@
 
 #include <impactlab/core/event_log.hpp>
 #include <impactlab/core/event_sink.hpp>
+#include <impactlab/simulate/termination.hpp>
 
 namespace impactlab {
 
@@ -53,7 +54,7 @@ struct RunOutput {
   double largest_accumulation_error = 0.0;  // s, 0 when no accumulation
   double t0 = 0.0, t_end = 0.0;  // the run's time span (s)
   double t_final = 0.0;          // where it stopped (s)
-  std::string termination;       // completed, stopped_by_model, no_progress
+  Termination termination = Termination::completed;
   std::uint64_t steps = 0, rhs_evaluations = 0;
   std::uint64_t impacts = 0, contact_phases = 0, accumulations = 0, grazings = 0;
   double wall_time = 0.0;        // s

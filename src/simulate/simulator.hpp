@@ -28,34 +28,9 @@
 #include <impactlab/core/hybrid_system.hpp>
 #include <impactlab/integrate/event_location.hpp>
 #include <impactlab/integrate/stepper_settings.hpp>
+#include <impactlab/simulate/termination.hpp>
 
 namespace impactlab {
-
-enum class Termination {
-  completed,        // reached the end time
-  stopped_by_model, // the system asked to stop (for example a Painlevé diagnostic)
-  no_progress,      // the Zeno guard fired, or a witness went past zero by
-                    // more than the tolerance with no event found (hops below
-                    // round-off): an accumulation the model did not resolve
-  frozen_time,      // t + step == t: time can no longer advance in a double
-  non_finite_state, // a component of the state became inf or NaN
-  step_budget,      // the run took LoopOptions::step_budget steps without reaching the end
-  integrator_failure,  // the stepper could not take a step (its error control gave up,
-                       // a GSL routine failed): an exception from do_step
-};
-
-constexpr std::string_view to_string(Termination termination) {
-  switch (termination) {
-    case Termination::completed: return "completed";
-    case Termination::stopped_by_model: return "stopped_by_model";
-    case Termination::no_progress: return "no_progress";
-    case Termination::frozen_time: return "frozen_time";
-    case Termination::non_finite_state: return "non_finite_state";
-    case Termination::step_budget: return "step_budget";
-    case Termination::integrator_failure: return "integrator_failure";
-  }
-  return "unknown";
-}
 
 // Guard against an unresolved accumulation of events (Zeno behaviour): if more
 // than `max_events` events happen while time advances by less than `window`

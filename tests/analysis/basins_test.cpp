@@ -33,7 +33,7 @@ using namespace impactlab::testing;
 SweepRecord record_with_cycle(const std::vector<std::array<double, 2>>& points, int period,
                               double impacts_per_period) {
   SweepRecord record;
-  record.result.termination = "completed";
+  record.result.termination = impactlab::SectionTermination::completed;
   for (const auto& p : points) record.result.points.push_back({0.0, p[0], p[1], 0});
   record.classification.period = period;
   record.classification.impacts_per_period = impacts_per_period;

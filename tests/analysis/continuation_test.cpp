@@ -33,7 +33,9 @@
 #include <boost/math/tools/roots.hpp>
 #include <gtest/gtest.h>
 
+#include <impactlab/analysis/branch_continuation.hpp>
 #include <impactlab/analysis/continuation.hpp>
+#include <impactlab/analysis/continuation_problem.hpp>
 #include <impactlab/analysis/periodic.hpp>
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/api/scene_jobs.hpp>
@@ -43,9 +45,12 @@
 namespace {
 
 using impactlab::BifurcationPoint;
+using impactlab::BifurcationType;
 using impactlab::ContinuationJob;
 using impactlab::ContinuationJobResult;
+using impactlab::CurveType;
 using impactlab::Scene;
+using impactlab::StopReason;
 
 constexpr double two_pi = 2.0 * std::numbers::pi;
 
@@ -186,7 +191,7 @@ ContinuationJobResult continue_scene(const Scene& scene, const std::string& key,
 }
 
 std::vector<BifurcationPoint> points_of_type(const impactlab::ContinuationResult& result,
-                                             const std::string& type) {
+                                             BifurcationType type) {
   std::vector<BifurcationPoint> found;
   for (const auto& point : result.points)
     if (point.type == type) found.push_back(point);
@@ -206,14 +211,14 @@ TEST(Continuation, LinearImpactPeriodOneBranchUpToSeven) {
   ASSERT_TRUE(job.available);
   ASSERT_EQ(job.branches.size(), 1u);
   const auto& branch = job.branches[0].result;
-  EXPECT_EQ(branch.stop_reason, "end_of_range") << branch.stop_detail;
+  EXPECT_EQ(branch.stop_reason, StopReason::end_of_range) << branch.stop_detail;
   EXPECT_NEAR(branch.branch.back().parameter, 7.0, 1e-12);
 
   // the three period doublings of the closed form on [1.02, 7]
   const std::array<double, 3> expected = {period_doubling(o, 1.02, 1.05),
                                           period_doubling(o, 1.1, 1.5),
                                           period_doubling(o, 2.6, 2.7)};
-  const auto doublings = points_of_type(branch, "period_doubling");
+  const auto doublings = points_of_type(branch, BifurcationType::period_doubling);
   ASSERT_EQ(doublings.size(), 3u);
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_TRUE(doublings[k].located);
@@ -221,7 +226,7 @@ TEST(Continuation, LinearImpactPeriodOneBranchUpToSeven) {
     EXPECT_LT(doublings[k].error_estimate, 1e-9 * expected[k]);
     EXPECT_NEAR(doublings[k].multipliers[0].real(), -1.0, 1e-7);  // |−1| > |det M|
   }
-  EXPECT_TRUE(points_of_type(branch, "fold").empty());
+  EXPECT_TRUE(points_of_type(branch, BifurcationType::fold).empty());
 
   // every branch point is the closed-form orbit on the section
   for (const auto& point : branch.branch) {
@@ -245,8 +250,8 @@ TEST(Continuation, LinearImpactBranchEndsAtTheGrazingWhereItIsBorn) {
   ASSERT_TRUE(start.found());
   const auto job = continue_scene(scene, "omega", 1.5, 1.0, 0, start.section_state());
   const auto& branch = job.branches.at(0).result;
-  EXPECT_EQ(branch.stop_reason, "signature_change") << branch.stop_detail;
-  const auto grazings = points_of_type(branch, "grazing");
+  EXPECT_EQ(branch.stop_reason, StopReason::signature_change) << branch.stop_detail;
+  const auto grazings = points_of_type(branch, BifurcationType::grazing);
   ASSERT_EQ(grazings.size(), 1u);
   // the closed form: the interior maximum of the flight reaches σ
   const double omega_graze = solve(
@@ -254,7 +259,7 @@ TEST(Continuation, LinearImpactBranchEndsAtTheGrazingWhereItIsBorn) {
   EXPECT_NEAR(grazings[0].parameter, omega_graze, 1e-9 * omega_graze);
   EXPECT_LT(grazings[0].error_estimate, 1e-9 * omega_graze);
   // passing on the way: the two period doublings below 1.5
-  const auto doublings = points_of_type(branch, "period_doubling");
+  const auto doublings = points_of_type(branch, BifurcationType::period_doubling);
   ASSERT_EQ(doublings.size(), 2u);
   EXPECT_NEAR(doublings[0].parameter, period_doubling(o, 1.1, 1.5), 1e-9);
   EXPECT_NEAR(doublings[1].parameter, period_doubling(o, 1.02, 1.05), 1e-9);
@@ -270,12 +275,12 @@ TEST(Continuation, LinearImpactSecondParameterSetEndsWhereTheImpactSpeedVanishes
   // from the scene's own transient (no start given)
   const auto job = continue_scene(scene, "omega", 2.0, 2.5);
   const auto& branch = job.branches.at(0).result;
-  EXPECT_EQ(branch.stop_reason, "signature_change") << branch.stop_detail;
-  const auto doublings = points_of_type(branch, "period_doubling");
+  EXPECT_EQ(branch.stop_reason, StopReason::signature_change) << branch.stop_detail;
+  const auto doublings = points_of_type(branch, BifurcationType::period_doubling);
   ASSERT_EQ(doublings.size(), 1u);
   const double expected = period_doubling(o, 2.24, 2.29);
   EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
-  const auto grazings = points_of_type(branch, "grazing");
+  const auto grazings = points_of_type(branch, BifurcationType::grazing);
   ASSERT_EQ(grazings.size(), 1u);
   const double omega_graze = solve(
       [&](double w) {
@@ -305,13 +310,13 @@ TEST(Continuation, LinearImpactModelFileFindsTheClosedFormsPeriodDoublingAndGraz
   const auto job = continue_scene(scene, "omega", 2.0, 2.5);
   ASSERT_TRUE(job.available) << job.note;
   const auto& branch = job.branches.at(0).result;
-  EXPECT_EQ(branch.stop_reason, "signature_change") << branch.stop_detail;
-  const auto doublings = points_of_type(branch, "period_doubling");
+  EXPECT_EQ(branch.stop_reason, StopReason::signature_change) << branch.stop_detail;
+  const auto doublings = points_of_type(branch, BifurcationType::period_doubling);
   ASSERT_EQ(doublings.size(), 1u);
   const double expected = period_doubling(o, 2.24, 2.29);
   EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
   EXPECT_NEAR(doublings[0].multipliers[0].real(), -1.0, 1e-7);
-  const auto grazings = points_of_type(branch, "grazing");
+  const auto grazings = points_of_type(branch, BifurcationType::grazing);
   ASSERT_EQ(grazings.size(), 1u);
   const double omega_graze = solve(
       [&](double w) {
@@ -345,8 +350,8 @@ TEST(Continuation, BouncingBallPeriodDoublingMatchesTheClosedForm) {
   const auto job = continue_scene(scene, "A", 0.0112, 0.0125, 0,
                                   bouncing_ball_start(9.81, 30.0, 0.8, 0.0112));
   const auto& branch = job.branches.at(0).result;
-  const auto doublings = points_of_type(branch, "period_doubling");
-  ASSERT_EQ(doublings.size(), 1u) << branch.stop_reason << " " << branch.stop_detail;
+  const auto doublings = points_of_type(branch, BifurcationType::period_doubling);
+  ASSERT_EQ(doublings.size(), 1u) << impactlab::to_string(branch.stop_reason) << " " << branch.stop_detail;
   const double expected = bouncing_ball_period_doubling_amplitude(9.81, 30.0, 0.8);
   EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
 }
@@ -370,8 +375,8 @@ TEST(Continuation, BouncingBallOnTheImpactSectionOfTheMovingTable) {
   job.start = {impact_phase(0.0112), -0.5 * g * period};
   const auto result = impactlab::continue_orbit(scene, job);
   const auto& branch = result.branches.at(0).result;
-  EXPECT_EQ(branch.stop_reason, "end_of_range") << branch.stop_detail;
-  const auto doublings = points_of_type(branch, "period_doubling");
+  EXPECT_EQ(branch.stop_reason, StopReason::end_of_range) << branch.stop_detail;
+  const auto doublings = points_of_type(branch, BifurcationType::period_doubling);
   ASSERT_EQ(doublings.size(), 1u);
   const double expected = bouncing_ball_period_doubling_amplitude(g, omega, r);
   EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
@@ -388,8 +393,8 @@ TEST(Continuation, BouncingBallCascadeThroughTwoDoublings) {
   ASSERT_EQ(job.branches.size(), 3u);
   EXPECT_EQ(job.branches[1].period, 2);
   EXPECT_EQ(job.branches[2].period, 4);
-  const double first = points_of_type(job.branches[0].result, "period_doubling").at(0).parameter;
-  const double second = points_of_type(job.branches[1].result, "period_doubling").at(0).parameter;
+  const double first = points_of_type(job.branches[0].result, BifurcationType::period_doubling).at(0).parameter;
+  const double second = points_of_type(job.branches[1].result, BifurcationType::period_doubling).at(0).parameter;
   EXPECT_GT(second, first);
   EXPECT_GE(job.branches[2].result.branch.size(), 3u);
   // the doubled branch starts as two distinct points of a period-2 orbit
@@ -445,8 +450,8 @@ TEST(Continuation, LinearImpactOnTheImpactSectionHasTheStrobesPeriodDoublingAndM
   job.numerics.tolerance = 1e-11;
   const auto result = impactlab::continue_orbit(scene, job);
   const auto& branch = result.branches.at(0).result;
-  EXPECT_EQ(branch.stop_reason, "end_of_range") << branch.stop_detail;
-  const auto doublings = points_of_type(branch, "period_doubling");
+  EXPECT_EQ(branch.stop_reason, StopReason::end_of_range) << branch.stop_detail;
+  const auto doublings = points_of_type(branch, BifurcationType::period_doubling);
   ASSERT_EQ(doublings.size(), 1u);
   const double expected = period_doubling(o, 2.24, 2.29);  // 2.2652971759636387
   EXPECT_TRUE(doublings[0].located);
@@ -454,7 +459,7 @@ TEST(Continuation, LinearImpactOnTheImpactSectionHasTheStrobesPeriodDoublingAndM
   EXPECT_LT(doublings[0].error_estimate, 1e-9 * expected);
   // the strobe's branch over the same range: the same point
   const auto strobe = continue_scene(scene, "omega", 2.0, 2.4);
-  const auto strobe_doublings = points_of_type(strobe.branches.at(0).result, "period_doubling");
+  const auto strobe_doublings = points_of_type(strobe.branches.at(0).result, BifurcationType::period_doubling);
   ASSERT_EQ(strobe_doublings.size(), 1u);
   EXPECT_NEAR(doublings[0].parameter, strobe_doublings[0].parameter, 1e-9 * expected);
 
@@ -526,8 +531,8 @@ TEST(Continuation, LinearImpactOnTheImpactSectionEndsWhereItsOwnImpactSpeedVanis
   job.impact_wall = 1;
   const auto result = impactlab::continue_orbit(scene, job);
   const auto& branch = result.branches.at(0).result;
-  EXPECT_EQ(branch.stop_reason, "signature_change") << branch.stop_detail;
-  const auto grazings = points_of_type(branch, "grazing");
+  EXPECT_EQ(branch.stop_reason, StopReason::signature_change) << branch.stop_detail;
+  const auto grazings = points_of_type(branch, BifurcationType::grazing);
   ASSERT_EQ(grazings.size(), 1u) << branch.stop_detail;
   const auto& graze = grazings[0];
   const double omega_graze =
@@ -554,7 +559,7 @@ TEST(Continuation, LinearImpactOnTheImpactSectionEndsWhereItsOwnImpactSpeedVanis
   // the branch itself runs up to the point, and the period doubling on the way
   ASSERT_FALSE(branch.branch.empty());
   EXPECT_LT(branch.branch.back().parameter, graze.parameter);
-  const auto doublings = points_of_type(branch, "period_doubling");
+  const auto doublings = points_of_type(branch, BifurcationType::period_doubling);
   ASSERT_EQ(doublings.size(), 1u);
   const double expected = period_doubling(o, 2.24, 2.29);
   EXPECT_NEAR(doublings[0].parameter, expected, 1e-9 * expected);
@@ -608,8 +613,8 @@ TEST(Continuation, ContactEndOfTheStickingOrbitLocatedAtItsClosedForm) {
   }
   const auto job = continue_scene(scene, "omega", 1.5, 1.8);
   const auto& branch = job.branches.at(0).result;
-  EXPECT_EQ(branch.stop_reason, "end_of_range") << branch.stop_detail;
-  const auto ends = points_of_type(branch, "contact_end");
+  EXPECT_EQ(branch.stop_reason, StopReason::end_of_range) << branch.stop_detail;
+  const auto ends = points_of_type(branch, BifurcationType::contact_end);
   ASSERT_EQ(ends.size(), 1u);
   EXPECT_TRUE(ends[0].located) << ends[0].note;
   EXPECT_NEAR(ends[0].parameter, expected, 1e-9 * expected);
@@ -629,11 +634,11 @@ TEST(Continuation, ContactEndOfTheStickingOrbitLocatedAtItsClosedForm) {
       EXPECT_EQ(point.contact_phases, point.parameter < expected ? 1 : 0) << point.parameter;
     }
   }
-  EXPECT_TRUE(points_of_type(branch, "contact_onset").empty());
+  EXPECT_TRUE(points_of_type(branch, BifurcationType::contact_onset).empty());
 
   // run downwards, the same point is the onset of the contact phase
   const auto down = continue_scene(scene, "omega", 1.8, 1.5);
-  const auto onsets = points_of_type(down.branches.at(0).result, "contact_onset");
+  const auto onsets = points_of_type(down.branches.at(0).result, BifurcationType::contact_onset);
   ASSERT_EQ(onsets.size(), 1u) << down.branches[0].result.stop_detail;
   EXPECT_TRUE(onsets[0].located) << onsets[0].note;
   EXPECT_NEAR(onsets[0].parameter, expected, 1e-9 * expected);
@@ -646,8 +651,9 @@ TEST(Continuation, ContactEndOfTheStickingOrbitLocatedAtItsClosedForm) {
 TEST(Continuation, PendulumBranchReportsTheContactBoundaryAtOmegaEqualToGOverV0) {
   const Scene scene = impactlab::load_scene("jin2003");
   const auto job = continue_scene(scene, "omega", 5.0, 9.0);
-  const auto boundaries = points_of_type(job.branches.at(0).result, "contact_boundary");
+  const auto boundaries = points_of_type(job.branches.at(0).result, BifurcationType::boundary);
   ASSERT_EQ(boundaries.size(), 1u);
+  EXPECT_EQ(impactlab::type_name(boundaries[0]), "contact_boundary");
   const double expected = scene.number("g") / scene.number("V0");
   EXPECT_NEAR(boundaries[0].parameter, expected, 1e-12 * expected);
   EXPECT_TRUE(boundaries[0].located) << boundaries[0].note;
@@ -700,8 +706,8 @@ TEST(Continuation, NeimarkSackerOfARotatingMapAtItsClosedForm) {
   request.start = {0.1, 0.1};  // a guess; Newton finds c(0.2)
   request.tolerance = 1e-11;  // tighter than the default: the point is checked to 1e-12
   const auto result = impactlab::continue_branch(problem, request);
-  EXPECT_EQ(result.stop_reason, "end_of_range") << result.stop_detail;
-  const auto points = points_of_type(result, "neimark_sacker");
+  EXPECT_EQ(result.stop_reason, StopReason::end_of_range) << result.stop_detail;
+  const auto points = points_of_type(result, BifurcationType::neimark_sacker);
   ASSERT_EQ(points.size(), 1u);
   const double expected = std::sqrt(0.5);
   EXPECT_TRUE(points[0].located);
@@ -719,7 +725,7 @@ TEST(Continuation, NeimarkSackerOfARotatingMapAtItsClosedForm) {
 }
 
 ContinuationJob curve_job(const std::string& key, double from, double to, const std::string& key2,
-                          double from2, double to2, const std::string& type) {
+                          double from2, double to2, CurveType type) {
   ContinuationJob job;
   job.parameter = key;
   job.from = from;
@@ -733,15 +739,15 @@ ContinuationJob curve_job(const std::string& key, double from, double to, const 
 
 TEST(CurveContinuation, BouncingBallPeriodDoublingCurveInAmplitudeAndRestitution) {
   const Scene scene = impactlab::load_scene("bouncing_ball");  // g 9.81, ω 30, r 0.8
-  ContinuationJob job = curve_job("A", 0.0112, 0.02, "r", 0.8, 0.5, "period_doubling");
+  ContinuationJob job = curve_job("A", 0.0112, 0.02, "r", 0.8, 0.5, CurveType::period_doubling);
   job.has_start = true;
   const auto start = bouncing_ball_start(9.81, 30.0, 0.8, 0.0112);
   job.start.assign(start.begin(), start.end());
   const auto result = impactlab::continue_orbit(scene, job);
   ASSERT_TRUE(result.has_curve) << result.curve_note;
   const auto& curve = result.curve;
-  EXPECT_EQ(curve.type, "period_doubling");
-  EXPECT_EQ(curve.stop_reason, "end_of_range") << curve.stop_detail;
+  EXPECT_EQ(curve.type, CurveType::period_doubling);
+  EXPECT_EQ(curve.stop_reason, StopReason::end_of_range) << curve.stop_detail;
   ASSERT_GE(curve.curve.size(), 20u);
   EXPECT_EQ(curve.curve.back().p2, 0.5);
   for (const auto& point : curve.curve) {
@@ -781,7 +787,7 @@ struct BallImpactMap {
 // differences) has a multiplier −1: det(DP² + I) = (1 + λ₁)(1 + λ₂) = 0.
 TEST(CurveContinuation, BouncingBallPeriodTwoPeriodDoublingCurveWithSwitch) {
   const Scene scene = impactlab::load_scene("bouncing_ball");  // g 9.81, ω 30, r 0.8
-  ContinuationJob job = curve_job("A", 0.0112, 0.025, "r", 0.8, 0.7, "period_doubling");
+  ContinuationJob job = curve_job("A", 0.0112, 0.025, "r", 0.8, 0.7, CurveType::period_doubling);
   job.has_start = true;
   const auto ball_start = bouncing_ball_start(9.81, 30.0, 0.8, 0.0112);
   job.start.assign(ball_start.begin(), ball_start.end());
@@ -793,8 +799,8 @@ TEST(CurveContinuation, BouncingBallPeriodTwoPeriodDoublingCurveWithSwitch) {
   ASSERT_TRUE(doubled.has_curve) << doubled.note;
   EXPECT_EQ(doubled.branch, 1);
   EXPECT_EQ(doubled.period, 2);
-  EXPECT_EQ(doubled.curve.type, "period_doubling");
-  EXPECT_EQ(doubled.curve.stop_reason, "end_of_range") << doubled.curve.stop_detail;
+  EXPECT_EQ(doubled.curve.type, CurveType::period_doubling);
+  EXPECT_EQ(doubled.curve.stop_reason, StopReason::end_of_range) << doubled.curve.stop_detail;
   ASSERT_GE(doubled.curve.curve.size(), 5u);
   const double period = two_pi / 30.0;
   int compared = 0;
@@ -843,10 +849,10 @@ TEST(CurveContinuation, LinearImpactPeriodDoublingCurveInOmegaAndRestitution) {
   ImpactOscillator o;  // ζ = 0.05, σ = 0, A = 1; r from 0.8 down to 0.6
   const Scene scene = linear_impact_scene(o);
   const auto result = impactlab::continue_orbit(
-      scene, curve_job("omega", 2.5, 2.8, "r", 0.8, 0.6, "period_doubling"));
+      scene, curve_job("omega", 2.5, 2.8, "r", 0.8, 0.6, CurveType::period_doubling));
   ASSERT_TRUE(result.has_curve) << result.curve_note;
   const auto& curve = result.curve;
-  EXPECT_EQ(curve.stop_reason, "end_of_range") << curve.stop_detail;
+  EXPECT_EQ(curve.stop_reason, StopReason::end_of_range) << curve.stop_detail;
   ASSERT_GE(curve.curve.size(), 10u);
   int compared = 0;
   for (std::size_t k = 0; k < curve.curve.size(); k += 4) {
@@ -868,13 +874,13 @@ TEST(CurveContinuation, LinearImpactGrazingCurveInOmegaAndSigma) {
   o.sigma = 0.2;
   const Scene scene = linear_impact_scene(o);
   const auto result = impactlab::continue_orbit(
-      scene, curve_job("omega", 2.0, 2.5, "sigma", 0.2, 0.4, "grazing"));
+      scene, curve_job("omega", 2.0, 2.5, "sigma", 0.2, 0.4, CurveType::grazing));
   ASSERT_TRUE(result.has_curve) << result.curve_note;
   const auto& curve = result.curve;
-  EXPECT_EQ(curve.type, "grazing");
+  EXPECT_EQ(curve.type, CurveType::grazing);
   ASSERT_GE(curve.curve.size(), 20u);
   // ends where ω leaves [2, 2.5] (σ ≈ 0.33 at ω = 2)
-  EXPECT_EQ(curve.stop_reason, "left_range") << curve.stop_detail;
+  EXPECT_EQ(curve.stop_reason, StopReason::left_range) << curve.stop_detail;
   for (const auto& point : curve.curve) {
     const double detuning = 1.0 - point.p1 * point.p1;
     const double amplitude =
@@ -890,12 +896,12 @@ TEST(CurveContinuation, LinearImpactGrazingCurveInOmegaAndSigma) {
 TEST(CurveContinuation, LinearImpactPeriodDoublingCurveOnTheImpactSection) {
   ImpactOscillator o;  // ζ = 0.05, σ = 0, A = 1; r from 0.8 down to 0.6
   const Scene scene = linear_impact_scene(o);
-  ContinuationJob job = curve_job("omega", 2.5, 2.8, "r", 0.8, 0.6, "period_doubling");
+  ContinuationJob job = curve_job("omega", 2.5, 2.8, "r", 0.8, 0.6, CurveType::period_doubling);
   job.impact_wall = 1;
   const auto result = impactlab::continue_orbit(scene, job);
   ASSERT_TRUE(result.has_curve) << result.curve_note;
   const auto& curve = result.curve;
-  EXPECT_EQ(curve.stop_reason, "end_of_range") << curve.stop_detail;
+  EXPECT_EQ(curve.stop_reason, StopReason::end_of_range) << curve.stop_detail;
   EXPECT_NEAR(curve.curve.back().p2, 0.6, 1e-12);
   ASSERT_GE(curve.curve.size(), 10u);
   for (const auto& point : curve.curve) {
@@ -919,12 +925,12 @@ TEST(CurveContinuation, LinearImpactOwnImpactGrazingCurveOnTheImpactSection) {
   ImpactOscillator o;
   o.sigma = 0.2;
   const Scene scene = linear_impact_scene(o);
-  ContinuationJob job = curve_job("omega", 2.0, 2.5, "sigma", 0.2, 0.4, "grazing");
+  ContinuationJob job = curve_job("omega", 2.0, 2.5, "sigma", 0.2, 0.4, CurveType::grazing);
   job.impact_wall = 1;
   const auto result = impactlab::continue_orbit(scene, job);
   ASSERT_TRUE(result.has_curve) << result.curve_note;
   const auto& curve = result.curve;
-  EXPECT_EQ(curve.stop_reason, "left_range") << curve.stop_detail;
+  EXPECT_EQ(curve.stop_reason, StopReason::left_range) << curve.stop_detail;
   ASSERT_GE(curve.curve.size(), 20u);
   for (const auto& point : curve.curve) {
     const double amplitude = harmonic_amplitude(o, point.p1);
@@ -946,20 +952,20 @@ TEST(CurveContinuation, LinearImpactOwnImpactGrazingCurveOnTheImpactSection) {
 TEST(CurveContinuation, BouncingBallFoldCurveOnTheImpactSection) {
   const Scene scene = impactlab::load_scene("bouncing_ball");  // g 9.81, ω 30, r 0.8
   const double g = 9.81, omega = 30.0, r = 0.8, period = two_pi / omega;
-  ContinuationJob job = curve_job("A", 0.0112, 0.003, "r", 0.8, 0.6, "fold");
+  ContinuationJob job = curve_job("A", 0.0112, 0.003, "r", 0.8, 0.6, CurveType::fold);
   job.impact_wall = -1;
   job.has_start = true;
   job.start = {std::acos(std::numbers::pi * (1.0 - r) / (0.0112 * omega * omega / g * (1.0 + r))),
                -0.5 * g * period};
   const auto result = impactlab::continue_orbit(scene, job);
-  const auto folds = points_of_type(result.branches.at(0).result, "fold");
+  const auto folds = points_of_type(result.branches.at(0).result, BifurcationType::fold);
   ASSERT_EQ(folds.size(), 1u) << result.branches[0].result.stop_detail;
   const double fold_at = std::numbers::pi * (1.0 - r) / (1.0 + r) * g / (omega * omega);
   EXPECT_NEAR(folds[0].parameter, fold_at, 1e-9 * fold_at);
   ASSERT_TRUE(result.has_curve) << result.curve_note;
   const auto& curve = result.curve;
-  EXPECT_EQ(curve.type, "fold");
-  EXPECT_EQ(curve.stop_reason, "end_of_range") << curve.stop_detail;
+  EXPECT_EQ(curve.type, CurveType::fold);
+  EXPECT_EQ(curve.stop_reason, StopReason::end_of_range) << curve.stop_detail;
   ASSERT_GE(curve.curve.size(), 10u);
   for (const auto& point : curve.curve) {
     const double expected = std::numbers::pi * (1.0 - point.p2) / (1.0 + point.p2) * g /
@@ -973,12 +979,12 @@ TEST(CurveContinuation, BouncingBallFoldCurveOnTheImpactSection) {
 TEST(CurveContinuation, NoPointOfTheTypeOnTheBranchGivesNoCurve) {
   const ImpactOscillator o;
   const Scene scene = linear_impact_scene(o);
-  ContinuationJob job = curve_job("omega", 3.0, 4.0, "r", 0.8, 0.6, "fold");  // no fold up to 7
+  ContinuationJob job = curve_job("omega", 3.0, 4.0, "r", 0.8, 0.6, CurveType::fold);  // no fold up to 7
   job.has_start = true;
   const auto start = PeriodOneOrbit(o, 3.0).section_state();
   job.start.assign(start.begin(), start.end());
   const auto result = impactlab::continue_orbit(scene, job);
-  ASSERT_EQ(result.branches.at(0).result.stop_reason, "end_of_range");
+  ASSERT_EQ(result.branches.at(0).result.stop_reason, StopReason::end_of_range);
   EXPECT_FALSE(result.has_curve);
   EXPECT_NE(result.curve_note.find("fold"), std::string::npos);
 }

@@ -108,7 +108,7 @@ TEST(Checkpoint, LinesGiveBackEveryBit) {
                           {std::numbers::pi, -0.0, 1e300, -1}};
   record.result.final_state = impactlab::ContinuationState{{0.1 + 0.2, -1.0 / 7.0, 0.0}, 2};
   record.result.lyapunov = -std::numeric_limits<double>::infinity();
-  record.result.termination = "completed";
+  record.result.termination = impactlab::SectionTermination::completed;
   record.result.impacts = 123;
   record.result.periods_recorded = 50;
   record.classification = {2, 2.46, true};

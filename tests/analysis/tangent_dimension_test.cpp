@@ -227,11 +227,11 @@ TEST(TangentDimension, FourStateContinuationLocatesTheLinearImpactPeriodDoubling
   ASSERT_TRUE(result.available) << result.note;
   EXPECT_EQ(result.dimension, 4u);
   const auto& branch = result.branches.at(0).result;
-  EXPECT_EQ(branch.stop_reason, "end_of_range") << branch.stop_detail;
+  EXPECT_EQ(branch.stop_reason, impactlab::StopReason::end_of_range) << branch.stop_detail;
   std::vector<BifurcationPoint> doublings;
   for (const auto& point : branch.points) {
-    EXPECT_NE(point.type, "fold");
-    if (point.type == "period_doubling") doublings.push_back(point);
+    EXPECT_NE(point.type, impactlab::BifurcationType::fold);
+    if (point.type == impactlab::BifurcationType::period_doubling) doublings.push_back(point);
   }
   ASSERT_EQ(doublings.size(), 1u);
   EXPECT_TRUE(doublings[0].located);

@@ -159,6 +159,55 @@ INSTANTIATE_TEST_SUITE_P(
                   {"poincare", "linear_impact", "--set", "omega=1e-308"}, "omega"}),
     [](const auto& info) { return info.param.name; });
 
+// The library names an option by its own name (`transient`, `set`) and the
+// command line spells it as its flag: each line as the program printed it
+// when the library still wrote the flags itself.
+struct SpelledLine {
+  std::string name;
+  std::vector<std::string> arguments;
+  std::string line;  // stderr, without "impactlab: " and the newline
+};
+
+class LibraryMessagesSpellFlags : public ::testing::TestWithParam<SpelledLine> {};
+
+TEST_P(LibraryMessagesSpellFlags, AsTheCommandLineWroteThem) {
+  const ScratchFolder dir;
+  std::vector<std::string> arguments = GetParam().arguments;
+  arguments.insert(arguments.end(), {"--quiet", "--out", "o"});
+  const ProgramRun run = run_impactlab(arguments, {.directory = dir.path(), .limit_s = 120});
+  EXPECT_EQ(run.status, 2) << run.err;
+  EXPECT_EQ(run.err, "impactlab: " + GetParam().line + "\n");
+}
+
+const std::string max_steps_hint = " (raise it with --set limits.max_steps=N)";
+
+INSTANTIATE_TEST_SUITE_P(
+    SectionSweepRunAndContinuation, LibraryMessagesSpellFlags,
+    ::testing::Values(
+        SpelledLine{"transient",
+                    {"poincare", "jin2003", "--transient", "1e9"},
+                    "--transient = 1000000000: needs at least 1.6e+10 steps, over "
+                    "limits.max_steps = 100000000" + max_steps_hint},
+        SpelledLine{"t_end",
+                    {"simulate", "jin2003", "--t-end", "1e300"},
+                    "--t-end = 1e+300: needs at least 1.78e+301 steps, over limits.max_steps = "
+                    "100000000" + max_steps_hint},
+        SpelledLine{"sample",
+                    {"simulate", "jin2003", "--sample", "1e-308"},
+                    "--sample = 1e-308: would write inf rows, over limits.max_rows = 10000000 "
+                    "(raise it with --set limits.max_rows=N)"},
+        SpelledLine{"param",
+                    {"sweep", "jin2003", "--param", "model=0:1:5"},
+                    "--param = model: not a numeric key of oscillator pendulum_walls"},
+        SpelledLine{"section",
+                    {"continue",
+                     std::string(IMPACTLAB_SOURCE_DIR) +
+                         "/oscillators/model_file/examples/impact_damper.toml",
+                     "--param", "omega=2:2.5", "--section", "impact:1"},
+                    "--section = impact:1: the impact section takes a one-degree-of-freedom "
+                    "orbit; use the strobe"}),
+    [](const auto& info) { return info.param.name; });
+
 TEST(BadOptions, TEndNeverNamedWhenNotGiven) {
   const ScratchFolder dir;
   const ProgramRun run = run_impactlab({"simulate", "linear_impact", "--set", "omega=1e-308"},

@@ -163,7 +163,7 @@ TEST(BouncingBallAccumulation, MatchesTheClosedFormAtEverySetting) {
              std::string("integrator.method=") + method, setting("integrator.rtol", rtol),
              setting("accumulation_tol", accumulation_tol)},
             2.0);
-        ASSERT_EQ(output.termination, "completed");
+        ASSERT_EQ(output.termination, impactlab::Termination::completed);
         const EventRecord* acc = first_accumulation(output);
         ASSERT_NE(acc, nullptr);
         // a fixed table: the constant-acceleration sum is exact, the error is
@@ -257,7 +257,7 @@ double Jin2003Accumulation::reference_ = NAN;
 TEST_F(Jin2003Accumulation, DefaultSettingsAreWithinANanosecondOfTheReference) {
   ASSERT_TRUE(std::isfinite(reference_));
   const RunOutput output = run_scene("jin2003", {"V0=4.163"}, reference_ + 0.5);
-  ASSERT_EQ(output.termination, "completed");
+  ASSERT_EQ(output.termination, impactlab::Termination::completed);
   const EventRecord* acc = first_accumulation(output);
   ASSERT_NE(acc, nullptr);
   EXPECT_NEAR(acc->t, reference_, 1e-9);
@@ -283,7 +283,7 @@ TEST_F(Jin2003Accumulation, EverySettingCompletesAndTheErrorFallsWithTheToleranc
                     {"V0=4.163", setting("integrator.rtol", rtols[i]),
                      setting("accumulation_tol", accumulation_tol)},
                     reference_ + 0.5);
-      ASSERT_EQ(output.termination, "completed");
+      ASSERT_EQ(output.termination, impactlab::Termination::completed);
       const EventRecord* acc = first_accumulation(output);
       ASSERT_NE(acc, nullptr);
       error[i].push_back(std::fabs(acc->t - reference_));
@@ -318,7 +318,7 @@ TEST_F(Jin2003Accumulation, ModelPAtTangentialRestitutionMinusOneMatchesTheRefer
                     {"model=paper", "e_t=-1", "V0=4.163", setting("integrator.rtol", rtol),
                      setting("accumulation_tol", accumulation_tol)},
                     reference_ + 0.5);
-      ASSERT_EQ(output.termination, "completed");
+      ASSERT_EQ(output.termination, impactlab::Termination::completed);
       const EventRecord* acc = first_accumulation(output);
       ASSERT_NE(acc, nullptr);
       if (rtol <= 1e-12) {
@@ -340,7 +340,7 @@ TEST(RigidPendulumAccumulation, EverySettingCompletesWithinItsReportedBound) {
         {"model=rigid", "V0=4.163", setting("integrator.rtol", rtol),
          setting("accumulation_tol", accumulation_tol)},
         1.6);
-    EXPECT_EQ(output.termination, "completed");
+    EXPECT_EQ(output.termination, impactlab::Termination::completed);
     const EventRecord* acc = first_accumulation(output);
     EXPECT_NE(acc, nullptr);
     return acc ? std::pair<double, double>{acc->t, acc->accumulation_error}
@@ -434,7 +434,7 @@ TEST(LinearImpactAccumulation, MatchesTheClosedFormReferenceAtEveryTolerance) {
   const auto accumulation_with = [&](std::vector<std::string> assignments) {
     assignments.insert(assignments.begin(), scene.begin(), scene.end());
     const RunOutput output = run_scene("linear_impact", assignments, reference + 1.0);
-    EXPECT_EQ(output.termination, "completed");
+    EXPECT_EQ(output.termination, impactlab::Termination::completed);
     const EventRecord* acc = first_accumulation(output);
     EXPECT_NE(acc, nullptr);
     return acc ? *acc : EventRecord{};
@@ -470,7 +470,7 @@ TEST(Jin2003Chatter, WhereTheWallStopsAttractingRunsThrough) {
         {"omega=5.606060606060606", "V0=1.9545454545454546", "initial.theta=0.02533801725182166",
          "initial.theta_dot=-0.006388163122412664", "integrator.method=" + method},
         150.0 * 2.0 * std::numbers::pi / 5.606060606060606);  // 150 forcing periods (s)
-    EXPECT_EQ(output.termination, "completed") << method << " stopped at t = " << output.t_final;
+    EXPECT_EQ(output.termination, impactlab::Termination::completed) << method << " stopped at t = " << output.t_final;
     EXPECT_GT(output.impacts, 50u) << method;
   }
 }

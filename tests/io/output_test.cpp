@@ -133,6 +133,51 @@ TEST(EventsCsvWriter, WritesEachEventWithAllItsDigits) {
   EXPECT_EQ(std::stod(second.substr(second.rfind(',') + 1)), accumulation.accumulation_error);
 }
 
+// What a model adds to the core's record (io/event_extension.hpp) is asked
+// of the extender for each event and written in its own columns; without an
+// extender they stay empty.
+TEST(EventsCsvWriter, WritesEachEventsExtensionInItsColumns) {
+  const ScratchFolder scratch;
+  const auto dir = scratch / "writer_extension";
+  RunFiles files(dir);
+  EventsCsvWriter extended(files.add("extended.csv"), [](const EventRecord& event) {
+    return event.kind == EventKind::impact ? EventExtension{0.125, -2.5} : EventExtension{};
+  });
+  EventsCsvWriter plain(files.add("plain.csv"));
+  EventRecord impact{0.1, EventKind::impact, 1, 0.07, -0.5, 0.15};
+  EventRecord graze{0.2, EventKind::grazing, -1, -0.07, 0.0, 0.0};
+  for (EventsCsvWriter* writer : {&extended, &plain}) {
+    writer->write(impact);
+    writer->write(graze);
+  }
+  files.commit();
+  const auto rows = [](const std::string& text) {
+    std::vector<std::vector<std::string>> table;
+    std::istringstream lines(text);
+    for (std::string line; std::getline(lines, line);) {
+      std::vector<std::string> fields;
+      std::stringstream row(line);
+      for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+      table.push_back(fields);
+    }
+    return table;
+  };
+  const auto with = rows(slurp(dir / "extended.csv")), without = rows(slurp(dir / "plain.csv"));
+  ASSERT_EQ(with.size(), 3u);
+  ASSERT_EQ(without.size(), 3u);
+  ASSERT_GE(with[0].size(), 12u);
+  EXPECT_EQ(with[0][10], "instantaneous_residual");
+  EXPECT_EQ(with[0][11], "sliding_residual");
+  EXPECT_EQ(with[1][10], "0.125");
+  EXPECT_EQ(with[1][11], "-2.5");
+  EXPECT_EQ(with[2][10], "");  // the graze: not computed
+  EXPECT_EQ(without[1][10], "");
+  EXPECT_EQ(without[1][11], "");
+  // the other columns do not depend on the extension
+  EXPECT_EQ(with[0], without[0]);
+  for (std::size_t column : {0, 1, 2, 3, 4, 5}) EXPECT_EQ(with[1][column], without[1][column]);
+}
+
 // The command line: meta.json cannot be written (its name is a directory),
 // so neither events.csv nor anything else of the run appears.
 TEST(SimulateFiles, MetaUnwritableMeansNoEventsCsv) {

@@ -106,18 +106,18 @@ struct Tally {
 template <class Gap, class WallVelocity>
 void check_run(const RunOutput& output, const std::string& context, bool painleve_possible,
                Gap wall_gap, WallVelocity wall_velocity, bool check_walls, Tally& tally) {
-  ++tally.terminations[output.termination];
+  ++tally.terminations[std::string(to_string(output.termination))];
   const bool painleve_stop = painleve_possible &&
-                             output.termination == "stopped_by_model" && !output.events.empty() &&
+                             output.termination == Termination::stopped_by_model && !output.events.empty() &&
                              output.events.back().kind == EventKind::painleve;
   if (!painleve_stop) {
-    EXPECT_EQ(output.termination, "completed") << context;
+    EXPECT_EQ(output.termination, Termination::completed) << context << to_string(output.termination);
   }
   for (const auto& event : output.events) {
     EXPECT_TRUE(event.kind != EventKind::painleve || painleve_possible)
         << context << " Painlevé event at t = " << event.t;
   }
-  const bool finite_run = output.termination != "non_finite_state";
+  const bool finite_run = output.termination != Termination::non_finite_state;
   for (const auto& event : output.events) {
     const bool numbers_finite = std::isfinite(event.t) && std::isfinite(event.q) &&
                                 std::isfinite(event.qdot_before) && std::isfinite(event.qdot_after);

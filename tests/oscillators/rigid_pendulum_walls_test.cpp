@@ -73,7 +73,7 @@ TEST(RigidPendulum, LockedSpinZeroRadiusReproducesModelN) {
   // changes sign, the impacts chatter, accumulate and a sliding contact follows
   const RunOutput newton = run_scene({}, 60.0);
   const RunOutput rigid = run_scene({"model=rigid", "spin=locked", "radius=0"}, 60.0);
-  EXPECT_EQ(rigid.termination, "completed");
+  EXPECT_EQ(rigid.termination, impactlab::Termination::completed);
   expect_same_impacts(newton, rigid, 1e-9);
 
   // V0 = 7 m/s: contact phases with slip reversals (the pivot's velocity
@@ -232,7 +232,7 @@ TEST(RigidPendulum, RollingContactsDoNotCrawl) {
   };
   const RunOutput rough = run_with("15");
   const RunOutput smooth = run_with("0.6");
-  EXPECT_EQ(rough.termination, "completed");
+  EXPECT_EQ(rough.termination, impactlab::Termination::completed);
   EXPECT_GT(rough.contact_phases, 40u);
   std::size_t rolling = 0, rolling_smooth = 0;
   for (const auto& sample : rough.samples) rolling += sample.mode.starts_with("stick") ? 1 : 0;
@@ -257,7 +257,7 @@ TEST(RigidPendulum, StickEndsOnTheConeEdgeOnTheTaylorStepper) {
   rkf78_run.push_back("integrator.method=rkf78");
   const RunOutput taylor = run_scene(taylor_run, 20.0);
   const RunOutput rkf78 = run_scene(rkf78_run, 20.0);
-  ASSERT_EQ(taylor.termination, "completed");
+  ASSERT_EQ(taylor.termination, impactlab::Termination::completed);
 
   const Scene scene = load_scene("jin2003");
   const double m = scene.number("m"), l = scene.number("l"), b = scene.number("b"),

@@ -88,6 +88,23 @@ def test_bad_option_raises_value_error_naming_it(call, named):
     assert str(raised.value).startswith(named + " = "), str(raised.value)
 
 
+@pytest.mark.parametrize("call, line", [
+    (lambda: impactlab.poincare("jin2003", transient=1e9),
+     "transient = 1000000000: needs at least 1.6e+10 steps, over limits.max_steps = 100000000 "
+     "(raise it with set limits.max_steps=N)"),
+    (lambda: impactlab.simulate("jin2003", t_end=1e300),
+     "t_end = 1e+300: needs at least 1.78e+301 steps, over limits.max_steps = 100000000 "
+     "(raise it with set limits.max_steps=N)"),
+    (lambda: impactlab.sweep("jin2003", param="model=0:1:5"),
+     "param = model: not a numeric key of oscillator pendulum_walls"),
+])
+def test_library_message_names_the_python_keyword(call, line):
+    """The library names an option by its own name, the Python keyword."""
+    with pytest.raises(ValueError) as raised:
+        call()
+    assert str(raised.value) == line
+
+
 def test_progress_callback_is_called_with_growing_fractions():
     fractions = []
     impactlab.simulate("jin2003", periods=50, progress=fractions.append)

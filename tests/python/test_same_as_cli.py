@@ -1,5 +1,6 @@
 """Every entry point gives the numbers of the CLI's files bit for bit, for
 the same scene and options."""
+import math
 import os
 import subprocess
 
@@ -46,6 +47,21 @@ def test_simulate_the_issue_example_equals_cli_events(cli):
     for column in EVENT_COLUMNS:
         same_numbers(events[column], run.events[column])
     assert list(run.events.kind_names()) == events["kind"]
+
+
+def test_simulate_paper_model_equals_cli_events_with_its_residuals(cli):
+    # Model P's impact residuals are its extension of the core's record: the
+    # events array carries them as events.csv does, at every impact
+    out = cli("simulate", "jin2003", "--set", "model=paper", "--set", "V0=4.163", "--periods", "30")
+    run = impactlab.simulate("jin2003", model="paper", V0=4.163, periods=30)
+    events = read_csv(out / "events.csv")
+    assert len(run.events) == len(events["t"]) > 10
+    for column in EVENT_COLUMNS:
+        same_numbers(events[column], run.events[column])
+    impacts = [k for k, kind in enumerate(events["kind"]) if kind == "impact"]
+    assert impacts
+    assert all(math.isfinite(run.events["instantaneous_residual"][k]) for k in impacts)
+    assert all(math.isfinite(run.events["sliding_residual"][k]) for k in impacts)
 
 
 def test_scenes_equal_cli_list():

@@ -1,0 +1,109 @@
+// The section map of a continuation as the drivers see it: a period-n orbit
+// is a fixed point of the n-fold stroboscopic map Pⁿ(x; p) (or of the impact
+// map of one wall, state (impact phase, q̇⁻)), given as functions of the
+// state on the section (its N tangent components: (q, q̇), or a model file's
+// N states) and of one parameter p. The drivers (branch_continuation.hpp,
+// curve_continuation.hpp) know no oscillator; stroboscopic_map_problem.hpp
+// and impact_map_problem.hpp build a problem for a concrete system.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <impactlab/analysis/continuation.hpp>
+#include <impactlab/analysis/floquet_multipliers.hpp>
+
+namespace impactlab {
+
+// Contacts of one wall suppressed in a time window: the virtual orbit through
+// a grazing point. Times are measured from the section (s).
+struct ContactWindow {
+  int witness = -1;  // -1: none suppressed
+  double from = 0.0, to = 0.0;
+};
+
+// One evaluation of the n-fold section map.
+struct OrbitEvaluation {
+  bool completed = false;      // the run reached the section again
+  OrbitPoint image{};        // Pⁿ(x; p)
+  MonodromyMatrix monodromy;   // ∂Pⁿ/∂x, saltation matrices included
+  int impacts = 0;             // impacts over the n periods
+  int contact_phases = 0;      // contact phases (sticking) over the n periods
+  std::string signature;       // the walls of the events in order ("+1 +1 -1", "+1 c+1": contact)
+  double min_impact_speed = std::numeric_limits<double>::infinity();  // min |q̇⁻| of the impacts
+  // the smallest local minimum of a wall gap in flight (not at an impact), from
+  // samples of the orbit; its time since the section (s) and its witness
+  double min_flight_gap = std::numeric_limits<double>::infinity();
+  double min_flight_gap_time = std::numeric_limits<double>::quiet_NaN();
+  int min_flight_gap_witness = -1;
+  // the time since the section (s) and witness of the impact of smallest speed
+  double slowest_impact_time = std::numeric_limits<double>::quiet_NaN();
+  int slowest_impact_witness = -1;
+  std::vector<double> event_times;  // every event, time since the section (s)
+  double span = 0.0;                // nT (s)
+  double omega = 0.0;               // forcing frequency (rad/s)
+};
+
+// A witness (wall gap) and its rate along the orbit at a time since the section.
+struct GapSample {
+  bool completed = false;
+  double value = 0.0;  // gap (the witness's unit: length or rad)
+  double rate = 0.0;   // its time derivative along the flow
+  OrbitPoint state{};  // the N components of the state there
+};
+
+// A boundary that depends on the parameter alone, reported where the branch
+// crosses it (a sign change of `value`) and located exactly (the root of
+// `value`, then the orbit corrected there): the pendulum's V0·ω = g, below
+// which no contact phase can exist.
+struct ParameterBoundary {
+  std::string name;  // its type in points.csv
+  std::string note;
+  std::function<double(double p)> value;
+};
+
+// The section is ωt ≡ phase (mod 2π); the driver may move it off an impact
+// that comes too close to it (where the stroboscopic map jumps) and reports
+// every state on the requested `phase`.
+struct ContinuationProblem {
+  // Pⁿ(x; p) and what the orbit does on the way; `detailed` also samples the
+  // flight gaps (a few times dearer)
+  std::function<OrbitEvaluation(const OrbitPoint& x, double p, double phase, bool detailed,
+                                const ContactWindow& suppressed)>
+      evaluate;
+  // the gap of `suppressed.witness` at time t since the section along the
+  // orbit from x at p, with that wall's contacts in the window suppressed
+  std::function<GapSample(const OrbitPoint& x, double p, double phase,
+                          const ContactWindow& suppressed, double t)>
+      gap_at;
+  // the state reached from x on section `from` at the next section `to`
+  std::function<std::optional<OrbitPoint>(const OrbitPoint& x, double p, double from, double to)>
+      transport;
+  double phase = 0.0;                // rad: the requested section
+  // the driver may move a stroboscopic section off events (`transport`); an
+  // impact section lies on its events and stays
+  bool section_moves = true;
+  double forcing_period_at_p = 0.0;  // nT at the start (s): the scale of the grazing window
+  std::size_t dimension = 2;         // N: the components of an OrbitPoint
+  std::vector<ParameterBoundary> boundaries;  // reported where the branch crosses them
+  // The impact section only. Where the impact with the section's own wall
+  // grazes (its speed goes to zero), the section is tangent to the flow and
+  // the impact map ends, so that grazing is solved on the stroboscopic map of
+  // the same system instead, by the same extended system as every grazing
+  // (the wall's contacts suppressed near t_g): `strobe` is that map (its
+  // phase set per call), `to_strobe(x, p, phase)` the state that the orbit
+  // from the impact x on this section reaches at the next ωt ≡ phase (along
+  // the virtual orbit: the section wall's contacts suppressed within nT/10 of
+  // the impact), and `section_witness` the section wall's witness (−1: a
+  // stroboscopic section, none of this).
+  int section_witness = -1;
+  std::shared_ptr<const ContinuationProblem> strobe;
+  std::function<std::optional<OrbitPoint>(const OrbitPoint& x, double p, double phase)> to_strobe;
+};
+
+}  // namespace impactlab
