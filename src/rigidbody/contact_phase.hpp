@@ -20,9 +20,9 @@
 #include <cmath>
 
 #include <Eigen/Core>
-#include <Eigen/QR>
 
 #include <impactlab/rigidbody/generalized_system.hpp>
+#include <impactlab/rigidbody/minimum_norm_solution.hpp>
 
 namespace impactlab::rigidbody {
 
@@ -85,8 +85,7 @@ ContactForces contact_forces(const GeneralizedContact<N>& contact, double mu, do
     ++solutions;
     found = ContactForces{};
   }
-  const Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix2d> decomposition(G);
-  const Eigen::Vector2d stick = decomposition.solve(-a);
+  const Eigen::Vector2d stick = minimum_norm_solution(G, Eigen::Vector2d(-a));
   const bool reachable = (G * stick + a).norm() <= 1e-12 * (G.norm() * stick.norm() + a.norm());
   if (reachable && stick(0) > 0.0 && std::fabs(stick(1)) <= mu * stick(0)) {
     ++solutions;

@@ -34,7 +34,8 @@
 #include <cmath>
 
 #include <Eigen/Core>
-#include <Eigen/QR>
+
+#include <impactlab/rigidbody/minimum_norm_solution.hpp>
 
 namespace impactlab::rigidbody {
 
@@ -79,8 +80,7 @@ NewtonCoulombImpulse<D> newton_coulomb_impulse(const Eigen::Matrix<double, D, D>
   // stick: J from K J = Δu, in the range of K only
   const Vector target = -c.e_n * u_n * normal - c.e_t * u_t;
   const Vector delta = target - u_before;
-  const Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, D, D>> decomposition(K);
-  const Vector stick = decomposition.solve(delta);
+  const Vector stick = minimum_norm_solution(K, delta);
   const double scale = K.norm() * stick.norm() + delta.norm();
   const bool reachable = (K * stick - delta).norm() <= 1e-12 * scale;
   const double stick_n = normal.dot(stick);
