@@ -23,6 +23,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/integrate/stepper_dispatch.hpp>
 #include <impactlab/analysis/floquet.hpp>
 #include <impactlab/analysis/sweep.hpp>
@@ -183,7 +184,7 @@ TEST(Lyapunov, StablePeriodTwoOrbitOfThePendulum) {
   const FlowSetup setup{"rk8pd", 1e-12, 1e-13};
   const double period = two_pi / p.omega;
   impactlab::EventLog log(false);
-  const auto transient = impactlab::with_stepper<impactlab::PendulumWalls>(
+  const auto transient = impactlab::with_flow<impactlab::PendulumWalls>(
       setup.method, impactlab::stepper_settings(system, setup), [&](auto& stepper) {
         return impactlab::simulate(system, stepper, impactlab::PendulumWalls::State{0.0, 0.1, 0.0},
                                    impactlab::PendulumWalls::Mode::free, 0.0, 100 * period,

@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/analysis/floquet.hpp>
 #include <impactlab/analysis/saltation.hpp>
 #include <impactlab/simulate/simulator.hpp>
@@ -147,7 +148,7 @@ TEST(Saltation, BouncingBallStickingPhaseCollapsesNearbyStates) {
   const double period = 2.0 * std::numbers::pi / p.omega;
   // a start in flight: the first of the times 50T + kT/8 where the ball is free
   auto run_to = [&](double t_end, impactlab::EventLog& log) {
-    return impactlab::with_stepper<impactlab::BouncingBall>(
+    return impactlab::with_flow<impactlab::BouncingBall>(
         setup.method, impactlab::stepper_settings(system, setup), [&](auto& stepper) {
           return impactlab::simulate(system, stepper, impactlab::BouncingBall::State{0.05, 0.0},
                                      impactlab::BouncingBall::Mode::free, 0.0, t_end,
@@ -166,7 +167,7 @@ TEST(Saltation, BouncingBallStickingPhaseCollapsesNearbyStates) {
   }
   ASSERT_GT(start, 0.0);
   impactlab::EventLog log(true);
-  const auto run = impactlab::with_stepper<impactlab::BouncingBall>(
+  const auto run = impactlab::with_flow<impactlab::BouncingBall>(
       setup.method, impactlab::stepper_settings(system, setup), [&](auto& stepper) {
         return impactlab::simulate(system, stepper, x0, impactlab::BouncingBall::Mode::free, start,
                                    start + period, impactlab::loop_options(setup), log);
@@ -197,7 +198,7 @@ TEST(Saltation, PendulumContactPhaseCollapsesNearbyStates) {
   using Pendulum = impactlab::PendulumWalls;
   auto run_from = [&](const Pendulum::State& x, Pendulum::Mode mode, double t0, double t1,
                       impactlab::EventLog& log) {
-    return impactlab::with_stepper<Pendulum>(
+    return impactlab::with_flow<Pendulum>(
         setup.method, impactlab::stepper_settings(system, setup), [&](auto& stepper) {
           return impactlab::simulate(system, stepper, x, mode, t0, t1,
                                      impactlab::loop_options(setup), log);

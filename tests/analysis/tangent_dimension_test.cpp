@@ -32,6 +32,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/analysis/continuation.hpp>
 #include <impactlab/analysis/floquet.hpp>
 #include <impactlab/api/scene_jobs.hpp>
@@ -298,7 +299,7 @@ std::shared_ptr<const CompiledModel> impact_damper() {
 System4::State flow(const System4& system, const FlowSetup& setup, System4::State x0, double t0,
                     double t1, std::uint64_t* impacts = nullptr) {
   EventLog log(false);
-  const auto run = with_stepper<System4>(setup.method, stepper_settings(system, setup),
+  const auto run = with_flow<System4>(setup.method, stepper_settings(system, setup),
                                          [&](auto& stepper) {
                                            return simulate(system, stepper, x0, System4::free_mode,
                                                            t0, t1, loop_options(setup), log);

@@ -21,6 +21,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/analysis/floquet.hpp>
 #include <impactlab/analysis/variational.hpp>
 #include <impactlab/simulate/simulator.hpp>
@@ -203,7 +204,7 @@ struct Attractor {
 };
 Attractor jin2003_attractor(const PendulumWalls& system, double period) {
   impactlab::EventLog log(false);
-  const auto run = impactlab::with_stepper<PendulumWalls>(
+  const auto run = impactlab::with_flow<PendulumWalls>(
       rkf78.method, impactlab::stepper_settings(system, rkf78), [&](auto& stepper) {
         return impactlab::simulate(system, stepper, PendulumWalls::State{0.0, 0.1, 0.0},
                                    PendulumWalls::Mode::free, 0.0, 100 * period,
@@ -283,7 +284,7 @@ TEST(VariationalTaylor, PendulumContactPhasesCollapseTheJacobian) {
   const double period = two_pi / p.omega;
   const PendulumWalls::State x0{0.0, 0.1, 0.0};
   impactlab::EventLog log(false);
-  impactlab::with_stepper<PendulumWalls>(
+  impactlab::with_flow<PendulumWalls>(
       rkf78.method, impactlab::stepper_settings(system, rkf78), [&](auto& stepper) {
         return impactlab::simulate(system, stepper, x0, PendulumWalls::Mode::free, 0.0, 3 * period,
                                    impactlab::loop_options(rkf78), log);

@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/polynomial_roots.hpp>
 #include <impactlab/integrate/stepper_dispatch.hpp>
@@ -222,7 +223,7 @@ TEST(TaylorStepper, PendulumImpactTimesAgreeWithRkf78) {
     settings.atol = 1e-14;
     settings.max_step = system.max_step();
     EventLog log;
-    const auto result = with_stepper<PendulumWalls>(method, settings, [&](auto& stepper) {
+    const auto result = with_flow<PendulumWalls>(method, settings, [&](auto& stepper) {
       return simulate(system, stepper, PendulumWalls::State{0.0, 0.1, 0.0},
                       PendulumWalls::Mode::free, 0.0, t_end, LoopOptions{}, log);
     });

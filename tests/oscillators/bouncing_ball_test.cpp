@@ -21,6 +21,7 @@
 #include <boost/math/tools/roots.hpp>
 #include <gtest/gtest.h>
 
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/api/work_precision.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/stepper_dispatch.hpp>
@@ -158,7 +159,7 @@ std::vector<EventRecord> simulate_events(const BouncingBall& system, std::string
   settings.max_step = max_step_multiple * system.max_step();
   EventLog log;
   const LoopOptions options;
-  const auto result = impactlab::with_stepper<BouncingBall>(method, settings, [&](auto& stepper) {
+  const auto result = impactlab::with_flow<BouncingBall>(method, settings, [&](auto& stepper) {
     return impactlab::simulate(system, stepper, BouncingBall::State{start.y0, start.v0},
                                BouncingBall::Mode::free, start.t0, t_end, options, log);
   });

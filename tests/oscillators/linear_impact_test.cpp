@@ -22,6 +22,7 @@
 #include <boost/math/tools/roots.hpp>
 #include <gtest/gtest.h>
 
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/api/work_precision.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/stepper_dispatch.hpp>
@@ -178,7 +179,7 @@ std::vector<EventRecord> simulate_events(const LinearImpact& system, std::string
   settings.max_step = max_step_multiple * system.max_step();
   EventLog log;
   const LoopOptions options;
-  const auto result = impactlab::with_stepper<LinearImpact>(method, settings, [&](auto& stepper) {
+  const auto result = impactlab::with_flow<LinearImpact>(method, settings, [&](auto& stepper) {
     return impactlab::simulate(system, stepper, x0, LinearImpact::Mode::free, t0, t_end, options,
                                log);
   });

@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/analysis/floquet.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/stepper_dispatch.hpp>
@@ -66,7 +67,7 @@ std::vector<EventRecord> run_events(const System& system, typename System::State
   LoopOptions options;
   options.location.grazing_tolerance = settings.atol;
   EventLog log;
-  const auto result = with_stepper<System>("dopri5", settings, [&](auto& stepper) {
+  const auto result = with_flow<System>("dopri5", settings, [&](auto& stepper) {
     return simulate(system, stepper, x0, mode, 0.0, t_end, options, log);
   });
   EXPECT_EQ(result.termination, Termination::completed);
@@ -166,7 +167,7 @@ PeriodicOrbit<typename System::State, typename System::Mode> orbit_of(
   const double period = 2 * std::numbers::pi / omega;
   EventLog log(false);
   StepperSettings settings = stepper_settings(system, setup);
-  const auto transient = with_stepper<System>(setup.method, settings, [&](auto& stepper) {
+  const auto transient = with_flow<System>(setup.method, settings, [&](auto& stepper) {
     return simulate(system, stepper, x0, mode, 0.0, 50 * period, loop_options(setup), log);
   });
   return locate_periodic_orbit(system, setup, transient.state, transient.mode, 50 * period, period);

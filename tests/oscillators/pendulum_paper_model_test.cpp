@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/core/event_log.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/stepper_dispatch.hpp>
@@ -113,7 +114,7 @@ PaperRun run_paper(const PendulumWallsParameters& p, std::string_view method, co
   settings.atol = 1e-13;
   settings.max_step = system.max_step();
   PaperRun out;
-  out.result = with_stepper<PaperPendulumWalls>(method, settings, [&](auto& stepper) {
+  out.result = with_flow<PaperPendulumWalls>(method, settings, [&](auto& stepper) {
     return simulate(system, stepper, x0, PendulumMode::free, t0, t_end, LoopOptions{}, out.log,
                     std::forward<Observer>(observer));
   });
@@ -234,7 +235,7 @@ TEST_P(PaperModel, TangentialRestitutionMinusOneIsModelN) {
   settings.atol = 1e-13;
   settings.max_step = newton_system.max_step();
   EventLog newton_log;
-  with_stepper<PendulumWalls>(GetParam(), settings, [&](auto& stepper) {
+  with_flow<PendulumWalls>(GetParam(), settings, [&](auto& stepper) {
     return simulate(newton_system, stepper, PendulumWalls::State{0.0, 0.1, 0.0}, PendulumMode::free,
                     0.0, t_end, LoopOptions{}, newton_log);
   });
@@ -279,7 +280,7 @@ TEST_P(PaperModel, ThirtyChatteringPeriodsThroughTheirSlipReversalsComplete) {
     settings.max_step = system.max_step();
     LoopOptions options;
     options.location.grazing_tolerance = 1e-14;
-    return with_stepper<PaperPendulumWalls>(method, settings, [&](auto& stepper) {
+    return with_flow<PaperPendulumWalls>(method, settings, [&](auto& stepper) {
       return simulate(system, stepper, x0, PendulumMode::free, 0.0, t_end, options, log);
     });
   };

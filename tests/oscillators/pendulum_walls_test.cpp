@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/core/event_log.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/stepper_dispatch.hpp>
@@ -66,7 +67,7 @@ PendulumRun run_pendulum(const PendulumWallsParameters& p, std::string_view meth
   settings.atol = atol;
   settings.max_step = system.max_step();
   PendulumRun out;
-  out.result = with_stepper<PendulumWalls>(method, settings, [&](auto& stepper) {
+  out.result = with_flow<PendulumWalls>(method, settings, [&](auto& stepper) {
     return simulate(system, stepper, x0, Mode::free, t0, t_end, LoopOptions{}, out.log,
                     std::forward<Observer>(observer));
   });

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/stepper_dispatch.hpp>
 #include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
@@ -38,7 +39,7 @@ RunCount count_run(const System& system, typename System::State x0, std::string_
   settings.max_step = system.max_step();
   EventLog log(false);
   LoopOptions options;
-  return with_stepper<System>(method, settings, [&](auto& stepper) {
+  return with_flow<System>(method, settings, [&](auto& stepper) {
     const long before = impactlab::testing::allocations_so_far();
     const auto result =
         simulate(system, stepper, x0, typename System::Mode{}, 0.0, t_end, options, log);

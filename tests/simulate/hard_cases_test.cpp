@@ -37,6 +37,7 @@
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/tools/roots.hpp>
 
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/stepper_dispatch.hpp>
 #include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
@@ -70,7 +71,7 @@ Run<System> run(const System& system, std::string_view method, typename System::
   settings.max_step = system.max_step();
   EventLog log;
   Run<System> out;
-  out.result = with_stepper<System>(method, settings, [&](auto& stepper) {
+  out.result = with_flow<System>(method, settings, [&](auto& stepper) {
     return simulate(system, stepper, x0, mode, t0, t_end, options, log,
                     std::forward<Observer>(observer));
   });

@@ -19,6 +19,7 @@
 
 #include <gtest/gtest.h>
 
+#include <impactlab/simulate/flow.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/stepper_dispatch.hpp>
 #include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
@@ -59,7 +60,7 @@ template <class System>
 Run<System> run(const System& system, std::string_view method, const StepperSettings& settings,
                 const LoopOptions& options, typename System::State x0, double t0, double t_end) {
   EventLog log;
-  const auto result = impactlab::with_stepper<System>(method, settings, [&](auto& stepper) {
+  const auto result = impactlab::with_flow<System>(method, settings, [&](auto& stepper) {
     return impactlab::simulate(system, stepper, x0, System::Mode::free, t0, t_end, options, log);
   });
   return {result, log.records()};
