@@ -6,6 +6,8 @@
 
 #include <Eigen/Dense>
 
+#include <impactlab/analysis/dense_solve.hpp>
+
 namespace impactlab::detail {
 
 namespace {
@@ -156,7 +158,11 @@ typename BranchCorrector<Size>::Correction BranchCorrector<Size>::correct(
     Vec right(n_ + 1);
     right.head(n_) = -residual;
     right[n_] = -arc;
-    const Vec step = system.fullPivLu().solve(right);
+    Vec step;
+    if constexpr (Spaces<Size>::fixed)
+      step = system.fullPivLu().solve(right);
+    else
+      step = full_pivot_lu_solve(system, right);
     if (!step.allFinite()) return c;
     y += step;
     last_step = step.norm();
@@ -177,8 +183,7 @@ std::optional<typename BranchCorrector<Size>::Vec> BranchCorrector<Size>::tangen
     t = first.cross(second);
   } else {
     if (!c.jacobian.allFinite()) return std::nullopt;
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(c.jacobian, Eigen::ComputeFullV);
-    t = svd.matrixV().col(n_);
+    t = last_right_singular_vector(c.jacobian);
   }
   if (!(t.norm() > 0.0) || !t.allFinite()) return std::nullopt;
   t.normalize();

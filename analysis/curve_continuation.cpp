@@ -5,9 +5,10 @@
 #include <numbers>
 #include <optional>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include <impactlab/analysis/bifurcation_location.hpp>
+#include <impactlab/analysis/dense_solve.hpp>
 #include <impactlab/analysis/floquet_multipliers.hpp>
 
 namespace impactlab {
@@ -217,7 +218,7 @@ class CurveDriver {
       Vector right(size_);
       right.head(size_ - 1) = -c.at.residual;
       right[size_ - 1] = -arc;
-      const Vector step = system.fullPivLu().solve(right);
+      const Vector step = full_pivot_lu_solve(system, right);
       if (!step.allFinite()) return c;
       z += step;
       last_step = step.norm();
@@ -229,8 +230,7 @@ class CurveDriver {
   // The unit null vector of the (size − 1) × size Jacobian, oriented along `along`.
   std::optional<Vector> tangent_of(const Matrix& j, const Vector& along) const {
     if (j.rows() != size_ - 1) return std::nullopt;
-    Eigen::JacobiSVD<Matrix> svd(j, Eigen::ComputeFullV);
-    Vector t = svd.matrixV().col(size_ - 1);
+    Vector t = last_right_singular_vector(j);
     if (!t.allFinite() || !(t.norm() > 0.0)) return std::nullopt;
     t.normalize();
     if (t.dot(along) < 0.0) t = -t;

@@ -2,8 +2,9 @@
 
 #include <cmath>
 
-#include <Eigen/SVD>
+#include <Eigen/Core>
 
+#include <impactlab/analysis/dense_solve.hpp>
 #include <impactlab/analysis/floquet_algebra.hpp>
 
 namespace impactlab {
@@ -29,8 +30,7 @@ std::vector<double> eigenvector_for(const MonodromyMatrix& m, double multiplier)
     for (Eigen::Index i = 0; i < n; ++i)
       for (Eigen::Index j = 0; j < n; ++j) a(i, j) = m[i][j];
     a.diagonal().array() -= multiplier;
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeFullV);
-    const Eigen::VectorXd v = svd.matrixV().col(a.cols() - 1);
+    const Eigen::VectorXd v = last_right_singular_vector(a);
     return std::vector<double>(v.data(), v.data() + v.size());
   }
   // (M − λI) v = 0: v ⟂ the larger row of M − λI

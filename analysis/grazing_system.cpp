@@ -6,6 +6,8 @@
 
 #include <Eigen/LU>
 
+#include <impactlab/analysis/dense_solve.hpp>
+
 namespace impactlab::detail {
 
 template <int Size>
@@ -114,7 +116,11 @@ std::optional<typename GrazingSystem<Size>::Solution> GrazingSystem<Size>::newto
       if (!ru || !rd) return std::nullopt;
       jacobian.col(j) = (*ru - *rd) / (2.0 * dz);
     }
-    const Extended step = jacobian.fullPivLu().solve(-*r);
+    Extended step;
+    if constexpr (Spaces<Size>::fixed)
+      step = jacobian.fullPivLu().solve(-*r);
+    else
+      step = full_pivot_lu_solve(jacobian, -*r);
     if (!step.allFinite()) return std::nullopt;
     z += step;
     last_parameter_step = step[n];
