@@ -97,6 +97,16 @@ def test_bad_option_raises_value_error_naming_it(call, named):
      "(raise it with set limits.max_steps=N)"),
     (lambda: impactlab.sweep("jin2003", param="model=0:1:5"),
      "param = model: not a numeric key of oscillator pendulum_walls"),
+    (lambda: impactlab.sweep("jin2003", param=["omega=5:9:10000000", "V0=1:2:10000000"]),
+     "param = omega=5:9:10000000 V0=1:2:10000000: the grid would write 1e+14 rows, over "
+     "limits.max_rows = 10000000 (raise it with set limits.max_rows=N)"),
+    (lambda: impactlab.sweep("jin2003", param="omega=5:9:1000000"),
+     "points = 50: 1e+06 values x 50 points would write 5e+07 rows, over "
+     "limits.max_rows = 10000000 (raise it with set limits.max_rows=N)"),
+    (lambda: impactlab.basins("jin2003", x="initial.theta=-0.1:0.1:10000000",
+                              y="initial.theta_dot=-1:1:10000000"),
+     "x/y = initial.theta=-0.1:0.1:10000000 initial.theta_dot=-1:1:10000000: the grid would "
+     "write 1e+14 rows, over limits.max_rows = 10000000 (raise it with set limits.max_rows=N)"),
 ])
 def test_library_message_names_the_python_keyword(call, line):
     """The library names an option by its own name, the Python keyword."""
