@@ -146,6 +146,14 @@ INSTANTIATE_TEST_SUITE_P(
                   "--periods", "limits.max_steps"},
         BadOption{"pendulum_d_1e200", {"simulate", "jin2003", "--set", "d=1e200"}, "--periods",
                   "limits.max_steps"},
+        // a moment of inertia m l^2 that overflows: exit 0 "completed" with an
+        // infinite impulse at t0 and no final time before
+        BadOption{"pendulum_l_1e200",
+                  {"simulate", "jin2003", "--set", "l=1e200", "--periods", "3"}, "l",
+                  "moment of inertia"},
+        BadOption{"pendulum_m_huge_l_large",
+                  {"simulate", "jin2003", "--set", "m=1e300", "--set", "l=1e5"}, "m",
+                  "moment of inertia"},
         // a sweep's or basins map's grid sized up front against limits.max_rows:
         // the 2D grid of 10^14 points reached 9.4 GB in 30 s laying out its tasks
         BadOption{"sweep_grid_2d_huge",
