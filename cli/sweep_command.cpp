@@ -26,6 +26,7 @@
 #include "table_options.hpp"
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/output.hpp>
+#include <impactlab/io/output_error.hpp>
 
 namespace impactlab::cli {
 
@@ -158,10 +159,14 @@ std::ofstream open_checkpoint(const std::filesystem::path& path, const std::stri
     std::ifstream existing(path);
     std::string first;
     const bool keep = resume && std::getline(existing, first) && first == header;
-    if (!keep) std::ofstream(path, std::ios::trunc) << header << '\n';
+    if (!keep) {
+      std::ofstream fresh(path, std::ios::trunc);
+      fresh << header << '\n' << std::flush;
+      if (!fresh) throw OutputError("cannot write the checkpoint " + path.string());
+    }
   }
   std::ofstream checkpoint(path, std::ios::app);
-  if (!checkpoint) throw BadInput("--out", path.parent_path().string(), "cannot write the checkpoint");
+  if (!checkpoint) throw OutputError("cannot write the checkpoint " + path.string());
   return checkpoint;
 }
 
@@ -238,8 +243,8 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   const bool keep_points = options.basins;
   std::map<RecordKey, SweepRecord> done;
   if (options.resume) done = SweepCheckpoints(directory, header, keep_points).records();
-  std::ofstream checkpoint =
-      open_checkpoint(directory / sweep_checkpoint_name(mpi.rank()), header, options.resume);
+  const std::filesystem::path checkpoint_path = directory / sweep_checkpoint_name(mpi.rank());
+  std::ofstream checkpoint = open_checkpoint(checkpoint_path, header, options.resume);
 
   // this rank's share: task id mod ranks
   const std::vector<SweepTask> tasks = sweep_tasks(plan);
@@ -254,8 +259,10 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   SweepJobOptions job;
   job.threads = options.threads;
   job.done = &done;
-  job.on_record = [&checkpoint](const SweepRecord& record) {
+  job.on_record = [&checkpoint, &checkpoint_path](const SweepRecord& record) {
     checkpoint << to_json_line(record) << '\n' << std::flush;
+    if (!checkpoint)
+      throw OutputError("writing the checkpoint " + checkpoint_path.string() + " failed");
   };
   job.progress = [&progress](double fraction) { progress.update(fraction); };
   job.stop_after = options.stop_after;

@@ -1,6 +1,8 @@
 #include <impactlab/io/output.hpp>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
@@ -10,6 +12,7 @@
 #include <fmt/compile.h>
 
 #include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/output_error.hpp>
 
 namespace impactlab {
 
@@ -17,7 +20,8 @@ AtomicFile::AtomicFile(std::filesystem::path path)
     : path_(std::move(path)),
       temporary_(path_.string() + fmt::format(".tmp-{}", static_cast<long>(::getpid()))),
       stream_(temporary_) {
-  if (!stream_) throw std::runtime_error("cannot write " + temporary_.string());
+  if (!stream_)
+    throw OutputError("cannot write " + temporary_.string() + ": " + std::strerror(errno));
   stream_.precision(17);
 }
 
@@ -29,14 +33,23 @@ AtomicFile::~AtomicFile() {
 }
 
 void AtomicFile::finish() {
+  // a write that failed on the way (a full disk, a file size limit) leaves
+  // the stream failed: errno still says why when the flush is the one
+  errno = 0;
   stream_.flush();
-  if (!stream_) throw std::runtime_error("writing " + temporary_.string() + " failed");
+  if (!stream_)
+    throw OutputError("writing " + temporary_.string() + " failed" +
+                      (errno != 0 ? std::string(": ") + std::strerror(errno) : std::string()));
   stream_.close();
-  if (stream_.fail()) throw std::runtime_error("closing " + temporary_.string() + " failed");
+  if (stream_.fail()) throw OutputError("closing " + temporary_.string() + " failed");
 }
 
 void AtomicFile::publish() {
-  std::filesystem::rename(temporary_, path_);
+  std::error_code error;
+  std::filesystem::rename(temporary_, path_, error);
+  if (error)
+    throw OutputError("renaming " + temporary_.string() + " to " + path_.filename().string() +
+                      " failed: " + error.message());
   committed_ = true;
 }
 

@@ -34,8 +34,8 @@ class AtomicFile {
   void commit();  // finish() then publish()
 
   // the two halves of commit(), for RunFiles: flush, check and close the
-  // temporary (throws std::runtime_error on failure); rename it into place
-  // (throws std::filesystem::filesystem_error)
+  // temporary; rename it into place (both throw OutputError on failure, as
+  // the constructor does for a temporary it cannot create)
   void finish();
   void publish();
   // removes the published file again (a run whose other files failed)

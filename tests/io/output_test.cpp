@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <sys/resource.h>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -188,6 +190,40 @@ TEST(SimulateFiles, MetaUnwritableMeansNoEventsCsv) {
                                     "--quiet", "--out", dir.string()});
   EXPECT_NE(run.status, 0);
   EXPECT_EQ(entries(dir), std::vector<std::string>{"meta.json"});
+}
+
+// An output that cannot be written ends the run with exit status 4 and one
+// line naming the file, and leaves no file of the run, temporary or not. A
+// file size limit fails the writes as a full disk does (EFBIG, ENOSPC): it
+// used to kill the program (SIGXFSZ) with its temporaries left behind, and a
+// full disk exited 1.
+TEST(OutputFailures, AFullDiskExitsFourAndLeavesNothing) {
+  const ScratchFolder scratch;
+  const auto dir = scratch / "full";
+  std::filesystem::create_directories(dir);
+  rlimit saved{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
+  rlimit limited = saved;
+  limited.rlim_cur = 64 * 1024;  // bytes; events.csv of 2000 periods is about 400 kB
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &limited), 0);
+  const ProgramRun run = run_impactlab(
+      {"simulate", "jin2003", "--periods", "2000", "--quiet", "--out", dir.string()});
+  ::setrlimit(RLIMIT_FSIZE, &saved);
+  EXPECT_EQ(run.signal, 0);
+  EXPECT_EQ(run.status, 4) << run.err;
+  EXPECT_EQ(count_lines(run.err), 1) << run.err;
+  EXPECT_NE(run.err.find("events.csv"), std::string::npos) << run.err;
+  EXPECT_EQ(entries(dir), std::vector<std::string>{});
+}
+
+// A folder that takes no new file (procfs refuses them even to root, for
+// whom a read-only mode bit does not count) exits 4 too, not 1.
+TEST(OutputFailures, AReadOnlyFolderExitsFour) {
+  const ProgramRun run = run_impactlab(
+      {"simulate", "jin2003", "--periods", "2", "--quiet", "--out", "/proc/self/fdinfo"});
+  EXPECT_EQ(run.status, 4) << run.err;
+  EXPECT_EQ(count_lines(run.err), 1) << run.err;
+  EXPECT_NE(run.err.find("/proc/self/fdinfo"), std::string::npos) << run.err;
 }
 
 // A run that fails on its input after the directory was named leaves no
