@@ -67,6 +67,18 @@ def test_unknown_scene_raises_value_error():
     (lambda: impactlab.simulate("jin2003", progress=42), "progress"),
     (lambda: impactlab.simulate("jin2003", period=5), "period"),  # an unknown keyword
     (lambda: impactlab.sweep("jin2003", param="omega=6:7:3", point=5), "point"),
+    # a keyword of the wrong type or past the largest double is a ValueError
+    # naming it (TypeError and OverflowError before), and the option table's
+    # ranges hold as on the command line
+    (lambda: impactlab.sweep("jin2003", param=123), "param"),
+    (lambda: impactlab.sweep("jin2003", param=[]), "param"),
+    (lambda: impactlab.sweep("jin2003", param=("omega=6:7:3", 5)), "param"),
+    (lambda: impactlab.simulate("jin2003", periods=10**400), "periods"),
+    (lambda: impactlab.simulate("jin2003", t_end=-10**400), "t_end"),
+    (lambda: impactlab.poincare("jin2003", transient=10**400), "transient"),
+    (lambda: impactlab.sweep("jin2003", param="omega=6:7:3", transient=-1), "transient"),
+    (lambda: impactlab.basins("jin2003", x="initial.theta=-0.1:0.1:3",
+                              y="initial.theta_dot=-1:1:3", transient=-1), "transient"),
     (lambda: impactlab.continue_("linear_impact", param="omega=2"), "param"),
     (lambda: impactlab.continue_("linear_impact", param="omega=2:nan"), "param"),
     (lambda: impactlab.continue_("linear_impact", param="nokey=2:3"), "param"),
