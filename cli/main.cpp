@@ -19,6 +19,7 @@
 
 #include "command.hpp"
 #include "commands.hpp"
+#include "interrupted_runs.hpp"
 #include "table_options.hpp"
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/message_text.hpp>
@@ -51,6 +52,8 @@ int main(int argc, char** argv) {
   // disk, an OutputError with exit 4, instead of killing the process with a
   // core dump and leaving its temporaries
   std::signal(SIGXFSZ, SIG_IGN);
+  // SIGINT and SIGTERM remove the outputs' temporaries before they end the program
+  remove_temporaries_on_interrupt();
 
   const std::vector<std::string> command_line(argv, argv + argc);
   try {

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <map>
 
 #include <fmt/format.h>
@@ -20,6 +21,7 @@
 #include <impactlab/api/sweep_checkpoints.hpp>
 #include <impactlab/api/sweep_job.hpp>
 #include "command.hpp"
+#include "interrupted_runs.hpp"
 #include "commands.hpp"
 #include "mpi_session.hpp"
 #include "section_options.hpp"
@@ -159,7 +161,18 @@ std::ofstream open_checkpoint(const std::filesystem::path& path, const std::stri
     std::ifstream existing(path);
     std::string first;
     const bool keep = resume && std::getline(existing, first) && first == header;
-    if (!keep) {
+    if (keep) {
+      // a last line cut short by a kill is dropped, so that the lines
+      // appended now each begin a line of their own
+      existing.clear();
+      existing.seekg(0);
+      const std::string text((std::istreambuf_iterator<char>(existing)),
+                             std::istreambuf_iterator<char>());
+      existing.close();
+      const std::size_t last_break = text.rfind('\n');
+      if (last_break != std::string::npos && last_break + 1 < text.size())
+        std::filesystem::resize_file(path, last_break + 1);
+    } else {
       std::ofstream fresh(path, std::ios::trunc);
       fresh << header << '\n' << std::flush;
       if (!fresh) throw OutputError("cannot write the checkpoint " + path.string());
@@ -229,7 +242,9 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
                                         : make_sweep_plan(sweep_spec(options), scene, schema);
   const auto directory = options.section.scene.output_directory();
   // the sweep's data files and meta.json, committed together by rank 0
-  RunFiles run_files(directory);
+  // rank 0 owns the directory (its lock, its commit); the other ranks of one
+  // mpirun share it, writing their checkpoints only
+  RunFiles run_files = open_run_files(directory, MpiSession::launched_rank() == 0);
   // MPI starts once the input is known to be good: bad input exits with
   // status 2 on every rank alike, before any rank waits for another
   MpiSession mpi;
@@ -260,7 +275,7 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   job.threads = options.threads;
   job.done = &done;
   job.on_record = [&checkpoint, &checkpoint_path](const SweepRecord& record) {
-    checkpoint << to_json_line(record) << '\n' << std::flush;
+    checkpoint << sweep_checkpoint_line(record) << '\n' << std::flush;
     if (!checkpoint)
       throw OutputError("writing the checkpoint " + checkpoint_path.string() + " failed");
   };
