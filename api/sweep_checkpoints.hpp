@@ -20,11 +20,19 @@ namespace impactlab {
 // the checkpoint file of one MPI rank
 std::string sweep_checkpoint_name(int rank);
 
+// One checkpoint line: the record's JSON (to_json_line) with a last member
+// "checksum", the FNV-1a 64-bit hash of the JSON without it, in 16 hex
+// digits. A line whose checksum does not match was edited or damaged:
+// SweepCheckpoints refuses it rather than let it change the sweep's files.
+std::string sweep_checkpoint_line(const SweepRecord& record);
+
 class SweepCheckpoints {
  public:
   // Indexes every checkpoint file in `directory` whose first line is `header`
-  // (files of another sweep, and lines cut short by a kill, are passed over).
-  // `keep_points` false: records() holds the records without their points.
+  // (files of another sweep, and a last line cut short by a kill, are passed
+  // over). A complete line whose checksum does not match throws BadInput
+  // (key `checkpoint`, value FILE:LINE). `keep_points` false: records()
+  // holds the records without their points.
   SweepCheckpoints(const std::filesystem::path& directory, const std::string& header,
                    bool keep_points);
 

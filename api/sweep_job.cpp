@@ -4,7 +4,9 @@
 #include <atomic>
 #include <exception>
 #include <mutex>
+#include <string>
 
+#include <fmt/format.h>
 #include <omp.h>
 
 #include <impactlab/analysis/flow_setup.hpp>
@@ -48,6 +50,38 @@ void choose_classification_integrator(SweepPlan& plan, const SweepSpec& spec,
       "classification_rtol and classification_atol";
 }
 
+// Refuses, before any point runs or any task is laid out, a sweep whose rows
+// pass the scene's limits.max_rows: a 2D map writes one row per grid point
+// (classes.csv, basins.csv), a 1D sweep one summary row per value and
+// direction and up to `points` section points each (bifurcation.csv, which
+// Python holds in memory). BadInput names the grid's option (`param`, `x/y`)
+// or `points` where the grid alone fits and the points per value do not.
+void check_sweep_size(const SweepPlan& plan, const SweepSpec& spec, const Scene& scene) {
+  const double row_budget = scene.number("limits.max_rows");
+  double grid_points = 1.0;
+  std::string grid_text;  // the axes as given
+  for (const SweepAxis& axis : plan.axes) {
+    grid_points *= static_cast<double>(axis.count);
+    grid_text += (grid_text.empty() ? "" : " ") + axis.name + "=" +
+                 fmt::format("{}:{}:{}", axis.from, axis.to, axis.count);
+  }
+  const bool one_dimensional = plan.axes.size() == 1;
+  const double directions = one_dimensional && plan.direction == SweepDirection::both ? 2.0 : 1.0;
+  const double grid_rows = grid_points * directions;
+  const double point_rows =
+      one_dimensional ? grid_rows * static_cast<double>(spec.section.points) : grid_rows;
+  const std::string over = fmt::format(
+      "over limits.max_rows = {} (raise it with `set` limits.max_rows=N)",
+      static_cast<std::uint64_t>(row_budget));
+  if (grid_rows > row_budget)
+    throw BadInput(spec.param_key, grid_text,
+                   fmt::format("the grid would write {:.3g} rows, {}", grid_rows, over));
+  if (point_rows > row_budget)
+    throw BadInput("points", std::to_string(spec.section.points),
+                   fmt::format("{:.3g} values x {} points would write {:.3g} rows, {}", grid_rows,
+                               spec.section.points, point_rows, over));
+}
+
 nlohmann::json integrator_record(const IntegratorSetting& integrator) {
   return {{"method", integrator.method}, {"rtol", integrator.rtol}, {"atol", integrator.atol}};
 }
@@ -67,6 +101,7 @@ SweepPlan make_sweep_plan(const SweepSpec& spec, const Scene& scene, const Scene
   plan.max_period = spec.max_period;
   // Lyapunov: on by default for 2D maps, off for 1D sweeps
   plan.section.lyapunov = spec.lyapunov.value_or(plan.axes.size() == 2);
+  check_sweep_size(plan, spec, scene);
   validate_plan(plan, scene, schema);
   if (plan.axes.size() == 2 && plan.direction != SweepDirection::up)
     throw BadInput("direction", spec.direction,

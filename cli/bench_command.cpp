@@ -17,6 +17,7 @@
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/api/work_precision.hpp>
 #include "command.hpp"
+#include "interrupted_runs.hpp"
 #include "commands.hpp"
 #include "program_files.hpp"
 #include "table_options.hpp"
@@ -217,7 +218,7 @@ int run_bench(const BenchOptions& options, const std::vector<std::string>& comma
   // the data file and its sidecar, committed together at the end; the
   // directory (created now, so that a bad --out is refused before the run)
   // goes again if the run fails before that
-  RunFiles run_files(directory);
+  RunFiles run_files = open_run_files(directory);
 
   // the references first: they set N for every case
   std::vector<CaseResult> results;

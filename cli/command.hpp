@@ -33,6 +33,7 @@ constexpr int exit_done = 0;
 constexpr int exit_failed = 1;
 constexpr int exit_bad_input = 2;
 constexpr int exit_stopped_early = 3;
+constexpr int exit_output_failed = 4;  // an output that cannot be written (OutputError)
 
 // A registered subcommand: its CLI11 node, what runs when it was parsed, and
 // the job whose option table (api/job_options.hpp) its options come from

@@ -13,6 +13,7 @@
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include "command.hpp"
+#include "interrupted_runs.hpp"
 #include "commands.hpp"
 #include "program_files.hpp"
 #include "table_options.hpp"
@@ -53,7 +54,7 @@ int run_compare(const SceneOptions& options, const std::string& model_list,
   }
   const nlohmann::json numbers = comparison_numbers(comparison);
   // the data files, summary.md and compare.json, committed together
-  RunFiles run_files(directory);
+  RunFiles run_files = open_run_files(directory);
   write_impacts_csv(run_files.add("compare_impacts.csv").stream(), comparison);
   write_contacts_csv(run_files.add("compare_contacts.csv").stream(), comparison);
   write_section_csv(run_files.add("compare_section.csv").stream(), comparison);

@@ -16,6 +16,7 @@
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include "command.hpp"
+#include "interrupted_runs.hpp"
 #include "commands.hpp"
 #include "section_options.hpp"
 #include "table_options.hpp"
@@ -140,7 +141,7 @@ int run_continue(const ContinueCommandOptions& command_options,
 
   // branch.csv, points.csv, continuation.json (and the curve's files),
   // committed together
-  RunFiles run_files(directory);
+  RunFiles run_files = open_run_files(directory);
   write_branch_csv(run_files.add("branch.csv"), range.name, result.dimension, result.branches);
   write_points_csv(run_files.add("points.csv"), range.name, result.dimension, result.branches);
 

@@ -3,7 +3,10 @@
 // stderr naming the key and the value); 3 the run stopped early on a physical
 // diagnostic (Painlevé, no progress, frozen time, non-finite state, step
 // budget) or a numerical library's refusal — its outputs are complete and say
-// so; 1 anything else (an output that cannot be written).
+// so; 4 an output that cannot be written (a read-only folder, a full disk: one
+// line naming the file and the system's reason, nothing half-written left);
+// 1 anything else.
+#include <csignal>
 #include <iostream>
 #include <new>
 #include <stdexcept>
@@ -16,9 +19,11 @@
 
 #include "command.hpp"
 #include "commands.hpp"
+#include "interrupted_runs.hpp"
 #include "table_options.hpp"
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/message_text.hpp>
+#include <impactlab/io/output_error.hpp>
 
 int main(int argc, char** argv) {
   using namespace impactlab::cli;
@@ -43,6 +48,12 @@ int main(int argc, char** argv) {
   // GSL's default error handler aborts the process; with it off, a GSL
   // routine returns its status and the integrator turns it into an exception
   gsl_set_error_handler_off();
+  // a file size limit (ulimit -f) then fails the write (EFBIG) like a full
+  // disk, an OutputError with exit 4, instead of killing the process with a
+  // core dump and leaving its temporaries
+  std::signal(SIGXFSZ, SIG_IGN);
+  // SIGINT and SIGTERM remove the outputs' temporaries before they end the program
+  remove_temporaries_on_interrupt();
 
   const std::vector<std::string> command_line(argv, argv + argc);
   try {
@@ -63,6 +74,9 @@ int main(int argc, char** argv) {
     // the library names options by their names; the message spells them as flags
     std::cerr << "impactlab: " << bad_input_line(bad, parsed->job) << '\n';
     return exit_bad_input;
+  } catch (const impactlab::OutputError& error) {
+    std::cerr << "impactlab: output failed: " << impactlab::one_line(error.what()) << '\n';
+    return exit_output_failed;
   } catch (const std::domain_error& error) {
     // a numerical library (Boost.Math's root finders and special functions)
     // refused its arguments: the run cannot go on with these values

@@ -27,6 +27,11 @@ MpiSession::MpiSession() {
 #endif
 }
 
+int MpiSession::launched_rank() {
+  const char* rank = std::getenv("OMPI_COMM_WORLD_RANK");
+  return rank != nullptr ? std::atoi(rank) : 0;
+}
+
 MpiSession::~MpiSession() {
 #ifdef IMPACTLAB_HAVE_MPI
   if (!active_) return;

@@ -20,6 +20,10 @@ class MpiSession {
   [[nodiscard]] int size() const { return size_; }
   [[nodiscard]] bool active() const { return active_; }
 
+  // The rank mpirun gave this process (OMPI_COMM_WORLD_RANK), known before
+  // MPI starts; 0 when not launched by mpirun.
+  [[nodiscard]] static int launched_rank();
+
   // Rank 0 receives every rank's text, in rank order; other ranks get {}.
   [[nodiscard]] std::vector<std::string> gather(const std::string& text) const;
   // Rank 0's flag, on every rank (a run-wide decision such as "stop").

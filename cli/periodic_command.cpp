@@ -11,6 +11,7 @@
 #include <impactlab/analysis/periodic.hpp>
 #include <impactlab/api/periodic_job.hpp>
 #include "command.hpp"
+#include "interrupted_runs.hpp"
 #include "commands.hpp"
 #include "section_options.hpp"
 #include "table_options.hpp"
@@ -31,7 +32,7 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
   const Scene scene = options.scene.load();
   const PeriodicJobResult found = find_periodic_orbit(scene, options.job);
   const auto directory = options.scene.output_directory();
-  RunFiles run_files(directory);
+  RunFiles run_files = open_run_files(directory);
   const PeriodicRequest& request = found.request;
   const PeriodicResult& result = found.result;
   nlohmann::json document = periodic_record(scene, found);

@@ -12,6 +12,7 @@
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include "command.hpp"
+#include "interrupted_runs.hpp"
 #include "commands.hpp"
 #include "table_options.hpp"
 #include "section_options.hpp"
@@ -55,7 +56,7 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
   request.lyapunov = lyapunov;
   const auto directory = options.scene.output_directory();
   // poincare.csv and meta.json, committed together (meta.json last)
-  RunFiles files(directory);
+  RunFiles files = open_run_files(directory);
 
   const bool impact_map = request.section.kind == SectionKind::impact;
   const bool user_section = request.section.kind != SectionKind::impact &&

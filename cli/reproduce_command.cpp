@@ -12,6 +12,7 @@
 #include <impactlab/api/jin2003_reproduction.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include "command.hpp"
+#include "interrupted_runs.hpp"
 #include "commands.hpp"
 #include "program_files.hpp"
 #include "table_options.hpp"
@@ -79,7 +80,7 @@ int run_reproduce(const ReproduceOptions& options, const std::vector<std::string
   const std::filesystem::path directory = options.out;
   // created now, so that a bad --out is refused before the run; removed again
   // if the run fails before its files are committed
-  RunFiles run_files(directory);
+  RunFiles run_files = open_run_files(directory);
 
   ProgressBar progress(!options.quiet);
   settings.progress = [&progress](double fraction) { progress.update(fraction); };

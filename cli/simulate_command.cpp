@@ -9,6 +9,7 @@
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include "command.hpp"
+#include "interrupted_runs.hpp"
 #include "commands.hpp"
 #include "table_options.hpp"
 #include <impactlab/io/output.hpp>
@@ -25,7 +26,7 @@ int run_simulate(const SceneOptions& options, const std::vector<std::string>& co
   const auto directory = options.output_directory();
   // the run's files, committed together at the end; the rows stream into
   // them as the run goes (memory does not grow with the run's length)
-  RunFiles files(directory);
+  RunFiles files = open_run_files(directory);
   std::vector<std::string> names = {"events.csv", "meta.json"};
   EventsCsvWriter events(files.add("events.csv"), event_extender(scene));
   request.keep_events = false;

@@ -13,6 +13,7 @@
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include "command.hpp"
+#include "interrupted_runs.hpp"
 #include "commands.hpp"
 #include "table_options.hpp"
 #include <impactlab/io/output.hpp>
@@ -40,7 +41,7 @@ int run_spectrum(const SpectrumOptions& options, const std::vector<std::string>&
   const auto directory = options.scene.output_directory();
   // spectrum.csv and meta.json, committed together; a run stopped early
   // leaves neither (nor a directory it created)
-  RunFiles run_files(directory);
+  RunFiles run_files = open_run_files(directory);
   ProgressBar progress(!options.scene.quiet);
   request.progress = [&progress](double fraction) { progress.update(fraction); };
   const RunOutput output = simulate(scene, request);

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <map>
 
 #include <fmt/format.h>
@@ -20,12 +21,14 @@
 #include <impactlab/api/sweep_checkpoints.hpp>
 #include <impactlab/api/sweep_job.hpp>
 #include "command.hpp"
+#include "interrupted_runs.hpp"
 #include "commands.hpp"
 #include "mpi_session.hpp"
 #include "section_options.hpp"
 #include "table_options.hpp"
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/output.hpp>
+#include <impactlab/io/output_error.hpp>
 
 namespace impactlab::cli {
 
@@ -158,10 +161,25 @@ std::ofstream open_checkpoint(const std::filesystem::path& path, const std::stri
     std::ifstream existing(path);
     std::string first;
     const bool keep = resume && std::getline(existing, first) && first == header;
-    if (!keep) std::ofstream(path, std::ios::trunc) << header << '\n';
+    if (keep) {
+      // a last line cut short by a kill is dropped, so that the lines
+      // appended now each begin a line of their own
+      existing.clear();
+      existing.seekg(0);
+      const std::string text((std::istreambuf_iterator<char>(existing)),
+                             std::istreambuf_iterator<char>());
+      existing.close();
+      const std::size_t last_break = text.rfind('\n');
+      if (last_break != std::string::npos && last_break + 1 < text.size())
+        std::filesystem::resize_file(path, last_break + 1);
+    } else {
+      std::ofstream fresh(path, std::ios::trunc);
+      fresh << header << '\n' << std::flush;
+      if (!fresh) throw OutputError("cannot write the checkpoint " + path.string());
+    }
   }
   std::ofstream checkpoint(path, std::ios::app);
-  if (!checkpoint) throw BadInput("--out", path.parent_path().string(), "cannot write the checkpoint");
+  if (!checkpoint) throw OutputError("cannot write the checkpoint " + path.string());
   return checkpoint;
 }
 
@@ -224,7 +242,9 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
                                         : make_sweep_plan(sweep_spec(options), scene, schema);
   const auto directory = options.section.scene.output_directory();
   // the sweep's data files and meta.json, committed together by rank 0
-  RunFiles run_files(directory);
+  // rank 0 owns the directory (its lock, its commit); the other ranks of one
+  // mpirun share it, writing their checkpoints only
+  RunFiles run_files = open_run_files(directory, MpiSession::launched_rank() == 0);
   // MPI starts once the input is known to be good: bad input exits with
   // status 2 on every rank alike, before any rank waits for another
   MpiSession mpi;
@@ -238,8 +258,8 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   const bool keep_points = options.basins;
   std::map<RecordKey, SweepRecord> done;
   if (options.resume) done = SweepCheckpoints(directory, header, keep_points).records();
-  std::ofstream checkpoint =
-      open_checkpoint(directory / sweep_checkpoint_name(mpi.rank()), header, options.resume);
+  const std::filesystem::path checkpoint_path = directory / sweep_checkpoint_name(mpi.rank());
+  std::ofstream checkpoint = open_checkpoint(checkpoint_path, header, options.resume);
 
   // this rank's share: task id mod ranks
   const std::vector<SweepTask> tasks = sweep_tasks(plan);
@@ -254,8 +274,10 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   SweepJobOptions job;
   job.threads = options.threads;
   job.done = &done;
-  job.on_record = [&checkpoint](const SweepRecord& record) {
-    checkpoint << to_json_line(record) << '\n' << std::flush;
+  job.on_record = [&checkpoint, &checkpoint_path](const SweepRecord& record) {
+    checkpoint << sweep_checkpoint_line(record) << '\n' << std::flush;
+    if (!checkpoint)
+      throw OutputError("writing the checkpoint " + checkpoint_path.string() + " failed");
   };
   job.progress = [&progress](double fraction) { progress.update(fraction); };
   job.stop_after = options.stop_after;

@@ -4,6 +4,8 @@
 // the GIL released; its progress callback takes the GIL back now and then to
 // call the user's callback and to look for Ctrl-C, and a Python exception
 // there cancels the job and comes out of the call unchanged.
+#include <cxxabi.h>
+
 #include <chrono>
 #include <cmath>
 #include <complex>
@@ -14,6 +16,7 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <type_traits>
 #include <variant>
 #include <vector>
@@ -48,18 +51,34 @@ using namespace impactlab;
 namespace {
 
 // Thrown through a job (with the GIL released) when the Python side raised
-// in a progress callback; the Python error is kept and restored afterwards.
+// in a progress callback, or when the interpreter began to exit; the Python
+// error is kept and restored afterwards.
 struct Cancelled {};
+
+// Whether the interpreter is exiting. A thread that takes the GIL then never
+// returns: CPython ends it on the spot (pthread_exit, a forced unwind), and
+// one taken from a destructor, which may not throw, ends the whole process
+// ("terminate called without an active exception"). Read without the GIL.
+bool interpreter_exiting() {
+#if PY_VERSION_HEX >= 0x030D0000
+  return Py_IsFinalizing() != 0;
+#else
+  return _Py_IsFinalizing() != 0;
+#endif
+}
 
 // Progress of one job: the user's callback and the Ctrl-C check. The check
 // takes the GIL at most every `check_interval`, so that a short run pays
-// nothing for it.
+// nothing for it. While the interpreter exits, the job is cancelled without
+// touching Python, and the thread that ran it waits for the process to end
+// rather than take the GIL back.
 class ProgressRelay {
  public:
   explicit ProgressRelay(py::object callback) : callback_(std::move(callback)) {}
 
   // called from the job, without the GIL; throws Cancelled
   void operator()(double fraction) {
+    if (interpreter_exiting()) throw Cancelled{};
     const auto now = std::chrono::steady_clock::now();
     if (callback_.is_none() && now - last_check_ < check_interval) return;
     last_check_ = now;
@@ -73,16 +92,38 @@ class ProgressRelay {
     }
   }
 
-  // runs `job` without the GIL; a cancellation re-raises the Python error
+  // runs `job` without the GIL; a cancellation re-raises the Python error.
+  // The GIL is taken back by an explicit call, outside any destructor and
+  // any handler, so that a thread CPython ends there unwinds cleanly.
   template <class Job>
   auto run(Job&& job) {
+    using Result = decltype(job());
+    std::conditional_t<std::is_void_v<Result>, bool, std::optional<Result>> result{};
+    std::exception_ptr failure;
+    PyThreadState* thread_state = PyEval_SaveThread();
     try {
-      py::gil_scoped_release release;
-      return job();
-    } catch (const Cancelled&) {
-      if (error_) throw std::move(*error_);
-      throw;
+      if constexpr (std::is_void_v<Result>)
+        job();
+      else
+        result.emplace(job());
+    } catch (abi::__forced_unwind&) {
+      throw;  // the thread is being ended: let it go
+    } catch (...) {
+      failure = std::current_exception();
     }
+    // the interpreter is exiting: this thread must not take the GIL again;
+    // the process ends around it
+    while (interpreter_exiting()) std::this_thread::sleep_for(std::chrono::seconds(1));
+    PyEval_RestoreThread(thread_state);
+    if (failure) {
+      try {
+        std::rethrow_exception(failure);
+      } catch (const Cancelled&) {
+        if (!error_) throw;
+      }
+      throw std::move(*error_);
+    }
+    if constexpr (!std::is_void_v<Result>) return std::move(*result);
   }
 
  private:

@@ -177,6 +177,17 @@ PendulumWallsParameters pendulum_walls_parameters(const Scene& scene) {
   p.e_t = scene.number("e_t");
   p.mu = scene.number("mu");
   if (!(p.b < p.l)) throw BadInput("b", to_text(p.b), "the walls must be closer than l (b < l)");
+  // the moment of inertia m l^2 divides every rate and every impulse: one
+  // that overflows (l = 1e200) gave an infinite impulse at t0 and a run
+  // "completed" at an undefined time; the factor at fault is named
+  const double inertia = p.m * p.l * p.l;
+  if (!(std::isfinite(inertia) && inertia > 0.0)) {
+    const double length_squared = p.l * p.l;
+    const bool length_at_fault = !(std::isfinite(length_squared) && length_squared > 0.0);
+    throw BadInput(length_at_fault ? "l" : "m", to_text(length_at_fault ? p.l : p.m),
+                   "the moment of inertia m l^2 = " + to_text(inertia) +
+                       " kg m^2 is not a finite positive number");
+  }
   // the normal gap per radian at the wall is l cos θ0
   p.accumulation = accumulation_tolerance(scene, 1.0 / p.omega, std::asin(p.b / p.l),
                                           std::sqrt(p.l * p.l - p.b * p.b));

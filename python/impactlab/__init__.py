@@ -70,6 +70,16 @@ class RunResult(Result):
         return self._meta
 
 
+def _finite_float(value):
+    """A real number as a finite float, or None where it has none (NaN, an
+    infinity, an integer past the largest double such as 10**400)."""
+    try:
+        number = float(value)
+    except OverflowError:
+        return None
+    return number if math.isfinite(number) else None
+
+
 def _assignment_text(key, value):
     """`value` as --set would spell it; ValueError for a type no key takes."""
     if isinstance(value, bool):
@@ -77,8 +87,8 @@ def _assignment_text(key, value):
     if isinstance(value, numbers.Integral):
         return str(int(value))
     if isinstance(value, numbers.Real):
-        number = float(value)
-        if not math.isfinite(number):
+        number = _finite_float(value)
+        if number is None:
             raise ValueError("{} = {!r}: not a finite number".format(key, value))
         return repr(number)
     if isinstance(value, str):
@@ -150,8 +160,8 @@ def _number(key, value, row=None):
     """`value` as a float within the range of the option's table row."""
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ValueError("{} = {!r}: expected a number".format(key, value))
-    number = float(value)
-    if not math.isfinite(number):
+    number = _finite_float(value)
+    if number is None:
         raise ValueError("{} = {!r}: not a finite number".format(key, value))
     if row is None:
         return number
@@ -298,8 +308,11 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
     integrator.classification_* unless an integrator key was set) or "off"
     (the scene's integrator); the CLI's --classification-tol."""
     loaded = scene(scene_ if scene_ is not None else "jin2003", **keys)
-    params = [param] if isinstance(param, str) else list(param)
-    if not params or not all(isinstance(p, str) for p in params):
+    if isinstance(param, str):
+        params = [param]
+    elif isinstance(param, (list, tuple)) and param and all(isinstance(p, str) for p in param):
+        params = list(param)
+    else:
         raise ValueError("param = {!r}: expected NAME=FROM:TO:N or a list of two".format(param))
     if lyapunov is not None and not isinstance(lyapunov, bool):
         raise ValueError("lyapunov = {!r}: expected True, False or None".format(lyapunov))

@@ -1,15 +1,22 @@
 #include <impactlab/io/output.hpp>
 
+#include <algorithm>
+#include <array>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <fmt/compile.h>
 
 #include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/output_error.hpp>
 
 namespace impactlab {
 
@@ -17,7 +24,8 @@ AtomicFile::AtomicFile(std::filesystem::path path)
     : path_(std::move(path)),
       temporary_(path_.string() + fmt::format(".tmp-{}", static_cast<long>(::getpid()))),
       stream_(temporary_) {
-  if (!stream_) throw std::runtime_error("cannot write " + temporary_.string());
+  if (!stream_)
+    throw OutputError("cannot write " + temporary_.string() + ": " + std::strerror(errno));
   stream_.precision(17);
 }
 
@@ -29,14 +37,23 @@ AtomicFile::~AtomicFile() {
 }
 
 void AtomicFile::finish() {
+  // a write that failed on the way (a full disk, a file size limit) leaves
+  // the stream failed: errno still says why when the flush is the one
+  errno = 0;
   stream_.flush();
-  if (!stream_) throw std::runtime_error("writing " + temporary_.string() + " failed");
+  if (!stream_)
+    throw OutputError("writing " + temporary_.string() + " failed" +
+                      (errno != 0 ? std::string(": ") + std::strerror(errno) : std::string()));
   stream_.close();
-  if (stream_.fail()) throw std::runtime_error("closing " + temporary_.string() + " failed");
+  if (stream_.fail()) throw OutputError("closing " + temporary_.string() + " failed");
 }
 
 void AtomicFile::publish() {
-  std::filesystem::rename(temporary_, path_);
+  std::error_code error;
+  std::filesystem::rename(temporary_, path_, error);
+  if (error)
+    throw OutputError("renaming " + temporary_.string() + " to " + path_.filename().string() +
+                      " failed: " + error.message());
   committed_ = true;
 }
 
@@ -51,7 +68,8 @@ void AtomicFile::commit() {
   publish();
 }
 
-RunFiles::RunFiles(std::filesystem::path directory) : directory_(std::move(directory)) {
+RunFiles::RunFiles(std::filesystem::path directory, bool lock)
+    : directory_(std::move(directory)) {
   // the levels of the path that do not exist yet, deepest first: a failed
   // run removes exactly these (when empty), so `out/jin2003` leaves no `out`
   std::error_code error;
@@ -61,16 +79,33 @@ RunFiles::RunFiles(std::filesystem::path directory) : directory_(std::move(direc
     created_directories_.push_back(level);
   }
   prepare_output_directory(directory_);
+  if (!lock) return;
+  lock_descriptor_ = ::open(directory_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (lock_descriptor_ < 0)
+    throw OutputError("cannot open the output directory " + directory_.string() + ": " +
+                      std::strerror(errno));
+  if (::flock(lock_descriptor_, LOCK_EX | LOCK_NB) != 0) {
+    const int reason = errno;
+    ::close(lock_descriptor_);
+    lock_descriptor_ = -1;
+    if (reason == EWOULDBLOCK)
+      throw BadInput("out", directory_.string(),
+                     "another impactlab run is writing into this directory");
+    throw OutputError("cannot lock the output directory " + directory_.string() + ": " +
+                      std::strerror(reason));
+  }
 }
 
 RunFiles::~RunFiles() {
-  if (committed_) return;
-  files_.clear();  // removes the temporaries
-  std::error_code ignored;
-  for (const auto& level : created_directories_) {
-    if (!std::filesystem::is_empty(level, ignored)) break;
-    std::filesystem::remove(level, ignored);
+  if (!committed_) {
+    files_.clear();  // removes the temporaries
+    std::error_code ignored;
+    for (const auto& level : created_directories_) {
+      if (!std::filesystem::is_empty(level, ignored)) break;
+      std::filesystem::remove(level, ignored);
+    }
   }
+  if (lock_descriptor_ >= 0) ::close(lock_descriptor_);  // releases the lock
 }
 
 AtomicFile& RunFiles::add(const std::string& name) {
@@ -78,8 +113,56 @@ AtomicFile& RunFiles::add(const std::string& name) {
   return *files_.back();
 }
 
+namespace {
+
+// Whether `name` is `output` + ".tmp-" + a process id: a temporary of an
+// output file (AtomicFile).
+bool is_temporary_of(std::string_view name, std::string_view output) {
+  if (!name.starts_with(output)) return false;
+  const std::string_view rest = name.substr(output.size());
+  constexpr std::string_view tag = ".tmp-";
+  return rest.size() > tag.size() && rest.starts_with(tag) &&
+         std::all_of(rest.begin() + static_cast<std::ptrdiff_t>(tag.size()), rest.end(),
+                     [](char c) { return c >= '0' && c <= '9'; });
+}
+
+}  // namespace
+
+void RunFiles::remove_earlier_outputs() const {
+  std::vector<std::string> own;
+  for (const auto& file : files_) own.push_back(file->path().filename().string());
+  std::error_code error;
+  std::vector<std::filesystem::path> earlier;
+  for (const auto& entry : std::filesystem::directory_iterator(directory_, error)) {
+    if (!entry.is_regular_file(error)) continue;
+    const std::string name = entry.path().filename().string();
+    const auto& names = output_file_names();
+    const bool output = std::find(names.begin(), names.end(), name) != names.end();
+    const bool replaced = output && std::find(own.begin(), own.end(), name) == own.end();
+    // with the directory locked, a temporary is this run's or a killed run's
+    const bool stale_temporary =
+        std::any_of(names.begin(), names.end(),
+                    [&](std::string_view output_name) {
+                      return is_temporary_of(name, output_name);
+                    }) &&
+        !name.ends_with(fmt::format(".tmp-{}", static_cast<long>(::getpid())));
+    if (replaced || stale_temporary) earlier.push_back(entry.path());
+  }
+  if (error)
+    throw OutputError("cannot list the output directory " + directory_.string() + ": " +
+                      error.message());
+  for (const auto& path : earlier) {
+    std::filesystem::remove(path, error);
+    if (error)
+      throw OutputError("cannot remove " + path.string() + ", left by an earlier run: " +
+                        error.message());
+  }
+}
+
 void RunFiles::commit() {
   for (auto& file : files_) file->finish();
+  // an unlocked RunFiles (a sweep's other MPI ranks) commits nothing of its own
+  if (lock_descriptor_ >= 0) remove_earlier_outputs();
   for (std::size_t i = 0; i < files_.size(); ++i) {
     try {
       files_[i]->publish();
@@ -89,6 +172,23 @@ void RunFiles::commit() {
     }
   }
   committed_ = true;
+}
+
+std::span<const std::string_view> output_file_names() {
+  // every command's files (cli/*_command.cpp, api/jin2003_report.cpp) and
+  // the plots drawn from them
+  static constexpr std::array<std::string_view, 46> names = {
+      "meta.json", "events.csv", "trajectory.csv", "simulation.png", "poincare.csv",
+      "poincare.png", "bifurcation.csv", "bifurcation.png", "summary.csv", "classes.csv",
+      "classes.png", "basins.csv", "basins.png", "attractors.csv", "periodic.json", "spectrum.csv",
+      "branch.csv", "points.csv", "curve.csv", "curve.json", "curve.png", "continuation.png",
+      "compare.json", "compare.png", "compare_impacts.csv", "compare_contacts.csv",
+      "compare_section.csv", "work_precision.csv", "work_precision.json", "summary.md",
+      "report.json", "REPORT.md", "fig4a.csv", "fig4a.json", "fig4a.png", "fig4a_values.csv",
+      "fig4b.csv", "fig4b.json", "fig4b.png", "fig4b_values.csv", "fig4c.csv", "fig4c.json",
+      "fig4c.png", "fig4d.csv", "fig4d.json", "fig4d.png",
+  };
+  return names;
 }
 
 void prepare_output_directory(const std::filesystem::path& directory) {
@@ -114,6 +214,19 @@ void append_field(fmt::memory_buffer& row, double value) {
 }
 
 }  // namespace
+
+void append_csv_text(fmt::memory_buffer& row, std::string_view text) {
+  if (text.find_first_of(",\"\r\n") == std::string_view::npos) {
+    row.append(text.data(), text.data() + text.size());
+    return;
+  }
+  row.push_back('"');
+  for (char c : text) {
+    if (c == '"') row.push_back('"');
+    row.push_back(c);
+  }
+  row.push_back('"');
+}
 
 EventsCsvWriter::EventsCsvWriter(AtomicFile& file, EventExtender extender)
     : out_(file.stream()), extender_(std::move(extender)) {
@@ -154,7 +267,7 @@ void TrajectoryCsvWriter::write(const TrajectorySample& s) {
   row_.push_back(',');
   append_field(row_, s.qdot);
   row_.push_back(',');
-  row_.append(s.mode.data(), s.mode.data() + s.mode.size());
+  append_csv_text(row_, s.mode);
   row_.push_back('\n');
   out_.write(row_.data(), static_cast<std::streamsize>(row_.size()));
 }

@@ -9,6 +9,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -34,8 +35,8 @@ class AtomicFile {
   void commit();  // finish() then publish()
 
   // the two halves of commit(), for RunFiles: flush, check and close the
-  // temporary (throws std::runtime_error on failure); rename it into place
-  // (throws std::filesystem::filesystem_error)
+  // temporary; rename it into place (both throw OutputError on failure, as
+  // the constructor does for a temporary it cannot create)
   void finish();
   void publish();
   // removes the published file again (a run whose other files failed)
@@ -56,9 +57,21 @@ class AtomicFile {
 // back those already renamed. Without a commit (an exception, a stopped run
 // that writes nothing) every temporary is removed, and a directory this run
 // created is removed again when left empty: a failed run leaves nothing.
+//
+// A run owns its directory. It holds an exclusive lock on it (flock on the
+// directory itself, no lock file) from construction to destruction: a second
+// run into the same directory is refused at once (BadInput, key `out`), so
+// two runs never mix their files. On commit, every file of an impactlab
+// output name (output_file_names) that this run does not write is removed,
+// with the temporaries that runs killed earlier left there: the directory
+// then holds this run's files and no file of an earlier run (a sampled
+// run's trajectory.csv beside a later unsampled run's events.csv). Files of
+// other names are the user's and are left alone. `lock` false: for the MPI
+// ranks of a sweep other than rank 0, which share rank 0's directory and
+// commit nothing.
 class RunFiles {
  public:
-  explicit RunFiles(std::filesystem::path directory);
+  explicit RunFiles(std::filesystem::path directory, bool lock = true);
   ~RunFiles();
   RunFiles(const RunFiles&) = delete;
   RunFiles& operator=(const RunFiles&) = delete;
@@ -68,11 +81,19 @@ class RunFiles {
   [[nodiscard]] const std::filesystem::path& directory() const { return directory_; }
 
  private:
+  // removes what earlier runs left under impactlab's output names
+  void remove_earlier_outputs() const;
+
   std::filesystem::path directory_;
   std::vector<std::filesystem::path> created_directories_;  // deepest first
   bool committed_ = false;
+  int lock_descriptor_ = -1;  // the directory, opened and flock-ed; -1: not locked
   std::vector<std::unique_ptr<AtomicFile>> files_;
 };
+
+// The names of the files impactlab commands write into an output directory
+// (data, sidecars, plots): what a later run's commit replaces.
+std::span<const std::string_view> output_file_names();
 
 // Creates the output directory; BadInput (key `out`) if it cannot.
 void prepare_output_directory(const std::filesystem::path& directory);
@@ -115,5 +136,11 @@ void write_json(AtomicFile& file, const nlohmann::json& document);
 // A CSV number with all its digits (round-trips), or an empty field for NaN
 // (not computed).
 std::string csv_field(double value);
+
+// A CSV text field as RFC 4180 writes it: as it is, unless it holds a comma,
+// a double quote or a line break, then between double quotes with each double
+// quote doubled (a mode named after a model file's wall "a,b\nc\"d" stays one
+// field). Text that needs no quoting is written unchanged.
+void append_csv_text(fmt::memory_buffer& row, std::string_view text);
 
 }  // namespace impactlab

@@ -148,7 +148,8 @@ std::vector<KeySpec> common_keys() {
        .default_number = static_cast<double>(default_scene_step_budget), .lower = 1.0,
        .upper = 1e15},
       {.key = "limits.max_rows",
-       .help = "most rows a sampled output (trajectory.csv) may have; refused up front beyond",
+       .help = "most rows a sampled output (trajectory.csv) or a sweep's grid may have; "
+               "refused up front beyond",
        .default_number = static_cast<double>(default_scene_row_budget), .lower = 1.0,
        .upper = 1e12},
   };

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -234,6 +235,32 @@ TEST(Sweep, InterruptedSweepResumesWithoutRecomputingFinishedPoints) {
   EXPECT_EQ(meta["run"]["points_reused_from_checkpoint"], 10);
   EXPECT_EQ(slurp(whole / "bifurcation.csv"), slurp(resumed / "bifurcation.csv"));
   EXPECT_EQ(slurp(whole / "summary.csv"), slurp(resumed / "summary.csv"));
+}
+
+// Checkpoint lines carry a checksum: an edited line ("period":7 in place of
+// the computed period) changed classes.csv without a warning; it is refused
+// now, naming the file and the line, and nothing is written.
+TEST(Sweep, EditedCheckpointLineIsRefused) {
+  const ScratchFolder scratch;
+  const auto dir = scratch / "edited";
+  ASSERT_EQ(run_command_line(sweep_1d + " --stop-after 4 --out " + dir.string()).status, 3);
+  const fs::path checkpoint = dir / "checkpoint-0.jsonl";
+  std::vector<std::string> lines = split_lines(slurp(checkpoint));
+  ASSERT_EQ(lines.size(), 5u);
+  const std::size_t period = lines[2].find("\"period\":");
+  ASSERT_NE(period, std::string::npos) << lines[2];
+  const char edited_period = lines[2][period + 9] == '7' ? '8' : '7';
+  lines[2][period + 9] = edited_period;
+  std::ofstream edited(checkpoint, std::ios::trunc);
+  for (const auto& line : lines) edited << line << '\n';
+  edited.close();
+  const ProgramRun resumed = run_command_line(sweep_1d + " --resume --out " + dir.string());
+  EXPECT_EQ(resumed.status, 2) << resumed.err;
+  EXPECT_EQ(count_lines(resumed.err), 1) << resumed.err;
+  EXPECT_NE(resumed.err.find("checkpoint-0.jsonl:3"), std::string::npos) << resumed.err;
+  EXPECT_NE(resumed.err.find("checksum"), std::string::npos) << resumed.err;
+  EXPECT_FALSE(fs::exists(dir / "bifurcation.csv"));
+  EXPECT_FALSE(fs::exists(dir / "meta.json"));
 }
 
 TEST(Sweep, KilledSweepLeavesNoDataFileAndResumes) {

@@ -146,6 +146,30 @@ INSTANTIATE_TEST_SUITE_P(
                   "--periods", "limits.max_steps"},
         BadOption{"pendulum_d_1e200", {"simulate", "jin2003", "--set", "d=1e200"}, "--periods",
                   "limits.max_steps"},
+        // a moment of inertia m l^2 that overflows: exit 0 "completed" with an
+        // infinite impulse at t0 and no final time before
+        BadOption{"pendulum_l_1e200",
+                  {"simulate", "jin2003", "--set", "l=1e200", "--periods", "3"}, "l",
+                  "moment of inertia"},
+        BadOption{"pendulum_m_huge_l_large",
+                  {"simulate", "jin2003", "--set", "m=1e300", "--set", "l=1e5"}, "m",
+                  "moment of inertia"},
+        // a sweep's or basins map's grid sized up front against limits.max_rows:
+        // the 2D grid of 10^14 points reached 9.4 GB in 30 s laying out its tasks
+        BadOption{"sweep_grid_2d_huge",
+                  {"sweep", "jin2003", "--param", "omega=5:9:10000000", "--param",
+                   "V0=1:2:10000000"},
+                  "--param", "limits.max_rows"},
+        BadOption{"sweep_grid_1d_both_directions",
+                  {"sweep", "jin2003", "--param", "omega=5:9:10000000", "--direction", "both"},
+                  "--param", "limits.max_rows"},
+        BadOption{"sweep_points_1d",
+                  {"sweep", "jin2003", "--param", "omega=5:9:1000000"}, "--points",
+                  "limits.max_rows"},
+        BadOption{"basins_grid_huge",
+                  {"basins", "jin2003", "--x", "initial.theta=-0.1:0.1:10000000", "--y",
+                   "initial.theta_dot=-1:1:10000000"},
+                  "--x/--y", "limits.max_rows"},
         // 5 periods (4.5 s) after t0 = 1e17 s round to t0 itself (a double's
         // resolution there is 16 s): refused up front, naming t0
         BadOption{"simulate_t0_1e17",

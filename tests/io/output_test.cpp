@@ -1,6 +1,7 @@
 // Output files (src/io/output.hpp): the files of a run appear together or not
 // at all; a failed run leaves no directory behind; events stream to the file
 // as the run goes, so the memory of `simulate` does not grow with its length.
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -8,9 +9,13 @@
 #include <string>
 #include <vector>
 
+#include <signal.h>
+#include <sys/resource.h>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/output.hpp>
 
 #include "support/test_support.hpp"
@@ -99,6 +104,95 @@ TEST(RunFiles, IfOneFileFailsNoneAppears) {
 
 // Every field reads back to the same double (fmt's shortest round-trip
 // form: the fewest digits that do, so 0.1 is written "0.1")
+// A run owns its directory. A later run replaces an earlier run's files:
+// a sampled run's trajectory.csv used to stay beside a later unsampled run's
+// events.csv and meta.json (and scripts/plot_simulation.py drew the old curve
+// under the new title). The temporaries of a killed run go too; files of
+// other names are the user's.
+TEST(RunFiles, ALaterRunReplacesAnEarlierRunsFiles) {
+  const ScratchFolder scratch;
+  const auto dir = scratch / "reused";
+  const ProgramRun sampled = run_impactlab(
+      {"simulate", "jin2003", "--periods", "2", "--sample", "0.01", "--quiet", "--out", dir.string()});
+  ASSERT_EQ(sampled.status, 0) << sampled.err;
+  ASSERT_TRUE(std::filesystem::exists(dir / "trajectory.csv"));
+  std::ofstream(dir / "notes.txt") << "mine\n";
+  std::ofstream(dir / "events.csv.tmp-999999999") << "t\n";  // a killed run's
+  const ProgramRun unsampled =
+      run_impactlab({"simulate", "jin2003", "--periods", "2", "--quiet", "--out", dir.string()});
+  ASSERT_EQ(unsampled.status, 0) << unsampled.err;
+  auto names = entries(dir);
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"events.csv", "meta.json", "notes.txt"}));
+}
+
+// Two runs into one directory at once cannot mix their files (events.csv of
+// one beside meta.json of the other): the directory is locked while a run
+// holds it, and a second run is refused at once, naming --out.
+TEST(RunFiles, ASecondRunIntoALockedDirectoryIsRefused) {
+  const ScratchFolder scratch;
+  const auto dir = scratch / "locked";
+  {
+    RunFiles holder(dir);
+    const ProgramRun second =
+        run_impactlab({"simulate", "jin2003", "--periods", "2", "--quiet", "--out", dir.string()});
+    EXPECT_TRUE(refused_naming(second, "--out"));
+    EXPECT_NE(second.err.find("another impactlab run"), std::string::npos) << second.err;
+    EXPECT_THROW({ RunFiles second(dir); }, BadInput);  // in one process too
+  }
+  const ProgramRun after =
+      run_impactlab({"simulate", "jin2003", "--periods", "2", "--quiet", "--out", dir.string()});
+  EXPECT_EQ(after.status, 0) << after.err;
+}
+
+// SIGINT or SIGTERM in the middle of a run: the program ends on the signal as
+// before, and removes its temporaries first (it left events.csv.tmp-<pid> of
+// several MB behind).
+TEST(RunFiles, AnInterruptedRunLeavesNoTemporaries) {
+  for (const int signal_number : {SIGINT, SIGTERM}) {
+    const ScratchFolder scratch;
+    const auto dir = scratch / "interrupted";
+    bool sent = false;
+    // once the run's temporary holds rows, the signal to the process its name gives
+    const auto interrupt = [&] {
+      std::error_code error;
+      if (sent || !std::filesystem::is_directory(dir, error)) return false;
+      for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
+        const std::string name = entry.path().filename().string();
+        const std::size_t tag = name.find(".tmp-");
+        if (tag == std::string::npos || entry.file_size(error) < 100000) continue;
+        ::kill(static_cast<pid_t>(std::stol(name.substr(tag + 5))), signal_number);
+        sent = true;
+      }
+      return false;
+    };
+    const ProgramRun run =
+        run_impactlab({"simulate", "jin2003", "--periods", "5000000", "--quiet", "--set",
+                       "limits.max_steps=1e12", "--out", dir.string()},
+                      {.limit_s = 120, .kill_when = interrupt});
+    ASSERT_TRUE(sent) << run.err;
+    EXPECT_FALSE(run.timed_out);
+    EXPECT_EQ(run.signal, signal_number) << run.status << ": " << run.err;
+    EXPECT_EQ(entries(dir), std::vector<std::string>{});
+  }
+}
+
+// A text field that needs quoting (a mode named after a model file's wall)
+// is quoted as RFC 4180 says, so each row keeps its four fields; one that
+// needs none is written as it was.
+TEST(TrajectoryCsvWriter, QuotesAModeThatNeedsIt) {
+  const ScratchFolder scratch;
+  const auto path = scratch / "trajectory.csv";
+  {
+    AtomicFile file(path);
+    TrajectoryCsvWriter writer(file);
+    writer.write({0.5, 1.0, 2.0, "stuck_a,b\nc\"d"});
+    writer.write({1.5, 1.0, 2.0, "free"});
+    file.commit();
+  }
+  EXPECT_EQ(slurp(path), "t,q,qdot,mode\n0.5,1,2,\"stuck_a,b\nc\"\"d\"\n1.5,1,2,free\n");
+}
+
 TEST(EventsCsvWriter, WritesEachEventWithAllItsDigits) {
   const ScratchFolder scratch;
   const auto dir = scratch / "writer";
@@ -188,6 +282,40 @@ TEST(SimulateFiles, MetaUnwritableMeansNoEventsCsv) {
                                     "--quiet", "--out", dir.string()});
   EXPECT_NE(run.status, 0);
   EXPECT_EQ(entries(dir), std::vector<std::string>{"meta.json"});
+}
+
+// An output that cannot be written ends the run with exit status 4 and one
+// line naming the file, and leaves no file of the run, temporary or not. A
+// file size limit fails the writes as a full disk does (EFBIG, ENOSPC): it
+// used to kill the program (SIGXFSZ) with its temporaries left behind, and a
+// full disk exited 1.
+TEST(OutputFailures, AFullDiskExitsFourAndLeavesNothing) {
+  const ScratchFolder scratch;
+  const auto dir = scratch / "full";
+  std::filesystem::create_directories(dir);
+  rlimit saved{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
+  rlimit limited = saved;
+  limited.rlim_cur = 64 * 1024;  // bytes; events.csv of 2000 periods is about 400 kB
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &limited), 0);
+  const ProgramRun run = run_impactlab(
+      {"simulate", "jin2003", "--periods", "2000", "--quiet", "--out", dir.string()});
+  ::setrlimit(RLIMIT_FSIZE, &saved);
+  EXPECT_EQ(run.signal, 0);
+  EXPECT_EQ(run.status, 4) << run.err;
+  EXPECT_EQ(count_lines(run.err), 1) << run.err;
+  EXPECT_NE(run.err.find("events.csv"), std::string::npos) << run.err;
+  EXPECT_EQ(entries(dir), std::vector<std::string>{});
+}
+
+// A folder that takes no new file (procfs refuses them even to root, for
+// whom a read-only mode bit does not count) exits 4 too, not 1.
+TEST(OutputFailures, AReadOnlyFolderExitsFour) {
+  const ProgramRun run = run_impactlab(
+      {"simulate", "jin2003", "--periods", "2", "--quiet", "--out", "/proc/self/fdinfo"});
+  EXPECT_EQ(run.status, 4) << run.err;
+  EXPECT_EQ(count_lines(run.err), 1) << run.err;
+  EXPECT_NE(run.err.find("/proc/self/fdinfo"), std::string::npos) << run.err;
 }
 
 // A run that fails on its input after the directory was named leaves no

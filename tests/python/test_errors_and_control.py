@@ -67,6 +67,18 @@ def test_unknown_scene_raises_value_error():
     (lambda: impactlab.simulate("jin2003", progress=42), "progress"),
     (lambda: impactlab.simulate("jin2003", period=5), "period"),  # an unknown keyword
     (lambda: impactlab.sweep("jin2003", param="omega=6:7:3", point=5), "point"),
+    # a keyword of the wrong type or past the largest double is a ValueError
+    # naming it (TypeError and OverflowError before), and the option table's
+    # ranges hold as on the command line
+    (lambda: impactlab.sweep("jin2003", param=123), "param"),
+    (lambda: impactlab.sweep("jin2003", param=[]), "param"),
+    (lambda: impactlab.sweep("jin2003", param=("omega=6:7:3", 5)), "param"),
+    (lambda: impactlab.simulate("jin2003", periods=10**400), "periods"),
+    (lambda: impactlab.simulate("jin2003", t_end=-10**400), "t_end"),
+    (lambda: impactlab.poincare("jin2003", transient=10**400), "transient"),
+    (lambda: impactlab.sweep("jin2003", param="omega=6:7:3", transient=-1), "transient"),
+    (lambda: impactlab.basins("jin2003", x="initial.theta=-0.1:0.1:3",
+                              y="initial.theta_dot=-1:1:3", transient=-1), "transient"),
     (lambda: impactlab.continue_("linear_impact", param="omega=2"), "param"),
     (lambda: impactlab.continue_("linear_impact", param="omega=2:nan"), "param"),
     (lambda: impactlab.continue_("linear_impact", param="nokey=2:3"), "param"),
@@ -97,6 +109,16 @@ def test_bad_option_raises_value_error_naming_it(call, named):
      "(raise it with set limits.max_steps=N)"),
     (lambda: impactlab.sweep("jin2003", param="model=0:1:5"),
      "param = model: not a numeric key of oscillator pendulum_walls"),
+    (lambda: impactlab.sweep("jin2003", param=["omega=5:9:10000000", "V0=1:2:10000000"]),
+     "param = omega=5:9:10000000 V0=1:2:10000000: the grid would write 1e+14 rows, over "
+     "limits.max_rows = 10000000 (raise it with set limits.max_rows=N)"),
+    (lambda: impactlab.sweep("jin2003", param="omega=5:9:1000000"),
+     "points = 50: 1e+06 values x 50 points would write 5e+07 rows, over "
+     "limits.max_rows = 10000000 (raise it with set limits.max_rows=N)"),
+    (lambda: impactlab.basins("jin2003", x="initial.theta=-0.1:0.1:10000000",
+                              y="initial.theta_dot=-1:1:10000000"),
+     "x/y = initial.theta=-0.1:0.1:10000000 initial.theta_dot=-1:1:10000000: the grid would "
+     "write 1e+14 rows, over limits.max_rows = 10000000 (raise it with set limits.max_rows=N)"),
 ])
 def test_library_message_names_the_python_keyword(call, line):
     """The library names an option by its own name, the Python keyword."""
