@@ -132,6 +132,8 @@ void register_model_scene(std::string_view name_or_path) {
   if (!model->compiled)
     std::cerr << "impactlab: model " << path << ": " << model->slow_path_reason
               << "; using the interpreted evaluator (the slow path, several times slower)\n";
+  else if (!model->cache_note.empty())
+    std::cerr << "impactlab: model " << path << ": " << model->cache_note << "\n";
 
   auto oscillator = std::make_unique<RuntimeOscillator>();
   oscillator->name = name;

@@ -4,29 +4,23 @@
 #include <unistd.h>
 
 #include <array>
-#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <set>
-#include <random>
 #include <sstream>
 
 #include <fmt/format.h>
 #include <ginac/ginac.h>
 
 #include <impactlab/oscillators/model_file/model_expression.hpp>
-#include <impactlab/platform/run_program.hpp>
 
 namespace impactlab {
 
 namespace {
 
-namespace fs = std::filesystem;
 using Expressions = std::vector<GiNaC::ex>;
 
 // ---------------------------------------------------------------------------
@@ -281,15 +275,6 @@ std::string c_source(const std::vector<Expressions>& kernels) {
   return out.str();
 }
 
-std::uint64_t fnv1a(std::string_view text) {
-  std::uint64_t hash = 14695981039346656037ull;
-  for (const unsigned char c : text) {
-    hash ^= c;
-    hash *= 1099511628211ull;
-  }
-  return hash;
-}
-
 // What the generated source is a function of: the model as written and this
 // generator's version. (The source itself is not: GiNaC orders the terms of a
 // sum by the serial numbers of its symbols, which differ between two models
@@ -417,103 +402,11 @@ StackProgram program_of(const Expressions& outputs) {
   return StackProgram(std::move(writer.code));
 }
 
-// ---------------------------------------------------------------------------
-// compilation and the cache
-
-std::string first_line_of(const fs::path& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  return line;
-}
-
-// A name no other run uses at the same time: pid, thread-independent counter, random bits.
-std::string unique_suffix() {
-  std::random_device device;
-  return fmt::format("{}-{:08x}", static_cast<long>(::getpid()), device());
-}
-
-// impactlab's flags, after the compiler's own from CompileOptions
-constexpr std::array<std::string_view, 4> compiler_flags = {"-O2", "-fno-math-errno", "-shared", "-fPIC"};
-
-// The shared object for `source`, compiled if the cache does not hold it.
-// Returns the path, or an empty path and the reason in `why`.
-fs::path shared_object(const std::string& fingerprint, const std::string& source,
-                       const CompileOptions& options, bool& from_cache, std::string& why) {
-  std::vector<std::string> command = options.compiler;
-  for (const std::string_view flag : compiler_flags) command.emplace_back(flag);
-  const std::string key = fmt::format("{}\n{}", fingerprint, describe_program(command));
-  const fs::path directory(options.cache_directory);
-  const fs::path target = directory / fmt::format("model-{:016x}.so", fnv1a(key));
-  std::error_code error;
-  if (fs::exists(target, error)) {
-    from_cache = true;
-    return target;
-  }
-  fs::create_directories(directory, error);
-  if (error || !fs::is_directory(directory)) {
-    why = fmt::format("cache directory {} is not usable ({})", directory.string(),
-                      error ? error.message() : "not a directory");
-    return {};
-  }
-  const std::string suffix = unique_suffix();
-  const fs::path source_file = directory / fmt::format("model-{:016x}.{}.c", fnv1a(key), suffix);
-  const fs::path temporary = directory / fmt::format("model-{:016x}.{}.so.tmp", fnv1a(key), suffix);
-  const fs::path log = directory / fmt::format("model-{:016x}.{}.log", fnv1a(key), suffix);
-  {
-    std::ofstream out(source_file);
-    out << source;
-    if (!out.flush()) {
-      why = fmt::format("cache directory {} is not writable", directory.string());
-      fs::remove(source_file, error);
-      return {};
-    }
-  }
-  // an argument vector, no shell: the paths are data, whatever characters they hold
-  command.insert(command.end(), {"-o", temporary.string(), source_file.string(), "-lm"});
-  const int status = run_program_logged(command, log.string());
-  if (status != 0) {
-    const std::string detail = first_line_of(log);
-    const std::string compiler = describe_program(options.compiler);
-    why = status < 0 ? fmt::format("the C compiler '{}' could not be started or was killed", compiler)
-                     : fmt::format("the C compiler '{}' failed (status {}{}{})", compiler, status,
-                                   detail.empty() ? "" : ": ", detail);
-    for (const auto& path : {source_file, temporary, log}) fs::remove(path, error);
-    return {};
-  }
-  // atomic: a concurrent run sees the old state (no file) or the whole file
-  fs::rename(temporary, target, error);
-  for (const auto& path : {source_file, log}) fs::remove(path, error);
-  if (error) {
-    why = fmt::format("cannot move the compiled model into {} ({})", directory.string(), error.message());
-    fs::remove(temporary, error);
-    return {};
-  }
-  return target;
-}
-
 }  // namespace
-
-CompileOptions compile_options_from_environment() {
-  CompileOptions options;
-  if (const char* compiler = std::getenv("IMPACTLAB_CC"); compiler) {
-    std::vector<std::string> words = split_on_spaces(compiler);
-    if (!words.empty()) options.compiler = std::move(words);
-  }
-  if (const char* cache = std::getenv("IMPACTLAB_CACHE_DIR"); cache && *cache) {
-    options.cache_directory = cache;
-  } else if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
-    options.cache_directory = (fs::path(xdg) / "impactlab").string();
-  } else if (const char* home = std::getenv("HOME"); home && *home) {
-    options.cache_directory = (fs::path(home) / ".cache" / "impactlab").string();
-  } else {
-    options.cache_directory = (fs::temp_directory_path() / "impactlab-cache").string();
-  }
-  return options;
-}
 
 CompiledModel::~CompiledModel() {
   if (library_handle) dlclose(library_handle);
+  if (library_descriptor >= 0) ::close(library_descriptor);
 }
 
 std::shared_ptr<const CompiledModel> compile_model(const ModelDefinition& definition,
@@ -537,21 +430,18 @@ std::shared_ptr<const CompiledModel> compile_model(const ModelDefinition& defini
   std::vector<Kernel> loaded(kernels.size());
   if (options.use_compiler) {
     const std::string source = c_source(kernels);
-    std::string why;
-    const fs::path library =
-        shared_object(model_fingerprint(definition), source, options, model->from_cache, why);
-    if (!library.empty()) {
-      void* handle = dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
-      if (!handle) {
-        why = fmt::format("cannot load {} ({})", library.string(), dlerror());
-      } else {
-        model->library_handle = handle;
-        model->library = library.string();
-        for (std::size_t k = 0; k < kernels.size() && why.empty(); ++k) {
-          void* symbol = dlsym(handle, fmt::format("impactlab_kernel_{}", k).c_str());
-          if (!symbol) why = fmt::format("{} lacks kernel {}", library.string(), k);
-          loaded[k].compiled = reinterpret_cast<KernelFunction>(symbol);
-        }
+    const LoadedObject object = load_or_compile(model_fingerprint(definition), source, options);
+    std::string why = object.why;
+    model->cache_note = object.cache_note;
+    if (object.handle) {
+      model->library_handle = object.handle;
+      model->library_descriptor = object.descriptor;
+      model->library = object.path;
+      model->from_cache = object.from_cache;
+      for (std::size_t k = 0; k < kernels.size() && why.empty(); ++k) {
+        void* symbol = dlsym(object.handle, fmt::format("impactlab_kernel_{}", k).c_str());
+        if (!symbol) why = fmt::format("{} lacks kernel {}", object.path, k);
+        loaded[k].compiled = reinterpret_cast<KernelFunction>(symbol);
       }
     }
     model->compiled = why.empty();
