@@ -14,6 +14,7 @@
 
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/toml_nesting.hpp>
 #include <impactlab/oscillators/model_file/compiled_model.hpp>
 
 namespace impactlab {
@@ -90,8 +91,12 @@ void build_schema(RuntimeOscillator& oscillator, const CompiledModel& model) {
   schema.oscillator = oscillator.name;
   schema.main_coordinate = oscillator.keep(model.states[0]);
   schema.keys = common_keys();
+  // a model file has no closed-form flow, and no series right-hand side for
+  // the Taylor stepper: neither method is offered, for a run or a classification
   for (auto& key : schema.keys)
-    if (key.key == "integrator.method") std::erase(key.choices, std::string_view("exact"));
+    if (key.key == "integrator.method" || key.key == "integrator.classification_method")
+      std::erase_if(key.choices,
+                    [](std::string_view method) { return method == "exact" || method == "taylor"; });
   schema.keys.push_back(accumulation_tolerance_key());
   for (const auto& parameter : model.parameters)
     schema.keys.push_back({.key = oscillator.keep(parameter.name),
@@ -119,7 +124,7 @@ void register_model_scene(std::string_view name_or_path) {
   text << std::ifstream(path).rdbuf();
   toml::table document;
   try {
-    document = toml::parse(text.str(), path);
+    document = parse_bounded_toml(text.str(), path);
   } catch (const toml::parse_error&) {
     return;  // read_scene reports it
   }

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <map>
@@ -40,12 +41,7 @@ class SymbolicModel {
   [[nodiscard]] const GiNaC::realsymbol& state(std::size_t i) const { return states_[i]; }
   [[nodiscard]] const GiNaC::realsymbol& time() const { return time_; }
 
-  GiNaC::ex parse(const ExpressionText& text) {
-    const NameResolver resolver = [this](std::string_view name, const SourcePosition& where) {
-      return resolve(name, where);
-    };
-    return parse_expression(text, resolver);
-  }
+  GiNaC::ex parse(const ExpressionText& text) { return parse_at(text, 0).value; }
 
   [[nodiscard]] std::size_t state_index(const std::string& name) const {
     for (std::size_t i = 0; i < model_.states.size(); ++i)
@@ -80,12 +76,20 @@ class SymbolicModel {
   }
 
  private:
-  std::optional<GiNaC::ex> resolve(std::string_view name, const SourcePosition& where) {
-    if (name == "t") return GiNaC::ex(time_);
+  // `text` parsed at nesting level `depth` (that of the name that refers to it)
+  ParsedExpression parse_at(const ExpressionText& text, std::size_t depth) {
+    const NameResolver resolver = [this](std::string_view name, const SourcePosition& where,
+                                         std::size_t at_depth) { return resolve(name, where, at_depth); };
+    return parse_expression(text, resolver, depth);
+  }
+
+  std::optional<ParsedExpression> resolve(std::string_view name, const SourcePosition& where,
+                                          std::size_t depth) {
+    if (name == "t") return ParsedExpression{GiNaC::ex(time_)};
     for (std::size_t i = 0; i < model_.states.size(); ++i)
-      if (model_.states[i] == name) return GiNaC::ex(states_[i]);
+      if (model_.states[i] == name) return ParsedExpression{GiNaC::ex(states_[i])};
     for (std::size_t j = 0; j < model_.parameters.size(); ++j)
-      if (model_.parameters[j].name == name) return GiNaC::ex(parameters_[j]);
+      if (model_.parameters[j].name == name) return ParsedExpression{GiNaC::ex(parameters_[j])};
     for (const auto& [definition, text] : model_.definitions) {
       if (definition != name) continue;
       if (const auto done = definitions_.find(definition); done != definitions_.end())
@@ -93,10 +97,10 @@ class SymbolicModel {
       if (!in_progress_.insert(definition).second)
         throw ModelFileError(where, text.key,
                              "circular definition: '" + definition + "' depends on itself");
-      const GiNaC::ex value = parse(text);
+      const ParsedExpression parsed = parse_at(text, depth);
       in_progress_.erase(definition);
-      definitions_.emplace(definition, value);
-      return value;
+      definitions_.emplace(definition, parsed);
+      return parsed;
     }
     return std::nullopt;
   }
@@ -105,7 +109,7 @@ class SymbolicModel {
   GiNaC::realsymbol time_;
   std::vector<GiNaC::realsymbol> states_;
   std::vector<GiNaC::realsymbol> parameters_;
-  std::map<std::string, GiNaC::ex> definitions_;
+  std::map<std::string, ParsedExpression> definitions_;
   std::set<std::string> in_progress_;
 };
 
@@ -176,12 +180,59 @@ Expressions chatter_coefficients(SymbolicModel& symbols, const ModelWall& wall,
   return {damping, stiffness, scale};
 }
 
+// `e` for real arguments: every state, parameter and time is real, and so is
+// every value a model computes, so conjugate(u) and real_part(u) are u and
+// imag_part(u) is 0. GiNaC's derivative of abs, (u' conj(u) + u conj(u'))/(2|u|),
+// keeps conj(u) where it cannot prove u real (asin, acos, log, atan2, powers),
+// and abs of a power keeps real_part of the exponent: written for real u, the
+// derivative is u' u/|u|, which C and the interpreted evaluator have.
+// Expressions holding none of these are returned as they are (the same C
+// source as before).
+GiNaC::ex for_real_arguments(const GiNaC::ex& e) {
+  const GiNaC::ex u = GiNaC::wild();
+  const GiNaC::lst real_rules = {GiNaC::conjugate_function(u).hold() == u,
+                                 GiNaC::real_part_function(u).hold() == u,
+                                 GiNaC::imag_part_function(u).hold() == 0};
+  GiNaC::ex result = e;
+  for (const GiNaC::ex& rule : real_rules)
+    if (result.has(rule.lhs())) result = result.subs(rule);
+  return result;
+}
+
+// Whether every number in `e` is a finite real double (the C code and the
+// interpreted evaluator hold numbers as doubles). Each shared subexpression
+// is visited once.
+bool numbers_are_finite_doubles(const GiNaC::ex& e) {
+  std::vector<GiNaC::ex> pending{e};
+  // held, so that no address is reused by another subexpression meanwhile
+  std::map<const GiNaC::basic*, GiNaC::ex> seen;
+  while (!pending.empty()) {
+    const GiNaC::ex next = pending.back();
+    pending.pop_back();
+    if (!seen.emplace(&GiNaC::ex_to<GiNaC::basic>(next), next).second) continue;
+    if (GiNaC::is_a<GiNaC::numeric>(next)) {
+      const GiNaC::numeric& number = GiNaC::ex_to<GiNaC::numeric>(next);
+      if (!number.is_real() || !std::isfinite(number.to_double())) return false;
+      continue;
+    }
+    for (std::size_t i = 0; i < next.nops(); ++i) pending.push_back(next.op(i));
+  }
+  return true;
+}
+
 // All kernels of the model, in the order of `layout`.
 std::vector<Expressions> build_kernels(const ModelDefinition& model, KernelLayout& layout,
                                        std::vector<ExpressionText>& written_texts) {
   SymbolicModel symbols(model);
   std::vector<Expressions> kernels;
   auto add = [&](Expressions outputs) {
+    for (GiNaC::ex& output : outputs) {
+      output = for_real_arguments(output);
+      if (!numbers_are_finite_doubles(output))
+        throw ModelFileError(model.rhs_where, "model",
+                             "an expression or one of its derivatives holds a number beyond the "
+                             "range of a double: C code cannot hold it");
+    }
     kernels.push_back(std::move(outputs));
     return kernels.size() - 1;
   };
