@@ -220,6 +220,25 @@ bool numbers_are_finite_doubles(const GiNaC::ex& e) {
   return true;
 }
 
+// The most nodes one output may have as C prints it, where a subexpression
+// used n times is written n times: a chain of definitions that each name the
+// one before several times grows geometrically when written out.
+constexpr std::size_t max_printed_nodes = 200000;
+
+// The number of nodes of `e` as the C printer writes it (saturating at
+// max_printed_nodes + 1), each shared subexpression counted once per use but
+// computed once (the ex is held in `known`, so that no address is reused).
+std::size_t printed_nodes(const GiNaC::ex& e,
+                          std::map<const GiNaC::basic*, std::pair<GiNaC::ex, std::size_t>>& known) {
+  const GiNaC::basic* node = &GiNaC::ex_to<GiNaC::basic>(e);
+  if (const auto found = known.find(node); found != known.end()) return found->second.second;
+  std::size_t nodes = 1;
+  for (std::size_t i = 0; i < e.nops(); ++i)
+    nodes = std::min(nodes + printed_nodes(e.op(i), known), max_printed_nodes + 1);
+  known.emplace(node, std::pair{e, nodes});
+  return nodes;
+}
+
 // All kernels of the model, in the order of `layout`.
 std::vector<Expressions> build_kernels(const ModelDefinition& model, KernelLayout& layout,
                                        std::vector<ExpressionText>& written_texts) {
@@ -232,6 +251,12 @@ std::vector<Expressions> build_kernels(const ModelDefinition& model, KernelLayou
         throw ModelFileError(model.rhs_where, "model",
                              "an expression or one of its derivatives holds a number beyond the "
                              "range of a double: C code cannot hold it");
+      std::map<const GiNaC::basic*, std::pair<GiNaC::ex, std::size_t>> known;
+      if (printed_nodes(output, known) > max_printed_nodes)
+        throw ModelFileError(model.rhs_where, "model",
+                             fmt::format("an expression or one of its derivatives grows to more "
+                                         "than {} terms once its definitions are written out",
+                                         max_printed_nodes));
     }
     kernels.push_back(std::move(outputs));
     return kernels.size() - 1;

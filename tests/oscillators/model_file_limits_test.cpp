@@ -3,7 +3,8 @@
 // exit status 2 and one line FILE:LINE:COL naming the place: deep nesting of
 // parentheses, functions, signs, powers and definitions
 // (max_expression_nesting), a TOML header of 100,000 dotted parts, an
-// exponent C cannot hold. Nesting within the bound still runs.
+// exponent C cannot hold, a chain of definitions whose written-out C source
+// grows geometrically. Nesting within the bound still runs.
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -124,6 +125,21 @@ TEST(ModelFileLimits, AnExponentCCannotHoldIsRefused) {
                       "direction = \"falling\"\nreset = { velocity = \"v\", restitution = \"0.8\" }\n");
   // the '^' of line 11 (the witness starts at column 12)
   expect_refused_at(scratch, outcome, "11:23", "an integer exponent beyond");
+}
+
+// dk = sin(d{k-1})*cos(d{k-1}) + d{k-1}: a 600-byte file whose C source,
+// written out, grows about tenfold per level (once past 100 s and gigabytes)
+TEST(ModelFileLimits, ADefinitionChainThatGrowsGeometricallyIsRefused) {
+  const ScratchFolder scratch;
+  std::string definitions = "[model.definitions]\nd0 = \"x\"\n";
+  for (int k = 1; k <= 12; ++k) {
+    const std::string before = "d" + std::to_string(k - 1);
+    definitions += "d" + std::to_string(k) + " = \"sin(" + before + ")*cos(" + before + ") + " + before + "\"\n";
+  }
+  const auto outcome = simulate_model(scratch, head + "v = \"-x + 0.01*d12\"\n" + definitions);
+  EXPECT_FALSE(outcome.run.timed_out);
+  // at the [model.rhs] table
+  expect_refused_at(scratch, outcome, "7:1", "grows to more than 200000 terms");
 }
 
 TEST(ModelFileLimits, NestingWithinTheBoundRuns) {
