@@ -18,6 +18,7 @@
 
 #include <fmt/format.h>
 
+#include <impactlab/io/bad_input.hpp>
 #include <impactlab/platform/run_program.hpp>
 #include <impactlab/platform/sha256.hpp>
 
@@ -26,6 +27,9 @@ namespace impactlab {
 namespace {
 
 namespace fs = std::filesystem;
+
+// run_program_logged's status for a compiler killed at its time limit
+constexpr int compiler_killed_at_limit = -2;
 
 // impactlab's flags, after the compiler's own from CompileOptions
 constexpr std::array<std::string_view, 4> compiler_flags = {"-O2", "-fno-math-errno", "-shared", "-fPIC"};
@@ -207,11 +211,19 @@ void* compile_into(int folder, const fs::path& folder_path, const std::string& n
   for (const std::string_view flag : compiler_flags) command.emplace_back(flag);
   command.insert(command.end(), {"-o", (folder_path / temporary).string(),
                                  (folder_path / source_name).string(), "-lm"});
-  const int status = run_program_logged(command, (folder_path / log).string());
+  const int status =
+      run_program_logged(command, (folder_path / log).string(), options.compile_time_limit_s);
   const std::string detail = first_line_inside(folder, log);
   remove_inside(source_name);
   remove_inside(log);
   const std::string compiler = describe_program(options.compiler);
+  if (status == compiler_killed_at_limit) {
+    remove_inside(temporary);
+    throw BadInput("model", fmt::format("{} bytes of C", source.size()),
+                   fmt::format("the C compiler '{}' ran past its limit of {} s on this model: "
+                               "write its expressions with fewer or smaller terms",
+                               compiler, options.compile_time_limit_s));
+  }
   FileDescriptor object = open_inside(folder, temporary);
   if (status != 0 || !object || !trusted_file(object.get())) {
     why = status < 0 ? fmt::format("the C compiler '{}' could not be started or was killed", compiler)
@@ -255,7 +267,12 @@ LoadedObject compile_without_cache(const std::string& name, const std::string& s
   }
   const fs::path folder_path(pattern);
   const FileDescriptor folder = open_private_folder(folder_path, loaded.why);
-  if (folder) compile_into(folder.get(), folder_path, name, source, options, loaded);
+  try {
+    if (folder) compile_into(folder.get(), folder_path, name, source, options, loaded);
+  } catch (...) {
+    fs::remove_all(folder_path, error);
+    throw;
+  }
   if (!loaded.handle)
     loaded.why = fmt::format("{}; temporary folder {}: {}", loaded.cache_note, folder_path.string(),
                              loaded.why);

@@ -43,6 +43,9 @@ struct CompileOptions {
   // impactlab adds its flags, the output and the source after them
   std::vector<std::string> compiler = {"cc"};
   bool use_compiler = true;      // false: go straight to the interpreted evaluator
+  // the longest a compilation may run (s): a model whose C takes longer is
+  // refused (BadInput, exit status 2), not left to run for minutes
+  double compile_time_limit_s = 120.0;
 };
 
 // The options from the environment ($IMPACTLAB_CACHE_DIR, $XDG_CACHE_HOME,

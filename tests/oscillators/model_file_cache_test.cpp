@@ -3,9 +3,11 @@
 // symbolic link there, is never loaded (its constructor would leave a marker
 // file); a folder others may write is bypassed; with HOME unset the cache is
 // not in the shared temporary folder; a cache folder named like a compiler
-// option is a folder; an empty object is rebuilt.
+// option is a folder; an empty object is rebuilt; a compiler past its time
+// limit is stopped and the model refused.
 #include <sys/stat.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -187,6 +189,26 @@ TEST(ModelFileCache, AnEmptyObjectIsRebuilt) {
   // and the rebuilt object is trusted again
   const auto third = compiled_in(scratch / "cache");
   EXPECT_TRUE(third->from_cache);
+}
+
+// a compiler that runs past the limit is killed with the processes it
+// started, and the model refused (exit status 2), not left to run for minutes
+TEST(ModelFileCache, ACompilerPastItsTimeLimitIsRefused) {
+  const ScratchFolder scratch;
+  const fs::path slow_compiler = scratch / "slow_cc";
+  std::ofstream(slow_compiler) << "#!/bin/sh\nsleep 60\n";
+  fs::permissions(slow_compiler, fs::perms::owner_all);
+  CompileOptions options;
+  options.cache_directory = (scratch / "cache").string();
+  options.compiler = {slow_compiler.string()};
+  options.compile_time_limit_s = 0.5;
+  const auto start = std::chrono::steady_clock::now();
+  const std::string key = impactlab::testing::bad_input_key(
+      [&] { compile_model(read_model_file(model_file), options); });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(key, "model");
+  EXPECT_LT(seconds, 20.0);
+  EXPECT_TRUE(fs::is_empty(scratch / "cache"));
 }
 
 TEST(ModelFileCache, ANewFolderIsPrivate) {
