@@ -4,6 +4,8 @@
 // and the bindings of its systems (model_file_binding.hpp).
 #include <impactlab/api/bindings/model_file_binding.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -14,6 +16,7 @@
 
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/toml_nesting.hpp>
 #include <impactlab/oscillators/model_file/compiled_model.hpp>
 
 namespace impactlab {
@@ -23,6 +26,48 @@ namespace {
 const CompiledModel* loaded_model(const Scene& scene) {
   const RuntimeOscillator* runtime = runtime_oscillator(scene.oscillator);
   return runtime ? static_cast<const CompiledModel*>(runtime->data.get()) : nullptr;
+}
+
+// The built-in scenes' checks, for a model: every Newton restitution in
+// [0, 1] (named by its parameter where it is one), and the initial state
+// outside every wall (its witness on the free side: positive for a falling
+// witness, negative for a rising one; named by the state the witness depends
+// on most).
+template <std::size_t N>
+void check_walls_at_start(const ModelSystem<N>& system, const typename ModelSystem<N>::State& x,
+                          double t0) {
+  const CompiledModel& model = system.model();
+  const std::vector<double>& p = system.parameters().values;
+  for (std::size_t k = 0; k < model.walls.size(); ++k) {
+    const CompiledWall& wall = model.walls[k];
+    const std::string restitution_key = fmt::format("model.walls[{}].reset.restitution", k);
+    for (const ExpressionText& text : model.written_expressions) {
+      if (text.key != restitution_key) continue;
+      double after[N + 1];
+      model.reset[k](x.data(), t0, p.data(), after);
+      const double restitution = after[model.states.size()];
+      if (restitution >= 0.0 && restitution <= 1.0) continue;
+      const bool is_parameter =
+          std::any_of(model.parameters.begin(), model.parameters.end(),
+                      [&](const ModelParameter& parameter) { return parameter.name == text.text; });
+      throw BadInput(is_parameter ? text.text : restitution_key, fmt::format("{}", restitution),
+                     fmt::format("the restitution of wall '{}' must lie in [0, 1]", wall.name));
+    }
+    double gap[2];
+    model.gap[k](x.data(), t0, p.data(), gap);
+    const bool inside = wall.direction == TriggerDirection::falling ? gap[0] < 0.0 : gap[0] > 0.0;
+    if (!inside) continue;
+    double gradient[N];
+    model.gap_gradient[k](x.data(), t0, p.data(), gradient);
+    std::size_t most = 0;
+    for (std::size_t i = 1; i < model.states.size(); ++i)
+      if (std::fabs(gradient[i]) > std::fabs(gradient[most])) most = i;
+    throw BadInput("initial." + model.states[most], fmt::format("{}", x[most]),
+                   fmt::format("starts inside wall '{}': its witness is {} at the initial state, "
+                               "free where it is {}",
+                               wall.name, gap[0],
+                               wall.direction == TriggerDirection::falling ? "positive" : "negative"));
+  }
 }
 
 }  // namespace
@@ -61,6 +106,7 @@ typename ModelSystem<N>::State ModelFileBinding<N>::initial_state(const Scene& s
   if (!(system.forcing_frequency() > 0.0) || !(system.max_step() > 0.0))
     throw BadInput("model.forcing_frequency", fmt::format("{}", system.forcing_frequency()),
                    "the forcing frequency and max_step must be positive");
+  check_walls_at_start(system, x, scene.number("t0"));
   return x;
 }
 
@@ -90,8 +136,12 @@ void build_schema(RuntimeOscillator& oscillator, const CompiledModel& model) {
   schema.oscillator = oscillator.name;
   schema.main_coordinate = oscillator.keep(model.states[0]);
   schema.keys = common_keys();
+  // a model file has no closed-form flow, and no series right-hand side for
+  // the Taylor stepper: neither method is offered, for a run or a classification
   for (auto& key : schema.keys)
-    if (key.key == "integrator.method") std::erase(key.choices, std::string_view("exact"));
+    if (key.key == "integrator.method" || key.key == "integrator.classification_method")
+      std::erase_if(key.choices,
+                    [](std::string_view method) { return method == "exact" || method == "taylor"; });
   schema.keys.push_back(accumulation_tolerance_key());
   for (const auto& parameter : model.parameters)
     schema.keys.push_back({.key = oscillator.keep(parameter.name),
@@ -119,7 +169,7 @@ void register_model_scene(std::string_view name_or_path) {
   text << std::ifstream(path).rdbuf();
   toml::table document;
   try {
-    document = toml::parse(text.str(), path);
+    document = parse_bounded_toml(text.str(), path);
   } catch (const toml::parse_error&) {
     return;  // read_scene reports it
   }
@@ -132,6 +182,8 @@ void register_model_scene(std::string_view name_or_path) {
   if (!model->compiled)
     std::cerr << "impactlab: model " << path << ": " << model->slow_path_reason
               << "; using the interpreted evaluator (the slow path, several times slower)\n";
+  else if (!model->cache_note.empty())
+    std::cerr << "impactlab: model " << path << ": " << model->cache_note << "\n";
 
   auto oscillator = std::make_unique<RuntimeOscillator>();
   oscillator->name = name;

@@ -4,29 +4,24 @@
 #include <unistd.h>
 
 #include <array>
-#include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <set>
-#include <random>
 #include <sstream>
 
 #include <fmt/format.h>
 #include <ginac/ginac.h>
 
 #include <impactlab/oscillators/model_file/model_expression.hpp>
-#include <impactlab/platform/run_program.hpp>
 
 namespace impactlab {
 
 namespace {
 
-namespace fs = std::filesystem;
 using Expressions = std::vector<GiNaC::ex>;
 
 // ---------------------------------------------------------------------------
@@ -46,12 +41,7 @@ class SymbolicModel {
   [[nodiscard]] const GiNaC::realsymbol& state(std::size_t i) const { return states_[i]; }
   [[nodiscard]] const GiNaC::realsymbol& time() const { return time_; }
 
-  GiNaC::ex parse(const ExpressionText& text) {
-    const NameResolver resolver = [this](std::string_view name, const SourcePosition& where) {
-      return resolve(name, where);
-    };
-    return parse_expression(text, resolver);
-  }
+  GiNaC::ex parse(const ExpressionText& text) { return parse_at(text, 0).value; }
 
   [[nodiscard]] std::size_t state_index(const std::string& name) const {
     for (std::size_t i = 0; i < model_.states.size(); ++i)
@@ -86,12 +76,20 @@ class SymbolicModel {
   }
 
  private:
-  std::optional<GiNaC::ex> resolve(std::string_view name, const SourcePosition& where) {
-    if (name == "t") return GiNaC::ex(time_);
+  // `text` parsed at nesting level `depth` (that of the name that refers to it)
+  ParsedExpression parse_at(const ExpressionText& text, std::size_t depth) {
+    const NameResolver resolver = [this](std::string_view name, const SourcePosition& where,
+                                         std::size_t at_depth) { return resolve(name, where, at_depth); };
+    return parse_expression(text, resolver, depth);
+  }
+
+  std::optional<ParsedExpression> resolve(std::string_view name, const SourcePosition& where,
+                                          std::size_t depth) {
+    if (name == "t") return ParsedExpression{GiNaC::ex(time_)};
     for (std::size_t i = 0; i < model_.states.size(); ++i)
-      if (model_.states[i] == name) return GiNaC::ex(states_[i]);
+      if (model_.states[i] == name) return ParsedExpression{GiNaC::ex(states_[i])};
     for (std::size_t j = 0; j < model_.parameters.size(); ++j)
-      if (model_.parameters[j].name == name) return GiNaC::ex(parameters_[j]);
+      if (model_.parameters[j].name == name) return ParsedExpression{GiNaC::ex(parameters_[j])};
     for (const auto& [definition, text] : model_.definitions) {
       if (definition != name) continue;
       if (const auto done = definitions_.find(definition); done != definitions_.end())
@@ -99,10 +97,10 @@ class SymbolicModel {
       if (!in_progress_.insert(definition).second)
         throw ModelFileError(where, text.key,
                              "circular definition: '" + definition + "' depends on itself");
-      const GiNaC::ex value = parse(text);
+      const ParsedExpression parsed = parse_at(text, depth);
       in_progress_.erase(definition);
-      definitions_.emplace(definition, value);
-      return value;
+      definitions_.emplace(definition, parsed);
+      return parsed;
     }
     return std::nullopt;
   }
@@ -111,7 +109,7 @@ class SymbolicModel {
   GiNaC::realsymbol time_;
   std::vector<GiNaC::realsymbol> states_;
   std::vector<GiNaC::realsymbol> parameters_;
-  std::map<std::string, GiNaC::ex> definitions_;
+  std::map<std::string, ParsedExpression> definitions_;
   std::set<std::string> in_progress_;
 };
 
@@ -182,12 +180,84 @@ Expressions chatter_coefficients(SymbolicModel& symbols, const ModelWall& wall,
   return {damping, stiffness, scale};
 }
 
+// `e` for real arguments: every state, parameter and time is real, and so is
+// every value a model computes, so conjugate(u) and real_part(u) are u and
+// imag_part(u) is 0. GiNaC's derivative of abs, (u' conj(u) + u conj(u'))/(2|u|),
+// keeps conj(u) where it cannot prove u real (asin, acos, log, atan2, powers),
+// and abs of a power keeps real_part of the exponent: written for real u, the
+// derivative is u' u/|u|, which C and the interpreted evaluator have.
+// Expressions holding none of these are returned as they are (the same C
+// source as before).
+GiNaC::ex for_real_arguments(const GiNaC::ex& e) {
+  const GiNaC::ex u = GiNaC::wild();
+  const GiNaC::lst real_rules = {GiNaC::conjugate_function(u).hold() == u,
+                                 GiNaC::real_part_function(u).hold() == u,
+                                 GiNaC::imag_part_function(u).hold() == 0};
+  GiNaC::ex result = e;
+  for (const GiNaC::ex& rule : real_rules)
+    if (result.has(rule.lhs())) result = result.subs(rule);
+  return result;
+}
+
+// Whether every number in `e` is a finite real double (the C code and the
+// interpreted evaluator hold numbers as doubles). Each shared subexpression
+// is visited once.
+bool numbers_are_finite_doubles(const GiNaC::ex& e) {
+  std::vector<GiNaC::ex> pending{e};
+  // held, so that no address is reused by another subexpression meanwhile
+  std::map<const GiNaC::basic*, GiNaC::ex> seen;
+  while (!pending.empty()) {
+    const GiNaC::ex next = pending.back();
+    pending.pop_back();
+    if (!seen.emplace(&GiNaC::ex_to<GiNaC::basic>(next), next).second) continue;
+    if (GiNaC::is_a<GiNaC::numeric>(next)) {
+      const GiNaC::numeric& number = GiNaC::ex_to<GiNaC::numeric>(next);
+      if (!number.is_real() || !std::isfinite(number.to_double())) return false;
+      continue;
+    }
+    for (std::size_t i = 0; i < next.nops(); ++i) pending.push_back(next.op(i));
+  }
+  return true;
+}
+
+// The most nodes one output may have as C prints it, where a subexpression
+// used n times is written n times: a chain of definitions that each name the
+// one before several times grows geometrically when written out.
+constexpr std::size_t max_printed_nodes = 200000;
+
+// The number of nodes of `e` as the C printer writes it (saturating at
+// max_printed_nodes + 1), each shared subexpression counted once per use but
+// computed once (the ex is held in `known`, so that no address is reused).
+std::size_t printed_nodes(const GiNaC::ex& e,
+                          std::map<const GiNaC::basic*, std::pair<GiNaC::ex, std::size_t>>& known) {
+  const GiNaC::basic* node = &GiNaC::ex_to<GiNaC::basic>(e);
+  if (const auto found = known.find(node); found != known.end()) return found->second.second;
+  std::size_t nodes = 1;
+  for (std::size_t i = 0; i < e.nops(); ++i)
+    nodes = std::min(nodes + printed_nodes(e.op(i), known), max_printed_nodes + 1);
+  known.emplace(node, std::pair{e, nodes});
+  return nodes;
+}
+
 // All kernels of the model, in the order of `layout`.
 std::vector<Expressions> build_kernels(const ModelDefinition& model, KernelLayout& layout,
                                        std::vector<ExpressionText>& written_texts) {
   SymbolicModel symbols(model);
   std::vector<Expressions> kernels;
   auto add = [&](Expressions outputs) {
+    for (GiNaC::ex& output : outputs) {
+      output = for_real_arguments(output);
+      if (!numbers_are_finite_doubles(output))
+        throw ModelFileError(model.rhs_where, "model",
+                             "an expression or one of its derivatives holds a number beyond the "
+                             "range of a double: C code cannot hold it");
+      std::map<const GiNaC::basic*, std::pair<GiNaC::ex, std::size_t>> known;
+      if (printed_nodes(output, known) > max_printed_nodes)
+        throw ModelFileError(model.rhs_where, "model",
+                             fmt::format("an expression or one of its derivatives grows to more "
+                                         "than {} terms once its definitions are written out",
+                                         max_printed_nodes));
+    }
     kernels.push_back(std::move(outputs));
     return kernels.size() - 1;
   };
@@ -279,15 +349,6 @@ std::string c_source(const std::vector<Expressions>& kernels) {
     out << "}\n";
   }
   return out.str();
-}
-
-std::uint64_t fnv1a(std::string_view text) {
-  std::uint64_t hash = 14695981039346656037ull;
-  for (const unsigned char c : text) {
-    hash ^= c;
-    hash *= 1099511628211ull;
-  }
-  return hash;
 }
 
 // What the generated source is a function of: the model as written and this
@@ -417,103 +478,11 @@ StackProgram program_of(const Expressions& outputs) {
   return StackProgram(std::move(writer.code));
 }
 
-// ---------------------------------------------------------------------------
-// compilation and the cache
-
-std::string first_line_of(const fs::path& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  return line;
-}
-
-// A name no other run uses at the same time: pid, thread-independent counter, random bits.
-std::string unique_suffix() {
-  std::random_device device;
-  return fmt::format("{}-{:08x}", static_cast<long>(::getpid()), device());
-}
-
-// impactlab's flags, after the compiler's own from CompileOptions
-constexpr std::array<std::string_view, 4> compiler_flags = {"-O2", "-fno-math-errno", "-shared", "-fPIC"};
-
-// The shared object for `source`, compiled if the cache does not hold it.
-// Returns the path, or an empty path and the reason in `why`.
-fs::path shared_object(const std::string& fingerprint, const std::string& source,
-                       const CompileOptions& options, bool& from_cache, std::string& why) {
-  std::vector<std::string> command = options.compiler;
-  for (const std::string_view flag : compiler_flags) command.emplace_back(flag);
-  const std::string key = fmt::format("{}\n{}", fingerprint, describe_program(command));
-  const fs::path directory(options.cache_directory);
-  const fs::path target = directory / fmt::format("model-{:016x}.so", fnv1a(key));
-  std::error_code error;
-  if (fs::exists(target, error)) {
-    from_cache = true;
-    return target;
-  }
-  fs::create_directories(directory, error);
-  if (error || !fs::is_directory(directory)) {
-    why = fmt::format("cache directory {} is not usable ({})", directory.string(),
-                      error ? error.message() : "not a directory");
-    return {};
-  }
-  const std::string suffix = unique_suffix();
-  const fs::path source_file = directory / fmt::format("model-{:016x}.{}.c", fnv1a(key), suffix);
-  const fs::path temporary = directory / fmt::format("model-{:016x}.{}.so.tmp", fnv1a(key), suffix);
-  const fs::path log = directory / fmt::format("model-{:016x}.{}.log", fnv1a(key), suffix);
-  {
-    std::ofstream out(source_file);
-    out << source;
-    if (!out.flush()) {
-      why = fmt::format("cache directory {} is not writable", directory.string());
-      fs::remove(source_file, error);
-      return {};
-    }
-  }
-  // an argument vector, no shell: the paths are data, whatever characters they hold
-  command.insert(command.end(), {"-o", temporary.string(), source_file.string(), "-lm"});
-  const int status = run_program_logged(command, log.string());
-  if (status != 0) {
-    const std::string detail = first_line_of(log);
-    const std::string compiler = describe_program(options.compiler);
-    why = status < 0 ? fmt::format("the C compiler '{}' could not be started or was killed", compiler)
-                     : fmt::format("the C compiler '{}' failed (status {}{}{})", compiler, status,
-                                   detail.empty() ? "" : ": ", detail);
-    for (const auto& path : {source_file, temporary, log}) fs::remove(path, error);
-    return {};
-  }
-  // atomic: a concurrent run sees the old state (no file) or the whole file
-  fs::rename(temporary, target, error);
-  for (const auto& path : {source_file, log}) fs::remove(path, error);
-  if (error) {
-    why = fmt::format("cannot move the compiled model into {} ({})", directory.string(), error.message());
-    fs::remove(temporary, error);
-    return {};
-  }
-  return target;
-}
-
 }  // namespace
-
-CompileOptions compile_options_from_environment() {
-  CompileOptions options;
-  if (const char* compiler = std::getenv("IMPACTLAB_CC"); compiler) {
-    std::vector<std::string> words = split_on_spaces(compiler);
-    if (!words.empty()) options.compiler = std::move(words);
-  }
-  if (const char* cache = std::getenv("IMPACTLAB_CACHE_DIR"); cache && *cache) {
-    options.cache_directory = cache;
-  } else if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) {
-    options.cache_directory = (fs::path(xdg) / "impactlab").string();
-  } else if (const char* home = std::getenv("HOME"); home && *home) {
-    options.cache_directory = (fs::path(home) / ".cache" / "impactlab").string();
-  } else {
-    options.cache_directory = (fs::temp_directory_path() / "impactlab-cache").string();
-  }
-  return options;
-}
 
 CompiledModel::~CompiledModel() {
   if (library_handle) dlclose(library_handle);
+  if (library_descriptor >= 0) ::close(library_descriptor);
 }
 
 std::shared_ptr<const CompiledModel> compile_model(const ModelDefinition& definition,
@@ -537,21 +506,18 @@ std::shared_ptr<const CompiledModel> compile_model(const ModelDefinition& defini
   std::vector<Kernel> loaded(kernels.size());
   if (options.use_compiler) {
     const std::string source = c_source(kernels);
-    std::string why;
-    const fs::path library =
-        shared_object(model_fingerprint(definition), source, options, model->from_cache, why);
-    if (!library.empty()) {
-      void* handle = dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
-      if (!handle) {
-        why = fmt::format("cannot load {} ({})", library.string(), dlerror());
-      } else {
-        model->library_handle = handle;
-        model->library = library.string();
-        for (std::size_t k = 0; k < kernels.size() && why.empty(); ++k) {
-          void* symbol = dlsym(handle, fmt::format("impactlab_kernel_{}", k).c_str());
-          if (!symbol) why = fmt::format("{} lacks kernel {}", library.string(), k);
-          loaded[k].compiled = reinterpret_cast<KernelFunction>(symbol);
-        }
+    const LoadedObject object = load_or_compile(model_fingerprint(definition), source, options);
+    std::string why = object.why;
+    model->cache_note = object.cache_note;
+    if (object.handle) {
+      model->library_handle = object.handle;
+      model->library_descriptor = object.descriptor;
+      model->library = object.path;
+      model->from_cache = object.from_cache;
+      for (std::size_t k = 0; k < kernels.size() && why.empty(); ++k) {
+        void* symbol = dlsym(object.handle, fmt::format("impactlab_kernel_{}", k).c_str());
+        if (!symbol) why = fmt::format("{} lacks kernel {}", object.path, k);
+        loaded[k].compiled = reinterpret_cast<KernelFunction>(symbol);
       }
     }
     model->compiled = why.empty();

@@ -1,18 +1,9 @@
 // A model section turned into functions: symbolic differentiation (GiNaC) of
 // every vector field, witness and reset, C code for all of them compiled by
-// the system compiler into a shared object, cached by a hash of its source and
-// the compiler, and loaded with dlopen. When no compiler or cache directory is
-// usable the same expressions run on an interpreted evaluator, and the model
-// says so (slow_path_reason).
-//
-// The cache directory: $IMPACTLAB_CACHE_DIR, else $XDG_CACHE_HOME/impactlab,
-// else ~/.cache/impactlab. The compiler: $IMPACTLAB_CC, else `cc`;
-// $IMPACTLAB_CC may hold the compiler and flags of its own separated by spaces
-// ("gcc -march=native"), split into an argument vector: the compiler runs
-// from that vector (platform/run_program.hpp), never through a shell, so no
-// path or flag is parsed as shell text. A shared object is written under a
-// temporary name and renamed into place, so runs started at once on the same
-// new model each see a whole file or none.
+// the system compiler into a shared object, kept in the compile cache
+// (compile_cache.hpp: where it is, what is checked before a load), and loaded
+// with dlopen. When no compiler is usable the same expressions run on an
+// interpreted evaluator, and the model says so (slow_path_reason).
 #pragma once
 
 #include <memory>
@@ -20,22 +11,11 @@
 #include <vector>
 
 #include <impactlab/core/hybrid_system.hpp>
+#include <impactlab/oscillators/model_file/compile_cache.hpp>
 #include <impactlab/oscillators/model_file/model_definition.hpp>
 #include <impactlab/oscillators/model_file/model_kernels.hpp>
 
 namespace impactlab {
-
-struct CompileOptions {
-  std::string cache_directory;   // where the shared objects are kept
-  // the C compiler and flags of its own, as an argument vector (no shell);
-  // impactlab adds its flags, the output and the source after them
-  std::vector<std::string> compiler = {"cc"};
-  bool use_compiler = true;      // false: go straight to the interpreted evaluator
-};
-
-// The options from the environment ($IMPACTLAB_CACHE_DIR, $XDG_CACHE_HOME,
-// $HOME, $IMPACTLAB_CC).
-CompileOptions compile_options_from_environment();
 
 struct CompiledWall {
   std::string name;
@@ -86,12 +66,14 @@ class CompiledModel {
   // --- how it was built ---
   bool compiled = false;          // false: the interpreted slow path
   std::string slow_path_reason;   // why not compiled (empty when compiled)
-  std::string library;            // the shared object's path
+  std::string library;            // the shared object's path (empty when not kept)
   bool from_cache = false;        // the shared object was already there
+  std::string cache_note;         // why the cache was bypassed (empty when used)
   double build_seconds = 0.0;     // symbolic work + code generation + compilation (s)
 
   // storage behind the kernels
   void* library_handle = nullptr;
+  int library_descriptor = -1;  // the loaded object's open file (compile_cache.hpp)
   std::vector<StackProgram> programs;
 };
 

@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <set>
 
 #include <fmt/format.h>
+
+#include <impactlab/io/toml_nesting.hpp>
 
 namespace impactlab {
 
@@ -361,7 +365,11 @@ ModelDefinition read_model_definition(const toml::table& section, const std::str
 ModelDefinition read_model_file(const std::string& path) {
   toml::table scene;
   try {
-    scene = toml::parse_file(path);
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    if (!in) throw ModelFileError({path, 1, 1}, "scene", "cannot read the file");
+    scene = parse_bounded_toml(text.str(), path);
   } catch (const toml::parse_error& error) {
     throw ModelFileError(position_of(error.source(), path), "scene",
                          "malformed TOML: " + std::string(error.description()));

@@ -1,6 +1,8 @@
 #include <impactlab/oscillators/model_file/model_expression.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cctype>
 #include <vector>
 
@@ -8,18 +10,13 @@ namespace impactlab {
 
 namespace {
 
-struct FunctionSpec {
-  std::string_view name;
-  std::size_t arity;
-};
-
-constexpr std::array<FunctionSpec, 15> functions = {{
+constexpr std::array<ExpressionFunction, 15> functions = {{
     {"sin", 1}, {"cos", 1}, {"tan", 1}, {"asin", 1}, {"acos", 1}, {"atan", 1}, {"atan2", 2},
     {"sinh", 1}, {"cosh", 1}, {"tanh", 1}, {"exp", 1}, {"log", 1}, {"sqrt", 1}, {"abs", 1},
     {"pow", 2},
 }};
 
-const FunctionSpec* find_function(std::string_view name) {
+const ExpressionFunction* find_function(std::string_view name) {
   for (const auto& spec : functions)
     if (spec.name == name) return &spec;
   return nullptr;
@@ -46,16 +43,17 @@ GiNaC::ex apply_function(std::string_view name, const std::vector<GiNaC::ex>& a)
 // A recursive-descent parser over one expression string.
 class Parser {
  public:
-  Parser(const ExpressionText& expression, const NameResolver& resolve)
-      : expression_(expression), text_(expression.text), resolve_(resolve) {}
+  Parser(const ExpressionText& expression, const NameResolver& resolve, std::size_t depth)
+      : expression_(expression), text_(expression.text), resolve_(resolve), base_depth_(depth),
+        depth_(depth), deepest_(depth) {}
 
-  GiNaC::ex parse() {
+  ParsedExpression parse() {
     skip_space();
     if (at_end()) fail(0, "empty expression");
     GiNaC::ex result = parse_sum();
     skip_space();
     if (!at_end()) fail(position_, "unexpected '" + std::string(1, text_[position_]) + "'");
-    return result;
+    return {result, deepest_ - base_depth_};
   }
 
  private:
@@ -113,10 +111,24 @@ class Parser {
     }
   }
 
+  // one nesting level more, down to `at`, the place that goes too deep
+  void reach(std::size_t depth, std::size_t at) {
+    if (depth > max_expression_nesting)
+      fail(at, "nested deeper than " + std::to_string(max_expression_nesting) +
+                   " levels (parentheses, functions, signs, powers, through definitions)");
+    deepest_ = std::max(deepest_, depth);
+  }
+
+  // every path of the recursion passes here: the one place that counts levels
   GiNaC::ex parse_unary() {
-    if (accept("-")) return -parse_unary();
-    if (accept("+")) return parse_unary();
-    return parse_power();
+    skip_space();
+    reach(++depth_, position_);
+    GiNaC::ex result;
+    if (accept("-")) result = -parse_unary();
+    else if (accept("+")) result = parse_unary();
+    else result = parse_power();
+    --depth_;
+    return result;
   }
 
   GiNaC::ex parse_power() {
@@ -125,6 +137,9 @@ class Parser {
     const std::size_t operator_at = position_;
     if (accept("**") || accept("^")) {
       const GiNaC::ex exponent = parse_unary();
+      if (GiNaC::is_a<GiNaC::numeric>(exponent) && exponent.info(GiNaC::info_flags::integer) &&
+          GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(exponent)) > max_integer_exponent)
+        fail(operator_at, "an integer exponent beyond ±" + std::to_string(max_integer_exponent));
       return guarded(operator_at, [&] { return GiNaC::pow(base, exponent); });
     }
     return base;
@@ -183,7 +198,9 @@ class Parser {
       position_ = cursor;
     }
     const GiNaC::numeric mantissa(digits.c_str());
-    return mantissa * GiNaC::pow(GiNaC::numeric(10), GiNaC::numeric(exponent));
+    const GiNaC::numeric value = mantissa * GiNaC::pow(GiNaC::numeric(10), GiNaC::numeric(exponent));
+    if (!std::isfinite(value.to_double())) fail(start, "a number beyond the range of a double");
+    return value;
   }
 
   GiNaC::ex parse_name() {
@@ -194,7 +211,7 @@ class Parser {
     const std::string name = text_.substr(start, position_ - start);
     skip_space();
     if (!at_end() && text_[position_] == '(') {
-      const FunctionSpec* spec = find_function(name);
+      const ExpressionFunction* spec = find_function(name);
       if (!spec) fail(start, "unknown function '" + name + "'");
       ++position_;
       std::vector<GiNaC::ex> arguments;
@@ -212,25 +229,32 @@ class Parser {
     }
     if (name == "pi") return GiNaC::Pi;
     if (find_function(name)) fail(start, "function '" + name + "' needs arguments");
-    const auto resolved = resolve_(name, expression_.position.advanced(start));
+    const auto resolved = resolve_(name, expression_.position.advanced(start), depth_);
     if (!resolved) fail(start, "unknown symbol '" + name + "'");
-    return *resolved;
+    reach(depth_ + resolved->height, start);
+    return resolved->value;
   }
 
   const ExpressionText& expression_;
   const std::string& text_;
   const NameResolver& resolve_;
   std::size_t position_ = 0;
+  std::size_t base_depth_;  // the nesting level the expression starts at
+  std::size_t depth_;       // the nesting level now
+  std::size_t deepest_;     // the deepest level reached, through definitions too
 };
 
 }  // namespace
 
-GiNaC::ex parse_expression(const ExpressionText& expression, const NameResolver& resolve) {
-  return Parser(expression, resolve).parse();
+ParsedExpression parse_expression(const ExpressionText& expression, const NameResolver& resolve,
+                                  std::size_t depth) {
+  return Parser(expression, resolve, depth).parse();
 }
 
 bool is_reserved_name(std::string_view name) {
   return name == "pi" || name == "t" || find_function(name) != nullptr;
 }
+
+std::span<const ExpressionFunction> expression_functions() { return functions; }
 
 }  // namespace impactlab

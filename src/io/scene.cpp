@@ -13,6 +13,7 @@
 #include <impactlab/integrate/stepper_names.hpp>
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/builtin_scenes.hpp>
+#include <impactlab/io/toml_nesting.hpp>
 
 namespace impactlab {
 
@@ -220,7 +221,7 @@ Scene read_scene(std::string_view name_or_path, const SchemaLookup& schema_of) {
   const std::string text = read_scene_text(name_or_path);
   std::map<std::string, SceneValue> values;
   try {
-    toml::table document = toml::parse(text, std::string(name_or_path));
+    toml::table document = parse_bounded_toml(text, std::string(name_or_path));
     // a [model] section defines the scene's oscillator (oscillators/model_file/;
     // the scene API registers it under model_oscillator_name before the read)
     if (document["model"].is_table()) {

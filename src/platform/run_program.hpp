@@ -7,6 +7,7 @@
 // model compiler and the command line both use it.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,7 +29,10 @@ int run_program(const std::vector<std::string>& arguments,
 
 // The same, with standard output and error both written to the file at
 // `log_path` (created or truncated); -1 also when that file cannot be opened.
-int run_program_logged(const std::vector<std::string>& arguments, const std::string& log_path);
+// With a finite `limit_s` (seconds) the program and every process it starts
+// are killed once it has run that long, and the status is -2.
+int run_program_logged(const std::vector<std::string>& arguments, const std::string& log_path,
+                       double limit_s = std::numeric_limits<double>::infinity());
 
 // The arguments joined with spaces, for messages (not for a shell).
 std::string describe_program(const std::vector<std::string>& arguments);

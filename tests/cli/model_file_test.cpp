@@ -103,12 +103,16 @@ TEST(ModelFileCli, TwoSweepsStartedAtOnceOnANewModelBothSucceed) {
   const ProgramRun b = second.get();
   EXPECT_EQ(a.status, 0) << a.err;
   EXPECT_EQ(b.status, 0) << b.err;
-  int shared_objects = 0, leftovers = 0;
+  // one object and its digest, no temporary file left
+  int shared_objects = 0, digests = 0, leftovers = 0;
   for (const auto& entry : fs::directory_iterator(cache)) {
-    shared_objects += entry.path().extension() == ".so";
-    leftovers += entry.path().extension() != ".so";
+    const std::string extension = entry.path().extension().string();
+    shared_objects += extension == ".so";
+    digests += extension == ".sha256";
+    leftovers += extension != ".so" && extension != ".sha256";
   }
   EXPECT_EQ(shared_objects, 1);
+  EXPECT_EQ(digests, 1);
   EXPECT_EQ(leftovers, 0);
 }
 

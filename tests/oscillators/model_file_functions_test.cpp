@@ -1,0 +1,110 @@
+// Every function the expression parser accepts runs, compiled and on the
+// interpreted evaluator, with its derivatives: a walk over the parser's own
+// table (model_expression.hpp). GiNaC's derivative of abs holds conjugate(),
+// which C lacks; the model's values are real, and the derivatives are written
+// so (abs(asin(x)), abs(acos(x)), abs(log(v)), abs(atan2(x, v)) once failed
+// with exit 1). A model file offers no Taylor integrator.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <impactlab/oscillators/model_file/compiled_model.hpp>
+#include <impactlab/oscillators/model_file/model_expression.hpp>
+
+#include "support/test_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace impactlab;
+using impactlab::testing::ScratchFolder;
+
+std::string model_text(const std::string& v_equation) {
+  return "[model]\nstates = [\"x\", \"v\"]\nforcing_frequency = \"1\"\n[model.rhs]\nx = \"v\"\nv = \"" +
+         v_equation + "\"\n";
+}
+
+std::shared_ptr<const CompiledModel> compiled(const ScratchFolder& scratch, const std::string& v_equation,
+                                              bool use_compiler) {
+  const fs::path path = scratch / "model.toml";
+  std::ofstream(path) << model_text(v_equation);
+  CompileOptions options;
+  options.cache_directory = (scratch / "cache").string();
+  options.use_compiler = use_compiler;
+  return compile_model(read_model_file(path.string()), options);
+}
+
+// the right-hand side and its Jacobian at one state
+std::vector<double> rhs_and_jacobian(const CompiledModel& model) {
+  const double x[2] = {0.3, 0.4};
+  std::vector<double> out(6);
+  model.free_rhs(x, 0.1, nullptr, out.data());
+  model.free_jacobian(x, 0.1, nullptr, out.data() + 2);
+  return out;
+}
+
+// the compiled code and the interpreter agree, and every value is finite
+void expect_runs_both_ways(const std::string& v_equation) {
+  SCOPED_TRACE(v_equation);
+  const ScratchFolder scratch;
+  const auto fast = compiled(scratch, v_equation, true);
+  ASSERT_TRUE(fast->compiled) << fast->slow_path_reason;
+  const auto slow = compiled(scratch, v_equation, false);
+  const std::vector<double> expected = rhs_and_jacobian(*fast);
+  const std::vector<double> actual = rhs_and_jacobian(*slow);
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_TRUE(std::isfinite(expected[i])) << i;
+    EXPECT_NEAR(actual[i], expected[i], 1e-14 * (1 + std::fabs(expected[i]))) << i;
+  }
+}
+
+TEST(ModelFileFunctions, EveryFunctionOfTheParserRunsCompiledAndInterpreted) {
+  // arguments inside every function's domain, whose conjugates GiNaC keeps
+  const std::string first = "0.5 + 0.1*asin(x/2)";
+  const std::string second = "0.7 + 0.1*acos(v/2)";
+  std::size_t walked = 0;
+  for (const ExpressionFunction& function : expression_functions()) {
+    const std::string call = std::string(function.name) + "(" + first +
+                             (function.arity == 2 ? ", " + second : std::string()) + ")";
+    expect_runs_both_ways("-x + 0.1*" + call);
+    expect_runs_both_ways("-x + 0.1*abs(" + call + ")");
+    ++walked;
+  }
+  EXPECT_GE(walked, 15u);
+}
+
+TEST(ModelFileFunctions, AbsOfFunctionsWithoutARealConjugateRuns) {
+  for (const std::string& term : {"abs(asin(x))", "abs(acos(x))", "abs(log(v))", "abs(atan2(x, v))"})
+    expect_runs_both_ways("-x + " + term);
+}
+
+TEST(ModelFileFunctions, AModelFileOffersNoTaylorIntegrator) {
+  const ScratchFolder scratch;
+  const fs::path path = scratch / "model.toml";
+  std::ofstream(path) << "[integrator]\nmethod = \"taylor\"\n" << model_text("-x");
+  const std::vector<std::string> environment = {"IMPACTLAB_CACHE_DIR=" + (scratch / "cache").string()};
+  const auto run = impactlab::testing::run_impactlab(
+      {"simulate", path.string(), "--periods", "1", "--quiet", "--out", (scratch / "out").string()},
+      {.environment = environment});
+  EXPECT_TRUE(impactlab::testing::refused_naming(run, "integrator.method")) << run.err;
+  // `scenes` lists the methods a model file may use
+  const fs::path plain = scratch / "plain.toml";
+  std::ofstream(plain) << model_text("-x");
+  const auto listed = impactlab::testing::run_impactlab({"scenes", plain.string()}, {.environment = environment});
+  ASSERT_EQ(listed.status, 0) << listed.err;
+  const std::string methods = listed.out.substr(listed.out.find("integrator.method"));
+  const std::string line = methods.substr(0, methods.find('\n'));
+  EXPECT_NE(line.find("dopri5"), std::string::npos) << line;
+  EXPECT_EQ(line.find("taylor"), std::string::npos) << line;
+  const std::string classification = listed.out.substr(listed.out.find("integrator.classification_method"));
+  const std::string classification_line = classification.substr(0, classification.find('\n'));
+  EXPECT_NE(classification_line.find("dopri5"), std::string::npos) << classification_line;
+  EXPECT_EQ(classification_line.find("taylor"), std::string::npos) << classification_line;
+  EXPECT_EQ(classification_line.find("exact"), std::string::npos) << classification_line;
+}
+
+}  // namespace
