@@ -54,5 +54,7 @@ impactlab_dependency(TARGET PkgConfig::FFTW3 PKG_CONFIG FFTW3 fftw3)
 impactlab_dependency(TARGET OpenMP::OpenMP_CXX PACKAGE OpenMP COMPONENTS CXX)
 # model sections of scene files: symbolic differentiation (oscillators/model_file/)
 impactlab_dependency(TARGET PkgConfig::GINAC PKG_CONFIG GINAC ginac)
+# the digest the model cache checks before it loads an object (src/platform/sha256.cpp)
+impactlab_dependency(TARGET OpenSSL::Crypto PACKAGE OpenSSL COMPONENTS Crypto)
 # and the compiled model loaded with dlopen
 impactlab_dependency(LIBRARIES ${CMAKE_DL_LIBS})

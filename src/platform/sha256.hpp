@@ -1,4 +1,5 @@
-// SHA-256 (FIPS 180-4) of a byte string, as 64 lowercase hexadecimal digits:
+// SHA-256 (FIPS 180-4, computed by OpenSSL) of a byte string, as 64 lowercase
+// hexadecimal digits:
 // the digest the model cache keeps beside each compiled object and checks
 // before the object is loaded (oscillators/model_file/compile_cache.hpp).
 #pragma once
