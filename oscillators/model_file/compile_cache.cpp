@@ -313,11 +313,10 @@ CompileOptions compile_options_from_environment() {
   return options;
 }
 
-LoadedObject load_or_compile(const std::string& fingerprint, const std::string& source,
-                             const CompileOptions& options) {
+LoadedObject load_or_compile(const std::string& source, const CompileOptions& options) {
   std::vector<std::string> command = options.compiler;
   for (const std::string_view flag : compiler_flags) command.emplace_back(flag);
-  const std::string key = fmt::format("{}\n{}", fingerprint, describe_program(command));
+  const std::string key = fmt::format("{}\n{}", source, describe_program(command));
   const std::string name = fmt::format("model-{}.so", sha256_hex(key).substr(0, 32));
   if (options.cache_directory.empty())
     return compile_without_cache(name, source, options,

@@ -62,9 +62,8 @@ struct LoadedObject {
   std::string cache_note;   // why the cache was bypassed (compiled in a temporary folder)
 };
 
-// The object for `source`, found in the cache under a name derived from
-// `fingerprint` and the compiler command, or compiled and stored there.
-LoadedObject load_or_compile(const std::string& fingerprint, const std::string& source,
-                             const CompileOptions& options);
+// The object for `source`, found in the cache under a name derived from the
+// source and the compiler command, or compiled and stored there.
+LoadedObject load_or_compile(const std::string& source, const CompileOptions& options);
 
 }  // namespace impactlab

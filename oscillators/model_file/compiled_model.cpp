@@ -3,19 +3,18 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
-#include <array>
 #include <chrono>
 #include <cmath>
-#include <cstdint>
 #include <cstdlib>
 #include <map>
 #include <optional>
 #include <set>
-#include <sstream>
 
 #include <fmt/format.h>
 #include <ginac/ginac.h>
 
+#include <impactlab/oscillators/model_file/kernel_code.hpp>
+#include <impactlab/oscillators/model_file/model_c_source.hpp>
 #include <impactlab/oscillators/model_file/model_expression.hpp>
 
 namespace impactlab {
@@ -23,6 +22,27 @@ namespace impactlab {
 namespace {
 
 using Expressions = std::vector<GiNaC::ex>;
+
+// The most nodes an expression may have with its definitions written out,
+// where a definition used n times is written n times. GiNaC differentiates
+// that tree (its work grows with the tree, although the code generated from
+// it computes each subexpression once): a chain of definitions that each name
+// the one before three times grows threefold per link.
+constexpr std::size_t max_written_nodes = 1000000;
+
+// The number of nodes of `e` written out (saturating at max_written_nodes +
+// 1), each shared subexpression counted once per use but computed once (the
+// ex is held in `known`, so that no address is reused).
+std::size_t written_nodes(const GiNaC::ex& e,
+                          std::map<const GiNaC::basic*, std::pair<GiNaC::ex, std::size_t>>& known) {
+  const GiNaC::basic* node = &GiNaC::ex_to<GiNaC::basic>(e);
+  if (const auto found = known.find(node); found != known.end()) return found->second.second;
+  std::size_t nodes = 1;
+  for (std::size_t i = 0; i < e.nops(); ++i)
+    nodes = std::min(nodes + written_nodes(e.op(i), known), max_written_nodes + 1);
+  known.emplace(node, std::pair{e, nodes});
+  return nodes;
+}
 
 // ---------------------------------------------------------------------------
 // symbolic stage: every kernel's outputs as GiNaC expressions in x[i], t, p[j]
@@ -41,7 +61,18 @@ class SymbolicModel {
   [[nodiscard]] const GiNaC::realsymbol& state(std::size_t i) const { return states_[i]; }
   [[nodiscard]] const GiNaC::realsymbol& time() const { return time_; }
 
-  GiNaC::ex parse(const ExpressionText& text) { return parse_at(text, 0).value; }
+  // `text` parsed, with its definitions written out: refused above
+  // max_written_nodes nodes, since differentiation works on that tree
+  GiNaC::ex parse(const ExpressionText& text) {
+    GiNaC::ex value = parse_at(text, 0).value;
+    std::map<const GiNaC::basic*, std::pair<GiNaC::ex, std::size_t>> known;
+    if (written_nodes(value, known) > max_written_nodes)
+      throw ModelFileError(text.position, text.key,
+                           fmt::format("grows to more than {} terms once its definitions are "
+                                       "written out",
+                                       max_written_nodes));
+    return value;
+  }
 
   [[nodiscard]] std::size_t state_index(const std::string& name) const {
     for (std::size_t i = 0; i < model_.states.size(); ++i)
@@ -126,12 +157,17 @@ constexpr std::size_t no_kernel = static_cast<std::size_t>(-1);
 // The Newton reset along a velocity: ḣ⁺ = −r ḣ⁻ solved for v (one Newton step,
 // exact where ḣ is affine in v, as for any mechanical gap), and the position
 // put back on the wall, q⁺ = q − h/∂h/∂q (exact where h is affine in q).
+// A derivative is zero where GiNaC's evaluation makes it zero; nothing is
+// expanded or normalised here or below (either can take unbounded time: the
+// expansion of (x + v + t + k)^1000 has half a billion terms). A derivative
+// that vanishes only after expansion leaves a reset that divides by zero,
+// which the run stops at (non_finite_state) or refuses at the initial state.
 Expressions newton_reset(SymbolicModel& symbols, const ModelWall& wall, const GiNaC::ex& gap,
                          const GiNaC::ex& gap_rate, const GiNaC::ex& restitution) {
   Expressions after;
   for (std::size_t i = 0; i < symbols.size(); ++i) after.emplace_back(symbols.state(i));
   const std::size_t v = symbols.state_index(wall.reset.velocity);
-  const GiNaC::ex sensitivity = gap_rate.diff(symbols.state(v)).expand();
+  const GiNaC::ex sensitivity = gap_rate.diff(symbols.state(v));
   if (sensitivity.is_zero())
     throw ModelFileError(wall.reset.where, wall.witness.key,
                          "the witness's rate does not depend on the velocity '" +
@@ -139,7 +175,7 @@ Expressions newton_reset(SymbolicModel& symbols, const ModelWall& wall, const Gi
   after[v] = symbols.state(v) - (1 + restitution) * gap_rate / sensitivity;
   if (!wall.reset.position.empty()) {
     const std::size_t q = symbols.state_index(wall.reset.position);
-    const GiNaC::ex slope = gap.diff(symbols.state(q)).expand();
+    const GiNaC::ex slope = gap.diff(symbols.state(q));
     if (slope.is_zero())
       throw ModelFileError(wall.reset.where, wall.witness.key,
                            "the witness does not depend on the position '" + wall.reset.position + "'");
@@ -167,16 +203,15 @@ Expressions chatter_coefficients(SymbolicModel& symbols, const ModelWall& wall,
   const std::size_t v = symbols.state_index(wall.reset.velocity);
   const GiNaC::ex rate_by_velocity = gap_rate.diff(symbols.state(v));  // nonzero (newton_reset)
   const GiNaC::ex acceleration_by_velocity = gap_acceleration.diff(symbols.state(v));
-  const GiNaC::ex damping = (-acceleration_by_velocity / rate_by_velocity).normal();
+  const GiNaC::ex damping = -acceleration_by_velocity / rate_by_velocity;
   std::size_t q = wall.reset.position.empty() ? symbols.size() : symbols.state_index(wall.reset.position);
   for (std::size_t i = 0; i < symbols.size() && q == symbols.size(); ++i)
-    if (i != v && !gap.diff(symbols.state(i)).expand().is_zero()) q = i;
+    if (i != v && !gap.diff(symbols.state(i)).is_zero()) q = i;
   if (q == symbols.size()) return {damping, 0, scale};  // h depends on no position
   const GiNaC::ex stiffness =
-      ((gap_acceleration.diff(symbols.state(q)) -
-        acceleration_by_velocity * gap_rate.diff(symbols.state(q)) / rate_by_velocity) /
-       gap.diff(symbols.state(q)))
-          .normal();
+      (gap_acceleration.diff(symbols.state(q)) -
+       acceleration_by_velocity * gap_rate.diff(symbols.state(q)) / rate_by_velocity) /
+      gap.diff(symbols.state(q));
   return {damping, stiffness, scale};
 }
 
@@ -220,30 +255,17 @@ bool numbers_are_finite_doubles(const GiNaC::ex& e) {
   return true;
 }
 
-// The most nodes one output may have as C prints it, where a subexpression
-// used n times is written n times: a chain of definitions that each name the
-// one before several times grows geometrically when written out.
-constexpr std::size_t max_printed_nodes = 200000;
-
-// The number of nodes of `e` as the C printer writes it (saturating at
-// max_printed_nodes + 1), each shared subexpression counted once per use but
-// computed once (the ex is held in `known`, so that no address is reused).
-std::size_t printed_nodes(const GiNaC::ex& e,
-                          std::map<const GiNaC::basic*, std::pair<GiNaC::ex, std::size_t>>& known) {
-  const GiNaC::basic* node = &GiNaC::ex_to<GiNaC::basic>(e);
-  if (const auto found = known.find(node); found != known.end()) return found->second.second;
-  std::size_t nodes = 1;
-  for (std::size_t i = 0; i < e.nops(); ++i)
-    nodes = std::min(nodes + printed_nodes(e.op(i), known), max_printed_nodes + 1);
-  known.emplace(node, std::pair{e, nodes});
-  return nodes;
-}
+// The most operations one kernel may take (kernel_code.hpp): each distinct
+// subexpression is computed once however often it is used, so this bounds
+// the C source and the compiler's work, while a chain of definitions that
+// names the one before several times stays far below it.
+constexpr std::size_t max_kernel_operations = 200000;
 
 // All kernels of the model, in the order of `layout`.
-std::vector<Expressions> build_kernels(const ModelDefinition& model, KernelLayout& layout,
-                                       std::vector<ExpressionText>& written_texts) {
+std::vector<KernelCode> build_kernels(const ModelDefinition& model, KernelLayout& layout,
+                                      std::vector<ExpressionText>& written_texts) {
   SymbolicModel symbols(model);
-  std::vector<Expressions> kernels;
+  std::vector<KernelCode> kernels;
   auto add = [&](Expressions outputs) {
     for (GiNaC::ex& output : outputs) {
       output = for_real_arguments(output);
@@ -251,14 +273,15 @@ std::vector<Expressions> build_kernels(const ModelDefinition& model, KernelLayou
         throw ModelFileError(model.rhs_where, "model",
                              "an expression or one of its derivatives holds a number beyond the "
                              "range of a double: C code cannot hold it");
-      std::map<const GiNaC::basic*, std::pair<GiNaC::ex, std::size_t>> known;
-      if (printed_nodes(output, known) > max_printed_nodes)
-        throw ModelFileError(model.rhs_where, "model",
-                             fmt::format("an expression or one of its derivatives grows to more "
-                                         "than {} terms once its definitions are written out",
-                                         max_printed_nodes));
     }
-    kernels.push_back(std::move(outputs));
+    try {
+      kernels.push_back(kernel_code(outputs, max_kernel_operations));
+    } catch (const std::length_error&) {
+      throw ModelFileError(model.rhs_where, "model",
+                           fmt::format("an expression or one of its derivatives takes more than "
+                                       "{} operations to compute",
+                                       max_kernel_operations));
+    }
     return kernels.size() - 1;
   };
   Expressions written;
@@ -330,154 +353,6 @@ std::vector<Expressions> build_kernels(const ModelDefinition& model, KernelLayou
   return kernels;
 }
 
-// ---------------------------------------------------------------------------
-// code generation
-
-std::string c_source(const std::vector<Expressions>& kernels) {
-  std::ostringstream out;
-  out << "/* generated by impactlab from a [model] section */\n"
-         "#include <math.h>\n"
-         "#define Pi 3.14159265358979323846264338327950288\n";
-  out << GiNaC::csrc_double;
-  for (std::size_t k = 0; k < kernels.size(); ++k) {
-    out << "void impactlab_kernel_" << k
-        << "(const double* x, double t, const double* p, double* out) {\n"
-           "  (void)x; (void)t; (void)p;\n";
-    for (std::size_t i = 0; i < kernels[k].size(); ++i) {
-      out << "  out[" << i << "] = " << kernels[k][i] << ";\n";
-    }
-    out << "}\n";
-  }
-  return out.str();
-}
-
-// What the generated source is a function of: the model as written and this
-// generator's version. (The source itself is not: GiNaC orders the terms of a
-// sum by the serial numbers of its symbols, which differ between two models
-// built in one process, though not between two runs of the program.)
-// (2: the chatter coefficients c, κ of each sticking wall)
-constexpr std::string_view generator_version = "impactlab model generator 2";
-
-std::string model_fingerprint(const ModelDefinition& model) {
-  std::string text(generator_version);
-  auto add = [&](std::string_view part) {
-    text += '\x1f';
-    text += part;
-  };
-  auto add_expressions = [&](const StateExpressions& expressions) {
-    for (const auto& [name, expression] : expressions) {
-      add(name);
-      add(expression.text);
-    }
-    add("|");
-  };
-  for (const auto& state : model.states) add(state);
-  add("|");
-  for (const auto& parameter : model.parameters) add(parameter.name);
-  add("|");
-  add_expressions(model.definitions);
-  add_expressions(model.rhs);
-  add(model.forcing_frequency.text);
-  add(model.max_step.text);
-  for (const auto& wall : model.walls) {
-    add(wall.witness.text);
-    add(wall.direction == TriggerDirection::falling ? "falling" : "rising");
-    add(wall.reset.kind == ModelReset::Kind::newton ? "newton" : "map");
-    add(wall.reset.velocity);
-    add(wall.reset.restitution.text);
-    add(wall.reset.position);
-    add_expressions(wall.reset.map);
-    add(wall.has_sticking ? "sticking" : "-");
-    add_expressions(wall.sticking.rhs);
-    add_expressions(wall.sticking.state);
-    add(wall.sticking.force.text);
-    add(wall.sticking.gap_scale.text);
-  }
-  return text;
-}
-
-// ---------------------------------------------------------------------------
-// the interpreted evaluator
-
-class ProgramWriter {
- public:
-  std::vector<StackInstruction> code;
-
-  void emit(const GiNaC::ex& e) {
-    using Op = StackInstruction::Op;
-    if (GiNaC::is_a<GiNaC::numeric>(e)) {
-      push({Op::constant, 0, GiNaC::ex_to<GiNaC::numeric>(e).to_double()});
-    } else if (GiNaC::is_a<GiNaC::constant>(e)) {
-      push({Op::constant, 0, GiNaC::ex_to<GiNaC::numeric>(e.evalf()).to_double()});
-    } else if (GiNaC::is_a<GiNaC::symbol>(e)) {
-      const std::string name = GiNaC::ex_to<GiNaC::symbol>(e).get_name();
-      if (name == "t") {
-        push({Op::time});
-      } else {
-        const auto index = static_cast<std::uint32_t>(std::stoul(name.substr(2)));
-        push({name[0] == 'x' ? Op::state : Op::parameter, index});
-      }
-    } else if (GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e)) {
-      const Op op = GiNaC::is_a<GiNaC::add>(e) ? Op::add : Op::multiply;
-      emit(e.op(0));
-      for (std::size_t i = 1; i < e.nops(); ++i) {
-        emit(e.op(i));
-        pop({op});
-      }
-    } else if (GiNaC::is_a<GiNaC::power>(e)) {
-      emit(e.op(0));
-      if (e.op(1).is_equal(GiNaC::ex(2))) {
-        code.push_back({Op::square});
-      } else {
-        emit(e.op(1));
-        pop({Op::power});
-      }
-    } else if (GiNaC::is_a<GiNaC::function>(e)) {
-      static constexpr std::pair<std::string_view, Op> unary[] = {
-          {"sin", Op::sin},   {"cos", Op::cos},   {"tan", Op::tan},   {"asin", Op::asin},
-          {"acos", Op::acos}, {"atan", Op::atan}, {"sinh", Op::sinh}, {"cosh", Op::cosh},
-          {"tanh", Op::tanh}, {"exp", Op::exp},   {"log", Op::log},   {"abs", Op::abs}};
-      const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
-      for (std::size_t i = 0; i < e.nops(); ++i) emit(e.op(i));
-      if (name == "atan2") {
-        pop({Op::atan2});
-        return;
-      }
-      for (const auto& [known, op] : unary) {
-        if (known == name) {
-          code.push_back({op});
-          return;
-        }
-      }
-      throw std::runtime_error("the interpreted evaluator has no function " + name);
-    } else {
-      throw std::runtime_error("the interpreted evaluator cannot evaluate this expression");
-    }
-  }
-  void store(std::uint32_t output) { pop({StackInstruction::Op::store, output}); }
-
- private:
-  void push(StackInstruction in) {
-    code.push_back(in);
-    if (++depth_ > StackProgram::max_depth)
-      throw std::runtime_error("an expression too deep for the interpreted evaluator");
-  }
-  void pop(StackInstruction in) {
-    code.push_back(in);
-    --depth_;
-  }
-  std::size_t depth_ = 0;
-};
-
-StackProgram program_of(const Expressions& outputs) {
-  ProgramWriter writer;
-  for (std::size_t i = 0; i < outputs.size(); ++i) {
-    writer.emit(outputs[i]);
-    writer.store(static_cast<std::uint32_t>(i));
-  }
-  return StackProgram(std::move(writer.code));
-}
-
 }  // namespace
 
 CompiledModel::~CompiledModel() {
@@ -499,14 +374,26 @@ std::shared_ptr<const CompiledModel> compile_model(const ModelDefinition& defini
   }
 
   KernelLayout layout;
-  const std::vector<Expressions> kernels =
-      build_kernels(definition, layout, model->written_expressions);
+  const std::vector<KernelCode> kernels = [&] {
+    try {
+      return build_kernels(definition, layout, model->written_expressions);
+    } catch (const BadInput&) {
+      throw;
+    } catch (const std::exception& error) {
+      // GiNaC's own refusals while it differentiates, for example of 0^v,
+      // whose derivative holds log(0): "power::eval(): division by zero"
+      throw ModelFileError(definition.rhs_where, "model",
+                           fmt::format("its derivatives cannot be formed ({}), as for a "
+                                       "power of zero such as 0^v",
+                                       error.what()));
+    }
+  }();
 
   // compiled, where a compiler and the cache are usable
+  model->c_source = model_c_source(kernels);
   std::vector<Kernel> loaded(kernels.size());
   if (options.use_compiler) {
-    const std::string source = c_source(kernels);
-    const LoadedObject object = load_or_compile(model_fingerprint(definition), source, options);
+    const LoadedObject object = load_or_compile(model->c_source, options);
     std::string why = object.why;
     model->cache_note = object.cache_note;
     if (object.handle) {
@@ -528,7 +415,7 @@ std::shared_ptr<const CompiledModel> compile_model(const ModelDefinition& defini
   // the interpreted slow path
   if (!model->compiled) {
     model->programs.reserve(kernels.size());
-    for (const auto& outputs : kernels) model->programs.push_back(program_of(outputs));
+    for (const KernelCode& code : kernels) model->programs.emplace_back(code);
     for (std::size_t k = 0; k < kernels.size(); ++k) loaded[k] = {nullptr, &model->programs[k]};
   }
 

@@ -64,6 +64,7 @@ class CompiledModel {
   std::vector<ExpressionText> written_expressions;
 
   // --- how it was built ---
+  std::string c_source;           // the generated C (model_c_source.hpp), compiled or not
   bool compiled = false;          // false: the interpreted slow path
   std::string slow_path_reason;   // why not compiled (empty when compiled)
   std::string library;            // the shared object's path (empty when not kept)
@@ -74,7 +75,7 @@ class CompiledModel {
   // storage behind the kernels
   void* library_handle = nullptr;
   int library_descriptor = -1;  // the loaded object's open file (compile_cache.hpp)
-  std::vector<StackProgram> programs;
+  std::vector<SlotProgram> programs;
 };
 
 // Differentiates, generates, compiles (or finds in the cache) and loads.

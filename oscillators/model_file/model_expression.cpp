@@ -102,7 +102,10 @@ class Parser {
         result = result * parse_unary();
       } else if (accept("/")) {
         const GiNaC::ex denominator = parse_unary();
-        if (denominator.expand().is_zero())
+        // zero as GiNaC evaluates it (x - x); not expanded, which can take
+        // unbounded time: a denominator zero only once expanded makes the
+        // expression infinite, refused at the initial state
+        if (denominator.is_zero())
           fail(operator_at, "division by an expression that is always zero");
         result = guarded(operator_at, [&] { return result / denominator; });
       } else {
@@ -131,15 +134,45 @@ class Parser {
     return result;
   }
 
+  // base^exponent, refused (at `at`) for an integer exponent beyond
+  // max_integer_exponent, and where GiNaC would raise an exact number in the
+  // base to a power whose digits no computation can hold: it computes such
+  // powers exactly (pow(sqrt(3), 1e5)^1e5, or ((1e308*x)^1000)^1000, ran for
+  // minutes).
+  void check_power(std::size_t at, const GiNaC::ex& base, const GiNaC::ex& exponent) const {
+    if (!GiNaC::is_a<GiNaC::numeric>(exponent) || !exponent.info(GiNaC::info_flags::rational)) return;
+    const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(exponent);
+    if (n.is_integer() && GiNaC::abs(n) > max_integer_exponent)
+      fail(at, "an integer exponent beyond ±" + std::to_string(max_integer_exponent));
+    if (raised_number_bits(base, std::fabs(n.to_double())) > max_exact_power_bits)
+      fail(at, "a number raised to a power too large to compute exactly");
+  }
+
+  // The binary digits GiNaC computes for the exact numbers in `base` raised
+  // to a power of magnitude `power`: a rational a/b gives a^power and
+  // b^power, a power c^m raises c to |m|·power, a product raises each
+  // factor (the largest counts); sums and functions are not raised.
+  static double raised_number_bits(const GiNaC::ex& base, double power) {
+    if (GiNaC::is_a<GiNaC::numeric>(base)) {
+      const GiNaC::numeric& c = GiNaC::ex_to<GiNaC::numeric>(base);
+      if (!c.is_rational()) return 0.0;
+      return static_cast<double>(std::max(c.numer().int_length(), c.denom().int_length())) * power;
+    }
+    if (GiNaC::is_a<GiNaC::power>(base) && GiNaC::is_a<GiNaC::numeric>(base.op(1)))
+      return raised_number_bits(base.op(0), std::fabs(GiNaC::ex_to<GiNaC::numeric>(base.op(1)).to_double()) * power);
+    double most = 0.0;
+    if (GiNaC::is_a<GiNaC::mul>(base))
+      for (std::size_t i = 0; i < base.nops(); ++i) most = std::max(most, raised_number_bits(base.op(i), power));
+    return most;
+  }
+
   GiNaC::ex parse_power() {
     const GiNaC::ex base = parse_primary();
     skip_space();
     const std::size_t operator_at = position_;
     if (accept("**") || accept("^")) {
       const GiNaC::ex exponent = parse_unary();
-      if (GiNaC::is_a<GiNaC::numeric>(exponent) && exponent.info(GiNaC::info_flags::integer) &&
-          GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(exponent)) > max_integer_exponent)
-        fail(operator_at, "an integer exponent beyond ±" + std::to_string(max_integer_exponent));
+      check_power(operator_at, base, exponent);
       return guarded(operator_at, [&] { return GiNaC::pow(base, exponent); });
     }
     return base;
@@ -225,6 +258,7 @@ class Parser {
       if (arguments.size() != spec->arity)
         fail(start, "function '" + name + "' takes " + std::to_string(spec->arity) +
                         " argument(s), given " + std::to_string(arguments.size()));
+      if (name == "pow") check_power(start, arguments[0], arguments[1]);
       return guarded(start, [&] { return apply_function(name, arguments); });
     }
     if (name == "pi") return GiNaC::Pi;

@@ -14,8 +14,10 @@
 // Bounded work: every nesting level (a parenthesis, a function call, a sign,
 // a power) counts, through the definitions an expression names, and an
 // expression nested deeper than max_expression_nesting is refused at the
-// place where it goes too deep; so is a constant that is not a finite double
-// and an integer exponent beyond max_integer_exponent (C code cannot hold them).
+// place where it goes too deep; so is a constant that is not a finite double,
+// an integer exponent beyond max_integer_exponent (C code cannot hold them),
+// and a power of an exact number that would take more than
+// max_exact_power_bits digits (GiNaC's exact arithmetic computes them all).
 #pragma once
 
 #include <functional>
@@ -39,6 +41,9 @@ struct ExpressionText {
 
 inline constexpr std::size_t max_expression_nesting = 100;
 inline constexpr long max_integer_exponent = 1024;
+// the most binary digits an exact power in an expression may take (GiNaC
+// computes a power of an exact number exactly: 1e308^1024 is 1.05 million)
+inline constexpr double max_exact_power_bits = 4e6;
 
 // A parsed expression and its height: the nesting levels it holds, counting
 // those of the definitions it names.

@@ -121,7 +121,10 @@ RunResult<typename System::State, typename System::Mode> simulate(
       x = transition.state;
       return false;
     }
-    if (!all_finite(transition.state)) {
+    // a state or a restart time that is not finite (an impulse or an
+    // accumulation's end computed from extreme parameters) ends the run as
+    // such: never a NaN time that ends the loop as if it were complete
+    if (!all_finite(transition.state) || !std::isfinite(transition.time)) {
       t = te;
       x = xe;
       stopped_by = Termination::non_finite_state;

@@ -3,8 +3,11 @@
 // exit status 2 and one line FILE:LINE:COL naming the place: deep nesting of
 // parentheses, functions, signs, powers and definitions
 // (max_expression_nesting), a TOML header of 100,000 dotted parts, an
-// exponent C cannot hold, a chain of definitions whose written-out C source
-// grows geometrically. Nesting within the bound still runs.
+// exponent C cannot hold, a chain of definitions whose written-out size grows
+// geometrically, a kernel too large to compile, an exact power too large to
+// compute, a derivative GiNaC cannot form. Nesting within the bound
+// still runs, and so does a chain whose code, each subexpression computed
+// once, stays small.
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -127,19 +130,76 @@ TEST(ModelFileLimits, AnExponentCCannotHoldIsRefused) {
   expect_refused_at(scratch, outcome, "11:23", "an integer exponent beyond");
 }
 
-// dk = sin(d{k-1})*cos(d{k-1}) + d{k-1}: a 600-byte file whose C source,
-// written out, grows about tenfold per level (once past 100 s and gigabytes)
-TEST(ModelFileLimits, ADefinitionChainThatGrowsGeometricallyIsRefused) {
-  const ScratchFolder scratch;
+// dk = sin(d{k-1})*cos(d{k-1}) + d{k-1}, k = 1 ... levels: each definition
+// names the one before three times, so that the expression written out
+// grows threefold per level (its C source, written out, once grew tenfold
+// per level, past 100 s and gigabytes at 7 levels).
+std::string definition_chain(int levels) {
   std::string definitions = "[model.definitions]\nd0 = \"x\"\n";
-  for (int k = 1; k <= 12; ++k) {
+  for (int k = 1; k <= levels; ++k) {
     const std::string before = "d" + std::to_string(k - 1);
     definitions += "d" + std::to_string(k) + " = \"sin(" + before + ")*cos(" + before + ") + " + before + "\"\n";
   }
-  const auto outcome = simulate_model(scratch, head + "v = \"-x + 0.01*d12\"\n" + definitions);
+  return definitions;
+}
+
+// Each subexpression is computed once in the generated code: ten levels (a
+// quarter of a million terms written out) compile to an object of a few
+// kilobytes.
+TEST(ModelFileLimits, ADefinitionChainCompilesToCodeThatGrowsLinearly) {
+  const ScratchFolder scratch;
+  const auto outcome = simulate_model(scratch, head + "v = \"-x + 0.01*d10\"\n" + definition_chain(10));
+  EXPECT_FALSE(outcome.run.timed_out);
+  ASSERT_EQ(outcome.run.status, 0) << outcome.run.err.substr(0, 300);
+  EXPECT_TRUE(fs::exists(scratch / "out" / "events.csv"));
+  int objects = 0;
+  for (const auto& entry : fs::directory_iterator(scratch / "cache")) {
+    if (entry.path().extension() != ".so") continue;
+    ++objects;
+    EXPECT_LT(fs::file_size(entry.path()), 100000u) << entry.path();
+  }
+  EXPECT_EQ(objects, 1);
+}
+
+// Differentiation works on the expression written out: past a million terms
+// it is refused, at the expression that names the chain, before any work.
+TEST(ModelFileLimits, ADefinitionChainThatGrowsGeometricallyIsRefused) {
+  const ScratchFolder scratch;
+  const auto outcome = simulate_model(scratch, head + "v = \"-x + 0.01*d40\"\n" + definition_chain(40));
+  EXPECT_FALSE(outcome.run.timed_out);
+  // at the expression of v (line 9; it starts at column 6)
+  expect_refused_at(scratch, outcome, "9:6", "grows to more than 1000000 terms");
+}
+
+// A product of 700 different factors is 700 terms written out, but each
+// partial derivative is a sum of 700 products of 699 factors: its code is
+// refused by size, not left to the compiler.
+TEST(ModelFileLimits, AKernelOfTooManyOperationsIsRefused) {
+  const ScratchFolder scratch;
+  std::string product = "sin(x + 1)";
+  for (int k = 2; k <= 700; ++k) product += "*sin(x + " + std::to_string(k) + ")";
+  const auto outcome = simulate_model(scratch, head + "v = \"" + product + "\"\n");
   EXPECT_FALSE(outcome.run.timed_out);
   // at the [model.rhs] table
-  expect_refused_at(scratch, outcome, "7:1", "grows to more than 200000 terms");
+  expect_refused_at(scratch, outcome, "7:1", "takes more than 200000 operations");
+}
+
+// GiNaC raises exact numbers exactly: 1e308^1000 has a million binary
+// digits, and that raised to the 1000th power once ran for minutes
+TEST(ModelFileLimits, AnExactPowerTooLargeToComputeIsRefused) {
+  const ScratchFolder scratch;
+  const auto outcome = simulate_model(scratch, head + "v = \"((1e308*x)^1000)^1000\"\n");
+  EXPECT_FALSE(outcome.run.timed_out);
+  // the second '^' (the expression starts at column 6)
+  expect_refused_at(scratch, outcome, "9:22", "a number raised to a power too large to compute exactly");
+}
+
+// d(0^v)/dv holds log(0): GiNaC refuses to form it, which was exit status 1
+TEST(ModelFileLimits, ADerivativeGiNaCCannotFormIsRefused) {
+  const ScratchFolder scratch;
+  const auto outcome = simulate_model(scratch, head + "v = \"0^v\"\n");
+  // at the [model.rhs] table
+  expect_refused_at(scratch, outcome, "7:1", "its derivatives cannot be formed");
 }
 
 TEST(ModelFileLimits, NestingWithinTheBoundRuns) {

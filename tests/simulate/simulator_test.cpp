@@ -5,9 +5,9 @@
 // * an event exactly at t0 is applied once, before the first step;
 // * an event exactly at the end time is logged once;
 // * no event is found twice at the same instant;
-// * a run whose time cannot advance, whose state overflows, whose end time is
-//   NaN, or that takes its whole step budget stops with a termination naming
-//   that, never `completed`.
+// * a run whose time cannot advance, whose state overflows, whose end time or
+//   restart time after an event is NaN, or that takes its whole step budget
+//   stops with a termination naming that, never `completed`.
 // The motions: LinearImpact with ζ = 0, A = 0 is the harmonic oscillator,
 // x = x0 cos t + ẋ0 sin t between impacts.
 #include <algorithm>
@@ -291,6 +291,38 @@ TEST_P(EventLoop, UnresolvedZenoStopsWithNoProgress) {
   // the ball never got through the floor by more than the tolerance
   EXPECT_GE(result.state[0], -1e-9);
   for (const EventRecord& e : log.records()) EXPECT_LE(e.t, accumulation + 1e-6);
+}
+
+// The ball whose impact asks to restart at a time that is not a number (as an
+// accumulation's end computed from extreme parameters once did): the run
+// stops at the impact with non_finite_state. It used to take the NaN as its
+// time, leave the loop and report `completed`.
+class NanRestartBall : public ZenoBall {
+ public:
+  impactlab::Transition<State, Mode> on_event(Mode mode, std::size_t k, impactlab::CrossingKind kind,
+                                              const State& x, double t, EventLog& log) const {
+    auto transition = ZenoBall::on_event(mode, k, kind, x, t, log);
+    transition.time = NAN;
+    return transition;
+  }
+};
+
+TEST_P(EventLoop, NanRestartTimeStopsTheRun) {
+  if (GetParam() == "exact") GTEST_SKIP() << "the ball has no closed-form flow here";
+  const NanRestartBall ball;
+  StepperSettings settings;
+  settings.rtol = settings.atol = 1e-12;
+  settings.max_step = ball.max_step();
+  EventLog log;
+  const auto result = impactlab::with_stepper<NanRestartBall>(GetParam(), settings, [&](auto& stepper) {
+    return impactlab::simulate(ball, stepper, ZenoBall::State{1.0, 0.0}, ZenoBall::Mode::free, 0.0,
+                               2.0, LoopOptions{}, log);
+  });
+  const double first_impact = std::sqrt(2.0 / ZenoBall::gravity);  // s, dropped from 1 m
+  EXPECT_EQ(result.termination, Termination::non_finite_state) << to_string(result.termination);
+  EXPECT_NEAR(result.t, first_impact, 1e-8);
+  EXPECT_TRUE(std::isfinite(result.state[0]) && std::isfinite(result.state[1]));
+  EXPECT_EQ(log.records().size(), 1u);
 }
 
 // At t0 = 1e17 s the spacing of doubles is 16 s, so that t + step

@@ -1,0 +1,53 @@
+// A model's kernels as straight-line code in a canonical order of its own:
+// every distinct subexpression of a kernel is one operation, computed once
+// (a chain of definitions that names the one before several times stays
+// linear), and the operands of a sum or a product are in an order given by
+// their structure alone. The same model text therefore gives the same
+// operations, the same C source (model_c_source.hpp) and the same
+// interpreted program (model_kernels.hpp) in every process, whereas GiNaC
+// orders the operands of a sum or product by hash values that depend on
+// memory addresses, so that its own printer's output changes from one process
+// to the next.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+namespace GiNaC {
+class ex;
+}
+
+namespace impactlab {
+
+// One value of a kernel, computed from earlier ones.
+struct KernelOperation {
+  enum class Kind : std::uint8_t {
+    constant, state, parameter, time,          // leaves
+    add, multiply,                             // n-ary, folded left to right
+    power, atan2,                              // binary
+    square, reciprocal, square_root,           // the powers 2, −1 and 1/2
+    sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, exp, log, abs,
+  };
+  Kind kind = Kind::constant;
+  std::uint32_t index = 0;               // the state's or parameter's index
+  double value = 0.0;                    // the constant
+  std::vector<std::uint32_t> operands;   // earlier operations, in order
+};
+
+// The name of a unary function kind as C's math.h spells it (fabs for abs).
+std::string_view c_function_name(KernelOperation::Kind kind);
+
+struct KernelCode {
+  std::vector<KernelOperation> operations;  // each after its operands
+  std::vector<std::uint32_t> outputs;       // the operation of out[i]
+};
+
+// The code of one kernel from its outputs, expressions in the symbols x[i],
+// p[j] and t with real numbers that are finite doubles. Throws
+// std::length_error when the kernel would take more than `max_operations`
+// operations (a leaf counts one, a sum or product of n operands n − 1).
+KernelCode kernel_code(const std::vector<GiNaC::ex>& outputs, std::size_t max_operations);
+
+}  // namespace impactlab
