@@ -53,11 +53,6 @@ SceneSchema make_schema() {
   return schema;
 }
 
-const SceneSchema& schema() {
-  static const SceneSchema instance = make_schema();
-  return instance;
-}
-
 double median(std::vector<double> values) {
   if (values.empty()) return NAN;
   const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
