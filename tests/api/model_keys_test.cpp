@@ -11,9 +11,13 @@
 
 #include <gtest/gtest.h>
 
+#include <impactlab/api/basins_job.hpp>
 #include <impactlab/api/model_keys.hpp>
 #include <impactlab/api/oscillator_registry.hpp>
+#include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
+#include <impactlab/api/sweep_job.hpp>
+#include <impactlab/io/bad_input.hpp>
 
 #include "support/test_support.hpp"
 
@@ -22,11 +26,23 @@ namespace {
 using impactlab::KeySpec;
 using impactlab::Scene;
 using impactlab::SceneSchema;
+using impactlab::testing::bad_input_key;
 
 Scene jin2003_with_model(const std::string& model) {
   Scene scene = impactlab::load_scene("jin2003");
   impactlab::apply_override(scene, "model=" + model);
   return scene;
+}
+
+// The message of the BadInput that `action` throws; empty when it throws none.
+template <class Action>
+std::string bad_input_message(Action&& action) {
+  try {
+    action();
+  } catch (const impactlab::BadInput& bad) {
+    return bad.what();
+  }
+  return "";
 }
 
 // A misspelt model in a read_by list (rigd) would make its key unread by every
@@ -101,6 +117,62 @@ TEST(ModelKeys, ModelsReadingListsTheDeclaredModelsOrEveryChoice) {
   EXPECT_EQ(listed("e_t"), "paper");
   EXPECT_EQ(listed("radius"), "rigid");
   EXPECT_EQ(listed("mu"), "newton|paper|rigid");
+}
+
+TEST(ModelKeys, SweepOfAKeyTheModelDoesNotReadIsRefusedNamingParam) {
+  const Scene newton = jin2003_with_model("newton");
+  const SceneSchema& schema = impactlab::scene_schema(newton);
+  impactlab::SweepSpec spec;
+  spec.params = {"e_t=-0.5:0:3"};
+  EXPECT_EQ(bad_input_key([&] { impactlab::make_sweep_plan(spec, newton, schema); }), "param");
+  EXPECT_EQ(bad_input_message([&] { impactlab::make_sweep_plan(spec, newton, schema); }),
+            "param = e_t: model = newton does not read e_t (read by model = paper)");
+  // the second axis of a map too
+  spec.params = {"omega=6:7:2", "radius=0:0.01:2"};
+  EXPECT_EQ(bad_input_key([&] { impactlab::make_sweep_plan(spec, newton, schema); }), "param");
+  // Model P reads e_t: the same sweep is planned
+  spec.params = {"e_t=-0.5:0:3"};
+  EXPECT_EQ(bad_input_key([&] {
+              impactlab::make_sweep_plan(spec, jin2003_with_model("paper"), schema);
+            }),
+            "(no BadInput)");
+  // μ is read by Model N
+  spec.params = {"mu=0:3:150"};
+  EXPECT_EQ(bad_input_key([&] { impactlab::make_sweep_plan(spec, newton, schema); }),
+            "(no BadInput)");
+}
+
+TEST(ModelKeys, BasinsOverAKeyTheModelDoesNotReadAreRefusedNamingTheAxis) {
+  const Scene newton = jin2003_with_model("newton");
+  const SceneSchema& schema = impactlab::scene_schema(newton);
+  impactlab::BasinsSpec spec;
+  spec.x = "initial.theta=-0.05:0.05:3";
+  spec.y = "e_t=-0.5:0:3";
+  EXPECT_EQ(bad_input_key([&] { impactlab::make_basins_plan(spec, newton, schema); }), "y");
+  std::swap(spec.x, spec.y);
+  EXPECT_EQ(bad_input_key([&] { impactlab::make_basins_plan(spec, newton, schema); }), "x");
+  EXPECT_EQ(bad_input_key([&] {
+              impactlab::make_basins_plan(spec, jin2003_with_model("paper"), schema);
+            }),
+            "(no BadInput)");
+}
+
+TEST(ModelKeys, ContinuationOfAKeyTheModelDoesNotReadIsRefusedNamingTheOption) {
+  const Scene newton = jin2003_with_model("newton");
+  impactlab::ContinuationJob job;
+  job.parameter = "e_t";
+  job.from = -0.5;
+  job.to = 0.0;
+  EXPECT_EQ(bad_input_key([&] { impactlab::continue_orbit(newton, job); }), "param");
+  job.parameter = "omega";
+  job.from = 6.0;
+  job.to = 7.0;
+  job.second_parameter = "radius";
+  job.second_from = 0.0;
+  job.second_to = 0.01;
+  EXPECT_EQ(bad_input_key([&] { impactlab::continue_orbit(newton, job); }), "param2");
+  EXPECT_EQ(bad_input_message([&] { impactlab::continue_orbit(newton, job); }),
+            "param2 = radius: model = newton does not read radius (read by model = rigid)");
 }
 
 TEST(ModelKeys, SettingAKeyTheModelDoesNotReadWarnsOncePerKey) {

@@ -1,0 +1,36 @@
+"""Keys that the scene's model does not read (api/model_keys.hpp) from Python:
+a sweep, basin map or continuation over one raises ValueError naming the
+keyword and the key, with the CLI's reason; setting one gives one
+UnreadKeyWarning and the run goes on."""
+import os
+import subprocess
+
+import pytest
+
+import impactlab
+
+NEWTON_E_T = "model = newton does not read e_t (read by model = paper)"
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: impactlab.sweep("jin2003", param="e_t=-0.5:0:3"), "param = e_t: " + NEWTON_E_T),
+    (lambda: impactlab.sweep("jin2003", param=["omega=6:7:2", "radius=0:0.01:2"]),
+     "param = radius: model = newton does not read radius (read by model = rigid)"),
+    (lambda: impactlab.basins("jin2003", x="initial.theta=-0.05:0.05:3", y="e_t=-0.5:0:3"),
+     "y = e_t: " + NEWTON_E_T),
+    (lambda: impactlab.continue_("jin2003", param="e_t=-0.5:0"), "param = e_t: " + NEWTON_E_T),
+    (lambda: impactlab.continue_("jin2003", param="omega=6:7", param2="e_t=-0.5:0"),
+     "param2 = e_t: " + NEWTON_E_T),
+])
+def test_a_key_the_model_does_not_read_is_refused_naming_the_keyword(call, message):
+    with pytest.raises(ValueError) as raised:
+        call()
+    assert str(raised.value) == message
+
+
+def test_the_refusal_is_the_cli_line_with_the_keyword_for_the_flag(tmp_path):
+    completed = subprocess.run([os.environ["IMPACTLAB_CLI"], "sweep", "jin2003", "--param",
+                                "e_t=-0.5:0:3", "--quiet", "--out", str(tmp_path / "x")],
+                               capture_output=True, text=True, check=False)
+    assert completed.returncode == 2
+    assert completed.stderr == "impactlab: --param = e_t: " + NEWTON_E_T + "\n"
