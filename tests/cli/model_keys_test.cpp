@@ -64,4 +64,31 @@ TEST(ModelKeysCommandLine, BasinsOverAKeyTheModelDoesNotReadExitsTwoNamingTheAxi
   expect_refused(run, "--y", "e_t", "model = paper");
 }
 
+// The line of `listing` that lists `key`.
+std::string key_line(const std::string& listing, const std::string& key) {
+  for (const std::string& line : split_lines(listing))
+    if (line.starts_with("  " + key + " ")) return line;
+  return "(no line for " + key + ")";
+}
+
+TEST(ModelKeysCommandLine, ScenesShowsWhichModelsReadEachKey) {
+  const ProgramRun run = run_impactlab({"scenes", "jin2003"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_TRUE(key_line(run.out, "e_t").ends_with("(read by model = paper)")) << run.out;
+  EXPECT_TRUE(key_line(run.out, "radius").ends_with("(read by model = rigid)")) << run.out;
+  EXPECT_TRUE(key_line(run.out, "spin").ends_with("(read by model = rigid)")) << run.out;
+  // the keys every model reads are not marked; the header names the models
+  EXPECT_EQ(key_line(run.out, "mu").find("read by"), std::string::npos) << run.out;
+  EXPECT_TRUE(run.out.starts_with("jin2003 (pendulum_walls): key = value [unit] range: help "
+                                  "(read by model = ...; unmarked: newton|paper|rigid)\n"))
+      << run.out;
+  // a scene whose one model reads every key lists them as before
+  const ProgramRun linear = run_impactlab({"scenes", "linear_impact"});
+  ASSERT_EQ(linear.status, 0) << linear.err;
+  EXPECT_EQ(linear.out.find("read by"), std::string::npos) << linear.out;
+  EXPECT_TRUE(linear.out.starts_with("linear_impact (linear_impact): key = value [unit] range: "
+                                     "help\n"))
+      << linear.out;
+}
+
 }  // namespace

@@ -34,3 +34,12 @@ def test_the_refusal_is_the_cli_line_with_the_keyword_for_the_flag(tmp_path):
                                capture_output=True, text=True, check=False)
     assert completed.returncode == 2
     assert completed.stderr == "impactlab: --param = e_t: " + NEWTON_E_T + "\n"
+
+
+def test_scene_keys_say_which_models_read_each_key():
+    """Scene.keys(), Python's `impactlab scenes SCENE`."""
+    read_by = {row["key"]: row["read_by"] for row in impactlab.scene("jin2003").keys()}
+    assert read_by["e_t"] == ["paper"]
+    assert read_by["radius"] == read_by["spin"] == ["rigid"]
+    assert read_by["mu"] == read_by["model"] == ["newton", "paper", "rigid"]
+    assert all(row["read_by"] == [] for row in impactlab.scene("linear_impact").keys())
