@@ -862,6 +862,9 @@ PYBIND11_MODULE(_impactlab, m) {
   m.def("apply_override", [](Scene& scene, const std::string& assignment) {
     apply_override(scene, assignment);
   });
+  m.def("unread_key_warnings", [](const Scene& scene, const std::vector<std::string>& keys) {
+    return unread_key_warnings(scene, scene_schema(scene), keys);
+  });
   m.def("simulate", &simulate_binding);
   m.def("poincare", &poincare_binding);
   m.def("sweep", &sweep_binding);

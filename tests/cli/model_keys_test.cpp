@@ -91,4 +91,35 @@ TEST(ModelKeysCommandLine, ScenesShowsWhichModelsReadEachKey) {
       << linear.out;
 }
 
+TEST(ModelKeysCommandLine, SetOfAKeyTheModelDoesNotReadWarnsOnceAndChangesNoFile) {
+  const ScratchFolder scratch;
+  const std::string run_options = " --set V0=4.163 --periods 5 --quiet --out ";
+  const ProgramRun plain =
+      run_command_line("simulate jin2003" + run_options + (scratch / "plain").string());
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  EXPECT_EQ(plain.err, "");
+  const ProgramRun set = run_command_line("simulate jin2003 --set e_t=-0.3 --set e_t=-0.2" +
+                                          run_options + (scratch / "set").string());
+  ASSERT_EQ(set.status, 0) << set.err;
+  EXPECT_EQ(set.err,
+            "impactlab: warning: e_t = -0.2: model = newton does not read e_t (read by model = "
+            "paper); the value changes nothing\n");
+  // the events are those of the run without it, byte for byte
+  const std::string events = slurp(scratch / "plain" / "events.csv");
+  EXPECT_GT(count_lines(events), 10);
+  EXPECT_EQ(slurp(scratch / "set" / "events.csv"), events);
+}
+
+TEST(ModelKeysCommandLine, SetOfAKeyTheModelReadsDoesNotWarn) {
+  const ScratchFolder scratch;
+  for (const std::string sets : {"--set model=paper --set e_t=-0.2", "--set mu=0.3",
+                                 "--set e_t=-0.2 --set model=paper"}) {
+    const ProgramRun run = run_command_line("simulate jin2003 " + sets +
+                                            " --periods 1 --quiet --out " +
+                                            (scratch / "run").string());
+    EXPECT_EQ(run.status, 0) << sets;
+    EXPECT_EQ(run.err, "") << sets;
+  }
+}
+
 }  // namespace
