@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <impactlab/api/job_options.hpp>
+#include <impactlab/api/model_keys.hpp>
 #include <impactlab/io/bad_input.hpp>
 
 namespace impactlab {
@@ -20,6 +21,7 @@ SweepPlan make_basins_plan(const BasinsSpec& spec, const Scene& scene, const Sce
     if (key == schema.keys.end() || key->is_text)
       throw BadInput(option, axis.name,
                      fmt::format("not a numeric key of oscillator {}", schema.oscillator));
+    refuse_unread_key(scene, schema, axis.name, option);
   }
   const std::string y_name = parse_axis(spec.y, "y").name;
   if (parse_axis(spec.x, "x").name == y_name)

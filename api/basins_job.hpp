@@ -28,8 +28,9 @@ struct BasinsSpec {
   double attractor_tolerance = 1e-4;  // relative distance of two canonical points
 };
 
-// The validated plan: both keys numeric keys of the scene's oscillator and
-// different, every point from the scene's state. Throws BadInput.
+// The validated plan: both keys numeric keys of the scene's oscillator that
+// its model reads (api/model_keys.hpp), and different, every point from the
+// scene's state. Throws BadInput.
 SweepPlan make_basins_plan(const BasinsSpec& spec, const Scene& scene, const SceneSchema& schema);
 
 // sweep_definition with the basins' own entries (the checkpoint header and

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <impactlab/api/job_options.hpp>
+#include <impactlab/api/model_keys.hpp>
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/api/system_jobs.hpp>
 #include <impactlab/io/bad_input.hpp>
@@ -35,6 +36,7 @@ ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& 
         key.starts_with("integrator.") || key == "t0")
       throw BadInput(option, key,
                      fmt::format("not a numeric parameter of oscillator {}", schema.oscillator));
+    refuse_unread_key(scene, schema, key, option);
     // both ends admissible (BadInput names the key and value otherwise)
     Scene probe = scene;
     for (double value : {from, to}) {

@@ -33,7 +33,8 @@ PeriodicResult periodic(const Scene& scene, const PeriodicRequest& request);
 // Pseudo-arclength continuation of a period-n orbit in job.parameter from
 // job.from to job.to, its bifurcations and grazing points, and with
 // job.doublings the doubled orbits. BadInput when the key is not a numeric
-// parameter of the oscillator (key `param`; `param2` for the second), an end
+// parameter of the oscillator or one its model does not read
+// (api/model_keys.hpp; key `param`, `param2` for the second), an end
 // of the range is out of the key's range, the oscillator or model has no
 // Jacobians (key `oscillator`), or no orbit converges at the start (key
 // `param`). Options are named by their own names (api/job_options.hpp).

@@ -10,6 +10,7 @@
 #include <omp.h>
 
 #include <impactlab/analysis/flow_setup.hpp>
+#include <impactlab/api/model_keys.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/api/scene_record.hpp>
 #include <impactlab/io/bad_input.hpp>
@@ -103,6 +104,9 @@ SweepPlan make_sweep_plan(const SweepSpec& spec, const Scene& scene, const Scene
   plan.section.lyapunov = spec.lyapunov.value_or(plan.axes.size() == 2);
   check_sweep_size(plan, spec, scene);
   validate_plan(plan, scene, schema);
+  // a key the scene's model does not read would sweep nothing
+  for (const SweepAxis& axis : plan.axes)
+    refuse_unread_key(scene, schema, axis.name, spec.param_key);
   if (plan.axes.size() == 2 && plan.direction != SweepDirection::up)
     throw BadInput("direction", spec.direction,
                    "a 2D sweep follows the first parameter upwards only");

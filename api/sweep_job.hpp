@@ -37,7 +37,8 @@ struct SweepSpec {
   std::string param_key = "param";
 };
 
-// The validated plan. Throws BadInput.
+// The validated plan. Throws BadInput, among others (key `param`) for a
+// swept key the scene's model does not read (api/model_keys.hpp).
 SweepPlan make_sweep_plan(const SweepSpec& spec, const Scene& scene, const SceneSchema& schema);
 
 // Everything that decides the sweep's results (not threads or ranks): the

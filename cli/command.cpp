@@ -3,13 +3,16 @@
 
 #include <cstdio>
 #include <ctime>
+#include <iostream>
 
 #include <unistd.h>
 
 
+#include <impactlab/api/model_keys.hpp>
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/api/scene_record.hpp>
+#include <impactlab/io/message_text.hpp>
 
 namespace impactlab::cli {
 
@@ -31,6 +34,14 @@ void SceneOptions::add_run(TableOptions& table) {
 }
 
 Scene SceneOptions::load() const {
+  Scene loaded = load_for_several_models();
+  const std::vector<std::string> set_keys(loaded.assigned.begin(), loaded.assigned.end());
+  for (const std::string& warning : unread_key_warnings(loaded, scene_schema(loaded), set_keys))
+    std::cerr << "impactlab: warning: " << one_line(warning) << '\n';
+  return loaded;
+}
+
+Scene SceneOptions::load_for_several_models() const {
   Scene loaded = load_scene(scene);
   for (const auto& assignment : assignments) apply_override(loaded, assignment);
   return loaded;

@@ -63,8 +63,13 @@ struct SceneOptions {
   // the scene, --set, the time span (--t-end, --periods), --out, --threads
   // and --quiet (simulate, compare)
   void add_run(TableOptions& table);
-  // the scene with every --set applied (BadInput on a bad key or value)
+  // the scene with every --set applied (BadInput on a bad key or value), and
+  // a warning line on stderr for each key set that the scene's model does not
+  // read (api/model_keys.hpp)
   [[nodiscard]] Scene load() const;
+  // the scene with every --set applied, without those warnings: for a command
+  // that runs the models of its own list, each reading its own keys (compare)
+  [[nodiscard]] Scene load_for_several_models() const;
   // the time span: --t-end T (an absolute end time, which must be after t0:
   // --t-end 0 with t0 = 0 is refused, not read as "not given"), else
   // --periods N from t0 (default 100); the two exclude each other

@@ -34,7 +34,8 @@ std::vector<std::string> models_to_run(const Scene& scene, const std::string& li
 
 int run_compare(const SceneOptions& options, const std::string& model_list,
                 const std::vector<std::string>& command_line) {
-  const Scene scene = options.load();
+  // each model listed reads its own keys: no warning for a key the scene's model does not read
+  const Scene scene = options.load_for_several_models();
   const std::vector<std::string> models = models_to_run(scene, model_list, options.quiet);
   RunRequest request = options.request();
   const auto directory = options.output_directory();

@@ -1,9 +1,13 @@
 // `impactlab scenes [SCENE]`: the built-in scenes, or one scene's keys with
-// value, unit, range and help.
+// value, unit, range and help, and where its models read different keys
+// (api/model_keys.hpp), the models that read each key that not every model
+// reads; the header names every model, the readers of the keys unmarked.
+#include <algorithm>
 #include <iostream>
 
 #include <fmt/format.h>
 
+#include <impactlab/api/model_keys.hpp>
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include "command.hpp"
@@ -26,7 +30,16 @@ int run_scenes(const std::string& name) {
   }
   const Scene scene = load_scene(name);
   const SceneSchema& schema = scene_schema(scene);
-  std::cout << fmt::format("{} ({}): key = value [unit] range: help\n", name, scene.oscillator);
+  // "(read by model = ...)" after the keys that not every model reads
+  std::string read_by_header;
+  if (!schema.selector.empty()) {
+    const auto selector = std::find_if(schema.keys.begin(), schema.keys.end(),
+                                       [&](const KeySpec& k) { return k.key == schema.selector; });
+    read_by_header = fmt::format(" (read by {} = ...; unmarked: {})", schema.selector,
+                                 model_names(models_reading(schema, *selector)));
+  }
+  std::cout << fmt::format("{} ({}): key = value [unit] range: help{}\n", name, scene.oscillator,
+                           read_by_header);
   for (const auto& spec : schema.keys) {
     const std::string value = to_text(scene.values.at(std::string(spec.key)));
     std::string range;
@@ -38,9 +51,13 @@ int run_scenes(const std::string& name) {
                           spec.upper >= 1e308 ? "inf" : to_text(spec.upper),
                           spec.upper_open ? ")" : "]");
     }
-    std::cout << fmt::format("  {:<20} = {:<12} {:<10} {:<14} {}\n", spec.key, value,
+    const std::string read_by =
+        spec.read_by.empty()
+            ? ""
+            : fmt::format(" (read by {} = {})", schema.selector, model_names(spec.read_by));
+    std::cout << fmt::format("  {:<20} = {:<12} {:<10} {:<14} {}{}\n", spec.key, value,
                              spec.unit.empty() ? "" : "[" + std::string(spec.unit) + "]", range,
-                             spec.help);
+                             spec.help, read_by);
   }
   return exit_done;
 }

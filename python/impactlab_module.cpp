@@ -33,6 +33,7 @@
 #include <impactlab/api/compare.hpp>
 #include <impactlab/api/continuation_job.hpp>
 #include <impactlab/api/job_options.hpp>
+#include <impactlab/api/model_keys.hpp>
 #include <impactlab/api/periodic_job.hpp>
 #include <impactlab/api/run_record.hpp>
 #include <impactlab/api/scene_jobs.hpp>
@@ -796,6 +797,12 @@ py::list scene_keys(const Scene& scene) {
     entry["unit"] = std::string(spec.unit);
     entry["help"] = std::string(spec.help);
     entry["is_text"] = spec.is_text;
+    // the models that read the key, where the scene's models read different
+    // keys (api/model_keys.hpp); empty where one model reads every key
+    py::list read_by;
+    for (auto model : models_reading(scene_schema(scene), spec))
+      read_by.append(std::string(model));
+    entry["read_by"] = read_by;
     if (spec.is_text) {
       py::list choices;
       for (auto choice : spec.choices) choices.append(std::string(choice));
@@ -854,6 +861,9 @@ PYBIND11_MODULE(_impactlab, m) {
   m.def("load_scene", [](const std::string& name) { return load_scene(name); });
   m.def("apply_override", [](Scene& scene, const std::string& assignment) {
     apply_override(scene, assignment);
+  });
+  m.def("unread_key_warnings", [](const Scene& scene, const std::vector<std::string>& keys) {
+    return unread_key_warnings(scene, scene_schema(scene), keys);
   });
   m.def("simulate", &simulate_binding);
   m.def("poincare", &poincare_binding);

@@ -13,8 +13,14 @@ namespace impactlab {
 
 namespace {
 
+// Which model reads which key (read_by, the values of `model`), from the code
+// that reads them: every model reads the pendulum's parameters, μ included
+// (Models N and P: the impulse's split, the contact's normal force, friction
+// work and Painlevé test); only Model P's sliding-impact test reads e_t
+// (sliding_impact.hpp); only the rigid-body model reads radius and spin
+// (RigidPendulumBinding::make_system).
 SceneSchema make_schema() {
-  SceneSchema schema{"pendulum_walls", "theta", common_keys()};
+  SceneSchema schema{"pendulum_walls", "theta", common_keys(), "model"};
   const double inf = 1e308;
   std::vector<KeySpec> own = {
       {.key = "model", .help = "impact model: newton (Model N), paper (Model P, the paper's sliding impact), rigid (rod and ball as rigid bodies)",
@@ -35,8 +41,8 @@ SceneSchema make_schema() {
        .lower = 0.0, .upper = inf, .lower_open = true},
       {.key = "e_n", .help = "normal restitution", .default_number = 0.3, .lower = 0.0,
        .upper = 1.0},
-      {.key = "e_t", .help = "tangential restitution e_y of Model P", .default_number = -0.1,
-       .lower = -1.0, .upper = 0.0},
+      {.key = "e_t", .help = "the paper's tangential restitution e_y (its sliding-impact test)",
+       .default_number = -0.1, .lower = -1.0, .upper = 0.0, .read_by = {"paper"}},
       {.key = "mu", .help = "Coulomb friction coefficient", .default_number = 0.6, .lower = 0.0,
        .upper = inf},
       accumulation_tolerance_key(),
@@ -44,18 +50,14 @@ SceneSchema make_schema() {
        .default_number = 0.0, .lower = -inf, .upper = inf},
       {.key = "initial.theta_dot", .unit = "rad/s", .help = "initial angular velocity",
        .default_number = 0.1, .lower = -inf, .upper = inf},
-      {.key = "radius", .unit = "m", .help = "ball radius (model rigid; radius < b)",
-       .default_number = 0.0, .lower = 0.0, .upper = inf},
-      {.key = "spin", .help = "ball on a free bearing or fixed to the rod (model rigid)",
-       .is_text = true, .default_text = "locked", .choices = {"locked", "free"}},
+      {.key = "radius", .unit = "m", .help = "ball radius (radius < b)",
+       .default_number = 0.0, .lower = 0.0, .upper = inf, .read_by = {"rigid"}},
+      {.key = "spin", .help = "ball on a free bearing or fixed to the rod",
+       .is_text = true, .default_text = "locked", .choices = {"locked", "free"},
+       .read_by = {"rigid"}},
   };
   schema.keys.insert(schema.keys.end(), own.begin(), own.end());
   return schema;
-}
-
-const SceneSchema& schema() {
-  static const SceneSchema instance = make_schema();
-  return instance;
 }
 
 double median(std::vector<double> values) {

@@ -8,7 +8,8 @@ Every function takes a scene (a built-in name, a path to a .toml file, or a
 Scene from impactlab.scene) and the scene's keys as keyword arguments, the
 dotted ones spelled with "__" (initial__theta=0.1) or passed as
 **{"initial.theta": 0.1}. They are checked exactly as `impactlab ... --set`
-checks them: bad input raises ValueError naming the key and the value.
+checks them: bad input raises ValueError naming the key and the value, and a
+key that the scene's model does not read gives an UnreadKeyWarning.
 """
 
 import math
@@ -22,7 +23,7 @@ from . import _impactlab
 
 __all__ = [
     "Scene", "scenes", "scene", "simulate", "poincare", "sweep", "basins", "periodic", "compare",
-    "bench", "continue_", "EventArray", "PhysicalDiagnosticWarning",
+    "bench", "continue_", "EventArray", "PhysicalDiagnosticWarning", "UnreadKeyWarning",
 ]
 
 Scene = _impactlab.Scene
@@ -33,6 +34,11 @@ EVENT_KINDS = tuple(_impactlab.event_kind_names())
 
 class PhysicalDiagnosticWarning(UserWarning):
     """A run stopped early by a physical diagnostic (the CLI's exit status 3)."""
+
+
+class UnreadKeyWarning(UserWarning):
+    """A key set that the scene's model does not read (jin2003's e_t under
+    model = newton): the value changes nothing (the CLI's warning line)."""
 
 
 class EventArray(np.ndarray):
@@ -108,7 +114,17 @@ def scenes():
 
 
 def scene(name_or_scene="jin2003", **keys):
-    """A scene with keys set: scene("jin2003", V0=4.163, omega=7)."""
+    """A scene with keys set: scene("jin2003", V0=4.163, omega=7). A key that
+    the scene's model does not read (e_t under model = newton) is set with an
+    UnreadKeyWarning."""
+    loaded = _with_keys(name_or_scene, keys)
+    _warn_unread_keys(loaded, keys)
+    return loaded
+
+
+def _with_keys(name_or_scene, keys):
+    """The scene with `keys` set, without the unread-key warnings (compare runs
+    models of its own list, each reading its own keys)."""
     if isinstance(name_or_scene, Scene):
         if not keys:
             return name_or_scene  # the jobs do not change a scene
@@ -121,6 +137,14 @@ def scene(name_or_scene="jin2003", **keys):
         dotted = key.replace("__", ".")
         _impactlab.apply_override(loaded, "{}={}".format(dotted, _assignment_text(dotted, value)))
     return loaded
+
+
+def _warn_unread_keys(loaded, keys):
+    """One UnreadKeyWarning per key of `keys` the scene's model does not read,
+    worded by the scene API as the CLI's warning line."""
+    dotted = [key.replace("__", ".") for key in keys]
+    for line in _impactlab.unread_key_warnings(loaded, dotted):
+        warnings.warn(line, UnreadKeyWarning, stacklevel=3)
 
 
 #: every job's options, declared once in the scene API (api/job_options.hpp):
@@ -429,7 +453,7 @@ def compare(scene_=None, *, models=_default("compare", "models"),
     """The scene under several impact models (the CLI's `compare`): runs (per
     model: events, meta), numbers (compare.json's numbers), summary (summary.md),
     and the CSV tables' text (impacts_csv, contacts_csv, section_csv)."""
-    loaded = scene(scene_ if scene_ is not None else "jin2003", **keys)
+    loaded = _with_keys(scene_ if scene_ is not None else "jin2003", keys)
     if not isinstance(models, (str, list, tuple)):
         raise ValueError("models = {!r}: expected a list of model names".format(models))
     model_list = models if isinstance(models, str) else ",".join(models)

@@ -29,12 +29,20 @@ struct KeySpec {
   bool lower_open = false, upper_open = false;  // exclude the bound itself
   std::string_view default_text{};
   std::vector<std::string_view> choices{};
+  // the values of the schema's selector key (SceneSchema::selector) whose
+  // model reads this key, where only some do (the pendulum's e_t: {"paper"});
+  // empty: every model reads it
+  std::vector<std::string_view> read_by{};
 };
 
 struct SceneSchema {
   std::string_view oscillator;
   std::string_view main_coordinate;  // q in events.csv: "theta", "x", "y"
   std::vector<KeySpec> keys;
+  // the text key whose value picks the model that runs the scene ("model"),
+  // in a schema where some keys are read by some models only (KeySpec::read_by);
+  // empty: one model reads every key
+  std::string_view selector{};
 };
 
 using SceneValue = std::variant<double, std::string>;
