@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -14,6 +15,9 @@ namespace impactlab {
 namespace {
 
 using Kind = KernelOperation::Kind;
+
+// the largest integer power written as repeated multiplication
+constexpr int max_multiplied_power = 8;
 
 // The unary functions GiNaC may hold, by name; atan2 is the one binary
 // function, and sqrt and pow are powers.
@@ -90,8 +94,24 @@ class Interner {
     node.value = value;
     return node;
   }
-  std::uint32_t constant(double value) { return store(leaf(Kind::constant, 0, value)); }
+  // a constant; −0 (a number below the range of a double, negated) is 0,
+  // and every NaN the one quiet NaN (a NaN's sign bit depends on how it
+  // was computed)
+  std::uint32_t constant(double value) {
+    if (value == 0.0) value = 0.0;
+    if (std::isnan(value)) value = std::numeric_limits<double>::quiet_NaN();
+    return store(leaf(Kind::constant, 0, value));
+  }
+  // the operation, or where every operand is a constant, its value
   std::uint32_t apply(Kind kind, std::vector<std::uint32_t> operands) {
+    if (std::all_of(operands.begin(), operands.end(),
+                    [this](std::uint32_t id) { return nodes_[id].kind == Kind::constant; })) {
+      double value = nodes_[operands[0]].value;
+      if (operands.size() == 1) return constant(evaluate_operation(kind, value, 0.0));
+      for (std::size_t i = 1; i < operands.size(); ++i)
+        value = evaluate_operation(kind, value, nodes_[operands[i]].value);
+      return constant(value);
+    }
     Node node;
     node.kind = kind;
     node.operands = std::move(operands);
@@ -138,8 +158,9 @@ class Interner {
   }
 
   // b^p with the exponents 2, −1, 1/2 and their products written as
-  // multiplications, divisions and square roots; every other one through
-  // pow. A sum raised to an integer has its signs normalised (below), the
+  // multiplications, divisions and square roots, and the integers up to
+  // ±max_multiplied_power as repeated multiplications; every other one
+  // through pow. A sum raised to an integer has its signs normalised (below), the
   // sign of an odd power then standing in front.
   std::uint32_t power_of(const GiNaC::ex& base, const GiNaC::ex& exponent) {
     std::uint32_t b = intern(base);
@@ -151,6 +172,12 @@ class Interner {
       negated = negated && p.is_odd();
     }
     const std::uint32_t power = [&] {
+      if (p.is_integer() && GiNaC::abs(p) >= 3 && GiNaC::abs(p) <= max_multiplied_power) {
+        // b·b·…·b: a few multiplications cost a fraction of a call of pow
+        const std::uint32_t multiplied =
+            apply(Kind::multiply, std::vector<std::uint32_t>(static_cast<std::size_t>(GiNaC::abs(p).to_int()), b));
+        return p.is_positive() ? multiplied : apply(Kind::reciprocal, {multiplied});
+      }
       if (p == 2) return apply(Kind::square, {b});
       if (p == -1) return apply(Kind::reciprocal, {b});
       if (p == -2) return apply(Kind::reciprocal, {apply(Kind::square, {b})});
@@ -172,8 +199,9 @@ class Interner {
   // rounding symmetric.
 
   // the sign of a term of a sum (that of its constants), and a hash of the
-  // term that its sign does not change (its factors' hashes, a constant's
-  // by its magnitude, combined in no particular order)
+  // term that its sign does not change: x and −x, 2x and −2x hash alike (a
+  // product by its factors other than ±1, a constant by its magnitude,
+  // combined in no particular order)
   [[nodiscard]] bool negative(std::uint32_t term) const {
     const Node& node = nodes_[term];
     if (node.kind == Kind::constant) return node.value < 0.0;
@@ -191,8 +219,12 @@ class Interner {
                  : node.hash;
     };
     if (nodes_[term].kind != Kind::multiply) return part(term);
+    std::vector<std::uint32_t> factors;
+    for (const std::uint32_t factor : nodes_[term].operands)
+      if (nodes_[factor].kind != Kind::constant || std::fabs(nodes_[factor].value) != 1.0) factors.push_back(factor);
+    if (factors.size() == 1) return part(factors.front());
     std::uint64_t hash = 0;
-    for (const std::uint32_t factor : nodes_[term].operands) hash += mix(0, part(factor));
+    for (const std::uint32_t factor : factors) hash += mix(0, part(factor));
     return hash;
   }
 
@@ -213,25 +245,47 @@ class Interner {
     return sum(std::move(flipped));
   }
 
+  // The sum of `terms`: NaN where a term is the constant NaN; the constant
+  // terms (GiNaC's coefficient, and constants folded from functions of
+  // numbers) added into one, in their canonical order.
   std::uint32_t sum(std::vector<std::uint32_t> terms) {
-    sort_canonically(terms);
-    return apply(Kind::add, std::move(terms));
+    std::vector<std::uint32_t> rest, constants;
+    for (const std::uint32_t term : terms) {
+      if (nodes_[term].kind != Kind::constant) rest.push_back(term);
+      else if (std::isnan(nodes_[term].value)) return term;
+      else constants.push_back(term);
+    }
+    if (constants.size() > 1) {
+      sort_canonically(constants);
+      constants = {apply(Kind::add, std::move(constants))};
+    }
+    if (!constants.empty() && (nodes_[constants.front()].value != 0.0 || rest.empty()))
+      rest.push_back(constants.front());
+    if (rest.size() == 1) return rest.front();
+    sort_canonically(rest);
+    return apply(Kind::add, std::move(rest));
   }
 
-  // The product of `factors`, negated where asked: nested products
-  // flattened, every sign (a constant ±1) multiplied into the first other
-  // constant or standing as one constant −1, a sign of +1 left out. Only
+  // The product of `factors`, negated where asked: NaN where a factor is
+  // the constant NaN; nested products flattened; the signs of every constant gathered into one, carried by
+  // the first constant other than 1 (in the canonical order of their
+  // magnitudes) or standing as one constant −1; a sign of +1 left out. Only
   // signs are folded, so that no product of constants overflows (π·1e308
-  // stays two factors, as written).
+  // stays two factors, as written), and a product whose signs GiNaC put on
+  // other constants (−1e17·(−π) or 1e17·π) is written one way.
   std::uint32_t product(const std::vector<std::uint32_t>& factors, bool negated) {
-    double sign = negated ? -1.0 : 1.0;
-    std::vector<std::uint32_t> rest;
-    std::vector<double> constants;
+    bool negative = negated;
+    bool has_nan = false;  // then the product is NaN
+    std::vector<std::uint32_t> rest, magnitudes;
     auto take = [&](std::uint32_t factor) {
       const Node& node = nodes_[factor];
-      if (node.kind != Kind::constant) rest.push_back(factor);
-      else if (node.value == 1.0 || node.value == -1.0) sign *= node.value;
-      else constants.push_back(node.value);
+      if (node.kind != Kind::constant) {
+        rest.push_back(factor);
+        return;
+      }
+      has_nan = has_nan || std::isnan(node.value);
+      if (node.value < 0.0) negative = !negative;
+      if (std::fabs(node.value) != 1.0) magnitudes.push_back(constant(std::fabs(node.value)));
     };
     for (const std::uint32_t factor : factors) {
       if (nodes_[factor].kind == Kind::multiply) {
@@ -241,9 +295,11 @@ class Interner {
         take(factor);
       }
     }
-    if (!constants.empty()) constants.front() *= sign;
-    else if (sign != 1.0 || rest.empty()) constants.push_back(sign);
-    for (const double value : constants) rest.push_back(constant(value));
+    if (has_nan) return constant(std::numeric_limits<double>::quiet_NaN());
+    sort_canonically(magnitudes);
+    if (negative && !magnitudes.empty()) magnitudes.front() = constant(-nodes_[magnitudes.front()].value);
+    else if (negative || (rest.empty() && magnitudes.empty())) magnitudes.push_back(constant(negative ? -1.0 : 1.0));
+    rest.insert(rest.end(), magnitudes.begin(), magnitudes.end());
     if (rest.size() == 1) return rest[0];
     sort_canonically(rest);
     return apply(Kind::multiply, std::move(rest));

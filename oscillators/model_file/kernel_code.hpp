@@ -10,6 +10,7 @@
 // to the next.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -38,6 +39,38 @@ struct KernelOperation {
 
 // The name of a unary function kind as C's math.h spells it (fabs for abs).
 std::string_view c_function_name(KernelOperation::Kind kind);
+
+// The value of an operation that is not a leaf from its operands' values
+// (`b` unused by the unary ones; a sum or product of two). The interpreted
+// evaluator runs this; the code generator folds with it an operation whose
+// operands are all constants, so that no constant is computed by the C
+// compiler (which folds tanh(1/6) correctly rounded, where the C library at
+// run time may differ in the last bit).
+inline double evaluate_operation(KernelOperation::Kind kind, double a, double b) {
+  using Kind = KernelOperation::Kind;
+  switch (kind) {
+    case Kind::add: return a + b;
+    case Kind::multiply: return a * b;
+    case Kind::power: return std::pow(a, b);
+    case Kind::atan2: return std::atan2(a, b);
+    case Kind::square: return a * a;
+    case Kind::reciprocal: return 1.0 / a;
+    case Kind::square_root: return std::sqrt(a);
+    case Kind::sin: return std::sin(a);
+    case Kind::cos: return std::cos(a);
+    case Kind::tan: return std::tan(a);
+    case Kind::asin: return std::asin(a);
+    case Kind::acos: return std::acos(a);
+    case Kind::atan: return std::atan(a);
+    case Kind::sinh: return std::sinh(a);
+    case Kind::cosh: return std::cosh(a);
+    case Kind::tanh: return std::tanh(a);
+    case Kind::exp: return std::exp(a);
+    case Kind::log: return std::log(a);
+    case Kind::abs: return std::fabs(a);
+    default: return a;  // the leaves have no operands
+  }
+}
 
 struct KernelCode {
   std::vector<KernelOperation> operations;  // each after its operands

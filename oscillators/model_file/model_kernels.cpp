@@ -1,7 +1,6 @@
 #include <impactlab/oscillators/model_file/model_kernels.hpp>
 
 #include <array>
-#include <cmath>
 
 namespace impactlab {
 
@@ -48,25 +47,7 @@ void SlotProgram::run(const double* x, double t, const double* p, double* out) c
       case Kind::state: value = x[step.a]; break;
       case Kind::parameter: value = p[step.a]; break;
       case Kind::time: value = t; break;
-      case Kind::add: value = slot[step.a] + slot[step.b]; break;
-      case Kind::multiply: value = slot[step.a] * slot[step.b]; break;
-      case Kind::power: value = std::pow(slot[step.a], slot[step.b]); break;
-      case Kind::atan2: value = std::atan2(slot[step.a], slot[step.b]); break;
-      case Kind::square: value = slot[step.a] * slot[step.a]; break;
-      case Kind::reciprocal: value = 1.0 / slot[step.a]; break;
-      case Kind::square_root: value = std::sqrt(slot[step.a]); break;
-      case Kind::sin: value = std::sin(slot[step.a]); break;
-      case Kind::cos: value = std::cos(slot[step.a]); break;
-      case Kind::tan: value = std::tan(slot[step.a]); break;
-      case Kind::asin: value = std::asin(slot[step.a]); break;
-      case Kind::acos: value = std::acos(slot[step.a]); break;
-      case Kind::atan: value = std::atan(slot[step.a]); break;
-      case Kind::sinh: value = std::sinh(slot[step.a]); break;
-      case Kind::cosh: value = std::cosh(slot[step.a]); break;
-      case Kind::tanh: value = std::tanh(slot[step.a]); break;
-      case Kind::exp: value = std::exp(slot[step.a]); break;
-      case Kind::log: value = std::log(slot[step.a]); break;
-      case Kind::abs: value = std::fabs(slot[step.a]); break;
+      default: value = evaluate_operation(step.kind, slot[step.a], slot[step.b]); break;
     }
   }
   for (std::size_t i = 0; i < outputs_.size(); ++i) out[i] = slot[outputs_[i]];
