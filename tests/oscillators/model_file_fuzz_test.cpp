@@ -23,6 +23,7 @@
 // * through the program: exit status 0, 2 or 3 only, never a signal or a
 //   hang; on 2, one line.
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -245,32 +246,34 @@ void check_in_library(const ScratchFolder& scratch, const std::string& text, std
   ++tally.compared;
 }
 
-TEST(ModelFileFuzz, RandomExpressionsBuildOrThrowBadInput) {
+// The library's promise over `count` model files from `make`, the first
+// `compile_budget` that build compiled too; the inputs must reach both sides
+// of the promise.
+template <class MakeModel>
+void check_many_in_library(std::uint64_t seed, int count, int compile_budget, int least_on_each_side,
+                           MakeModel&& make) {
   const ScratchFolder scratch;
-  std::mt19937_64 rng(20261127);
+  std::mt19937_64 rng(seed);
   ExpressionMaker maker(rng);
-  int compile_budget = 40;
+  const int compiles = compile_budget;
   Tally tally;
-  for (int i = 0; i < 1000; ++i) check_in_library(scratch, random_model(maker), rng, compile_budget, tally);
-  // the generator must reach both sides of the promise
-  EXPECT_GT(tally.built, 100);
-  EXPECT_GT(tally.refused, 100);
+  for (int i = 0; i < count; ++i) check_in_library(scratch, make(maker, i), rng, compile_budget, tally);
+  EXPECT_GT(tally.built, least_on_each_side);
+  EXPECT_GT(tally.refused, least_on_each_side);
   EXPECT_GT(tally.built_twice, 50);
-  EXPECT_EQ(tally.compared, 40);
+  EXPECT_EQ(tally.compared, compiles);
+}
+
+TEST(ModelFileFuzz, RandomExpressionsBuildOrThrowBadInput) {
+  check_many_in_library(20261127, 1000, 40, 100,
+                        [](ExpressionMaker& maker, int) { return random_model(maker); });
 }
 
 TEST(ModelFileFuzz, MutatedShippedModelsBuildOrThrowBadInput) {
-  const ScratchFolder scratch;
-  std::mt19937_64 rng(7);
-  ExpressionMaker maker(rng);
-  int compile_budget = 20;
-  Tally tally;
-  for (const std::string& original : shipped_models())
-    for (int i = 0; i < 150; ++i) check_in_library(scratch, mutated_model(original, maker), rng, compile_budget, tally);
-  EXPECT_GT(tally.built, 50);
-  EXPECT_GT(tally.refused, 50);
-  EXPECT_GT(tally.built_twice, 50);
-  EXPECT_EQ(tally.compared, 20);
+  const std::vector<std::string> originals = shipped_models();
+  check_many_in_library(7, 600, 20, 50, [&](ExpressionMaker& maker, int i) {
+    return mutated_model(originals[static_cast<std::size_t>(i) / 150], maker);
+  });
 }
 
 TEST(ModelFileFuzz, ProgramKeepsItsPromiseOnMutatedModelFiles) {
