@@ -141,8 +141,7 @@ class Parser {
   // (pow(sqrt(3), 1e5)^1e5, or ((1e308*x)^1000)^1000, ran for minutes).
   void check_power(std::size_t at, const GiNaC::ex& base, const GiNaC::ex& exponent) const {
     // refused before GiNaC throws for it, which leaks the power it was building
-    if (base.is_zero() && GiNaC::is_a<GiNaC::numeric>(exponent) &&
-        GiNaC::ex_to<GiNaC::numeric>(exponent).is_negative())
+    if (base.is_zero() && exponent.info(GiNaC::info_flags::negative))
       fail(at, "division by an expression that is always zero");
     if (!GiNaC::is_a<GiNaC::numeric>(exponent) || !exponent.info(GiNaC::info_flags::rational)) return;
     const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(exponent);
