@@ -134,13 +134,14 @@ class Parser {
     return result;
   }
 
-  // base^exponent, refused (at `at`) for zero to a negative power, for an
-  // integer exponent beyond max_integer_exponent, and where GiNaC would
-  // raise an exact number in the base to a power whose digits no
-  // computation can hold: it computes such powers exactly
+  // base^exponent, refused (at `at`) for zero to the power zero or to a
+  // negative power, for an integer exponent beyond max_integer_exponent,
+  // and where GiNaC would raise an exact number in the base to a power whose
+  // digits no computation can hold: it computes such powers exactly
   // (pow(sqrt(3), 1e5)^1e5, or ((1e308*x)^1000)^1000, ran for minutes).
   void check_power(std::size_t at, const GiNaC::ex& base, const GiNaC::ex& exponent) const {
-    // refused before GiNaC throws for it, which leaks the power it was building
+    // refused before GiNaC throws for them, which leaks the power it was building
+    if (base.is_zero() && exponent.is_zero()) fail(at, "zero to the power zero is undefined");
     if (base.is_zero() && exponent.info(GiNaC::info_flags::negative))
       fail(at, "division by an expression that is always zero");
     if (!GiNaC::is_a<GiNaC::numeric>(exponent) || !exponent.info(GiNaC::info_flags::rational)) return;
