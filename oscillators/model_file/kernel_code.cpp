@@ -233,10 +233,16 @@ class Interner {
   std::uint32_t sign_normalized(std::uint32_t id, bool& negated) {
     if (nodes_[id].kind != Kind::add) return id;
     const std::vector<std::uint32_t> terms = nodes_[id].operands;
-    const auto leading = std::min_element(terms.begin(), terms.end(), [this](std::uint32_t a, std::uint32_t b) {
-      return hash_without_sign(a) < hash_without_sign(b);
-    });
-    if (!negative(*leading)) return id;
+    std::uint32_t leading = terms.front();
+    std::uint64_t least = hash_without_sign(leading);
+    for (const std::uint32_t term : terms) {
+      const std::uint64_t hash = hash_without_sign(term);
+      if (hash < least) {
+        least = hash;
+        leading = term;
+      }
+    }
+    if (!negative(leading)) return id;
     std::vector<std::uint32_t> flipped;
     for (const std::uint32_t term : terms)
       flipped.push_back(nodes_[term].kind == Kind::constant ? constant(-nodes_[term].value)

@@ -17,7 +17,7 @@ REPEATS = 20
 # short runs one after the other in a daemon thread, left running when the
 # main thread ends: the interpreter exits while a run is going on or ending
 EXIT_WHILE_RUNNING = textwrap.dedent("""
-    import threading, time
+    import os, signal, threading, time
     import impactlab
     def simulate_forever():
         while True:
@@ -27,14 +27,7 @@ EXIT_WHILE_RUNNING = textwrap.dedent("""
 """)
 
 # the same runs, and Ctrl-C (SIGINT) to the main thread while they go on
-CTRL_C_WHILE_RUNNING = textwrap.dedent("""
-    import os, signal, threading, time
-    import impactlab
-    def simulate_forever():
-        while True:
-            impactlab.simulate("jin2003", periods=20)
-    threading.Thread(target=simulate_forever, daemon=True).start()
-    time.sleep(0.2)
+CTRL_C_WHILE_RUNNING = EXIT_WHILE_RUNNING + textwrap.dedent("""
     os.kill(os.getpid(), signal.SIGINT)
     time.sleep(10)
 """)
