@@ -51,6 +51,7 @@ enum class StopReason {
   signature_change,     // the impact signature changed (grazing)
   max_points,           // the point limit
   start_not_converged,  // no orbit found at the start
+  neutral_drift,        // a held neutral component stopped returning: no periodic orbit
 };
 
 // The bifurcation a two-parameter curve follows.
@@ -83,6 +84,7 @@ constexpr std::string_view to_string(StopReason reason) {
     case StopReason::signature_change: return "signature_change";
     case StopReason::max_points: return "max_points";
     case StopReason::start_not_converged: return "start_not_converged";
+    case StopReason::neutral_drift: return "neutral_drift";
   }
   return "unknown";
 }
@@ -216,6 +218,12 @@ struct ContinuationJob {
   std::optional<CurveType> curve_type;
 };
 
+// A component of the section state held fixed (analysis/neutral_component.hpp).
+struct HeldComponent {
+  std::size_t index = 0;  // in the full state
+  double value = 0.0;     // its value, the start's
+};
+
 struct ContinuedBranch {
   int period = 1;  // forcing periods of the orbit on this branch
   ContinuationResult result;
@@ -242,6 +250,10 @@ struct ContinuationJobResult {
   // doubled branch's first located point of it, doubled_curves[k] from
   // branches[k + 1] (the cascade's boundaries in the plane)
   std::vector<BranchCurve> doubled_curves;
+  // a component of the state along which the map was neutral, held at its
+  // start value (analysis/neutral_component.hpp); every state and multiplier
+  // list above has it back
+  std::optional<HeldComponent> neutral;
 };
 
 }  // namespace impactlab

@@ -223,6 +223,11 @@ class DecoratedSystem {
   {
     return base_.pinned(mode);
   }
+  [[nodiscard]] TangentVectorOf<tangent_dimension> pinned_components(Mode mode) const
+    requires HasJacobian<Base> && requires(const Base& base) { base.pinned_components(mode); }
+  {
+    return base_.pinned_components(mode);
+  }
 
  private:
   [[nodiscard]] bool is_section_witness(Mode mode, std::size_t k) const {

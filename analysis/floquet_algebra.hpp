@@ -57,7 +57,11 @@ std::array<std::complex<double>, N> eigenvalues(const TangentMatrixOf<N>& m) {
 }
 
 // δ solving (M − I) δ = −r; none where M − I is singular: Cramer's rule for
-// N = 2, a fully pivoted LU decomposition otherwise.
+// N = 2, a fully pivoted LU decomposition otherwise. For N > 2, where M − I
+// is singular because the orbit is one of a family (a direction along which
+// the map is neutral, multiplier 1: the free spin of a ball whose impacts
+// all slide), the least-squares step of least norm: Newton then converges
+// to the member of the family nearest the guess.
 template <std::size_t N>
 std::optional<TangentVectorOf<N>> newton_step(const TangentMatrixOf<N>& monodromy,
                                               const TangentVectorOf<N>& residual) {

@@ -2,6 +2,7 @@
 #include <impactlab/analysis/floquet_algebra.hpp>
 
 #include <Eigen/LU>
+#include <Eigen/QR>
 
 namespace impactlab::detail {
 
@@ -14,8 +15,16 @@ bool dense_newton_step(const double* monodromy, const double* residual, std::siz
   if (!matrix.allFinite()) return false;
   const Eigen::VectorXd right = -Eigen::Map<const Eigen::VectorXd>(residual, size);
   const Eigen::FullPivLU<Eigen::MatrixXd> lu(matrix);
-  if (!lu.isInvertible()) return false;
-  Eigen::Map<Eigen::VectorXd>(step, size) = lu.solve(right);
+  if (lu.isInvertible()) {
+    Eigen::Map<Eigen::VectorXd>(step, size) = lu.solve(right);
+    return true;
+  }
+  // a family of orbits: the rank one short, and the residual in the range
+  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> family(matrix);
+  if (family.rank() == 0) return false;
+  const Eigen::VectorXd least_norm = family.solve(right);
+  if (!least_norm.allFinite()) return false;
+  Eigen::Map<Eigen::VectorXd>(step, size) = least_norm;
   return true;
 }
 

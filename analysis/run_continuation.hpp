@@ -20,6 +20,7 @@
 #include <impactlab/analysis/flow_setup.hpp>
 #include <impactlab/analysis/floquet_multipliers.hpp>
 #include <impactlab/analysis/impact_map_problem.hpp>
+#include <impactlab/analysis/neutral_component.hpp>
 #include <impactlab/analysis/scene_boundary.hpp>
 #include <impactlab/analysis/stroboscopic_map_problem.hpp>
 #include <impactlab/core/has_jacobian.hpp>
@@ -124,8 +125,11 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
           return no_start(result, job, "no return to the wall within the orbit's period");
       }
     }
+    // a component along which the map is neutral (neutral_component.hpp) is
+    // held at its start value; a one-degree-of-freedom orbit has none
+    std::optional<HeldComponent> held;
     // the section map of the system `base` describes, continued in job.parameter
-    auto map_at = [&](const Scene& base, int period) {
+    auto full_map_at = [&](const Scene& base, int period) {
       auto make_system = [base, parameter = job.parameter, system_at](double p) {
         Scene at = base;
         at.values[parameter] = p;
@@ -140,6 +144,21 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
       return stroboscopic_map_problem<System>(make_system, flight_mode, setup, job.phase, period,
                                               omega);
     };
+    auto map_at = [&](const Scene& base, int period) {
+      if (!held) return full_map_at(base, period);
+      return with_component_held(full_map_at(base, period), *held);
+    };
+    if constexpr (n > 2) {
+      const OrbitEvaluation at =
+          full_map_at(scene, job.period).evaluate(request.start, job.from, job.phase, false, {});
+      if (at.completed) {
+        if (const auto component = neutral_component(at.monodromy)) {
+          held = HeldComponent{*component, request.start[*component]};
+          request.start = without_held_component(request.start, *held);
+          result.neutral = held;
+        }
+      }
+    }
     auto problem_for = [&](int period) {
       ContinuationProblem problem = map_at(scene, period);
       for (const SceneBoundary& boundary : boundaries)
@@ -152,8 +171,16 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
              }});
       return problem;
     };
+    // a held component checked on the full map at every point of a branch
+    auto checked = [&](ContinuationResult branch, int period) {
+      if (held)
+        end_where_held_component_drifts(branch, full_map_at(scene, period), *held,
+                                        request.tolerance);
+      return branch;
+    };
     int period = job.period;
-    result.branches.push_back({period, continue_branch(problem_for(period), request)});
+    result.branches.push_back(
+        {period, checked(continue_branch(problem_for(period), request), period)});
     for (int doubling = 0; doubling < job.doublings; ++doubling) {
       const ContinuationResult& previous = result.branches.back().result;
       const auto found = std::find_if(
@@ -173,8 +200,9 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
       ContinuationRequest doubled = request;
       doubled.from = doubling_point.parameter;
       result.branches.push_back(
-          {period, continue_branch_from(problem_for(period), doubled, doubling_point.state,
-                                        doubling_point.parameter, direction)});
+          {period, checked(continue_branch_from(problem_for(period), doubled, doubling_point.state,
+                                                doubling_point.parameter, direction),
+                           period)});
     }
     // the impact phase reported in [0, 2π) (branches and curves run on it unreduced)
     const auto reduce = [&](OrbitPoint& state) {
@@ -200,6 +228,7 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
         result.doubled_curves.push_back(std::move(doubled));
       }
     }
+    if (held) restore_held_component(result, *held);
     return result;
   }
 }

@@ -5,7 +5,9 @@
 //
 // For an event h(x, t) = 0 with reset x⁺ = g(x⁻, t):
 //     S = G + (f⁺ − G f⁻ − ∂g/∂t) ∇hᵀ / ḣ,    ḣ = ∇h · f⁻ + ∂h/∂t
-// with G = ∂g/∂x, f⁻ and f⁺ the vector fields of the modes before and after,
+// with G = ∂g/∂x, f⁻ and f⁺ the vector fields of the modes before and after
+// (f⁺ at the time the system continues from: later than the event where an
+// accumulation of impacts was jumped over),
 // all on the system's tangent space (core/has_jacobian.hpp: (q, q̇), or a
 // model file's N states). ḣ is the witness's rate along the flow
 // (WitnessSample::rate), so the explicit time dependence of a moving wall is
@@ -42,7 +44,7 @@ TangentMatrixOf<tangent_dimension_of<System>> saltation_matrix(const System& sys
   if (h.rate == 0.0) return reset.state;
   typename System::State f_before{}, f_after{};
   system.rhs(mode_before, x_before, f_before, t);
-  system.rhs(after.mode, after.state, f_after, t);
+  system.rhs(after.mode, after.state, f_after, after.time);
   const TangentVectorOf<n> gradient =
       system.witness_gradient(mode_before, witness, x_before, t);
 

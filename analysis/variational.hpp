@@ -42,12 +42,17 @@ class Variational {
   [[nodiscard]] const Base& base() const { return base_; }
 
   // The base state with Φ = I appended (Φ = 0 in a mode that pins the state:
-  // there nearby states are the same state).
+  // there nearby states are the same state; zero rows for the components a
+  // mode pins where the base tells them apart, pinned_components).
   State start(const BaseState& x, Mode mode) const {
     State v{};
     std::copy(x.begin(), x.end(), v.begin());
-    const double identity = base_.pinned(mode) ? 0.0 : 1.0;
-    for (std::size_t i = 0; i < dimension; ++i) v[base_size + i * dimension + i] = identity;
+    for (std::size_t i = 0; i < dimension; ++i) {
+      bool pinned = base_.pinned(mode);
+      if constexpr (requires { base_.pinned_components(mode); })
+        pinned = base_.pinned_components(mode)[i] != 0.0;
+      v[base_size + i * dimension + i] = pinned ? 0.0 : 1.0;
+    }
     return v;
   }
   static BaseState base_state(const State& v) {

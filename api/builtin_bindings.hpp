@@ -17,7 +17,8 @@ struct BindingList {};
 
 using BuiltinBindings =
     BindingList<PendulumBinding<PendulumModel::newton>, PendulumBinding<PendulumModel::paper>,
-                RigidPendulumBinding, LinearImpactBinding, BouncingBallBinding,
+                RigidPendulumBinding<RigidSpin::locked>,
+                RigidPendulumBinding<RigidSpin::free>, LinearImpactBinding, BouncingBallBinding,
                 ModelFileBinding<2>, ModelFileBinding<4>>;
 
 }  // namespace impactlab

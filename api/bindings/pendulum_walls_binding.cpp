@@ -18,7 +18,7 @@ namespace {
 // (Models N and P: the impulse's split, the contact's normal force, friction
 // work and Painlevé test); only Model P's sliding-impact test reads e_t
 // (sliding_impact.hpp); only the rigid-body model reads radius and spin
-// (RigidPendulumBinding::make_system).
+// (rigid_pendulum_parameters).
 SceneSchema make_schema() {
   SceneSchema schema{"pendulum_walls", "theta", common_keys(), "model"};
   const double inf = 1e308;
@@ -138,7 +138,7 @@ void RigidPendulumRunTally::add_to(RunOutput& output) const {
   };
 }
 
-RigidPendulumWalls RigidPendulumBinding::make_system(const Scene& scene) {
+RigidPendulumParameters rigid_pendulum_parameters(const Scene& scene) {
   RigidPendulumParameters rp;
   rp.pendulum = pendulum_walls_parameters(scene);
   const PendulumWallsParameters& p = rp.pendulum;
@@ -148,20 +148,35 @@ RigidPendulumWalls RigidPendulumBinding::make_system(const Scene& scene) {
     throw BadInput("radius", to_text(rp.radius), "the ball must fit between the walls (radius < b)");
   if (rp.spin_free && !(rp.radius > 0.0))
     throw BadInput("spin", "free", "a spinning ball needs radius > 0");
-  return RigidPendulumWalls(rp);
+  return rp;
 }
 
-// the ball starts without spin of its own: with a free bearing its absolute
-// rate φ̇ is 0, locked it turns with the rod
-RigidPendulumWalls::State RigidPendulumBinding::initial_state(const Scene& scene,
-                                                              const RigidPendulumWalls& system) {
+RigidPendulumWalls::State rigid_pendulum_initial_state(const Scene& scene,
+                                                       const RigidPendulumWalls& system) {
   const double theta = scene.number("initial.theta");
   if (std::fabs(theta) > system.wall_angle())
     throw BadInput("initial.theta", to_text(theta),
                    "the ball would start inside a wall (|theta| > asin((b - radius)/l) = " +
                        to_text(system.wall_angle()) + ")");
   const double theta_dot = scene.number("initial.theta_dot");
-  return {theta, theta_dot, theta, system.spin_free() ? 0.0 : theta_dot, 0.0};
+  return {theta, theta_dot, system.spin_free() ? 0.0 : theta_dot, theta, 0.0};
+}
+
+void admit_rigid_pendulum_state(const RigidPendulumWalls& system, RigidPendulumWalls::State& x,
+                                RigidPendulumWalls::Mode& mode) {
+  using Mode = RigidPendulumWalls::Mode;
+  const double wall_angle = system.wall_angle();
+  if (mode != Mode::free) {
+    const bool right = mode == Mode::slide_right_pos || mode == Mode::slide_right_neg ||
+                       mode == Mode::stick_right;
+    x[0] = right ? wall_angle : -wall_angle;
+    x[1] = 0.0;
+  }
+  if (std::fabs(x[0]) > wall_angle) x[0] = std::copysign(wall_angle, x[0]);
+  if (!system.spin_free()) x[RigidPendulumWalls::spin_rate] = x[1];
+  x[RigidPendulumWalls::spin_angle] = 0.0;
+  x[RigidPendulumWalls::friction_work] = 0.0;
+  mode = Mode::free;
 }
 
 PendulumWallsParameters pendulum_walls_parameters(const Scene& scene) {

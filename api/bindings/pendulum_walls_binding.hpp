@@ -1,7 +1,8 @@
 // The pendulum between two walls (oscillators/pendulum_walls/): one scene
-// schema, three models. Model N (newton) and Model P (paper) run every
-// analysis; the rigid-body model (rigid) runs simulations only in this
-// version. api/scene_system.hpp says what a binding is.
+// schema, three models, each running every analysis: Model N (newton),
+// Model P (paper; no Jacobians, so no Floquet, Lyapunov or continuation) and
+// the rigid-body model (rigid), one binding per spin. api/scene_system.hpp
+// says what a binding is.
 #pragma once
 
 #include <cmath>
@@ -20,6 +21,7 @@
 #include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
+#include <impactlab/oscillators/pendulum_walls/rigid_pendulum_spin.hpp>
 #include <impactlab/oscillators/pendulum_walls/rigid_pendulum_walls.hpp>
 #include <impactlab/oscillators/pendulum_walls/sliding_impact.hpp>
 
@@ -131,30 +133,51 @@ class RigidPendulumRunTally {
   std::vector<double> ratios_;
 };
 
+// the rigid-body model's parameters: the pendulum's keys and radius, spin;
+// BadInput where they do not fit together (radius >= b, spin = free with
+// radius = 0)
+RigidPendulumParameters rigid_pendulum_parameters(const Scene& scene);
+
+// the ball starts without spin of its own: with a free bearing its absolute
+// rate φ̇ is 0, locked it turns with the rod
+RigidPendulumWalls::State rigid_pendulum_initial_state(const Scene& scene,
+                                                       const RigidPendulumWalls& system);
+
+// A continued state moved into the admissible set: a ball in a contact phase
+// (or beyond a moved wall) starts on the wall at rest in free flight, with
+// the spin it has where the spin is free; the bookkeeping (φ, W_f) restarts
+// from zero.
+void admit_rigid_pendulum_state(const RigidPendulumWalls& system, RigidPendulumWalls::State& x,
+                                RigidPendulumWalls::Mode& mode);
+
+// One binding per spin: the tangent space is (θ, θ̇) with the spin locked
+// and (θ, θ̇, φ̇) with it free (rigid_pendulum_spin.hpp).
+template <RigidSpin spin>
 struct RigidPendulumBinding {
-  using System = RigidPendulumWalls;
-  using State = System::State;
-  static constexpr bool runs_analyses = false;
+  using System = RigidPendulumOf<spin>;
+  using State = typename System::State;
+  using Mode = typename System::Mode;
 
   static const SceneSchema& schema() { return pendulum_walls_schema(); }
   static bool matches(const Scene& scene) {
-    return scene.oscillator == "pendulum_walls" && scene.text("model") == "rigid";
+    return scene.oscillator == "pendulum_walls" && scene.text("model") == "rigid" &&
+           (scene.text("spin") == "free") == (spin == RigidSpin::free);
   }
-  static BadInput analysis_refusal(const Scene&) {
-    return BadInput("model", "rigid",
-                    "sections, sweeps and periodic orbits take newton or paper in this version");
+  static System make_system(const Scene& scene) { return System(rigid_pendulum_parameters(scene)); }
+  static State initial_state(const Scene& scene, const System& system) {
+    return rigid_pendulum_initial_state(scene, system);
   }
-  // the pendulum's keys and radius, spin; BadInput where they do not fit
-  // together (radius >= b, spin = free with radius = 0)
-  static System make_system(const Scene& scene);
-  static State initial_state(const Scene& scene, const System& system);
-  static System::Mode flight_mode(const System&) { return System::Mode::free; }
+  static Mode flight_mode(const System&) { return Mode::free; }
   static double forcing_frequency(const System& system) { return system.parameters().omega; }
-  static void admit(const System&, const Scene&, State&, System::Mode& mode) {
-    mode = System::Mode::free;
+  static void admit(const System& system, const Scene&, State& x, Mode& mode) {
+    admit_rigid_pendulum_state(system, x, mode);
   }
-  static std::string_view mode_name(const System&, System::Mode mode) {
+  static std::string_view mode_name(const System&, Mode mode) {
     return rigid_pendulum_mode_name(mode);
+  }
+  // as Model N's: below V0·ω = g the ball cannot be held on a wall
+  static std::vector<SceneBoundary> boundaries() {
+    return PendulumBinding<PendulumModel::newton>::boundaries();
   }
   static RigidPendulumRunTally run_tally(const System& system, const Scene&) {
     return RigidPendulumRunTally(system, 2.0 * std::numbers::pi / forcing_frequency(system),

@@ -20,7 +20,7 @@ auto RigidPendulumWalls::settle(Mode from, int wall, const State& resting, doubl
       EventRecord end{t, EventKind::contact_end, wall, resting[0], 0.0, 0.0};
       end.normal_force = 0.0;
       end.tangential_velocity = slip;
-      end.friction_work = resting[4];
+      end.friction_work = resting[friction_work];
       log.record(end);
     }
     return {resting, Mode::free, t, false};
@@ -28,7 +28,7 @@ auto RigidPendulumWalls::settle(Mode from, int wall, const State& resting, doubl
   EventRecord record{t, kind, wall, resting[0], 0.0, 0.0};
   record.normal_force = forces.normal;
   record.tangential_velocity = slip;
-  record.friction_work = resting[4];
+  record.friction_work = resting[friction_work];
   log.record(record);
   const Mode next = forces.regime == rigidbody::ContactRegime::stick
                         ? stick_mode(wall)
@@ -48,7 +48,7 @@ auto RigidPendulumWalls::enter_contact(int wall, const State& after, double t, d
 auto RigidPendulumWalls::slip_stops(Mode mode, int wall, const State& x, double t,
                                     EventLog& log) const -> Transition<State, Mode> {
   State resting = on_wall(wall, x);
-  if (spin_free_) resting[3] = wall * pivot_velocity(t) / r_;  // γ_T = 0 exactly
+  if (spin_free_) resting[spin_rate] = wall * pivot_velocity(t) / r_;  // γ_T = 0 exactly
   return settle(mode, wall, resting, t, EventKind::slip_reversal, log, true);
 }
 
@@ -57,13 +57,13 @@ auto RigidPendulumWalls::stick_breaks(Mode mode, int wall, std::size_t k, const 
   // the slip starts from zero: the integrated spin's round-off must not
   // start it on the wrong side of its witness
   State resting = on_wall(wall, x);
-  resting[3] = wall * pivot_velocity(t) / r_;
+  resting[spin_rate] = wall * pivot_velocity(t) / r_;
   const double s = k == 1 ? -1.0 : 1.0;
   if (!(friction_denominator(s) > 1e-9)) return stop_painleve(mode, wall, resting, t, 0.0, log);
   EventRecord record{t, EventKind::slip_reversal, wall, resting[0], 0.0, 0.0};
   record.normal_force = sliding_normal_force(t, s);
   record.tangential_velocity = 0.0;
-  record.friction_work = resting[4];
+  record.friction_work = resting[friction_work];
   log.record(record);
   return {resting, slide_mode(wall, s), t, false};
 }

@@ -9,12 +9,18 @@ auto RigidPendulumWalls::impact_at(int wall, const State& x, double t) const -> 
   const rigidbody::ImpactCoefficients coefficients{p_.e_n, p_.mu, 0.0};
   if (spin_free_) {
     const auto result = rigidbody::generalized_impact<2>(free_spin_contact(wall, x, t),
-                                                         Eigen::Vector2d(x[1], x[3]), coefficients);
+                                                         Eigen::Vector2d(x[1], x[spin_rate]), coefficients);
     return {result.qdot_after(0), result.qdot_after(1), result.impulse};
   }
   const auto result = rigidbody::generalized_impact<1>(
       locked_spin_contact(wall, x, t), Eigen::Matrix<double, 1, 1>(x[1]), coefficients);
   return {result.qdot_after(0), result.qdot_after(0), result.impulse};
+}
+
+auto RigidPendulumWalls::impact_case(int wall, const State& x, double t) const -> ImpactCase {
+  const rigidbody::NewtonCoulombImpulse<2> impulse = impact_at(wall, x, t).impulse;
+  // the slide's impulse is j (1, −μ s) with j > 0: s is the tangential part's opposite sign
+  return {impulse.regime, impulse.impulse(1) > 0.0 ? -1.0 : 1.0};
 }
 
 auto RigidPendulumWalls::on_wall_reached(int wall, CrossingKind crossing, const State& x, double t,
@@ -29,7 +35,7 @@ auto RigidPendulumWalls::on_wall_reached(int wall, CrossingKind crossing, const 
   const WallImpact impact = impact_at(wall, x, t);
   if (impact.impulse.regime == rigidbody::ImpulseRegime::inconsistent)
     return stop_painleve(Mode::free, wall, x, t, x[1], log);
-  State after{wall * theta0_, impact.theta_dot, x[2], impact.phi_dot, x[4]};
+  State after{wall * theta0_, impact.theta_dot, impact.phi_dot, x[spin_angle], x[friction_work]};
   EventRecord record{t, EventKind::impact, wall, x[0], x[1], impact.theta_dot};
   record.normal_impulse = impact.impulse.normal_impulse;
   record.tangential_velocity = gamma_t;
@@ -39,14 +45,14 @@ auto RigidPendulumWalls::on_wall_reached(int wall, CrossingKind crossing, const 
   // chattering, with Model N's rule: normal acceleration towards the wall
   // at rest, −γ̈_N = −(m l² / M_θ) g_e sin θ0 cos θ0, and its two rates
   const double share = rod_inertia_ / theta_inertia_;
-  const double approach = -effective_gravity(t) * sin0_ * cos0_ * share;
+  const double approach = approach_acceleration(t);
   const double approach_rate = -effective_gravity_rate(t) * sin0_ * cos0_ * share;
   const double approach_curvature = -effective_gravity_curvature(t) * sin0_ * cos0_ * share;
   // damping d / M_θ (1/s); the gap's stiffness m l g_e cos θ0 / M_θ (1/s²)
   const double damping = p_.d / theta_inertia_;
   const double gap_stiffness = p_.m * p_.l * effective_gravity(t) * cos0_ / theta_inertia_;
   const auto estimate =
-      accept_accumulation({p_.l * cos0_ * std::fabs(impact.theta_dot), approach, approach_rate,
+      accept_accumulation({normal_speed(impact.theta_dot), approach, approach_rate,
                            p_.e_n, approach_curvature, damping, gap_stiffness},
                           p_.accumulation);
   if (!estimate) return {after, Mode::free, t, false};

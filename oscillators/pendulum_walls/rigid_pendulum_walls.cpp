@@ -55,7 +55,7 @@ auto RigidPendulumWalls::release(int wall, const State& x, double t, EventLog& l
   EventRecord end{t, EventKind::contact_end, wall, wall * theta0_, 0.0, 0.0};
   end.normal_force = 0.0;
   end.tangential_velocity = tangential_velocity(wall, on_wall(wall, x), t);
-  end.friction_work = x[4];
+  end.friction_work = x[friction_work];
   log.record(end);
   return {on_wall(wall, x), Mode::free, t, false};
 }

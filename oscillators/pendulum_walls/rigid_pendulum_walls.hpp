@@ -26,7 +26,11 @@
 // only: the ball rolls on the wall as the pivot moves it). The stick case of
 // the impulse has tangential restitution 0 (the lecture's default): any
 // tangential restitution of the model emerges from the impulse mechanics.
-// State: {θ, θ̇, φ, φ̇, W_f}, W_f the friction work in contact phases (J).
+// State: {θ, θ̇, φ̇, φ, W_f}, W_f the friction work in contact phases (J):
+// the mechanical state first, so that (θ, θ̇) with the spin locked and
+// (θ, θ̇, φ̇) with it free are the tangent space of the analyses
+// (rigid_pendulum_spin.hpp). With the spin locked φ̇ turns with θ̇ and is
+// bookkeeping: the contact velocities read θ̇.
 #pragma once
 
 #include <algorithm>
@@ -57,6 +61,10 @@ struct RigidPendulumParameters {
 class RigidPendulumWalls {
  public:
   using State = std::array<double, 5>;
+  // the state's components after θ (0) and θ̇ (1)
+  static constexpr std::size_t spin_rate = 2;      // φ̇ (rad/s)
+  static constexpr std::size_t spin_angle = 3;     // φ (rad)
+  static constexpr std::size_t friction_work = 4;  // W_f (J)
   // slide modes carry the slip's sign s = sgn γ_T (pos: the contact point
   // slides down the wall, y down), so that the friction's direction is that
   // of the mode and not of a slip that sits at zero to round-off
@@ -84,6 +92,7 @@ class RigidPendulumWalls {
 
   [[nodiscard]] double wall_angle() const { return theta0_; }
   [[nodiscard]] double ball_inertia() const { return ball_inertia_; }
+  [[nodiscard]] double radius() const { return r_; }
   [[nodiscard]] bool spin_free() const { return spin_free_; }
   // the pendulum's own parameters (m, l, b, d, g, V0, ω, e_n, μ)
   [[nodiscard]] const PendulumWallsParameters& parameters() const { return p_; }
@@ -114,12 +123,26 @@ class RigidPendulumWalls {
     return p_.V0 * p_.omega * cos_phase(p_.omega * t);
   }
 
+  // the normal acceleration towards a wall of the ball resting on it,
+  // −γ̈_N = −(m l² / M_θ) g_e sin θ0 cos θ0 (m/s²): what drives a chatter
+  // into its accumulation point (contact/accumulation.hpp), as in Model N
+  template <class Number>
+  [[nodiscard]] Number approach_acceleration(const Number& t) const {
+    return -effective_gravity(t) * sin0_ * cos0_ * (rod_inertia_ / theta_inertia_);
+  }
+  // the normal speed of an impact, l cos θ0 |θ̇| (m/s)
+  template <class Number>
+  [[nodiscard]] Number normal_speed(const Number& theta_rate) const {
+    using std::fabs;
+    return p_.l * cos0_ * fabs(theta_rate);
+  }
+
   // γ_T at wall w (m/s)
   template <class Number>
   [[nodiscard]] Number tangential_velocity(int wall, const std::array<Number, 5>& x,
                                            const Number& t) const {
     using std::sin;
-    return pivot_velocity(t) - p_.l * sin(x[0]) * x[1] - wall * r_ * x[3];
+    return pivot_velocity(t) - p_.l * sin(x[0]) * x[1] - wall * r_ * x[spin_free_ ? spin_rate : 1];
   }
 
   [[nodiscard]] double max_step() const {
@@ -142,22 +165,22 @@ class RigidPendulumWalls {
       dxdt[0] = x[1];
       dxdt[1] = -(p_.d * x[1] + p_.m * p_.l * effective_gravity(t) * sin_angle(x[0])) /
                 theta_inertia_;
-      dxdt[2] = x[3];
+      dxdt[spin_angle] = x[spin_rate];
       if (spin_free_)
-        dxdt[3] = 0.0;
+        dxdt[spin_rate] = 0.0;
       else
-        dxdt[3] = dxdt[1];
-      dxdt[4] = 0.0;
+        dxdt[spin_rate] = dxdt[1];
+      dxdt[friction_work] = 0.0;
       return;
     }
     const int wall = wall_of(mode);
     dxdt[0] = 0.0;
     dxdt[1] = 0.0;
-    dxdt[2] = x[3];
+    dxdt[spin_angle] = x[spin_rate];
     if (is_stick(mode)) {
       // rolling on the wall: γ̇_T = V0 ω cos ωt − w r φ̈ = 0
-      dxdt[3] = wall * pivot_acceleration(t) / r_;
-      dxdt[4] = 0.0;
+      dxdt[spin_rate] = wall * pivot_acceleration(t) / r_;
+      dxdt[friction_work] = 0.0;
       return;
     }
     using std::fabs;
@@ -166,10 +189,10 @@ class RigidPendulumWalls {
     const Number lambda_n = sliding_normal_force(t, s);
     // I_b φ̈ = W_T,φ λ_T = (−w r)(−μ s λ_N)
     if (spin_free_)
-      dxdt[3] = wall * r_ * p_.mu * s * lambda_n / ball_inertia_;
+      dxdt[spin_rate] = wall * r_ * p_.mu * s * lambda_n / ball_inertia_;
     else
-      dxdt[3] = 0.0;
-    dxdt[4] = p_.mu * lambda_n * fabs(slip);
+      dxdt[spin_rate] = 0.0;
+    dxdt[friction_work] = p_.mu * lambda_n * fabs(slip);
   }
 
   // free and slide: 2; stick: 3 (the cone's two edges)
@@ -217,6 +240,65 @@ class RigidPendulumWalls {
 
   Transition<State, Mode> on_event(Mode mode, std::size_t k, CrossingKind crossing,
                                    const State& x, double t, EventLog& log) const;
+
+  // Which case of the Newton–Coulomb impulse an impact at wall w takes from
+  // state x at time t: stick, slide (with the slip's sign s, which fixes the
+  // friction's direction), or neither (separating, inconsistent).
+  struct ImpactCase {
+    rigidbody::ImpulseRegime regime = rigidbody::ImpulseRegime::separating;
+    double slip_sign = 1.0;
+  };
+  [[nodiscard]] ImpactCase impact_case(int wall, const State& x, double t) const;
+
+  // The rates (θ̇⁺, φ̇⁺) just after an impact at wall w in a given case of
+  // the impulse, over a number type: the impulse law of
+  // src/rigidbody/newton_coulomb_impulse.hpp (with e_t = 0) written out for
+  // this contact, where M is diagonal, K = W M⁻¹ Wᵀ has the entries below
+  // and n = (1, 0). Within one case the rates are smooth in (x, t), so a
+  // dual number run through this gives the reset's Jacobian
+  // (rigid_pendulum_spin.hpp); on doubles it is impact_at's result to
+  // round-off (tests/oscillators/rigid_pendulum_spin_test.cpp).
+  //   slide  J = j (1, −μ s),  j = −(1 + e_n) γ_N / (K_NN − μ s K_NT)
+  //   stick  K J = (−(1 + e_n) γ_N, −γ_T): J = K⁻¹ Δγ with the spin free;
+  //          with it locked K has rank one and only γ_N⁺ = −e_n γ_N⁻ binds
+  //   then   q̇⁺ = q̇⁻ + M⁻¹ Wᵀ J
+  template <class Number>
+  [[nodiscard]] std::array<Number, 2> rates_after_impact(int wall, const ImpactCase& impact,
+                                                         const std::array<Number, 5>& x,
+                                                         const Number& t) const {
+    using std::cos;
+    using std::sin;
+    const Number c = cos(x[0]), s = sin(x[0]);
+    // W_N = (−w l cos θ, 0); W_T = (−l sin θ, −w r) free, −l sin θ − w r locked
+    const Number w_n = -wall * p_.l * c;
+    const Number w_t = -p_.l * s - (spin_free_ ? 0.0 : wall * r_);
+    const Number gamma_n = w_n * x[1];
+    const Number gamma_t = tangential_velocity(wall, x, t);
+    const double inverse_theta_mass = 1.0 / theta_inertia_;
+    const double inverse_spin_mass = spin_free_ ? 1.0 / ball_inertia_ : 0.0;
+    const double spin_arm = spin_free_ ? -wall * r_ : 0.0;  // W_T,φ
+    const Number k_nn = w_n * w_n * inverse_theta_mass;
+    const Number k_nt = w_n * w_t * inverse_theta_mass;
+    const Number k_tt = w_t * w_t * inverse_theta_mass + spin_arm * spin_arm * inverse_spin_mass;
+    Number impulse_n, impulse_t;
+    if (impact.regime == rigidbody::ImpulseRegime::stick && spin_free_) {
+      const Number delta_n = -(1.0 + p_.e_n) * gamma_n;
+      const Number delta_t = -gamma_t;
+      const Number determinant = k_nn * k_tt - k_nt * k_nt;
+      impulse_n = (k_tt * delta_n - k_nt * delta_t) / determinant;
+      impulse_t = (k_nn * delta_t - k_nt * delta_n) / determinant;
+    } else if (impact.regime == rigidbody::ImpulseRegime::stick) {
+      const Number theta_rate = x[1] - (1.0 + p_.e_n) * gamma_n / w_n;
+      return {theta_rate, theta_rate};
+    } else {
+      const double friction = p_.mu * impact.slip_sign;
+      impulse_n = -(1.0 + p_.e_n) * gamma_n / (k_nn - friction * k_nt);
+      impulse_t = -friction * impulse_n;
+    }
+    const Number theta_rate = x[1] + (w_n * impulse_n + w_t * impulse_t) * inverse_theta_mass;
+    if (!spin_free_) return {theta_rate, theta_rate};
+    return {theta_rate, x[spin_rate] + spin_arm * impulse_t * inverse_spin_mass};
+  }
 
   // The contact of wall w in generalized coordinates at state x, time t
   // (generalized_system.hpp), for the spin free (N = 2) or locked (N = 1).
@@ -277,7 +359,7 @@ class RigidPendulumWalls {
   }
 
   [[nodiscard]] State on_wall(int wall, const State& x) const {
-    return {wall * theta0_, 0.0, x[2], spin_free_ ? x[3] : 0.0, x[4]};
+    return {wall * theta0_, 0.0, spin_free_ ? x[spin_rate] : 0.0, x[spin_angle], x[friction_work]};
   }
 
   Transition<State, Mode> stop_painleve(Mode mode, int wall, const State& x, double t,

@@ -101,5 +101,10 @@ concept HasJacobian =
       // table): nearby states in it are the same state, tangent vectors are zero
       { system.pinned(mode) } -> std::convertible_to<bool>;
     };
+// A system whose contact modes pin some tangent components and leave others
+// free (a ball resting on a wall that may still spin) says which, where it
+// has the member pinned_components(mode): an N-vector, 1 for each pinned
+// component; the variational equations start with zero rows for those.
+
 
 }  // namespace impactlab

@@ -358,7 +358,8 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"poincare jin2003 --section q=0.01:sideways", "--section",
                               "q=0.01:sideways"},
                       BadCase{"periodic jin2003 --period 0", "--period", "0"},
-                      BadCase{"sweep jin2003 --set model=rigid --param omega=6:7:3", "model",
-                              "rigid"}));
+                      BadCase{"sweep jin2003 --set model=rigid --set spin=free --set radius=0 "
+                              "--param mu=0:1:3",
+                              "spin", "free"}));
 
 }  // namespace

@@ -125,9 +125,9 @@ TEST(ContinueCommand, BadInputExitsWithTwoAndOneLineNamingTheKey) {
       {"continue linear_impact --param zeta2=0:1", "--param"},
       {"continue linear_impact --param omega=2", "--param"},
       {"continue linear_impact --param omega=2:2.5 --period 0", "--period"},
-      // no Jacobians (Model P); the rigid model
+      // no Jacobians (Model P); a spinning ball without a radius
       {"continue jin2003 --set model=paper --param omega=6:7", "oscillator"},
-      {"continue jin2003 --set model=rigid --param omega=6:7", "model"},
+      {"continue jin2003 --set model=rigid --set spin=free --param omega=6:7", "spin"},
       // no one wall; a wall never hit; neither strobe nor impact
       {"continue linear_impact --param omega=2:2.5 --section impact:0", "--section"},
       {"continue linear_impact --param omega=2:2.5 --section impact:-1", "--param"},

@@ -192,7 +192,7 @@ TEST(RigidPendulum, ContactForcesAreTheHandSolutions) {
     const RigidPendulumWalls free_spin(p);
     const double ball_inertia = 0.4 * m * p.radius * p.radius;
     RigidPendulumWalls::State rolling = resting;
-    rolling[3] = wall * slip / p.radius;  // γ_T = V0 sin ωt − w r φ̇ = 0
+    rolling[RigidPendulumWalls::spin_rate] = wall * slip / p.radius;  // γ_T = V0 sin ωt − w r φ̇ = 0
     const double lambda_t =
         -ball_inertia * p.pendulum.V0 * w_forcing * std::cos(w_forcing * t) / (p.radius * p.radius);
     const double lambda_n = -m * g_e * sin0 / cos0 - sin0 / cos0 * lambda_t;
