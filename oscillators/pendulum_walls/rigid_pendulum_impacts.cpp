@@ -46,10 +46,10 @@ auto RigidPendulumWalls::on_wall_reached(int wall, CrossingKind crossing, const 
   // at rest, −γ̈_N = −(m l² / M_θ) g_e sin θ0 cos θ0, and its two rates
   const double share = rod_inertia_ / theta_inertia_;
   const double approach = approach_acceleration(t);
-  const double approach_rate = -effective_gravity_rate(t) * sin0_ * cos0_ * share;
+  const double approach_rate = approach_acceleration_rate(t);
   const double approach_curvature = -effective_gravity_curvature(t) * sin0_ * cos0_ * share;
   // damping d / M_θ (1/s); the gap's stiffness m l g_e cos θ0 / M_θ (1/s²)
-  const double damping = p_.d / theta_inertia_;
+  const double damping = normal_damping();
   const double gap_stiffness = p_.m * p_.l * effective_gravity(t) * cos0_ / theta_inertia_;
   const auto estimate =
       accept_accumulation({normal_speed(impact.theta_dot), approach, approach_rate,

@@ -13,12 +13,11 @@
 // differentiated the same way, in (x, t):
 //   impact       the rates after the Newton–Coulomb impulse in the case it
 //                took (stick, or slide with its slip sign), rates_after_impact;
-//   accumulation the impact's reset, then the jump to the accumulation point
-//                at t + T: the state there is read at the reference time,
-//                x⁺ − f⁺ T(x, t), with T's leading term 2u/(a(1 − e_n))
-//                (contact/accumulation.hpp; the next term is smaller by a
-//                factor T, and T is below the event loop's resolution when
-//                the estimate is taken);
+//   accumulation the impact's reset, then the jump to rest on the wall at
+//                the accumulation point t + T with the impact's spin: the
+//                state there is read at the reference time, x⁺ − f⁺ T(x, t),
+//                T the estimate the event loop takes (contact/accumulation.hpp's
+//                accumulation_time);
 //   slip stops, stick ends
 //                the spin set to roll, φ̇ = w V0 sin ωt / r;
 //   release      the ball leaves the wall at rest with the spin it has.
@@ -97,12 +96,16 @@ class RigidPendulumOf : public RigidPendulumWalls {
       reset[1] = rates[0];
       if constexpr (spin == RigidSpin::free) reset[2] = rates[1];
       if (after.time > t) {
-        // read the state at the accumulation point at the reference time
-        const Tangent2 remaining = 2.0 * normal_speed(rates[0]) /
-                                   (approach_acceleration(td) * (1.0 - parameters().e_n));
+        // at rest on the wall with the spin of the impact, read at the
+        // reference time
+        const Tangent2 remaining =
+            accumulation_time(normal_speed(rates[0]), approach_acceleration(td),
+                              approach_acceleration_rate(td), parameters().e_n, normal_damping());
+        reset[1] = Tangent2(0.0);
         State f_after;
         rhs(after.mode, after.state, f_after, after.time);
-        for (std::size_t i = 0; i < tangent_dimension; ++i) reset[i] = reset[i] - f_after[i] * remaining;
+        for (std::size_t i = 0; i < tangent_dimension; ++i)
+          reset[i] = reset[i] - f_after[i] * remaining;
       }
     } else {
       const int wall = wall_side(mode);

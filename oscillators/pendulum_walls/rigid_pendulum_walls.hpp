@@ -130,6 +130,13 @@ class RigidPendulumWalls {
   [[nodiscard]] Number approach_acceleration(const Number& t) const {
     return -effective_gravity(t) * sin0_ * cos0_ * (rod_inertia_ / theta_inertia_);
   }
+  // its rate (m/s³)
+  template <class Number>
+  [[nodiscard]] Number approach_acceleration_rate(const Number& t) const {
+    return -effective_gravity_rate(t) * sin0_ * cos0_ * (rod_inertia_ / theta_inertia_);
+  }
+  // the damping of the normal motion near a wall, d / M_θ (1/s)
+  [[nodiscard]] double normal_damping() const { return p_.d / theta_inertia_; }
   // the normal speed of an impact, l cos θ0 |θ̇| (m/s)
   template <class Number>
   [[nodiscard]] Number normal_speed(const Number& theta_rate) const {

@@ -76,6 +76,18 @@ struct AccumulationEstimate {
   double error_bound;  // E, the bound on the error of `remaining` (s)
 };
 
+// The first-order time left, T = T0 − (T0² / 3)(ȧ / a + c / 2) with
+// T0 = 2u / (a (1 − r)), over a number type: a dual number run through it
+// gives the accumulation time's derivatives (the saltation of a jump to an
+// accumulation point, oscillators/pendulum_walls/rigid_pendulum_spin.hpp).
+template <class Number>
+Number accumulation_time(const Number& separation_speed, const Number& approach_acceleration,
+                         const Number& acceleration_rate, double restitution, double damping) {
+  const Number t0 = 2.0 * separation_speed / (approach_acceleration * (1.0 - restitution));
+  const Number drift = acceleration_rate / approach_acceleration + 0.5 * damping;
+  return t0 - t0 * t0 * drift / 3.0;
+}
+
 // The first-order estimate and its error bound, or nothing when the sequence
 // does not converge (a <= 0, r >= 1).
 inline std::optional<AccumulationEstimate> estimate_accumulation(const ChatterProbe& probe) {
@@ -83,12 +95,13 @@ inline std::optional<AccumulationEstimate> estimate_accumulation(const ChatterPr
   const double r = probe.restitution;
   if (!(a > 0.0) || !(r < 1.0)) return std::nullopt;
   const double t0 = 2.0 * probe.separation_speed / (a * (1.0 - r));
-  const double drift = probe.acceleration_rate / a + 0.5 * probe.damping;
   const double drift_size = std::fabs(probe.acceleration_rate) / a + 0.5 * std::fabs(probe.damping);
   const double second_order = 0.5 * drift_size * drift_size +
                               0.25 * std::fabs(probe.acceleration_curvature) / a +
                               0.2 * std::fabs(probe.gap_stiffness);
-  return AccumulationEstimate{t0 - t0 * t0 * drift / 3.0, t0 * t0 * t0 * second_order};
+  return AccumulationEstimate{accumulation_time(probe.separation_speed, a, probe.acceleration_rate,
+                                                r, probe.damping),
+                              t0 * t0 * t0 * second_order};
 }
 
 // The estimate when it is accepted (see the header comment), else nothing:

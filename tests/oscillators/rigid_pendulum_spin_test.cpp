@@ -1,0 +1,369 @@
+// The rigid-body pendulum's linearisation (oscillators/pendulum_walls/
+// rigid_pendulum_spin.hpp), checked against independent references:
+// * the rates after an impact written over a number type are the general
+//   Newton–Coulomb impulse's (src/rigidbody/newton_coulomb_impulse.hpp, on
+//   the collision matrix) to round-off, in both cases of the law;
+// * the monodromy of the stroboscopic map (variational equations with the
+//   differentiated resets and saltation matrices) is the central difference
+//   of the event-driven map itself, to 1e-6 of its largest entry, over
+//   stretches with slip impacts, stick impacts, a sliding contact phase
+//   entered by an accumulation of impacts, a slip that stops and reverses
+//   in a sliding contact, and a rolling contact phase;
+// * with the spin locked and radius 0 it is Model N: the periodic orbit and
+//   its multipliers, and the continued branch with its located branch
+//   points, period doubling, fold and grazing point, to 1e-9;
+// * with the spin free and no friction it is Model N with the walls moved
+//   in by the radius (asin((b − r)/l), the same rod inertia m l²), plus the
+//   spin's own direction, whose multiplier is 1 (the spin is conserved
+//   through every impact: the frictionless impulse has no tangential part).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <impactlab/analysis/flow_setup.hpp>
+#include <impactlab/analysis/stroboscopic_map_problem.hpp>
+#include <impactlab/api/bindings/pendulum_walls_binding.hpp>
+#include <impactlab/api/scene_jobs.hpp>
+#include <impactlab/api/scene_loading.hpp>
+#include <impactlab/core/event_log.hpp>
+#include <impactlab/io/scene.hpp>
+#include <impactlab/oscillators/pendulum_walls/rigid_pendulum_spin.hpp>
+#include <impactlab/simulate/flow.hpp>
+#include <impactlab/simulate/simulator.hpp>
+
+namespace impactlab {
+namespace {
+
+Scene pendulum_scene(const std::vector<std::string>& assignments) {
+  Scene scene = load_scene("jin2003");
+  for (const auto& assignment : assignments) apply_override(scene, assignment);
+  return scene;
+}
+
+// --- the impulse law over a number type ---
+
+template <RigidSpin spin>
+void expect_rates_are_the_impulse_law(double radius) {
+  std::mt19937_64 random(20261127);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int sticks = 0, slides = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    RigidPendulumParameters p;
+    p.radius = radius;
+    p.pendulum.mu = 3.0 * unit(random);
+    p.pendulum.e_n = unit(random);
+    p.pendulum.V0 = 6.0 * unit(random);
+    const RigidPendulumOf<spin> system(p);
+    const int wall = unit(random) < 0.5 ? 1 : -1;
+    const double t = 10.0 * unit(random);
+    // just reaching the wall, moving into it fast enough not to chatter
+    const double theta_dot = wall * (0.05 + 2.0 * unit(random));
+    const double spin_rate =
+        spin == RigidSpin::free ? 200.0 * (unit(random) - 0.5) : theta_dot;
+    const RigidPendulumWalls::State x{wall * system.wall_angle(), theta_dot, spin_rate, 0.0, 0.0};
+    const auto impact = system.impact_case(wall, x, t);
+    if (impact.regime == rigidbody::ImpulseRegime::inconsistent) continue;
+    ASSERT_NE(impact.regime, rigidbody::ImpulseRegime::separating);
+    (impact.regime == rigidbody::ImpulseRegime::stick ? sticks : slides) += 1;
+    EventLog log(false);
+    const auto after = system.on_event(RigidPendulumWalls::Mode::free, wall > 0 ? 0 : 1,
+                                       CrossingKind::crossing, x, t, log);
+    if (after.time != t) continue;  // an accumulation: the rates are no longer the impact's
+    const std::array<double, 2> rates = system.rates_after_impact(wall, impact, x, t);
+    const double scale = std::fabs(theta_dot) + std::fabs(spin_rate);
+    EXPECT_NEAR(rates[0], after.state[1], 1e-12 * scale) << "trial " << trial;
+    EXPECT_NEAR(rates[1], after.state[RigidPendulumWalls::spin_rate], 1e-12 * scale)
+        << "trial " << trial;
+  }
+  EXPECT_GT(slides, 100);
+  if constexpr (spin == RigidSpin::free) EXPECT_GT(sticks, 100);
+}
+
+TEST(RigidPendulumSpin, RatesAfterAnImpactAreTheImpulseLawsWithTheSpinFree) {
+  expect_rates_are_the_impulse_law<RigidSpin::free>(0.02);
+}
+
+TEST(RigidPendulumSpin, RatesAfterAnImpactAreTheImpulseLawsWithTheSpinLocked) {
+  expect_rates_are_the_impulse_law<RigidSpin::locked>(0.02);
+}
+
+// --- the monodromy against central differences of the map ---
+
+struct MapCase {
+  std::string name;
+  std::vector<std::string> assignments;
+  int periods;  // forcing periods of the map
+  // what the stretch must contain: stick impacts (|γ_T⁺| = 0), contact
+  // phases, rolling starts (a contact whose slip is zero)
+  bool stick_impacts, contact_phases, rolling;
+};
+
+// whether the ball rolls (a sticking contact) at any of `count` moments
+template <class Mode>
+struct RollingWatch {
+  double from, step;
+  int count;
+  int taken = 0;
+  bool rolled = false;
+  [[nodiscard]] double next_time() const {
+    return taken < count ? from + (taken + 1) * step : INFINITY;
+  }
+  template <class State>
+  void observe(double, const State&, Mode mode) {
+    ++taken;
+    rolled = rolled || mode == Mode::stick_right || mode == Mode::stick_left;
+  }
+};
+
+template <class System>
+void expect_monodromy_is_the_central_difference(const MapCase& c) {
+  const Scene scene = pendulum_scene(c.assignments);
+  const System system(rigid_pendulum_parameters(scene));
+  using State = typename System::State;
+  using Mode = typename System::Mode;
+  constexpr std::size_t n = System::tangent_dimension;
+  const FlowSetup setup = flow_setup(scene);
+  const double omega = system.parameters().omega;
+  const double period = 2.0 * std::numbers::pi / omega;
+
+  // a section state after a transient, in flight
+  State x = rigid_pendulum_initial_state(scene, system);
+  Mode mode = Mode::free;
+  double t = 0.0;
+  for (int k = 1; k <= 200; ++k) {
+    EventLog log(false);
+    const auto run = with_flow<System>(setup.method, stepper_settings(system, setup),
+                                       [&](auto& stepper) {
+                                         return simulate(system, stepper, x, mode, t, k * period,
+                                                         loop_options(setup), log);
+                                       });
+    ASSERT_EQ(run.termination, Termination::completed);
+    x = run.state;
+    mode = run.mode;
+    t = run.t;
+  }
+  // on to the next moment in flight, in sixteenths of a period
+  for (int k = 1; k <= 64 && mode != Mode::free; ++k) {
+    EventLog log(false);
+    const auto run = with_flow<System>(setup.method, stepper_settings(system, setup),
+                                       [&](auto& stepper) {
+                                         return simulate(system, stepper, x, mode, t,
+                                                         t + period / 16.0, loop_options(setup),
+                                                         log);
+                                       });
+    ASSERT_EQ(run.termination, Termination::completed);
+    x = run.state;
+    mode = run.mode;
+    t = run.t;
+  }
+  ASSERT_EQ(mode, Mode::free) << c.name;
+
+  // what the stretch holds
+  {
+    EventLog log(true);
+    RollingWatch<Mode> watch{t, c.periods * period / 4000.0, 4000};
+    with_flow<System>(setup.method, stepper_settings(system, setup), [&](auto& stepper) {
+      return simulate(system, stepper, x, mode, t, t + c.periods * period, loop_options(setup),
+                      log, watch);
+    });
+    int sticks = 0, contacts = 0;
+    for (const EventRecord& e : log.records()) {
+      if (e.kind == EventKind::impact && std::fabs(e.tangential_velocity_after) < 1e-9) ++sticks;
+      if (e.kind == EventKind::contact_start) ++contacts;
+    }
+    EXPECT_EQ(sticks > 0, c.stick_impacts) << c.name << ": " << sticks << " stick impacts";
+    EXPECT_EQ(contacts > 0, c.contact_phases) << c.name << ": " << contacts << " contact phases";
+    EXPECT_EQ(watch.rolled, c.rolling) << c.name;
+  }
+
+  const double phase = std::fmod(omega * t, 2.0 * std::numbers::pi);
+  const ContinuationProblem map = stroboscopic_map_problem<System>(
+      [system](double) { return system; }, Mode::free, setup, phase, c.periods, omega);
+  const OrbitPoint x0(x.begin(), x.begin() + n);
+  const OrbitEvaluation at = map.evaluate(x0, 0.0, phase, false, {});
+  ASSERT_TRUE(at.completed) << c.name;
+
+  double largest = 0.0;
+  for (const auto& row : at.monodromy)
+    for (double entry : row) largest = std::max(largest, std::fabs(entry));
+  // central differences at steps h and h/2, combined (Richardson) so that
+  // their h² error cancels: the map's curvature is large near a slow impact
+  auto image_at = [&](const OrbitPoint& point) {
+    const OrbitEvaluation e = map.evaluate(point, 0.0, phase, false, {});
+    EXPECT_TRUE(e.completed) << c.name;
+    EXPECT_EQ(e.signature, at.signature) << c.name << ": the step changes the events";
+    return e.image;
+  };
+  auto difference = [&](std::size_t column, double h) {
+    OrbitPoint plus = x0, minus = x0;
+    plus[column] += h;
+    minus[column] -= h;
+    const OrbitPoint up = image_at(plus), down = image_at(minus);
+    std::vector<double> quotient(n);
+    for (std::size_t row = 0; row < n; ++row) quotient[row] = (up[row] - down[row]) / (2.0 * h);
+    return quotient;
+  };
+  double worst = 0.0;
+  for (std::size_t column = 0; column < n; ++column) {
+    const double h = 2e-6 * (1.0 + std::fabs(x0[column]));
+    const std::vector<double> coarse = difference(column, h), fine = difference(column, h / 2.0);
+    for (std::size_t row = 0; row < n; ++row) {
+      const double extrapolated = (4.0 * fine[row] - coarse[row]) / 3.0;
+      worst = std::max(worst, std::fabs(extrapolated - at.monodromy[row][column]));
+    }
+  }
+  // a map that collapses every direction (a contact phase that pins the
+  // whole state) has a zero monodromy: the differences are then held to
+  // 1e-6 in the state's own units
+  largest = std::max(largest, 1.0);
+  EXPECT_LE(worst, 1e-6 * largest) << c.name << ": largest entry " << largest;
+}
+
+const std::vector<std::string> accurate = {"integrator.method=taylor", "integrator.rtol=1e-13",
+                                           "integrator.atol=1e-13", "model=rigid", "radius=0.02"};
+
+std::vector<std::string> with(std::vector<std::string> more) {
+  std::vector<std::string> all = accurate;
+  all.insert(all.end(), more.begin(), more.end());
+  return all;
+}
+
+TEST(RigidPendulumSpin, FreeSpinMonodromyIsTheMapsCentralDifference) {
+  const std::vector<MapCase> cases = {
+      {"slip impacts", with({"spin=free", "V0=4", "mu=0.6"}), 2, false, false, false},
+      {"stick impacts", with({"spin=free", "V0=2", "mu=2"}), 2, true, false, false},
+      {"sliding contact after an accumulation", with({"spin=free", "V0=5", "mu=0.6"}), 1, false,
+       true, false},
+      {"slip reversal in a sliding contact", with({"spin=free", "V0=8", "mu=1"}), 1, false, true,
+       false},
+      {"stick impacts and a rolling contact", with({"spin=free", "radius=0.01", "V0=5", "mu=15"}),
+       1, true, true, true},
+  };
+  for (const MapCase& c : cases) expect_monodromy_is_the_central_difference<FreeSpinPendulum>(c);
+}
+
+TEST(RigidPendulumSpin, LockedSpinMonodromyIsTheMapsCentralDifference) {
+  const std::vector<MapCase> cases = {
+      {"slip impacts", with({"spin=locked", "V0=4", "mu=0.6"}), 2, false, false, false},
+      {"sliding contact after an accumulation", with({"spin=locked", "V0=5", "mu=0.6"}), 1, false,
+       true, false},
+  };
+  for (const MapCase& c : cases)
+    expect_monodromy_is_the_central_difference<LockedSpinPendulum>(c);
+}
+
+// --- reductions to Model N ---
+
+PeriodicResult periodic_of(const std::vector<std::string>& assignments, int period) {
+  PeriodicRequest request;
+  request.period = period;
+  request.transient_periods = 300;
+  return periodic(pendulum_scene(assignments), request);
+}
+
+void expect_same_multipliers(const std::vector<std::complex<double>>& a,
+                             const std::vector<std::complex<double>>& b, double tolerance) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) EXPECT_LE(std::abs(a[k] - b[k]), tolerance) << k;
+}
+
+TEST(RigidPendulumSpin, LockedSpinWithoutRadiusHasModelNsPeriodicOrbit) {
+  for (const std::string& v0 : {"V0=4", "V0=3"}) {
+    const PeriodicResult newton = periodic_of({v0}, v0 == "V0=4" ? 6 : 2);
+    const PeriodicResult rigid =
+        periodic_of({v0, "model=rigid", "spin=locked", "radius=0"}, v0 == "V0=4" ? 6 : 2);
+    ASSERT_TRUE(newton.converged && rigid.converged) << v0;
+    EXPECT_NEAR(rigid.state[0], newton.state[0], 1e-9) << v0;
+    EXPECT_NEAR(rigid.state[1], newton.state[1], 1e-9) << v0;
+    expect_same_multipliers(rigid.multipliers, newton.multipliers, 1e-9);
+  }
+}
+
+TEST(RigidPendulumSpin, FreeSpinWithoutFrictionIsModelNWithTheWallsMovedIn) {
+  const double radius = 0.01;
+  const Scene base = load_scene("jin2003");
+  const std::string moved_walls = "b=" + to_text(base.number("b") - radius);
+  const PeriodicResult newton = periodic_of({"V0=4", "mu=0", moved_walls}, 6);
+  const PeriodicResult rigid =
+      periodic_of({"V0=4", "mu=0", "model=rigid", "spin=free", "radius=0.01"}, 6);
+  ASSERT_TRUE(newton.converged && rigid.converged);
+  EXPECT_NEAR(rigid.state[0], newton.state[0], 1e-9);
+  EXPECT_NEAR(rigid.state[1], newton.state[1], 1e-9);
+  // the spin's direction: multiplier 1, the spin itself unchanged
+  std::vector<std::complex<double>> expected = newton.multipliers;
+  expected.emplace_back(1.0, 0.0);
+  std::stable_sort(expected.begin(), expected.end(),
+                   [](auto a, auto b) { return std::abs(a) > std::abs(b); });
+  expect_same_multipliers(rigid.multipliers, expected, 1e-9);
+  ASSERT_EQ(rigid.monodromy.size(), 3u);
+  EXPECT_EQ(rigid.monodromy[2][2], 1.0);
+  EXPECT_EQ(rigid.monodromy[0][2], 0.0);
+  EXPECT_EQ(rigid.monodromy[1][2], 0.0);
+  RunRequest request;
+  request.periods = 50;
+  const RunOutput run = simulate(pendulum_scene({"V0=4", "mu=0", "model=rigid", "spin=free",
+                                                 "radius=0.01", "initial.theta_dot=0.3"}),
+                                 request);
+  const double length = base.number("l");
+  int impacts = 0;
+  for (const EventRecord& e : run.events)
+    if (e.kind == EventKind::impact) {
+      ++impacts;
+      // γ_T changes only through θ̇ (the spin is unchanged): Δγ_T = −l sin θ Δθ̇
+      const double change = -length * std::sin(e.q) * (e.qdot_after - e.qdot_before);
+      EXPECT_NEAR(e.tangential_velocity_after - e.tangential_velocity, change, 1e-12) << e.t;
+    }
+  EXPECT_GT(impacts, 20);
+}
+
+// the same continuation under Model N and under the rigid model with the
+// spin locked and radius 0: the same branch and the same located points
+void expect_rigid_continues_as_model_n(const std::vector<std::string>& assignments,
+                                       const std::string& key, double from, double to,
+                                       int period, BifurcationType expected_type) {
+  ContinuationJob job;
+  job.parameter = key;
+  job.from = from;
+  job.to = to;
+  job.period = period;
+  std::vector<std::string> rigid_assignments = assignments;
+  rigid_assignments.insert(rigid_assignments.end(), {"model=rigid", "spin=locked", "radius=0"});
+  const ContinuationJobResult newton = continue_orbit(pendulum_scene(assignments), job);
+  const ContinuationJobResult rigid = continue_orbit(pendulum_scene(rigid_assignments), job);
+  ASSERT_TRUE(newton.available && rigid.available);
+  const ContinuationResult& a = newton.branches.at(0).result;
+  const ContinuationResult& b = rigid.branches.at(0).result;
+  EXPECT_EQ(a.stop_reason, b.stop_reason) << b.stop_detail;
+  ASSERT_EQ(a.branch.size(), b.branch.size());
+  for (std::size_t k = 0; k < a.branch.size(); ++k) {
+    EXPECT_NEAR(a.branch[k].parameter, b.branch[k].parameter, 1e-9);
+    EXPECT_NEAR(a.branch[k].state[0], b.branch[k].state[0], 1e-9);
+    EXPECT_NEAR(a.branch[k].state[1], b.branch[k].state[1], 1e-9);
+    expect_same_multipliers(a.branch[k].multipliers, b.branch[k].multipliers, 1e-9);
+  }
+  ASSERT_EQ(a.points.size(), b.points.size());
+  bool found = false;
+  for (std::size_t k = 0; k < a.points.size(); ++k) {
+    EXPECT_EQ(a.points[k].type, b.points[k].type);
+    EXPECT_NEAR(a.points[k].parameter, b.points[k].parameter, 1e-9);
+    found = found || (b.points[k].type == expected_type && b.points[k].located);
+  }
+  EXPECT_TRUE(found) << "no located " << to_string(expected_type);
+}
+
+TEST(RigidPendulumSpin, LockedSpinWithoutRadiusContinuesAsModelN) {
+  expect_rigid_continues_as_model_n({"V0=3"}, "omega", 7.0, 5.0, 2,
+                                    BifurcationType::period_doubling);
+  expect_rigid_continues_as_model_n({"V0=2.8"}, "V0", 2.8, 2.2, 2, BifurcationType::fold);
+  expect_rigid_continues_as_model_n({"omega=7"}, "V0", 1.5, 3.0, 2, BifurcationType::grazing);
+  expect_rigid_continues_as_model_n({"V0=3.7"}, "V0", 3.7, 3.9, 2,
+                                    BifurcationType::branch_point);
+}
+
+}  // namespace
+}  // namespace impactlab
