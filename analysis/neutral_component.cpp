@@ -50,13 +50,21 @@ std::vector<std::complex<double>> with_neutral_multiplier(
 
 void end_where_held_component_drifts(ContinuationResult& branch, const ContinuationProblem& full,
                                      const HeldComponent& held, double tolerance) {
-  const double allowed = tolerance * (1.0 + std::fabs(held.value));
   for (std::size_t k = 0; k < branch.branch.size(); ++k) {
     const BranchPoint& point = branch.branch[k];
     const OrbitEvaluation at = full.evaluate(with_held_component(point.state, held),
                                              point.parameter, point.phase, false, {});
-    const double drift = at.completed ? at.image[held.index] - held.value : 0.0;
-    if (!at.completed || std::fabs(drift) <= allowed) continue;
+    if (!at.completed) continue;
+    const double drift = at.image[held.index] - held.value;
+    // the orbit is converged to tolerance (1 + |x|) in the other components,
+    // and the drift moves with them by the monodromy's row
+    double size = 0.0, sensitivity = 0.0;
+    for (double component : point.state) size = std::max(size, std::fabs(component));
+    for (std::size_t j = 0; j < at.monodromy.size(); ++j)
+      if (j != held.index) sensitivity += std::fabs(at.monodromy[held.index][j]);
+    const double allowed =
+        tolerance * (1.0 + std::fabs(held.value) + sensitivity * (1.0 + size));
+    if (std::fabs(drift) <= allowed) continue;
     const double where = point.parameter;
     branch.branch.resize(k);
     // the located points within the parameters the kept points span

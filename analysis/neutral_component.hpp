@@ -34,8 +34,10 @@ std::optional<std::size_t> neutral_component(const MonodromyMatrix& monodromy,
 ContinuationProblem with_component_held(const ContinuationProblem& full, const HeldComponent& held);
 
 // The branch ended at its first point whose held component does not return
-// to within tolerance (1 + |x_c|) on the full map (points of the reduced
-// problem; the located points past it dropped too).
+// on the full map: by more than tolerance (1 + |x_c|) plus what the other
+// components' convergence, tolerance (1 + |x|), moves it by through the
+// monodromy's row (points of the reduced problem; the located points past
+// it dropped too).
 void end_where_held_component_drifts(ContinuationResult& branch, const ContinuationProblem& full,
                                      const HeldComponent& held, double tolerance);
 

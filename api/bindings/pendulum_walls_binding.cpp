@@ -159,7 +159,15 @@ RigidPendulumWalls::State rigid_pendulum_initial_state(const Scene& scene,
                    "the ball would start inside a wall (|theta| > asin((b - radius)/l) = " +
                        to_text(system.wall_angle()) + ")");
   const double theta_dot = scene.number("initial.theta_dot");
-  return {theta, theta_dot, system.spin_free() ? 0.0 : theta_dot, theta, 0.0};
+  const RigidPendulumWalls::State x0{theta, theta_dot, system.spin_free() ? 0.0 : theta_dot, theta,
+                                     0.0};
+  // a start on a wall with no motion to go on with (Painlevé) is no scene:
+  // the friction coefficient that makes it so is named
+  if (system.painleve_on_wall(x0, scene.number("t0")))
+    throw BadInput("mu", to_text(scene.number("mu")),
+                   "the ball starts on a wall where the contact problem has no solution or "
+                   "several (Painlevé): start it off the wall or lower mu");
+  return x0;
 }
 
 void admit_rigid_pendulum_state(const RigidPendulumWalls& system, RigidPendulumWalls::State& x,

@@ -36,6 +36,20 @@ auto RigidPendulumWalls::settle(Mode from, int wall, const State& resting, doubl
   return {resting, next, t, false};
 }
 
+bool RigidPendulumWalls::painleve_on_wall(const State& x, double t) const {
+  if (!(std::fabs(x[0]) >= theta0_)) return false;
+  const int wall = x[0] > 0.0 ? 1 : -1;
+  if (wall * x[1] > 0.0) return impact_case(wall, x, t).regime == rigidbody::ImpulseRegime::inconsistent;
+  const State resting = on_wall(wall, x);
+  const double slip = tangential_velocity(wall, resting, t);
+  const rigidbody::ContactForces forces =
+      spin_free_
+          ? rigidbody::contact_forces<2>(free_spin_contact(wall, resting, t), p_.mu, slip, 0.0)
+          : rigidbody::contact_forces<1>(locked_spin_contact(wall, resting, t), p_.mu, slip, 0.0);
+  return forces.regime == rigidbody::ContactRegime::painleve_no_solution ||
+         forces.regime == rigidbody::ContactRegime::painleve_ambiguous;
+}
+
 auto RigidPendulumWalls::enter_contact(int wall, const State& after, double t, double time_error,
                                        EventLog& log) const -> Transition<State, Mode> {
   const State resting = on_wall(wall, after);

@@ -248,6 +248,11 @@ class RigidPendulumWalls {
   Transition<State, Mode> on_event(Mode mode, std::size_t k, CrossingKind crossing,
                                    const State& x, double t, EventLog& log) const;
 
+  // Whether a state on a wall (|θ| = θ0) at time t has no motion to go on
+  // with: moving into the wall, an impulse with no admissible solution; at
+  // rest, a contact problem with none or several (Painlevé). False off the walls.
+  [[nodiscard]] bool painleve_on_wall(const State& x, double t) const;
+
   // Which case of the Newton–Coulomb impulse an impact at wall w takes from
   // state x at time t: stick, slide (with the slip's sign s, which fixes the
   // friction's direction), or neither (separating, inconsistent).

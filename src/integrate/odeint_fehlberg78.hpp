@@ -87,9 +87,9 @@ OdeintFehlberg78<State>::OdeintFehlberg78(const StepperSettings& settings)
                   typename Controlled::step_adjuster_type(settings.max_step)) {}
 
 // the constructor for the states of the oscillators, {q, q̇}, {θ, θ̇, W_f},
-// Model P's {θ, θ̇, W_f, θ̇_release}, the rigid pendulum's {θ, θ̇, φ, φ̇, W_f},
-// and the variational states (6 and 7 components, and a four-state model
-// file's 20, analysis/variational.hpp),
+// Model P's {θ, θ̇, W_f, θ̇_release}, the rigid pendulum's {θ, θ̇, φ̇, φ, W_f},
+// and the variational states (6 and 7 components, the rigid pendulum's 9
+// and 14, and a four-state model file's 20, analysis/variational.hpp),
 // is compiled in odeint_fehlberg78.cpp only (the rest stays inline)
 extern template OdeintFehlberg78<std::array<double, 2>>::OdeintFehlberg78(
     const StepperSettings&);
@@ -102,6 +102,10 @@ extern template OdeintFehlberg78<std::array<double, 5>>::OdeintFehlberg78(
 extern template OdeintFehlberg78<std::array<double, 6>>::OdeintFehlberg78(
     const StepperSettings&);
 extern template OdeintFehlberg78<std::array<double, 7>>::OdeintFehlberg78(
+    const StepperSettings&);
+extern template OdeintFehlberg78<std::array<double, 9>>::OdeintFehlberg78(
+    const StepperSettings&);
+extern template OdeintFehlberg78<std::array<double, 14>>::OdeintFehlberg78(
     const StepperSettings&);
 extern template OdeintFehlberg78<std::array<double, 20>>::OdeintFehlberg78(
     const StepperSettings&);

@@ -360,6 +360,15 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"periodic jin2003 --period 0", "--period", "0"},
                       BadCase{"sweep jin2003 --set model=rigid --set spin=free --set radius=0 "
                               "--param mu=0:1:3",
-                              "spin", "free"}));
+                              "spin", "free"},
+                      // at rest on the wall where μ makes the contact problem unsolvable
+                      BadCase{"sweep jin2003 --set model=rigid --set mu=20 "
+                              "--set initial.theta=0.07148944988552054 "
+                              "--set initial.theta_dot=0 --param V0=1:2:3",
+                              "mu", "20"},
+                      BadCase{"periodic jin2003 --set model=rigid --set mu=20 "
+                              "--set initial.theta=-0.07148944988552054 "
+                              "--set initial.theta_dot=0",
+                              "mu", "20"}));
 
 }  // namespace

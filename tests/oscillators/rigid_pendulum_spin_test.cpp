@@ -367,3 +367,65 @@ TEST(RigidPendulumSpin, LockedSpinWithoutRadiusContinuesAsModelN) {
 
 }  // namespace
 }  // namespace impactlab
+
+namespace impactlab {
+namespace {
+
+// the nearest (θ, θ̇) among the section points of a long brute-force run
+// (the attractor reached from the scene's start) to `state`
+double distance_to_brute_force(const Scene& scene, double q, double qdot, int period) {
+  SectionRequest request;
+  request.transient_periods = 1200;
+  request.points = static_cast<std::uint64_t>(period);
+  const SectionResult section = poincare(scene, request);
+  EXPECT_EQ(section.points.size(), static_cast<std::size_t>(period));
+  double nearest = INFINITY;
+  for (const SectionPoint& point : section.points)
+    nearest = std::min(nearest, std::max(std::fabs(point.q - q), std::fabs(point.qdot - qdot)));
+  return nearest;
+}
+
+// `periodic` and `continue` on the rigid model land on the orbit a
+// brute-force section run settles on, to 1e-8: with the spin locked, and
+// free with every impact sliding (the spin neutral, held by the continuation)
+TEST(RigidPendulumSpin, PeriodicAndContinuedOrbitsAreTheBruteForceSections) {
+  for (const std::string spin : {"spin=locked", "spin=free"}) {
+    const std::vector<std::string> assignments = {"model=rigid", spin, "radius=0.02", "V0=4",
+                                                  "integrator.rtol=1e-12",
+                                                  "integrator.atol=1e-12"};
+    const PeriodicResult orbit = periodic_of(assignments, 6);
+    ASSERT_TRUE(orbit.converged) << spin;
+    EXPECT_LE(distance_to_brute_force(pendulum_scene(assignments), orbit.state[0], orbit.state[1],
+                                      6),
+              1e-8)
+        << spin;
+
+    ContinuationJob job;
+    job.parameter = "omega";
+    job.from = 7.0;
+    job.to = 6.9;
+    job.period = 6;
+    const ContinuationJobResult continued = continue_orbit(pendulum_scene(assignments), job);
+    const ContinuationResult& branch = continued.branches.at(0).result;
+    ASSERT_GE(branch.branch.size(), 5u) << spin << ": " << branch.stop_detail;
+    EXPECT_EQ(continued.neutral.has_value(), spin == "spin=free");
+    // the stable points past the start, every fifth
+    int compared = 0;
+    for (std::size_t k = 5; k < branch.branch.size() && compared < 3; k += 5) {
+      const BranchPoint& point = branch.branch[k];
+      ASSERT_EQ(point.state.size(), spin == "spin=free" ? 3u : 2u);
+      ASSERT_EQ(point.multipliers.size(), point.state.size());
+      if (!point.stable) continue;
+      ++compared;
+      std::vector<std::string> at = assignments;
+      at.push_back("omega=" + to_text(point.parameter));
+      EXPECT_LE(distance_to_brute_force(pendulum_scene(at), point.state[0], point.state[1], 6),
+                1e-8)
+          << spin << " at omega = " << point.parameter;
+    }
+    EXPECT_GE(compared, 1) << spin;
+  }
+}
+
+}  // namespace
+}  // namespace impactlab
