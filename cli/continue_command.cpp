@@ -182,13 +182,15 @@ int run_continue(const ContinueCommandOptions& command_options,
                           ? "the orbit's state on the impact section: q the forcing phase "
                             "omega t mod 2 pi of the impact (rad), qdot the rate just before it"
                           : "the orbit's state on the section (main coordinate and its rate)"},
-          {"state3...", "a model file with more states: its further states, in its order"},
+          {"state3...", "a model file with more states: its further states, in its order; the "
+                        "rigid pendulum with the spin free: the ball's spin rate (rad/s)"},
           {"period", "forcing periods of the orbit"},
           {"branch", "0: the first branch; k: the k-th doubled branch (--switch)"},
           {"impacts", "impacts per orbit period"},
-          {"stable", "1 if every Floquet multiplier lies inside the unit circle"},
-          {"multiplier*", "the N Floquet multipliers (N = 2, or a model file's states), "
-                          "largest modulus first"},
+          {"stable", "1 if every Floquet multiplier lies inside the unit circle (a held "
+                     "neutral component's multiplier 1 aside)"},
+          {"multiplier*", "the N Floquet multipliers (N = 2, a model file's states, 3 for "
+                          "the rigid pendulum with the spin free), largest modulus first"},
           {"min_flight_gap", "smallest wall gap in flight between impacts (q's unit)"},
           {"min_impact_speed", "smallest normal approach speed of an impact"}}},
         {"points.csv",
@@ -200,7 +202,15 @@ int run_continue(const ContinueCommandOptions& command_options,
       {"branches", branches},
       {"wall_time_s", wall_time},
   };
-  write_json(run_files.add("continuation.json"), document);
+  nlohmann::json written = document;
+  // a component held at its start value (analysis/neutral_component.hpp)
+  if (result.neutral)
+    written["neutral_component"] = {
+        {"index", result.neutral->index + 1},
+        {"value", result.neutral->value},
+        {"note", "the map is neutral along this state component (multiplier 1, a family of "
+                 "orbits): held at its start value, its multiplier listed with the others"}};
+  write_json(run_files.add("continuation.json"), written);
   if (two_parameter) {
     // the curves: the first branch's, then each doubled branch's (--switch)
     std::vector<BranchCurve> curves = {

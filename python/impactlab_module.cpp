@@ -717,6 +717,15 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
   out["note"] = result.note;
   out["branches"] = branches;
   out["points"] = points;
+  // a component held at its start value, as continuation.json's (index from 1)
+  if (result.neutral) {
+    py::dict neutral;
+    neutral["index"] = result.neutral->index + 1;
+    neutral["value"] = result.neutral->value;
+    out["neutral_component"] = neutral;
+  } else {
+    out["neutral_component"] = py::none();
+  }
   if (!parameter2.empty()) {
     // the first branch's curve, then each doubled branch's (switch), as the
     // CLI's curve.csv orders them
