@@ -42,6 +42,7 @@ if [ "${1:-}" = "--sanitize" ]; then
     'PoincareFiles\.PeakMemoryDoesNotGrowWithThePointCount'
     'BenchQuick\.WritesTheDataItsSidecarAndOnePlotPerCase'
     'BenchQuick\.ErrorsFallAsTheToleranceTightens'
+    'RigidPendulumSpin\.PeriodicAndContinuedOrbitsAreTheBruteForceSections'
   )
   exclude="^($(IFS='|'; echo "${release_only[*]}"))( |$)"
   # sanitized code runs several times slower: a longer per-test limit

@@ -175,9 +175,7 @@ void admit_rigid_pendulum_state(const RigidPendulumWalls& system, RigidPendulumW
   using Mode = RigidPendulumWalls::Mode;
   const double wall_angle = system.wall_angle();
   if (mode != Mode::free) {
-    const bool right = mode == Mode::slide_right_pos || mode == Mode::slide_right_neg ||
-                       mode == Mode::stick_right;
-    x[0] = right ? wall_angle : -wall_angle;
+    x[0] = RigidPendulumWalls::wall_of(mode) * wall_angle;
     x[1] = 0.0;
   }
   if (std::fabs(x[0]) > wall_angle) x[0] = std::copysign(wall_angle, x[0]);

@@ -70,14 +70,14 @@ class RigidPendulumOf : public RigidPendulumWalls {
   // every contact phase pins the ball on the wall at rest (θ, θ̇); sticking
   // also pins its spin to the rolling rate
   [[nodiscard]] bool pinned(Mode mode) const {
-    return mode != Mode::free && (spin == RigidSpin::locked || is_sticking(mode));
+    return mode != Mode::free && (spin == RigidSpin::locked || is_stick(mode));
   }
   // 1 for each tangent component a mode pins, 0 for the free ones
   [[nodiscard]] Vector pinned_components(Mode mode) const {
     Vector mask{};
     if (mode == Mode::free) return mask;
     mask[0] = mask[1] = 1.0;
-    if constexpr (spin == RigidSpin::free) mask[2] = is_sticking(mode) ? 1.0 : 0.0;
+    if constexpr (spin == RigidSpin::free) mask[2] = is_stick(mode) ? 1.0 : 0.0;
     return mask;
   }
 
@@ -85,7 +85,7 @@ class RigidPendulumOf : public RigidPendulumWalls {
       Mode mode, std::size_t k, CrossingKind crossing, const State& x, double t,
       const Transition<State, Mode>& after) const {
     if (crossing == CrossingKind::grazing || after.stop) return identity_reset<tangent_dimension>();
-    if (is_sticking(after.mode)) return collapsed_reset<tangent_dimension>();
+    if (is_stick(after.mode)) return collapsed_reset<tangent_dimension>();
     const std::array<Tangent2, 5> xd = seeded_with_time(x);
     const Tangent2 td(t, unit(tangent_dimension));
     std::array<Tangent2, tangent_dimension> reset;
@@ -108,7 +108,7 @@ class RigidPendulumOf : public RigidPendulumWalls {
           reset[i] = reset[i] - f_after[i] * remaining;
       }
     } else {
-      const int wall = wall_side(mode);
+      const int wall = wall_of(mode);
       reset[0] = Tangent2(wall * wall_angle());
       reset[1] = Tangent2(0.0);
       if constexpr (spin == RigidSpin::free)
@@ -131,13 +131,6 @@ class RigidPendulumOf : public RigidPendulumWalls {
   static RigidPendulumParameters with_spin(RigidPendulumParameters p) {
     p.spin_free = spin == RigidSpin::free;
     return p;
-  }
-  static bool is_sticking(Mode mode) { return mode == Mode::stick_right || mode == Mode::stick_left; }
-  static int wall_side(Mode mode) {
-    return mode == Mode::slide_right_pos || mode == Mode::slide_right_neg ||
-                   mode == Mode::stick_right
-               ? 1
-               : -1;
   }
   static typename Tangent2::Derivatives unit(std::size_t direction) {
     typename Tangent2::Derivatives e{};

@@ -90,6 +90,15 @@ class RigidPendulumWalls {
         theta0_(std::asin(sin0_)),
         cos0_(std::cos(theta0_)) {}
 
+  // the wall (+1 / −1) of a contact mode, and whether the ball sticks (rolls) in it
+  static int wall_of(Mode mode) {
+    return mode == Mode::slide_right_pos || mode == Mode::slide_right_neg ||
+                   mode == Mode::stick_right
+               ? 1
+               : -1;
+  }
+  static bool is_stick(Mode mode) { return mode == Mode::stick_right || mode == Mode::stick_left; }
+
   [[nodiscard]] double wall_angle() const { return theta0_; }
   [[nodiscard]] double ball_inertia() const { return ball_inertia_; }
   [[nodiscard]] double radius() const { return r_; }
@@ -326,16 +335,9 @@ class RigidPendulumWalls {
     Number tangential, tangential_rate;  // λ_T (N), λ̇_T (N/s)
   };
 
-  static int wall_of(Mode mode) {
-    return mode == Mode::slide_right_pos || mode == Mode::slide_right_neg ||
-                   mode == Mode::stick_right
-               ? 1
-               : -1;
-  }
   static double slip_sign_of(Mode mode) {
     return mode == Mode::slide_right_pos || mode == Mode::slide_left_pos ? 1.0 : -1.0;
   }
-  static bool is_stick(Mode mode) { return mode == Mode::stick_right || mode == Mode::stick_left; }
   static Mode slide_mode(int wall, double s) {
     if (wall > 0) return s > 0.0 ? Mode::slide_right_pos : Mode::slide_right_neg;
     return s > 0.0 ? Mode::slide_left_pos : Mode::slide_left_neg;
