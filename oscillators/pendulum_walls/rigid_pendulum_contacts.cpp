@@ -25,14 +25,33 @@ auto RigidPendulumWalls::settle(Mode from, int wall, const State& resting, doubl
     }
     return {resting, Mode::free, t, false};
   }
+  Mode next = forces.regime == rigidbody::ContactRegime::stick
+                  ? stick_mode(wall)
+                  : slide_mode(wall, forces.slip_sign);
+  double normal = forces.normal;
+  // A stick on the friction cone's edge whose margin is falling ends at
+  // once: the slip starts there, as stick_breaks would start it. Sticking
+  // instead (the contact problem allows it, on the edge) handed the next
+  // instant to stick_breaks, its slide at once to slip_stops, and back: a
+  // run that stopped with no_progress (μ = 9 at V0 = 5, r = 0.01). The slide
+  // continues from γ_T = 0, where its slip witness is not armed again until
+  // the slip has left zero.
+  if (forces.regime == rigidbody::ContactRegime::stick) {
+    for (std::size_t edge = 1; edge <= 2; ++edge) {
+      const WitnessSample margin = witness(stick_mode(wall), edge, resting, t);
+      if (!(margin.value <= 1e-9 * p_.mu * std::fabs(forces.normal) && margin.rate < 0.0)) continue;
+      const double s = edge == 1 ? -1.0 : 1.0;
+      if (!(friction_denominator(s) > 1e-9)) return stop_painleve(from, wall, resting, t, 0.0, log);
+      next = slide_mode(wall, s);
+      normal = sliding_normal_force(t, s);
+      break;
+    }
+  }
   EventRecord record{t, kind, wall, resting[0], 0.0, 0.0};
-  record.normal_force = forces.normal;
+  record.normal_force = normal;
   record.tangential_velocity = slip;
   record.friction_work = resting[friction_work];
   log.record(record);
-  const Mode next = forces.regime == rigidbody::ContactRegime::stick
-                        ? stick_mode(wall)
-                        : slide_mode(wall, forces.slip_sign);
   return {resting, next, t, false};
 }
 

@@ -242,6 +242,28 @@ TEST(RigidPendulum, RollingContactsDoNotCrawl) {
   EXPECT_LT(rough.steps, 2 * smooth.steps);
 }
 
+// A slip that stops on the friction cone's edge, where the cone margin is
+// falling, slides on instead of sticking for no time: sticking there handed
+// the same instant back and forth between a stick's break and a slide's
+// stop, and these runs stopped with no_progress (at t = 37.9, 61.2, 42.4
+// and 18.1 s). Each now completes its 150 periods, rolling on the way.
+TEST(RigidPendulum, SlipStoppingOnTheConesEdgeSlidesOn) {
+  RunRequest request;
+  request.periods = 150.0;
+  request.sample_step = 2e-3;
+  for (const std::string mu : {"9", "10", "13", "17"}) {
+    Scene scene = load_scene("jin2003");
+    for (const std::string& assignment : std::vector<std::string>{
+             "model=rigid", "spin=free", "radius=0.01", "V0=5", "mu=" + mu})
+      apply_override(scene, assignment);
+    const RunOutput run = run_of_scene(scene, request);
+    EXPECT_EQ(run.termination, impactlab::Termination::completed) << "mu = " << mu;
+    std::size_t rolling = 0;
+    for (const auto& sample : run.samples) rolling += sample.mode.starts_with("stick") ? 1 : 0;
+    EXPECT_GT(rolling, 100u) << "mu = " << mu;
+  }
+}
+
 // A ball that rolls on the wall (stick) until the friction it needs leaves
 // the cone, on the Taylor stepper (the scene's default), whose witnesses are
 // polynomials: the two cone edges μ λ_N ∓ λ_T are separate smooth witnesses
