@@ -44,8 +44,10 @@ bool all_real(const std::vector<std::complex<double>>& multipliers) {
                      [](const std::complex<double>& z) { return z.imag() == 0.0; });
 }
 
-std::string contact_change_note(int before, int after) {
-  return "contact phases per orbit " + std::to_string(before) + " -> " + std::to_string(after);
+std::string count_change_note(int OrbitEvaluation::*count, int before, int after) {
+  const std::string what =
+      count == &OrbitEvaluation::contact_phases ? "contact phases" : "stick impacts";
+  return what + " per orbit " + std::to_string(before) + " -> " + std::to_string(after);
 }
 
 }  // namespace
@@ -89,25 +91,29 @@ void BifurcationLocator<Size>::detect(const Node& a, const Node& b, double step,
   }
   for (const ParameterBoundary& boundary : corrector_.problem().boundaries)
     if (auto point = locate_boundary(boundary, a, b)) points.push_back(*point);
-  if (a.orbit.contact_phases != b.orbit.contact_phases)
-    points.push_back(locate_contact_change(a, b, step));
+  for (int OrbitEvaluation::*count : {&OrbitEvaluation::contact_phases, &OrbitEvaluation::stick_impacts})
+    if (a.orbit.*count != b.orbit.*count) points.push_back(locate_count_change(count, a, b, step));
 }
 
-// The number of contact phases differs between nodes a and b (reached by
-// the step `step` from a): bisection on the arclength s from a, each trial
+// A count per orbit (contact phases, or impacts that stick) differs between
+// nodes a and b (reached by the step `step` from a): bisection on the arclength s from a, each trial
 // point corrected onto the branch (the hyperplane through a + s τ normal to
 // τ, as the step itself), the side decided by the trial orbit's count, down
 // to a bracket of 1e-10 of the range in p (or 1e-13 in s where the branch
 // is nearly normal to p). The point is the corrected orbit at the middle of
 // the last bracket; its error estimate is the bracket in p.
 template <int Size>
-BifurcationPoint BifurcationLocator<Size>::locate_contact_change(const Node& a, const Node& b,
-                                                                 double step) {
+BifurcationPoint BifurcationLocator<Size>::locate_count_change(int OrbitEvaluation::*count,
+                                                               const Node& a, const Node& b,
+                                                               double step) {
   const int n = corrector_.dimension();
   const double scale = corrector_.scale();
   BifurcationPoint point;
-  point.type = b.orbit.contact_phases > a.orbit.contact_phases ? BifurcationType::contact_onset
-                                                               : BifurcationType::contact_end;
+  const bool grows = b.orbit.*count > a.orbit.*count;
+  if (count == &OrbitEvaluation::contact_phases)
+    point.type = grows ? BifurcationType::contact_onset : BifurcationType::contact_end;
+  else
+    point.type = grows ? BifurcationType::stick_onset : BifurcationType::stick_end;
   point.parameter = 0.5 * (a.y[n] + b.y[n]) * scale;
   point.state = corrector_.reported_state(b.y);
   point.multipliers = multipliers_of(b.orbit.monodromy);
@@ -130,7 +136,7 @@ BifurcationPoint BifurcationLocator<Size>::locate_contact_change(const Node& a, 
       failed = true;
       break;
     }
-    if (c.orbit.contact_phases == a.orbit.contact_phases) {
+    if (c.orbit.*count == a.orbit.*count) {
       low = middle;
       p_low = c.y[n];
     } else {
@@ -145,7 +151,7 @@ BifurcationPoint BifurcationLocator<Size>::locate_contact_change(const Node& a, 
     point.multipliers = multipliers_of(c.orbit.monodromy);
     point.error_estimate = std::fabs(p_high - p_low) * scale;
     point.located = true;
-    point.note = contact_change_note(a.orbit.contact_phases, b.orbit.contact_phases);
+    point.note = count_change_note(count, a.orbit.*count, b.orbit.*count);
   } else {
     point.note = "detected; the corrector failed while locating it";
   }

@@ -40,7 +40,8 @@ class BifurcationLocator {
   // Appends to `points` what lies between nodes a and b (b reached by the
   // arclength `step` from a): every test function's sign change, located
   // (or only detected where the request says not to locate), every
-  // boundary crossed, and a change of the contact phases per orbit.
+  // boundary crossed, and a change of the contact phases or of the stick
+  // impacts per orbit.
   void detect(const Node& a, const Node& b, double step, std::vector<BifurcationPoint>& points);
 
  private:
@@ -49,7 +50,9 @@ class BifurcationLocator {
 
   BifurcationPoint locate(BifurcationType type, double (*function)(const MonodromyMatrix&),
                           const Node& a, double step, double fa, double fb);
-  BifurcationPoint locate_contact_change(const Node& a, const Node& b, double step);
+  // a count per orbit (contact phases, stick impacts) differs between a and b
+  BifurcationPoint locate_count_change(int OrbitEvaluation::*count, const Node& a, const Node& b,
+                                       double step);
   std::optional<BifurcationPoint> locate_boundary(const ParameterBoundary& boundary,
                                                   const Node& a, const Node& b);
 

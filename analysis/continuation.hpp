@@ -40,6 +40,8 @@ enum class BifurcationType {
   grazing,          // a wall touched with zero normal velocity
   contact_onset,    // the contact phases per orbit grow
   contact_end,      // the contact phases per orbit shrink
+  stick_onset,      // an impact starts to stick: its impulse reaches the friction cone's edge
+  stick_end,        // an impact stops sticking and slides
   boundary,         // a ParameterBoundary crossed (its name: BifurcationPoint::boundary)
 };
 
@@ -71,6 +73,8 @@ constexpr std::string_view to_string(BifurcationType type) {
     case BifurcationType::grazing: return "grazing";
     case BifurcationType::contact_onset: return "contact_onset";
     case BifurcationType::contact_end: return "contact_end";
+    case BifurcationType::stick_onset: return "stick_onset";
+    case BifurcationType::stick_end: return "stick_end";
     case BifurcationType::boundary: return "boundary";
   }
   return "unknown";

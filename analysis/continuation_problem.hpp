@@ -34,6 +34,7 @@ struct OrbitEvaluation {
   MonodromyMatrix monodromy;   // ∂Pⁿ/∂x, saltation matrices included
   int impacts = 0;             // impacts over the n periods
   int contact_phases = 0;      // contact phases (sticking) over the n periods
+  int stick_impacts = 0;       // impacts whose contact point stops sliding (EventRecord::sticks)
   std::string signature;       // the walls of the events in order ("+1 +1 -1", "+1 c+1": contact)
   double min_impact_speed = std::numeric_limits<double>::infinity();  // min |q̇⁻| of the impacts
   // the smallest local minimum of a wall gap in flight (not at an impact), from

@@ -66,7 +66,7 @@ class GapSampler {
   int count_, next_ = 0;
 };
 
-// The impacts, contact phases, signature and event times (since t0) of the
+// The impacts (and those that stick), contact phases, signature and event times (since t0) of the
 // event records [begin, end) into `result`.
 template <class Records>
 void note_events(Records begin, Records end, double t0, OrbitEvaluation& result) {
@@ -76,6 +76,7 @@ void note_events(Records begin, Records end, double t0, OrbitEvaluation& result)
                                              : std::to_string(event->wall);
     if (event->kind == EventKind::impact) {
       ++result.impacts;
+      if (event->sticks) ++result.stick_impacts;
       result.signature += (result.signature.empty() ? "" : " ") + wall;
     } else if (event->kind == EventKind::contact_start) {
       ++result.contact_phases;

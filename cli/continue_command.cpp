@@ -195,7 +195,8 @@ int run_continue(const ContinueCommandOptions& command_options,
           {"min_impact_speed", "smallest normal approach speed of an impact"}}},
         {"points.csv",
          {{"type", "fold, branch_point, period_doubling, neimark_sacker, grazing, contact_onset, "
-                  "contact_end, contact_boundary (the pendulum's V0*omega = g)"},
+                  "contact_end, stick_onset, stick_end (an impact starts or stops sticking: the "
+                  "rigid pendulum's friction cone), contact_boundary (the pendulum's V0*omega = g)"},
           {"error_estimate", "bound on the error of the parameter value"},
           {"graze_time", "grazing: time after the section at which the wall is touched (0 "
                          "where the impact section's own impact grazes)"}}}}},

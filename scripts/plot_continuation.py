@@ -19,7 +19,8 @@ import numpy as np  # noqa: E402
 
 MARKERS = {"fold": ("s", "tab:green"), "period_doubling": ("o", "tab:red"),
            "neimark_sacker": ("D", "tab:purple"), "grazing": ("*", "black"),
-           "contact_onset": ("^", "tab:orange"), "contact_end": ("v", "tab:orange")}
+           "contact_onset": ("^", "tab:orange"), "contact_end": ("v", "tab:orange"),
+           "stick_onset": ("^", "tab:brown"), "stick_end": ("v", "tab:brown")}
 
 
 def read(path):

@@ -40,6 +40,7 @@ auto RigidPendulumWalls::on_wall_reached(int wall, CrossingKind crossing, const 
   record.normal_impulse = impact.impulse.normal_impulse;
   record.tangential_velocity = gamma_t;
   record.tangential_velocity_after = tangential_velocity(wall, after, t);
+  record.sticks = impact.impulse.regime == rigidbody::ImpulseRegime::stick;
   log.record(record);
 
   // chattering, with Model N's rule: normal acceleration towards the wall

@@ -55,6 +55,9 @@ struct EventRecord {
   // an accumulation: the bound on the error of its time (s), from
   // contact/accumulation.hpp
   double accumulation_error = not_computed;
+  // an impact whose contact point stops sliding (the stick case of a
+  // Newton–Coulomb impulse, src/rigidbody/newton_coulomb_impulse.hpp)
+  bool sticks = false;
 };
 
 // Counts every event, keeps the records unless told not to (a benchmark or a

@@ -724,6 +724,55 @@ TEST(Continuation, NeimarkSackerOfARotatingMapAtItsClosedForm) {
   }
 }
 
+// The driver on a map whose orbit has an impact that sticks above p = 1/π
+// (the count of stick impacts the map reports, as the rigid pendulum's
+// impulse law does where its stick impulse enters the friction cone):
+// P(x; p) = (x0 / 2 + p, x1 / 3), fixed point (2p, 0). The change is found
+// between two branch points and located by bisection to 1e-10 of the range.
+TEST(Continuation, StickOnsetLocatedWhereTheStickImpactsPerOrbitChange) {
+  const double onset = 1.0 / std::numbers::pi;
+  impactlab::ContinuationProblem problem;
+  problem.phase = 0.0;
+  problem.forcing_period_at_p = two_pi;
+  problem.evaluate = [&](const impactlab::OrbitPoint& x, double p, double, bool,
+                         const impactlab::ContactWindow&) {
+    impactlab::OrbitEvaluation e;
+    e.completed = true;
+    e.image = {0.5 * x[0] + p, x[1] / 3.0};
+    e.monodromy = {{0.5, 0.0}, {0.0, 1.0 / 3.0}};
+    e.impacts = 2;
+    e.stick_impacts = p > onset ? 1 : 0;
+    e.span = two_pi;
+    e.omega = 1.0;
+    return e;
+  };
+  problem.gap_at = [](const impactlab::OrbitPoint&, double, double,
+                      const impactlab::ContactWindow&, double) { return impactlab::GapSample{}; };
+  problem.transport = [](const impactlab::OrbitPoint& x, double, double, double) {
+    return std::optional<impactlab::OrbitPoint>(x);
+  };
+  impactlab::ContinuationRequest request;
+  request.from = 0.0;
+  request.to = 1.0;
+  request.start = {0.1, 0.1};
+  const auto up = impactlab::continue_branch(problem, request);
+  EXPECT_EQ(up.stop_reason, StopReason::end_of_range) << up.stop_detail;
+  const auto onsets = points_of_type(up, BifurcationType::stick_onset);
+  ASSERT_EQ(onsets.size(), 1u);
+  EXPECT_TRUE(onsets[0].located) << onsets[0].note;
+  EXPECT_NEAR(onsets[0].parameter, onset, 1e-9);
+  EXPECT_LE(onsets[0].error_estimate, 1e-9);
+  EXPECT_NEAR(onsets[0].state[0], 2.0 * onsets[0].parameter, 1e-9);
+  EXPECT_EQ(impactlab::type_name(onsets[0]), "stick_onset");
+  request.from = 1.0;
+  request.to = 0.0;
+  request.start = {1.9, 0.0};
+  const auto down = impactlab::continue_branch(problem, request);
+  const auto ends = points_of_type(down, BifurcationType::stick_end);
+  ASSERT_EQ(ends.size(), 1u);
+  EXPECT_NEAR(ends[0].parameter, onset, 1e-9);
+}
+
 ContinuationJob curve_job(const std::string& key, double from, double to, const std::string& key2,
                           double from2, double to2, CurveType type) {
   ContinuationJob job;
