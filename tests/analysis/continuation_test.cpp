@@ -670,6 +670,23 @@ TEST(Continuation, PendulumBranchReportsTheContactBoundaryAtOmegaEqualToGOverV0)
   EXPECT_LE(boundaries[0].state[0], upper);
 }
 
+// A continuation problem on a map written here in closed form: `evaluate`
+// gives P(x; p) and its monodromy; no wall gaps, and the section stays.
+template <class Evaluate>
+impactlab::ContinuationProblem closed_form_problem(Evaluate evaluate) {
+  impactlab::ContinuationProblem problem;
+  problem.phase = 0.0;
+  problem.forcing_period_at_p = two_pi;
+  problem.evaluate = [evaluate](const impactlab::OrbitPoint& x, double p, double, bool,
+                                const impactlab::ContactWindow&) { return evaluate(x, p); };
+  problem.gap_at = [](const impactlab::OrbitPoint&, double, double,
+                      const impactlab::ContactWindow&, double) { return impactlab::GapSample{}; };
+  problem.transport = [](const impactlab::OrbitPoint& x, double, double, double) {
+    return std::optional<impactlab::OrbitPoint>(x);
+  };
+  return problem;
+}
+
 // The driver on a map with a known Neimark–Sacker point: P(x; p) = c(p) +
 // ρ(p) R(θ) (x − c(p)), a rotation by θ = 1 rad scaled by ρ(p) = 0.5 + p²
 // about c(p) = (sin p, p²). Its fixed point is c(p), its multipliers
@@ -677,11 +694,7 @@ TEST(Continuation, PendulumBranchReportsTheContactBoundaryAtOmegaEqualToGOverV0)
 TEST(Continuation, NeimarkSackerOfARotatingMapAtItsClosedForm) {
   constexpr double theta = 1.0;
   auto centre = [](double p) { return std::array<double, 2>{std::sin(p), p * p}; };
-  impactlab::ContinuationProblem problem;
-  problem.phase = 0.0;
-  problem.forcing_period_at_p = two_pi;
-  problem.evaluate = [&](const impactlab::OrbitPoint& x, double p, double, bool,
-                         const impactlab::ContactWindow&) {
+  const auto problem = closed_form_problem([&](const impactlab::OrbitPoint& x, double p) {
     impactlab::OrbitEvaluation e;
     const double rho = 0.5 + p * p;
     const auto c = centre(p);
@@ -694,12 +707,7 @@ TEST(Continuation, NeimarkSackerOfARotatingMapAtItsClosedForm) {
     e.span = two_pi;
     e.omega = 1.0;
     return e;
-  };
-  problem.gap_at = [](const impactlab::OrbitPoint&, double, double,
-                      const impactlab::ContactWindow&, double) { return impactlab::GapSample{}; };
-  problem.transport = [](const impactlab::OrbitPoint& x, double, double, double) {
-    return std::optional<impactlab::OrbitPoint>(x);
-  };
+  });
   impactlab::ContinuationRequest request;
   request.from = 0.2;
   request.to = 1.2;
@@ -731,11 +739,7 @@ TEST(Continuation, NeimarkSackerOfARotatingMapAtItsClosedForm) {
 // between two branch points and located by bisection to 1e-10 of the range.
 TEST(Continuation, StickOnsetLocatedWhereTheStickImpactsPerOrbitChange) {
   const double onset = 1.0 / std::numbers::pi;
-  impactlab::ContinuationProblem problem;
-  problem.phase = 0.0;
-  problem.forcing_period_at_p = two_pi;
-  problem.evaluate = [&](const impactlab::OrbitPoint& x, double p, double, bool,
-                         const impactlab::ContactWindow&) {
+  const auto problem = closed_form_problem([&](const impactlab::OrbitPoint& x, double p) {
     impactlab::OrbitEvaluation e;
     e.completed = true;
     e.image = {0.5 * x[0] + p, x[1] / 3.0};
@@ -745,12 +749,7 @@ TEST(Continuation, StickOnsetLocatedWhereTheStickImpactsPerOrbitChange) {
     e.span = two_pi;
     e.omega = 1.0;
     return e;
-  };
-  problem.gap_at = [](const impactlab::OrbitPoint&, double, double,
-                      const impactlab::ContactWindow&, double) { return impactlab::GapSample{}; };
-  problem.transport = [](const impactlab::OrbitPoint& x, double, double, double) {
-    return std::optional<impactlab::OrbitPoint>(x);
-  };
+  });
   impactlab::ContinuationRequest request;
   request.from = 0.0;
   request.to = 1.0;
