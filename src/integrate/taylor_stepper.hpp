@@ -229,7 +229,9 @@ class TaylorStepper {
         const Real g0 = s * w[0], linear_end = g0 + (s * w[1]) * h_end;
         if ((linear_end < g0 ? linear_end : g0) - reach > tolerance) continue;
       }
-      std::array<Real, taylor_max_order + 1> g;  // filled up to the order
+      // filled up to the order; zeros beyond it, which nothing reads (GCC
+      // cannot see that, and warned in the rigid pendulum's tangent flows)
+      std::array<Real, taylor_max_order + 1> g{};
       for (int j = 0; j <= order_; ++j) g[j] = s * w[j];
       const LocatedEvent candidate =
           first_event(g, h_start, h_limit, tolerance, direction != TriggerDirection::either,
