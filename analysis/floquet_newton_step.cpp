@@ -19,7 +19,7 @@ bool dense_newton_step(const double* monodromy, const double* residual, std::siz
     Eigen::Map<Eigen::VectorXd>(step, size) = lu.solve(right);
     return true;
   }
-  // a family of orbits: the rank one short, and the residual in the range
+  // a family of orbits (M − I short of full rank): the least-squares step of least norm
   const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> family(matrix);
   if (family.rank() == 0) return false;
   const Eigen::VectorXd least_norm = family.solve(right);

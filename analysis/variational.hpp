@@ -47,12 +47,13 @@ class Variational {
   State start(const BaseState& x, Mode mode) const {
     State v{};
     std::copy(x.begin(), x.end(), v.begin());
-    for (std::size_t i = 0; i < dimension; ++i) {
-      bool pinned = base_.pinned(mode);
-      if constexpr (requires { base_.pinned_components(mode); })
-        pinned = base_.pinned_components(mode)[i] != 0.0;
-      v[base_size + i * dimension + i] = pinned ? 0.0 : 1.0;
-    }
+    TangentVectorOf<dimension> pinned{};
+    if constexpr (requires { base_.pinned_components(mode); })
+      pinned = base_.pinned_components(mode);
+    else if (base_.pinned(mode))
+      pinned.fill(1.0);
+    for (std::size_t i = 0; i < dimension; ++i)
+      v[base_size + i * dimension + i] = pinned[i] != 0.0 ? 0.0 : 1.0;
     return v;
   }
   static BaseState base_state(const State& v) {

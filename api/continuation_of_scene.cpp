@@ -8,7 +8,7 @@
 namespace impactlab {
 
 ContinuationJobResult continuation_of_scene(const Scene& scene, const ContinuationJob& job) {
-  return visit_analysable_scene(scene, [&]<class Binding>(const SceneSystem<Binding>& bound) {
+  return visit_scene(scene, [&]<class Binding>(const SceneSystem<Binding>& bound) {
     using System = typename Binding::System;
     if (std::string without = bound.without_linearisation(); !without.empty()) {
       ContinuationJobResult result;

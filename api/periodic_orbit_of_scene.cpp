@@ -8,7 +8,7 @@
 namespace impactlab {
 
 PeriodicResult periodic_orbit_of_scene(const Scene& scene, const PeriodicRequest& request) {
-  return visit_analysable_scene(scene, [&](const auto& bound) {
+  return visit_scene(scene, [&](const auto& bound) {
     if (std::string without = bound.without_linearisation(); !without.empty()) {
       PeriodicResult result;
       result.note = std::move(without);

@@ -25,8 +25,6 @@
 //                        Tally: on_event(const EventRecord&), add_to(RunOutput&)
 //   static EventExtender event_extender(const System&);   what its events add to the
 //                        core's record (io/event_extension.hpp): events.csv's own columns
-//   static constexpr bool runs_analyses = false;          simulate only; analyses refuse it
-//   static BadInput analysis_refusal(const Scene&);       ...with this message
 //
 // The analyses reach a binding through visit_scene (api/visit_scene.hpp) and
 // never name an oscillator; a binding never names an analysis.

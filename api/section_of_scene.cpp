@@ -8,7 +8,7 @@
 namespace impactlab {
 
 SectionResult section_of_scene(const Scene& scene, const SectionRequest& request) {
-  return visit_analysable_scene(scene, [&]<class Binding>(const SceneSystem<Binding>& bound) {
+  return visit_scene(scene, [&]<class Binding>(const SceneSystem<Binding>& bound) {
     // a continued run does not start from the scene's initial state (which a
     // swept key may have made inadmissible)
     const auto x0 = request.start ? typename SceneSystem<Binding>::State{} : bound.initial_state();

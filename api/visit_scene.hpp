@@ -18,27 +18,15 @@ namespace impactlab {
 
 namespace detail {
 
-template <class Binding>
-constexpr bool runs_analyses() {
-  if constexpr (requires { Binding::runs_analyses; })
-    return Binding::runs_analyses;
-  else
-    return true;
-}
-
 // Result: what f returns (the same for every binding)
-template <class Result, bool analyses_only, class F, class First, class... Rest>
+template <class Result, class F, class First, class... Rest>
 Result visit_bindings(const Scene& scene, F& f, BindingList<First, Rest...>) {
   if (First::matches(scene)) {
-    if constexpr (analyses_only && !runs_analyses<First>()) {
-      throw First::analysis_refusal(scene);
-    } else {
-      const SceneSystem<First> bound(scene);
-      return f(bound);
-    }
+    const SceneSystem<First> bound(scene);
+    return f(bound);
   }
   if constexpr (sizeof...(Rest) > 0) {
-    return visit_bindings<Result, analyses_only>(scene, f, BindingList<Rest...>{});
+    return visit_bindings<Result>(scene, f, BindingList<Rest...>{});
   } else {
     // an oscillator the registry does not know: oscillator_entry's BadInput
     // names it and the known ones
@@ -53,20 +41,12 @@ auto result_of_visit(BindingList<First, Rest...>)
 
 }  // namespace detail
 
-// f(scene_system) for the scene's binding, every binding (simulate).
+// f(scene_system) for the scene's binding, every binding (every binding
+// runs every analysis).
 template <class F>
 auto visit_scene(const Scene& scene, F&& f) {
   using Result = decltype(detail::result_of_visit<F>(BuiltinBindings{}));
-  return detail::visit_bindings<Result, false>(scene, f, BuiltinBindings{});
-}
-
-// The same for the analyses (sections, sweeps, periodic orbits,
-// continuation): a binding that runs simulations only is refused with its
-// own BadInput, and the analyses are not compiled for it.
-template <class F>
-auto visit_analysable_scene(const Scene& scene, F&& f) {
-  using Result = decltype(detail::result_of_visit<F>(BuiltinBindings{}));
-  return detail::visit_bindings<Result, true>(scene, f, BuiltinBindings{});
+  return detail::visit_bindings<Result>(scene, f, BuiltinBindings{});
 }
 
 }  // namespace impactlab

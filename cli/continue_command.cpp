@@ -153,7 +153,7 @@ int run_continue(const ContinueCommandOptions& command_options,
                         {"stop_reason", to_string(branch.result.stop_reason)},
                         {"stop_detail", branch.result.stop_detail},
                         {"map_evaluations", branch.result.map_evaluations}});
-  const nlohmann::json document = {
+  nlohmann::json document = {
       {"impactlab_version", IMPACTLAB_VERSION},
       {"command", command_line},
       {"created_utc", utc_now()},
@@ -203,15 +203,14 @@ int run_continue(const ContinueCommandOptions& command_options,
       {"branches", branches},
       {"wall_time_s", wall_time},
   };
-  nlohmann::json written = document;
   // a component held at its start value (analysis/neutral_component.hpp)
   if (result.neutral)
-    written["neutral_component"] = {
+    document["neutral_component"] = {
         {"index", result.neutral->index + 1},
         {"value", result.neutral->value},
         {"note", "the map is neutral along this state component (multiplier 1, a family of "
                  "orbits): held at its start value, its multiplier listed with the others"}};
-  write_json(run_files.add("continuation.json"), written);
+  write_json(run_files.add("continuation.json"), document);
   if (two_parameter) {
     // the curves: the first branch's, then each doubled branch's (--switch)
     std::vector<BranchCurve> curves = {

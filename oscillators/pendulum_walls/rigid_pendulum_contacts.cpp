@@ -8,10 +8,7 @@ namespace impactlab {
 auto RigidPendulumWalls::settle(Mode from, int wall, const State& resting, double t, EventKind kind,
                                 EventLog& log, bool slip_stopped) const -> Transition<State, Mode> {
   const double slip = slip_stopped ? 0.0 : tangential_velocity(wall, resting, t);
-  const rigidbody::ContactForces forces =
-      spin_free_
-          ? rigidbody::contact_forces<2>(free_spin_contact(wall, resting, t), p_.mu, slip, 0.0)
-          : rigidbody::contact_forces<1>(locked_spin_contact(wall, resting, t), p_.mu, slip, 0.0);
+  const rigidbody::ContactForces forces = contact_forces_at(wall, resting, t, slip);
   if (forces.regime == rigidbody::ContactRegime::painleve_no_solution ||
       forces.regime == rigidbody::ContactRegime::painleve_ambiguous)
     return stop_painleve(from, wall, resting, t, 0.0, log);
@@ -40,8 +37,8 @@ auto RigidPendulumWalls::settle(Mode from, int wall, const State& resting, doubl
     for (std::size_t edge = 1; edge <= 2; ++edge) {
       const WitnessSample margin = witness(stick_mode(wall), edge, resting, t);
       if (!(margin.value <= 1e-9 * p_.mu * std::fabs(forces.normal) && margin.rate < 0.0)) continue;
-      const double s = edge == 1 ? -1.0 : 1.0;
-      if (!(friction_denominator(s) > 1e-9)) return stop_painleve(from, wall, resting, t, 0.0, log);
+      const double s = slip_sign_leaving(edge);
+      if (painleve_sliding(s)) return stop_painleve(from, wall, resting, t, 0.0, log);
       next = slide_mode(wall, s);
       normal = sliding_normal_force(t, s);
       break;
@@ -55,16 +52,20 @@ auto RigidPendulumWalls::settle(Mode from, int wall, const State& resting, doubl
   return {resting, next, t, false};
 }
 
+rigidbody::ContactForces RigidPendulumWalls::contact_forces_at(int wall, const State& resting,
+                                                               double t, double slip) const {
+  return spin_free_
+             ? rigidbody::contact_forces<2>(free_spin_contact(wall, resting, t), p_.mu, slip, 0.0)
+             : rigidbody::contact_forces<1>(locked_spin_contact(wall, resting, t), p_.mu, slip, 0.0);
+}
+
 bool RigidPendulumWalls::painleve_on_wall(const State& x, double t) const {
   if (!(std::fabs(x[0]) >= theta0_)) return false;
   const int wall = x[0] > 0.0 ? 1 : -1;
   if (wall * x[1] > 0.0) return impact_case(wall, x, t).regime == rigidbody::ImpulseRegime::inconsistent;
   const State resting = on_wall(wall, x);
-  const double slip = tangential_velocity(wall, resting, t);
   const rigidbody::ContactForces forces =
-      spin_free_
-          ? rigidbody::contact_forces<2>(free_spin_contact(wall, resting, t), p_.mu, slip, 0.0)
-          : rigidbody::contact_forces<1>(locked_spin_contact(wall, resting, t), p_.mu, slip, 0.0);
+      contact_forces_at(wall, resting, t, tangential_velocity(wall, resting, t));
   return forces.regime == rigidbody::ContactRegime::painleve_no_solution ||
          forces.regime == rigidbody::ContactRegime::painleve_ambiguous;
 }
@@ -91,8 +92,8 @@ auto RigidPendulumWalls::stick_breaks(Mode mode, int wall, std::size_t k, const 
   // start it on the wrong side of its witness
   State resting = on_wall(wall, x);
   resting[spin_rate] = wall * pivot_velocity(t) / r_;
-  const double s = k == 1 ? -1.0 : 1.0;
-  if (!(friction_denominator(s) > 1e-9)) return stop_painleve(mode, wall, resting, t, 0.0, log);
+  const double s = slip_sign_leaving(k);
+  if (painleve_sliding(s)) return stop_painleve(mode, wall, resting, t, 0.0, log);
   EventRecord record{t, EventKind::slip_reversal, wall, resting[0], 0.0, 0.0};
   record.normal_force = sliding_normal_force(t, s);
   record.tangential_velocity = 0.0;

@@ -52,7 +52,7 @@ class RigidPendulumOf : public RigidPendulumWalls {
   // ∂f/∂x on the tangent space
   void jacobian(Mode mode, const State& x, double t, Matrix& j) const {
     std::array<Tangent, 5> dxdt;
-    rhs(mode, seeded(x), dxdt, Tangent(t));
+    rhs(mode, seeded<Tangent>(x), dxdt, Tangent(t));
     for (std::size_t row = 0; row < tangent_dimension; ++row)
       for (std::size_t column = 0; column < tangent_dimension; ++column)
         j[row][column] = dxdt[row].derivative(column);
@@ -61,7 +61,7 @@ class RigidPendulumOf : public RigidPendulumWalls {
   // ∂h/∂x of witness k on the tangent space
   [[nodiscard]] Vector witness_gradient(Mode mode, std::size_t k, const State& x,
                                         double t) const {
-    const BasicWitnessSample<Tangent> h = witness(mode, k, seeded(x), Tangent(t));
+    const BasicWitnessSample<Tangent> h = witness(mode, k, seeded<Tangent>(x), Tangent(t));
     Vector gradient;
     for (std::size_t i = 0; i < tangent_dimension; ++i) gradient[i] = h.value.derivative(i);
     return gradient;
@@ -86,22 +86,22 @@ class RigidPendulumOf : public RigidPendulumWalls {
       const Transition<State, Mode>& after) const {
     if (crossing == CrossingKind::grazing || after.stop) return identity_reset<tangent_dimension>();
     if (is_stick(after.mode)) return collapsed_reset<tangent_dimension>();
-    const std::array<Tangent2, 5> xd = seeded_with_time(x);
-    const Tangent2 td(t, unit(tangent_dimension));
-    std::array<Tangent2, tangent_dimension> reset;
+    const std::array<TangentAndTime, 5> xd = seeded<TangentAndTime>(x);
+    const TangentAndTime td(t, unit<TangentAndTime>(tangent_dimension));
+    std::array<TangentAndTime, tangent_dimension> reset;
     if (mode == Mode::free) {
       const int wall = k == 0 ? 1 : -1;
-      const std::array<Tangent2, 2> rates = rates_after_impact(wall, impact_case(wall, x, t), xd, td);
-      reset[0] = Tangent2(wall * wall_angle());
+      const std::array<TangentAndTime, 2> rates = rates_after_impact(wall, impact_case(wall, x, t), xd, td);
+      reset[0] = TangentAndTime(wall * wall_angle());
       reset[1] = rates[0];
       if constexpr (spin == RigidSpin::free) reset[2] = rates[1];
       if (after.time > t) {
         // at rest on the wall with the spin of the impact, read at the
         // reference time
-        const Tangent2 remaining =
+        const TangentAndTime remaining =
             accumulation_time(normal_speed(rates[0]), approach_acceleration(td),
                               approach_acceleration_rate(td), parameters().e_n, normal_damping());
-        reset[1] = Tangent2(0.0);
+        reset[1] = TangentAndTime(0.0);
         State f_after;
         rhs(after.mode, after.state, f_after, after.time);
         for (std::size_t i = 0; i < tangent_dimension; ++i)
@@ -109,8 +109,8 @@ class RigidPendulumOf : public RigidPendulumWalls {
       }
     } else {
       const int wall = wall_of(mode);
-      reset[0] = Tangent2(wall * wall_angle());
-      reset[1] = Tangent2(0.0);
+      reset[0] = TangentAndTime(wall * wall_angle());
+      reset[1] = TangentAndTime(0.0);
       if constexpr (spin == RigidSpin::free)
         reset[2] = k == 0 ? xd[spin_rate] : wall * pivot_velocity(td) / radius();
     }
@@ -126,30 +126,24 @@ class RigidPendulumOf : public RigidPendulumWalls {
  private:
   using Tangent = Dual<double, tangent_dimension>;
   // the tangent directions and the time's
-  using Tangent2 = Dual<double, tangent_dimension + 1>;
+  using TangentAndTime = Dual<double, tangent_dimension + 1>;
 
   static RigidPendulumParameters with_spin(RigidPendulumParameters p) {
     p.spin_free = spin == RigidSpin::free;
     return p;
   }
-  static typename Tangent2::Derivatives unit(std::size_t direction) {
-    typename Tangent2::Derivatives e{};
+  // the state as dual numbers of D, the tangent components seeded with
+  // their own directions (D's further direction, the time's, left zero)
+  template <class D>
+  static typename D::Derivatives unit(std::size_t direction) {
+    typename D::Derivatives e{};
     e[direction] = 1.0;
     return e;
   }
-  static std::array<Tangent, 5> seeded(const State& x) {
-    std::array<Tangent, 5> xd;
-    for (std::size_t i = 0; i < 5; ++i) {
-      typename Tangent::Derivatives e{};
-      if (i < tangent_dimension) e[i] = 1.0;
-      xd[i] = Tangent(x[i], e);
-    }
-    return xd;
-  }
-  static std::array<Tangent2, 5> seeded_with_time(const State& x) {
-    std::array<Tangent2, 5> xd;
-    for (std::size_t i = 0; i < 5; ++i)
-      xd[i] = i < tangent_dimension ? Tangent2(x[i], unit(i)) : Tangent2(x[i]);
+  template <class D>
+  static std::array<D, 5> seeded(const State& x) {
+    std::array<D, 5> xd;
+    for (std::size_t i = 0; i < 5; ++i) xd[i] = i < tangent_dimension ? D(x[i], unit<D>(i)) : D(x[i]);
     return xd;
   }
 };

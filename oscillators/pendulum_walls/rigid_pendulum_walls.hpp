@@ -356,6 +356,11 @@ class RigidPendulumWalls {
     const double locked_radius = spin_free_ ? 0.0 : r_;
     return cos0_ - s * p_.mu * (sin0_ + locked_radius / p_.l);
   }
+  // no consistent slide with slip sign s (the denominator at or below zero)
+  [[nodiscard]] bool painleve_sliding(double s) const { return !(friction_denominator(s) > 1e-9); }
+  // the slip that starts where the friction force leaves the cone's edge
+  // `edge` (stick witness 1: λ_T = μ λ_N, 2: λ_T = −μ λ_N), opposite to λ_T
+  static double slip_sign_leaving(std::size_t edge) { return edge == 1 ? -1.0 : 1.0; }
 
   // sticking on wall w, the same on both (spin free, θ̈ = 0, γ̇_T = 0): I_b φ̈ = −w r λ_T with
   // φ̈ = w V0 ω cos ωt / r gives λ_T = −I_b V0 ω cos ωt / r²; then
@@ -396,6 +401,10 @@ class RigidPendulumWalls {
   // slide's direction).
   Transition<State, Mode> settle(Mode from, int wall, const State& resting, double t,
                                  EventKind kind, EventLog& log, bool slip_stopped = false) const;
+
+  // the contact problem at rest on wall w with tangential velocity `slip` (m/s)
+  [[nodiscard]] rigidbody::ContactForces contact_forces_at(int wall, const State& resting, double t,
+                                                           double slip) const;
 
   Transition<State, Mode> enter_contact(int wall, const State& after, double t,
                                         double time_error, EventLog& log) const;

@@ -81,7 +81,9 @@ void expect_rates_are_the_impulse_law(double radius) {
         << "trial " << trial;
   }
   EXPECT_GT(slides, 100);
-  if constexpr (spin == RigidSpin::free) EXPECT_GT(sticks, 100);
+  if constexpr (spin == RigidSpin::free) {
+    EXPECT_GT(sticks, 100);
+  }
 }
 
 TEST(RigidPendulumSpin, RatesAfterAnImpactAreTheImpulseLawsWithTheSpinFree) {
@@ -273,7 +275,7 @@ void expect_same_multipliers(const std::vector<std::complex<double>>& a,
 }
 
 TEST(RigidPendulumSpin, LockedSpinWithoutRadiusHasModelNsPeriodicOrbit) {
-  for (const std::string& v0 : {"V0=4", "V0=3"}) {
+  for (const std::string v0 : {"V0=4", "V0=3"}) {
     const PeriodicResult newton = periodic_of({v0}, v0 == "V0=4" ? 6 : 2);
     const PeriodicResult rigid =
         periodic_of({v0, "model=rigid", "spin=locked", "radius=0"}, v0 == "V0=4" ? 6 : 2);
