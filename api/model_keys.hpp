@@ -22,7 +22,7 @@ std::vector<std::string_view> models_reading(const SceneSchema& schema, const Ke
 std::string model_names(const std::vector<std::string_view>& models);
 
 // Why the scene's model does not read `key`: "model = newton does not read
-// e_t (read by model = paper)"; empty where it reads it (every key of a
+// e_t (read by model = paper|rigid)"; empty where it reads it (every key of a
 // schema without a selector; a key the schema does not declare, which
 // validation refuses on its own).
 std::string unread_key_reason(const Scene& scene, const SceneSchema& schema,

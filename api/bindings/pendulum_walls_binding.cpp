@@ -16,9 +16,10 @@ namespace {
 // Which model reads which key (read_by, the values of `model`), from the code
 // that reads them: every model reads the pendulum's parameters, μ included
 // (Models N and P: the impulse's split, the contact's normal force, friction
-// work and Painlevé test); only Model P's sliding-impact test reads e_t
-// (sliding_impact.hpp); only the rigid-body model reads radius and spin
-// (rigid_pendulum_parameters).
+// work and Painlevé test); e_t is read by Model P's sliding-impact test
+// (sliding_impact.hpp) and by the rigid-body model's stick impulse
+// (rigid_pendulum_walls.hpp), not by Model N; only the rigid-body model
+// reads radius and spin (rigid_pendulum_parameters).
 SceneSchema make_schema() {
   SceneSchema schema{"pendulum_walls", "theta", common_keys(), "model"};
   const double inf = 1e308;
@@ -41,8 +42,8 @@ SceneSchema make_schema() {
        .lower = 0.0, .upper = inf, .lower_open = true},
       {.key = "e_n", .help = "normal restitution", .default_number = 0.3, .lower = 0.0,
        .upper = 1.0},
-      {.key = "e_t", .help = "the paper's tangential restitution e_y (its sliding-impact test)",
-       .default_number = -0.1, .lower = -1.0, .upper = 0.0, .read_by = {"paper"}},
+      {.key = "e_t", .help = "tangential restitution, the paper's e_y: slip kept by an impact, -e_t (Model P's sliding-impact test, the rigid model's stick impulse)",
+       .default_number = -0.1, .lower = -1.0, .upper = 0.0, .read_by = {"paper", "rigid"}},
       {.key = "mu", .help = "Coulomb friction coefficient", .default_number = 0.6, .lower = 0.0,
        .upper = inf},
       accumulation_tolerance_key(),

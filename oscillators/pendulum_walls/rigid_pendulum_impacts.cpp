@@ -6,7 +6,7 @@
 namespace impactlab {
 
 auto RigidPendulumWalls::impact_at(int wall, const State& x, double t) const -> WallImpact {
-  const rigidbody::ImpactCoefficients coefficients{p_.e_n, p_.mu, 0.0};
+  const rigidbody::ImpactCoefficients coefficients{p_.e_n, p_.mu, p_.e_t};
   if (spin_free_) {
     const auto result = rigidbody::generalized_impact<2>(free_spin_contact(wall, x, t),
                                                          Eigen::Vector2d(x[1], x[spin_rate]), coefficients);

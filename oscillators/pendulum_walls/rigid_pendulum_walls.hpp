@@ -24,8 +24,10 @@
 // Modes: free flight; sliding contact on a wall with a given slip direction
 // (θ ≡ ±θ0, θ̇ = 0; the ball slides and, if free, is spun by friction); sticking contact (spin free
 // only: the ball rolls on the wall as the pivot moves it). The stick case of
-// the impulse has tangential restitution 0 (the lecture's default): any
-// tangential restitution of the model emerges from the impulse mechanics.
+// the impulse sets the contact point's slip to γ_T⁺ = −e_t γ_T⁻, with the
+// scene's e_t ∈ [−1, 0], the paper's e_y and its sign convention (0: the
+// slip stops; −1: it is kept); a sliding impact's slip change emerges from
+// the impulse mechanics.
 // State: {θ, θ̇, φ̇, φ, W_f}, W_f the friction work in contact phases (J):
 // the mechanical state first, so that (θ, θ̇) with the spin locked and
 // (θ, θ̇, φ̇) with it free are the tangent space of the analyses
@@ -53,7 +55,7 @@
 namespace impactlab {
 
 struct RigidPendulumParameters {
-  PendulumWallsParameters pendulum;  // m, l, b, d, g, V0, ω, e_n, μ (e_t unused)
+  PendulumWallsParameters pendulum;  // m, l, b, d, g, V0, ω, e_n, μ, e_t
   double radius = 0.0;               // ball radius r (m), 0 <= r < b
   bool spin_free = false;            // ball on a free bearing (true) or fixed to the rod
 };
@@ -103,7 +105,7 @@ class RigidPendulumWalls {
   [[nodiscard]] double ball_inertia() const { return ball_inertia_; }
   [[nodiscard]] double radius() const { return r_; }
   [[nodiscard]] bool spin_free() const { return spin_free_; }
-  // the pendulum's own parameters (m, l, b, d, g, V0, ω, e_n, μ)
+  // the pendulum's own parameters (m, l, b, d, g, V0, ω, e_n, μ, e_t)
   [[nodiscard]] const PendulumWallsParameters& parameters() const { return p_; }
 
   // effective gravity in the pivot's frame (m/s²), its rate (m/s³), the
@@ -273,14 +275,14 @@ class RigidPendulumWalls {
 
   // The rates (θ̇⁺, φ̇⁺) just after an impact at wall w in a given case of
   // the impulse, over a number type: the impulse law of
-  // src/rigidbody/newton_coulomb_impulse.hpp (with e_t = 0) written out for
+  // src/rigidbody/newton_coulomb_impulse.hpp written out for
   // this contact, where M is diagonal, K = W M⁻¹ Wᵀ has the entries below
   // and n = (1, 0). Within one case the rates are smooth in (x, t), so a
   // dual number run through this gives the reset's Jacobian
   // (rigid_pendulum_spin.hpp); on doubles it is impact_at's result to
   // round-off (tests/oscillators/rigid_pendulum_spin_test.cpp).
   //   slide  J = j (1, −μ s),  j = −(1 + e_n) γ_N / (K_NN − μ s K_NT)
-  //   stick  K J = (−(1 + e_n) γ_N, −γ_T): J = K⁻¹ Δγ with the spin free;
+  //   stick  K J = (−(1 + e_n) γ_N, −(1 + e_t) γ_T): J = K⁻¹ Δγ with the spin free;
   //          with it locked K has rank one and only γ_N⁺ = −e_n γ_N⁻ binds
   //   then   q̇⁺ = q̇⁻ + M⁻¹ Wᵀ J
   template <class Number>
@@ -304,7 +306,7 @@ class RigidPendulumWalls {
     Number impulse_n, impulse_t;
     if (impact.regime == rigidbody::ImpulseRegime::stick && spin_free_) {
       const Number delta_n = -(1.0 + p_.e_n) * gamma_n;
-      const Number delta_t = -gamma_t;
+      const Number delta_t = -(1.0 + p_.e_t) * gamma_t;
       const Number determinant = k_nn * k_tt - k_nt * k_nt;
       impulse_n = (k_tt * delta_n - k_nt * delta_t) / determinant;
       impulse_t = (k_nn * delta_t - k_nt * delta_n) / determinant;

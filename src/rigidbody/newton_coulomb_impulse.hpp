@@ -9,8 +9,10 @@
 //                 j = −(1 + e_n) u_n⁻ / nᵀK(n − μ t)
 //
 // Coefficients: e_n ∈ [0, 1] normal restitution (Newton), μ ≥ 0 Coulomb
-// friction, e_t ∈ [0, 1] an optional tangential restitution used only in the
-// stick case (0: the contact point stops sliding; the default of the lecture).
+// friction, e_t ∈ [−1, 1] an optional tangential restitution used only in the
+// stick case (0: the contact point stops sliding, the default of the lecture;
+// positive: the slip reverses, as for a superball; negative: a part −e_t of
+// the slip is kept, the convention of the pendulum paper's e_y).
 // Sliding direction: t = u_t⁻/|u_t⁻|; where u_t⁻ = 0 and sticking is not
 // possible, the direction in which the normal impulse alone drives the slip,
 // t ∝ (K n)_t (friction opposes the slip it would start).
@@ -49,7 +51,7 @@ enum class ImpulseRegime {
 struct ImpactCoefficients {
   double e_n = 0.0;  // normal restitution, [0, 1]
   double mu = 0.0;   // Coulomb friction, >= 0
-  double e_t = 0.0;  // tangential restitution in the stick case, [0, 1]
+  double e_t = 0.0;  // tangential restitution in the stick case, [−1, 1]
 };
 
 template <int D>

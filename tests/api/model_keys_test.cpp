@@ -73,13 +73,13 @@ TEST(ModelKeys, EveryDeclaredReaderIsAChoiceOfTheSelector) {
 
 // From the code: PendulumWalls and PaperPendulumWalls read μ (the impulse's
 // split, the contact's normal force, the friction work, the Painlevé test),
-// only the paper's sliding-impact test reads e_t, and only
-// RigidPendulumBinding::make_system reads radius and spin.
+// the paper's sliding-impact test and the rigid model's stick impulse read
+// e_t, and only RigidPendulumBinding::make_system reads radius and spin.
 TEST(ModelKeys, Jin2003ModelsReadTheKeysTheirCodeReads) {
   const std::map<std::string, std::vector<std::string>> unread = {
       {"newton", {"e_t", "radius", "spin"}},
       {"paper", {"radius", "spin"}},
-      {"rigid", {"e_t"}},
+      {"rigid", {}},
   };
   const SceneSchema& schema = impactlab::scene_schema(impactlab::load_scene("jin2003"));
   for (const auto& [model, keys] : unread) {
@@ -92,7 +92,7 @@ TEST(ModelKeys, Jin2003ModelsReadTheKeysTheirCodeReads) {
     }
   }
   EXPECT_EQ(impactlab::unread_key_reason(jin2003_with_model("newton"), schema, "e_t"),
-            "model = newton does not read e_t (read by model = paper)");
+            "model = newton does not read e_t (read by model = paper|rigid)");
   EXPECT_EQ(impactlab::unread_key_reason(jin2003_with_model("paper"), schema, "spin"),
             "model = paper does not read spin (read by model = rigid)");
 }
@@ -114,7 +114,7 @@ TEST(ModelKeys, ModelsReadingListsTheDeclaredModelsOrEveryChoice) {
                                    [&](const KeySpec& k) { return k.key == key; });
     return impactlab::model_names(impactlab::models_reading(schema, *spec));
   };
-  EXPECT_EQ(listed("e_t"), "paper");
+  EXPECT_EQ(listed("e_t"), "paper|rigid");
   EXPECT_EQ(listed("radius"), "rigid");
   EXPECT_EQ(listed("mu"), "newton|paper|rigid");
 }
@@ -126,7 +126,7 @@ TEST(ModelKeys, SweepOfAKeyTheModelDoesNotReadIsRefusedNamingParam) {
   spec.params = {"e_t=-0.5:0:3"};
   EXPECT_EQ(bad_input_key([&] { impactlab::make_sweep_plan(spec, newton, schema); }), "param");
   EXPECT_EQ(bad_input_message([&] { impactlab::make_sweep_plan(spec, newton, schema); }),
-            "param = e_t: model = newton does not read e_t (read by model = paper)");
+            "param = e_t: model = newton does not read e_t (read by model = paper|rigid)");
   // the second axis of a map too
   spec.params = {"omega=6:7:2", "radius=0:0.01:2"};
   EXPECT_EQ(bad_input_key([&] { impactlab::make_sweep_plan(spec, newton, schema); }), "param");
@@ -183,7 +183,7 @@ TEST(ModelKeys, SettingAKeyTheModelDoesNotReadWarnsOncePerKey) {
       impactlab::unread_key_warnings(newton, schema, {"e_t", "mu", "e_t", "V0"});
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_EQ(warnings[0],
-            "e_t = -0.2: model = newton does not read e_t (read by model = paper); the value "
+            "e_t = -0.2: model = newton does not read e_t (read by model = paper|rigid); the value "
             "changes nothing");
   EXPECT_EQ(impactlab::unread_key_warnings(jin2003_with_model("paper"), schema, {"e_t", "mu"}),
             std::vector<std::string>{});

@@ -29,7 +29,7 @@ TEST(ModelKeysCommandLine, SweepOfAKeyTheModelDoesNotReadExitsTwoNamingIt) {
   const auto out = scratch / "sweep";
   const ProgramRun run =
       run_command_line("sweep jin2003 --param e_t=-0.5:0:3 --quiet --out " + out.string());
-  expect_refused(run, "--param", "e_t", "model = paper");
+  expect_refused(run, "--param", "e_t", "model = paper|rigid");
   EXPECT_FALSE(std::filesystem::exists(out / "meta.json"));
 }
 
@@ -45,7 +45,7 @@ TEST(ModelKeysCommandLine, ContinueOverAKeyTheModelDoesNotReadExitsTwoNamingIt) 
   const ScratchFolder scratch;
   const ProgramRun run = run_command_line("continue jin2003 --param e_t=-0.5:0 --quiet --out " +
                                           (scratch / "branch").string());
-  expect_refused(run, "--param", "e_t", "model = paper");
+  expect_refused(run, "--param", "e_t", "model = paper|rigid");
 }
 
 TEST(ModelKeysCommandLine, ContinueParam2OverAKeyTheModelDoesNotReadExitsTwoNamingIt) {
@@ -61,7 +61,7 @@ TEST(ModelKeysCommandLine, BasinsOverAKeyTheModelDoesNotReadExitsTwoNamingTheAxi
   const ProgramRun run = run_command_line(
       "basins jin2003 --x initial.theta=-0.05:0.05:3 --y e_t=-0.5:0:3 --quiet --out " +
       (scratch / "basins").string());
-  expect_refused(run, "--y", "e_t", "model = paper");
+  expect_refused(run, "--y", "e_t", "model = paper|rigid");
 }
 
 // The line of `listing` that lists `key`.
@@ -74,7 +74,7 @@ std::string key_line(const std::string& listing, const std::string& key) {
 TEST(ModelKeysCommandLine, ScenesShowsWhichModelsReadEachKey) {
   const ProgramRun run = run_impactlab({"scenes", "jin2003"});
   ASSERT_EQ(run.status, 0) << run.err;
-  EXPECT_TRUE(key_line(run.out, "e_t").ends_with("(read by model = paper)")) << run.out;
+  EXPECT_TRUE(key_line(run.out, "e_t").ends_with("(read by model = paper|rigid)")) << run.out;
   EXPECT_TRUE(key_line(run.out, "radius").ends_with("(read by model = rigid)")) << run.out;
   EXPECT_TRUE(key_line(run.out, "spin").ends_with("(read by model = rigid)")) << run.out;
   // the keys every model reads are not marked; the header names the models
@@ -103,7 +103,7 @@ TEST(ModelKeysCommandLine, SetOfAKeyTheModelDoesNotReadWarnsOnceAndChangesNoFile
   ASSERT_EQ(set.status, 0) << set.err;
   EXPECT_EQ(set.err,
             "impactlab: warning: e_t = -0.2: model = newton does not read e_t (read by model = "
-            "paper); the value changes nothing\n");
+            "paper|rigid); the value changes nothing\n");
   // the events are those of the run without it, byte for byte
   const std::string events = slurp(scratch / "plain" / "events.csv");
   EXPECT_GT(count_lines(events), 10);

@@ -9,8 +9,8 @@
 // * the default model of the pendulum stays Model N;
 // * spin free: every impact obeys θ̇⁺ = −e_n θ̇⁻ (γ_N depends on θ̇ alone), and
 //   the tangential velocity change is the one the impulse equations give by
-//   hand: γ_T⁺ = 0 where the ball sticks (then |P_T| ≤ μ P_N), otherwise the
-//   sliding friction −μ s P_N acting on rod and ball;
+//   hand: γ_T⁺ = −e_t γ_T⁻ where the ball sticks (then |P_T| ≤ μ P_N), otherwise
+//   the sliding friction −μ s P_N acting on rod and ball;
 // * bad combinations of radius and spin are BadInput.
 #include <gtest/gtest.h>
 
@@ -120,11 +120,12 @@ TEST(RigidPendulum, DefaultModelIsTheOneDegreeOfFreedomModel) {
   for (const auto& e : output.events) EXPECT_TRUE(std::isnan(e.tangential_velocity_after));
 }
 
-TEST(RigidPendulum, FreeSpinImpactsFollowTheHandImpulseEquations) {
+void expect_free_spin_impacts_follow_the_hand_impulse_equations(double e_t) {
   const double m = 0.5, l = 0.7, b = 0.05, r = 0.01, e_n = 0.3, mu = 0.6;
   const double ball_inertia = 0.4 * m * r * r, sin0 = (b - r) / l;
   const double cos0 = std::sqrt(1.0 - sin0 * sin0);
-  const RunOutput rigid = run_scene({"model=rigid", "spin=free", "radius=0.01"}, 30.0);
+  const RunOutput rigid = run_scene(
+      {"model=rigid", "spin=free", "radius=0.01", "e_t=" + std::to_string(e_t)}, 30.0);
   const auto impacts = impacts_of(rigid);
   ASSERT_GT(impacts.size(), 20u);
   int sticks = 0, slides = 0;
@@ -136,8 +137,9 @@ TEST(RigidPendulum, FreeSpinImpactsFollowTheHandImpulseEquations) {
     const double p_t = (m * l * l * (e.qdot_after - e.qdot_before) + w * l * cos0 * p_n) /
                        (-w * l * sin0);
     EXPECT_GE(p_n, 0.0);
-    if (std::fabs(e.tangential_velocity_after) <= 1e-9) {
+    if (e.sticks) {
       ++sticks;
+      EXPECT_NEAR(e.tangential_velocity_after, -e_t * e.tangential_velocity, 1e-9);
       EXPECT_LE(std::fabs(p_t), mu * p_n * (1.0 + 1e-9));
       continue;
     }
@@ -152,9 +154,15 @@ TEST(RigidPendulum, FreeSpinImpactsFollowTheHandImpulseEquations) {
     EXPECT_NEAR(e.tangential_velocity_after - e.tangential_velocity, delta_gamma, 1e-9);
     EXPECT_GT(e.tangential_velocity_after * e.tangential_velocity, 0.0);  // no reversal
   }
-  EXPECT_GT(sticks, 0);  // both branches of the impulse law were checked
-  EXPECT_GT(slides, 0);
+  EXPECT_GT(sticks, 0) << "e_t = " << e_t;  // both branches of the impulse law were checked
+  EXPECT_GT(slides, 0) << "e_t = " << e_t;
   EXPECT_TRUE(rigid.derived.contains("emergent_e_t_median"));
+}
+
+TEST(RigidPendulum, FreeSpinImpactsFollowTheHandImpulseEquations) {
+  expect_free_spin_impacts_follow_the_hand_impulse_equations(0.0);
+  expect_free_spin_impacts_follow_the_hand_impulse_equations(-0.1);
+  expect_free_spin_impacts_follow_the_hand_impulse_equations(-0.5);
 }
 
 // The generalized contact of the pendulum through the contact-phase solver,
