@@ -14,6 +14,7 @@
 #include <impactlab/analysis/branch_corrector.hpp>
 #include <impactlab/analysis/floquet_multipliers.hpp>
 #include <impactlab/analysis/grazing_system.hpp>
+#include <impactlab/io/scene.hpp>
 
 namespace impactlab {
 
@@ -88,7 +89,8 @@ class BranchDriver {
     b.phase = problem_.phase;
     b.impacts = node.orbit.impacts;
     b.contact_phases = node.orbit.contact_phases;
-    b.multipliers = multipliers_of(node.orbit.monodromy);
+    b.multipliers = node.orbit.one_sided ? missing_multipliers(node.orbit.monodromy.size())
+                                         : multipliers_of(node.orbit.monodromy);
     b.stable = std::all_of(b.multipliers.begin(), b.multipliers.end(),
                            [](const std::complex<double>& m) { return std::abs(m) < 1.0; });
     b.min_impact_speed = node.orbit.min_impact_speed;
@@ -176,6 +178,7 @@ class BranchDriver {
   ContinuationResult run(Correction& start, const Vec& along) {
     if (!accept(start, along, 0.0))
       return stop(StopReason::start_not_converged, "no branch tangent at the start");
+    if (nodes_.back().orbit.one_sided) return stop_on_cone_edge();
     signature_ = nodes_.back().orbit.signature;
     double h = steps_.initial;
     const double direction = to_ >= from_ ? 1.0 : -1.0;
@@ -194,7 +197,8 @@ class BranchDriver {
         predicted[n_] = to_;
         Correction c = corrector_.correct(predicted, corrector_.along_parameter(1.0), predicted,
                                           {}, &signature_);
-        if (c.converged && accept(c, tau, h_end)) return finish();
+        if (c.converged && accept(c, tau, h_end))
+          return nodes_.back().orbit.one_sided ? stop_on_cone_edge() : finish();
         if (c.signature_changed && end_at_grazing(h_end)) return finish();
         h = 0.5 * std::min(h, h_end);
         if (h < steps_.smallest)
@@ -209,6 +213,7 @@ class BranchDriver {
         ok = turned && turned->dot(tau) > std::cos(30.0 * std::numbers::pi / 180.0);
       }
       if (ok && accept(c, tau, h)) {
+        if (nodes_.back().orbit.one_sided) return stop_on_cone_edge();
         // a gap or impact speed about to vanish: end at the grazing point
         // before Newton meets the square-root singularity
         if (GrazingSystem<Size>::grazing_ahead(nodes_, h) && end_at_grazing(h)) return finish();
@@ -235,6 +240,14 @@ class BranchDriver {
                     "step below the smallest: the corrector cannot pass this point");
     }
     return stop(StopReason::max_points, "the branch reached the point limit");
+  }
+
+  // The last point's orbit has an impulse on the friction cone's edge: its
+  // multipliers do not exist, nor does a tangent to follow the branch by.
+  ContinuationResult stop_on_cone_edge() {
+    return stop(StopReason::no_tangent_map,
+                "the orbit at " + to_text(result_.branch.back().parameter) +
+                    " has an impulse on the friction cone's edge: no multipliers");
   }
 
   ContinuationResult stop(StopReason reason, const std::string& detail) {

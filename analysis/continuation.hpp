@@ -54,6 +54,8 @@ enum class StopReason {
   max_points,           // the point limit
   start_not_converged,  // no orbit found at the start
   neutral_drift,        // a held neutral component stopped returning: no periodic orbit
+  no_tangent_map,       // the orbit crosses an event with a one-sided tangent map
+                        // (an impulse on the friction cone's edge): no multipliers
 };
 
 // The bifurcation a two-parameter curve follows.
@@ -89,6 +91,7 @@ constexpr std::string_view to_string(StopReason reason) {
     case StopReason::max_points: return "max_points";
     case StopReason::start_not_converged: return "start_not_converged";
     case StopReason::neutral_drift: return "neutral_drift";
+    case StopReason::no_tangent_map: return "no_tangent_map";
   }
   return "unknown";
 }

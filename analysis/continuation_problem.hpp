@@ -35,6 +35,10 @@ struct OrbitEvaluation {
   int impacts = 0;             // impacts over the n periods
   int contact_phases = 0;      // contact phases (sticking) over the n periods
   int stick_impacts = 0;       // impacts whose contact point stops sliding (EventRecord::sticks)
+  // an event's tangent map is one side's (an impulse on the friction cone's
+  // edge, Transition::one_sided): the monodromy serves Newton, but the
+  // orbit's multipliers do not exist
+  bool one_sided = false;
   std::string signature;       // the walls of the events in order ("+1 +1 -1", "+1 c+1": contact)
   double min_impact_speed = std::numeric_limits<double>::infinity();  // min |q̇⁻| of the impacts
   // the smallest local minimum of a wall gap in flight (not at an impact), from

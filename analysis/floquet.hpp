@@ -35,6 +35,7 @@ struct FlowWithJacobian {
   TangentMatrixOf<N> jacobian{};  // ∂x(t)/∂x(t0) on the tangent space
   Termination termination = Termination::completed;
   std::uint64_t impacts = 0;
+  bool one_sided = false;  // an event's tangent map on the way is one side's (Transition::one_sided)
 };
 
 // The flow from (t0, x0) to t1 and its Jacobian, with a stepper for the
@@ -52,7 +53,7 @@ flow_with_jacobian(const Variational<System>& tangent, Stepper& stepper, const F
   const auto run =
       simulate(tangent, stepper, tangent.start(x0, mode), mode, t0, t1, loop_options(setup), log);
   return {Tangent::base_state(run.state), run.mode, Tangent::fundamental_matrix(run.state),
-          run.termination, log.count(EventKind::impact)};
+          run.termination, log.count(EventKind::impact), run.counters.one_sided_events > 0};
 }
 
 // The tangent dynamics the analyses run for a system: the variational
@@ -113,7 +114,9 @@ struct PeriodicOrbit {
 // with (M − I) δ = −(Pⁿ(x) − x), from `guess` on the section t0; span = nT (s). A step that makes the
 // residual grow, or leaves the admissible states (the run stops), is halved,
 // up to 20 times. Stops when the residual is below tolerance × (1 + |x|), or
-// after max_iterations.
+// after max_iterations. An orbit whose map crosses an event with a one-sided
+// tangent map (an impulse on the friction cone's edge) ends no_tangent_map,
+// its monodromy and multipliers NaN.
 // All its flows with the caller's stepper (see flow_with_jacobian above).
 template <HasJacobian System, class Stepper>
 PeriodicOrbit<typename System::State, typename System::Mode, tangent_dimension_of<System>>
@@ -165,6 +168,14 @@ locate_periodic_orbit(const Variational<System>& tangent, Stepper& stepper,
     }
     if (!accepted) break;
   }
+  if (image.one_sided && orbit.termination == Termination::completed) {
+    // the orbit crosses an event with no derivative: Newton's steps may use
+    // one side's, but its monodromy and multipliers do not exist
+    orbit.termination = Termination::no_tangent_map;
+    for (auto& row : orbit.monodromy) row.fill(std::numeric_limits<double>::quiet_NaN());
+    orbit.multipliers.fill(std::numeric_limits<double>::quiet_NaN());
+    return orbit;
+  }
   orbit.multipliers = eigenvalues(orbit.monodromy);
   return orbit;
 }
@@ -194,7 +205,8 @@ struct LyapunovResult {
 // Jacobian (saltation matrices included) and renormalised; the growth of its
 // logarithm is averaged over `periods` periods after `alignment_periods`
 // periods that let it turn into the most unstable direction. A trajectory
-// that merges nearby states (rest on a wall) gives −∞.
+// that merges nearby states (rest on a wall) gives −∞; one that crosses an
+// event with a one-sided tangent map gives NaN and no_tangent_map.
 // All its periods with the caller's stepper (see flow_with_jacobian above).
 template <HasJacobian System, class Stepper>
 LyapunovResult largest_lyapunov_exponent(const Variational<System>& tangent, Stepper& stepper,
@@ -210,8 +222,8 @@ LyapunovResult largest_lyapunov_exponent(const Variational<System>& tangent, Ste
     const double ta = t0 + k * period;
     const auto step =
         flow_with_jacobian(tangent, stepper, setup, x, mode, ta, t0 + (k + 1) * period);
-    if (step.termination != Termination::completed) {
-      result.termination = step.termination;
+    if (step.termination != Termination::completed || step.one_sided) {
+      result.termination = step.one_sided ? Termination::no_tangent_map : step.termination;
       return result;
     }
     x = step.state;

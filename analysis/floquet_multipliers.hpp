@@ -7,6 +7,8 @@
 #pragma once
 
 #include <complex>
+#include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace impactlab {
@@ -18,6 +20,13 @@ using MonodromyMatrix = std::vector<std::vector<double>>;
 // complex pair, the one with the positive imaginary part first); NaN where M
 // is not finite or its real Schur form does not converge.
 std::vector<std::complex<double>> multipliers_of(const MonodromyMatrix& m);
+
+// The N multipliers of an orbit that has none (its map crosses an event with
+// a one-sided tangent map): NaN.
+inline std::vector<std::complex<double>> missing_multipliers(std::size_t n) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  return std::vector<std::complex<double>>(n, {nan, nan});
+}
 
 // The eigenvector of M for the real multiplier nearest `multiplier`, unit
 // length: the direction a period-doubled orbit leaves along (multiplier −1).

@@ -196,7 +196,10 @@ SectionResult run_section(const System& system, const typename System::State& x0
             system, lyapunov_setup, x_record, mode_record, result.record_start, period, periods,
             request.lyapunov_alignment_periods);
         result.lyapunov = lyapunov.exponent;
-        if (lyapunov.termination != Termination::completed)
+        if (lyapunov.termination == Termination::no_tangent_map)
+          result.lyapunov_note = "an event on the way has no tangent map (an impulse on the "
+                                 "friction cone's edge)";
+        else if (lyapunov.termination != Termination::completed)
           result.lyapunov_note = "the tangent run stopped early";
       } else {
         result.lyapunov_note = "this oscillator/model has no Jacobians";

@@ -17,7 +17,8 @@
 //
 // Special cases: a grazing touch (ḣ = 0, where S is singular) is passed with
 // the identity; a transition that collapses nearby states into one (rest on a
-// wall after an accumulation, a release at a time set by the forcing) has S = 0.
+// wall after an accumulation, a release at a time set by the forcing) has S = 0;
+// an event on a switch of its reset has only one side's (Saltation::one_sided).
 #pragma once
 
 #include <cmath>
@@ -27,21 +28,27 @@
 
 namespace impactlab {
 
+template <std::size_t N>
+struct Saltation {
+  TangentMatrixOf<N> matrix{};
+  bool one_sided = false;  // the reset's derivative is one side's (ResetJacobianOf::one_sided)
+};
+
 template <HasJacobian System>
-TangentMatrixOf<tangent_dimension_of<System>> saltation_matrix(const System& system, typename System::Mode mode_before,
+Saltation<tangent_dimension_of<System>> saltation_matrix(const System& system, typename System::Mode mode_before,
                                std::size_t witness, CrossingKind crossing,
                                const typename System::State& x_before, double t,
                                const Transition<typename System::State, typename System::Mode>&
                                    after) {
   constexpr std::size_t n = tangent_dimension_of<System>;
   using Matrix = TangentMatrixOf<n>;
-  if (crossing == CrossingKind::grazing || after.stop) return identity_reset<n>().state;
+  if (crossing == CrossingKind::grazing || after.stop) return {identity_reset<n>().state};
   const ResetJacobianOf<n> reset =
       system.reset_jacobian(mode_before, witness, crossing, x_before, t, after);
-  if (reset.collapses) return Matrix{};
+  if (reset.collapses) return {Matrix{}, reset.one_sided};
 
   const WitnessSample h = system.witness(mode_before, witness, x_before, t);
-  if (h.rate == 0.0) return reset.state;
+  if (h.rate == 0.0) return {reset.state, reset.one_sided};
   typename System::State f_before{}, f_after{};
   system.rhs(mode_before, x_before, f_before, t);
   system.rhs(after.mode, after.state, f_after, after.time);
@@ -55,7 +62,7 @@ TangentMatrixOf<tangent_dimension_of<System>> saltation_matrix(const System& sys
     for (std::size_t j = 0; j < n; ++j) jump -= reset.state[i][j] * f_before[j];
     for (std::size_t j = 0; j < n; ++j) s[i][j] += jump * gradient[j] / h.rate;
   }
-  return s;
+  return {s, reset.one_sided};
 }
 
 template <std::size_t N>

@@ -119,13 +119,13 @@ struct SectionRequest {
 // max_periods did not fill.
 enum class SectionTermination {
   completed, stopped_by_model, no_progress, frozen_time, non_finite_state, step_budget,
-  integrator_failure,
+  integrator_failure, no_tangent_map,
   transient_impacts_not_reached,  // the transient's impacts (transient_impacts)
   crossings_not_reached,          // the crossings of a user-given section
   impacts_not_reached,            // the impacts of the impact section
 };
-static_assert(static_cast<int>(SectionTermination::integrator_failure) ==
-              static_cast<int>(Termination::integrator_failure));
+static_assert(static_cast<int>(SectionTermination::no_tangent_map) ==
+              static_cast<int>(Termination::no_tangent_map));
 
 constexpr SectionTermination section_termination(Termination termination) {
   return static_cast<SectionTermination>(termination);

@@ -85,6 +85,7 @@ ContinuationProblem stroboscopic_map_problem(MakeSystem make_system,
                           sampler);
         });
     if (run.termination != Termination::completed || run.mode != shared->flight_mode) return result;
+    result.one_sided = run.counters.one_sided_events > 0;
     const auto state = Tangent::base_state(run.state);
     result.completed = std::all_of(state.begin(), state.begin() + n,
                                    [](double component) { return std::isfinite(component); });

@@ -152,9 +152,10 @@ class Variational {
                                    const State& v, double t, EventLog& log) const {
     const BaseState x = base_state(v);
     const auto after = base_.on_event(mode, k, crossing, x, t, log);
-    const Matrix phi =
-        multiply(saltation_matrix(base_, mode, k, crossing, x, t, after), fundamental_matrix(v));
-    return {with_matrix(after.state, phi), after.mode, after.time, after.stop};
+    const auto saltation = saltation_matrix(base_, mode, k, crossing, x, t, after);
+    const Matrix phi = multiply(saltation.matrix, fundamental_matrix(v));
+    return {with_matrix(after.state, phi), after.mode, after.time, after.stop,
+            saltation.one_sided || after.one_sided};
   }
 
   // For a base whose exact flow is affine in the initial state, the flow's

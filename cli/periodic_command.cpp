@@ -43,7 +43,8 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
   run_files.commit();
   if (!options.scene.quiet) {
     std::string multipliers;
-    for (const auto& multiplier : result.multipliers)
+    if (result.termination == Termination::no_tangent_map) multipliers = "none";
+    else for (const auto& multiplier : result.multipliers)
       multipliers += fmt::format("{}{:.9g}{:+.9g}i", multipliers.empty() ? "" : ", ",
                                  multiplier.real(), multiplier.imag());
     std::cout << fmt::format(
@@ -52,9 +53,14 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
         result.iterations, result.residual, multipliers, (directory / "periodic.json").string());
   }
   if (result.termination != Termination::completed)
-    std::cerr << fmt::format("impactlab: run stopped early ({}) at the section time {} s\n",
-                             to_string(result.termination), result.t_section);
-  return result.converged ? exit_done : exit_stopped_early;
+    std::cerr << fmt::format("impactlab: run stopped early ({}) at the section time {} s{}\n",
+                             to_string(result.termination), result.t_section,
+                             result.termination == Termination::no_tangent_map
+                                 ? ": an event of the orbit has no saltation matrix (an impulse "
+                                   "on the friction cone's edge), so its multipliers do not exist"
+                                 : "");
+  return result.converged && result.termination == Termination::completed ? exit_done
+                                                                         : exit_stopped_early;
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 // accumulation of impacts that ends in a contact.
 #include <impactlab/oscillators/pendulum_walls/rigid_pendulum_walls.hpp>
 
+#include <cmath>
+
 namespace impactlab {
 
 auto RigidPendulumWalls::impact_at(int wall, const State& x, double t) const -> WallImpact {
@@ -20,7 +22,19 @@ auto RigidPendulumWalls::impact_at(int wall, const State& x, double t) const -> 
 auto RigidPendulumWalls::impact_case(int wall, const State& x, double t) const -> ImpactCase {
   const rigidbody::NewtonCoulombImpulse<2> impulse = impact_at(wall, x, t).impulse;
   // the slide's impulse is j (1, −μ s) with j > 0: s is the tangential part's opposite sign
-  return {impulse.regime, impulse.impulse(1) > 0.0 ? -1.0 : 1.0};
+  const double needed = friction_to_stick(wall, x, t);
+  const bool on_edge = std::fabs(needed - p_.mu) <= cone_edge_tolerance * p_.mu;
+  return {impulse.regime, impulse.impulse(1) > 0.0 ? -1.0 : 1.0, on_edge};
+}
+
+double RigidPendulumWalls::friction_to_stick(int wall, const State& x, double t) const {
+  if (!spin_free_) return NAN;
+  // the stick impulse is the one the law takes when no friction bound holds it
+  const rigidbody::ImpactCoefficients unbounded{p_.e_n, INFINITY, p_.e_t};
+  const auto result = rigidbody::generalized_impact<2>(
+      free_spin_contact(wall, x, t), Eigen::Vector2d(x[1], x[spin_rate]), unbounded);
+  if (result.impulse.regime != rigidbody::ImpulseRegime::stick) return NAN;
+  return std::fabs(result.impulse.impulse(1)) / result.impulse.impulse(0);
 }
 
 auto RigidPendulumWalls::on_wall_reached(int wall, CrossingKind crossing, const State& x, double t,

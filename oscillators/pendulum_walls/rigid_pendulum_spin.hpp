@@ -23,9 +23,11 @@
 //   release      the ball leaves the wall at rest with the spin it has.
 // The saltation matrix is then analysis/saltation.hpp's. A contact phase
 // pins θ and θ̇; sticking (rolling) pins the spin too. Where no saltation
-// matrix exists the event loop has already stopped with a typed Painlevé
-// termination (on_event's stop), and the analyses report that run as
-// stopped, never a matrix.
+// matrix exists, the analyses report a typed termination, never a matrix: a
+// Painlevé configuration (the event loop's own stop), and an impulse on the
+// friction cone's edge, where the stick and slide cases give the same rates
+// but not the same derivatives (the reset is marked one-sided, the run goes
+// on, and what would report the linearisation says no_tangent_map).
 #pragma once
 
 #include <array>
@@ -89,9 +91,12 @@ class RigidPendulumOf : public RigidPendulumWalls {
     const std::array<TangentAndTime, 5> xd = seeded<TangentAndTime>(x);
     const TangentAndTime td(t, unit<TangentAndTime>(tangent_dimension));
     std::array<TangentAndTime, tangent_dimension> reset;
+    bool one_sided = false;
     if (mode == Mode::free) {
       const int wall = k == 0 ? 1 : -1;
-      const std::array<TangentAndTime, 2> rates = rates_after_impact(wall, impact_case(wall, x, t), xd, td);
+      const ImpactCase impact = impact_case(wall, x, t);
+      one_sided = impact.on_cone_edge;
+      const std::array<TangentAndTime, 2> rates = rates_after_impact(wall, impact, xd, td);
       reset[0] = TangentAndTime(wall * wall_angle());
       reset[1] = rates[0];
       if constexpr (spin == RigidSpin::free) reset[2] = rates[1];
@@ -120,6 +125,7 @@ class RigidPendulumOf : public RigidPendulumWalls {
         jacobian.state[i][j] = reset[i].derivative(j);
       jacobian.time[i] = reset[i].derivative(tangent_dimension);
     }
+    jacobian.one_sided = one_sided;
     return jacobian;
   }
 

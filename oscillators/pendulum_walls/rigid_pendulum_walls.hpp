@@ -266,12 +266,23 @@ class RigidPendulumWalls {
 
   // Which case of the Newton–Coulomb impulse an impact at wall w takes from
   // state x at time t: stick, slide (with the slip's sign s, which fixes the
-  // friction's direction), or neither (separating, inconsistent).
+  // friction's direction), or neither (separating, inconsistent); and whether
+  // its impulse lies on the friction cone's edge, |μ − friction_to_stick| ≤
+  // cone_edge_tolerance μ (spin free only: with the spin locked the stick
+  // case is reached only where the slip is zero), where the two cases give
+  // the same rates but not the same derivatives.
+  static constexpr double cone_edge_tolerance = 1e-8;
   struct ImpactCase {
     rigidbody::ImpulseRegime regime = rigidbody::ImpulseRegime::separating;
     double slip_sign = 1.0;
+    bool on_cone_edge = false;
   };
   [[nodiscard]] ImpactCase impact_case(int wall, const State& x, double t) const;
+  // The friction coefficient an impact at wall w from (x, t) needs to stick,
+  // |J_T| / J_N of the stick impulse (spin free): the impact sticks for
+  // μ ≥ this and slides below it. NaN where no stick impulse pushes the ball
+  // off the wall (J_N < 0) or the spin is locked.
+  [[nodiscard]] double friction_to_stick(int wall, const State& x, double t) const;
 
   // The rates (θ̇⁺, φ̇⁺) just after an impact at wall w in a given case of
   // the impulse, over a number type: the impulse law of

@@ -54,6 +54,11 @@ struct ResetJacobianOf {
   // accumulation of impacts ending at rest on a wall, a release at a time set
   // by the forcing alone. Nearby states merge, so the saltation matrix is zero.
   bool collapses = false;
+  // The matrix is one side's: the state before the event sits on a switch of
+  // the reset (an impulse on the friction cone's edge, where sticking and
+  // sliding give the same state after but not the same derivative), so no
+  // derivative exists there (Transition::one_sided).
+  bool one_sided = false;
 };
 using ResetJacobian = ResetJacobianOf<default_tangent_dimension>;
 

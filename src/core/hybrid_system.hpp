@@ -52,6 +52,12 @@ struct Transition {
   Mode mode{};
   double time = 0.0;
   bool stop = false;
+  // The event's tangent map is one side's only: the state before it sits on
+  // a switch of the reset (an impulse on the friction cone's edge), where the
+  // two sides give the same state but not the same derivative. The run goes
+  // on; the analyses that report a linearisation (multipliers, Lyapunov
+  // exponents) report Termination::no_tangent_map instead.
+  bool one_sided = false;
 };
 
 // The concept itself. `Mode` is an enum; witness k of a mode is addressed by

@@ -62,6 +62,7 @@ struct RunCounters {
   std::uint64_t steps = 0;
   std::uint64_t rhs_evaluations = 0;
   std::uint64_t events = 0;
+  std::uint64_t one_sided_events = 0;  // with a one-sided tangent map (Transition::one_sided)
 };
 
 template <class State, class Mode>
@@ -116,6 +117,7 @@ RunResult<typename System::State, typename System::Mode> simulate(
   auto apply_event = [&](std::size_t witness, CrossingKind kind, double te, const State& xe) {
     ++result.counters.events;
     const auto transition = system.on_event(rhs.mode, witness, kind, xe, te, log);
+    if (transition.one_sided) ++result.counters.one_sided_events;
     if (transition.stop) {
       t = te;
       x = transition.state;

@@ -18,6 +18,10 @@ enum class Termination {
   step_budget,      // the run took LoopOptions::step_budget steps without reaching the end
   integrator_failure,  // the stepper could not take a step (its error control gave up,
                        // a GSL routine failed): an exception from do_step
+  no_tangent_map,      // set by the analyses, not the loop: a linearisation they
+                       // would report (multipliers, Lyapunov exponents) crosses an
+                       // event whose tangent map is one-sided (an impulse on the
+                       // friction cone's edge: Transition::one_sided)
 };
 
 constexpr std::string_view to_string(Termination termination) {
@@ -29,6 +33,7 @@ constexpr std::string_view to_string(Termination termination) {
     case Termination::non_finite_state: return "non_finite_state";
     case Termination::step_budget: return "step_budget";
     case Termination::integrator_failure: return "integrator_failure";
+    case Termination::no_tangent_map: return "no_tangent_map";
   }
   return "unknown";
 }

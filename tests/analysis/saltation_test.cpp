@@ -92,7 +92,7 @@ TEST(Saltation, LinearImpactClosedFormSaltationMatrix) {
   ASSERT_EQ(after.mode, impactlab::LinearImpact::Mode::free);
   const TangentMatrix s = impactlab::saltation_matrix(
       system, impactlab::LinearImpact::Mode::free, 0, impactlab::CrossingKind::crossing, x, t,
-      after);
+      after).matrix;
   const double push = p.A * std::cos(p.omega * t) - p.sigma;
   const TangentMatrix expected{{{-p.r, 0.0}, {(1.0 + p.r) * push / v, -p.r}}};
   expect_matrix_near(s, expected, 1e-14);

@@ -15,16 +15,22 @@
 // * with the spin free and no friction it is Model N with the walls moved
 //   in by the radius (asin((b − r)/l), the same rod inertia m l²), plus the
 //   spin's own direction, whose multiplier is 1 (the spin is conserved
-//   through every impact: the frictionless impulse has no tangential part).
+//   through every impact: the frictionless impulse has no tangential part);
+// * an impact on the friction cone's edge (the friction it needs, solved by
+//   hand, equal to μ) has a one-sided tangent map and no Lyapunov exponent,
+//   and one a part in a million off the edge has both.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iomanip>
+#include <sstream>
 #include <cmath>
 #include <numbers>
 #include <random>
 #include <string>
 #include <vector>
 
+#include <impactlab/analysis/floquet.hpp>
 #include <impactlab/analysis/flow_setup.hpp>
 #include <impactlab/analysis/stroboscopic_map_problem.hpp>
 #include <impactlab/api/bindings/pendulum_walls_binding.hpp>
@@ -189,6 +195,7 @@ void expect_monodromy_is_the_central_difference(const MapCase& c) {
   const OrbitPoint x0(x.begin(), x.begin() + n);
   const OrbitEvaluation at = map.evaluate(x0, 0.0, phase, false, {});
   ASSERT_TRUE(at.completed) << c.name;
+  EXPECT_FALSE(at.one_sided) << c.name << ": no impulse of the stretch is on the cone's edge";
 
   double largest = 0.0;
   for (const auto& row : at.monodromy)
@@ -428,6 +435,122 @@ TEST(RigidPendulumSpin, PeriodicAndContinuedOrbitsAreTheBruteForceSections) {
     }
     EXPECT_GE(compared, 1) << spin;
   }
+}
+
+}  // namespace
+}  // namespace impactlab
+
+namespace impactlab {
+namespace {
+
+// The friction |J_T| / J_N a sticking impact needs, solved by hand from an
+// impact's record: K = W M⁻¹ Wᵀ of the ball on wall w at θ = w θ0 (spin
+// free), the stick's velocity jump Δγ = (−(1 + e_n) γ_N, −(1 + e_t) γ_T),
+// J = K⁻¹ Δγ by Cramer's rule.
+double friction_a_stick_needs(const EventRecord& impact, const Scene& scene) {
+  const double m = scene.number("m"), l = scene.number("l"), r = scene.number("radius");
+  const double e_n = scene.number("e_n"), e_t = scene.number("e_t");
+  const double w = impact.wall;
+  const double sin0 = (scene.number("b") - r) / l, cos0 = std::sqrt(1.0 - sin0 * sin0);
+  const double rod = m * l * l, ball = 0.4 * m * r * r;
+  // W_N = (−w l cos θ0, 0), W_T = (−w l sin θ0, −w r) at θ = w θ0
+  const double n_theta = -w * l * cos0, t_theta = -w * l * sin0, t_phi = -w * r;
+  const double k_nn = n_theta * n_theta / rod, k_nt = n_theta * t_theta / rod;
+  const double k_tt = t_theta * t_theta / rod + t_phi * t_phi / ball;
+  const double delta_n = -(1.0 + e_n) * n_theta * impact.qdot_before;
+  const double delta_t = -(1.0 + e_t) * impact.tangential_velocity;
+  const double determinant = k_nn * k_tt - k_nt * k_nt;
+  const double j_n = (k_tt * delta_n - k_nt * delta_t) / determinant;
+  const double j_t = (k_nn * delta_t - k_nt * delta_n) / determinant;
+  return std::fabs(j_t) / j_n;
+}
+
+// The symmetric period-2 orbit at V0 = 2, μ = 2 (spin free) slides at one
+// wall and meets the other on the friction cone's edge: its spin returns
+// only if the two tangential impulses cancel, and the slide's is μ J_N, so
+// the other's is μ J_N too. Measured by hand from the impacts.
+//
+// An impact exactly on the edge has no derivative: with μ set to the
+// friction the first impact of a stretch needs (by hand, from the run at
+// μ = 2; the flight before it does not depend on μ), the tangent run marks
+// it one-sided and the Lyapunov exponent is NaN with no_tangent_map; a
+// part in a million either side of the edge, the stretch has its tangent map.
+TEST(RigidPendulumSpin, AnImpactOnTheConesEdgeHasNoTangentMap) {
+  using System = FreeSpinPendulum;
+  using Tangent = TangentOf<System>;
+  const std::vector<std::string> assignments = with({"spin=free", "V0=2", "mu=2"});
+  const Scene scene = pendulum_scene(assignments);
+  const System system(rigid_pendulum_parameters(scene));
+  const FlowSetup setup = flow_setup(scene);
+  const double period = 2.0 * std::numbers::pi / system.parameters().omega;
+  System::State x = rigid_pendulum_initial_state(scene, system);
+  System::Mode mode = System::Mode::free;
+  double t = 0.0;
+  auto run_to = [&](double until, EventLog& log) {
+    return with_flow<System>(setup.method, stepper_settings(system, setup), [&](auto& stepper) {
+      return simulate(system, stepper, x, mode, t, until, loop_options(setup), log);
+    });
+  };
+  EventLog transient(false);
+  const auto settled = run_to(2500.0 * period, transient);
+  ASSERT_EQ(settled.termination, Termination::completed);
+  x = settled.state;
+  mode = settled.mode;
+  t = settled.t;
+  ASSERT_EQ(mode, System::Mode::free);
+
+  // the friction each impact of the next two periods needs
+  auto needed_along = [&](const auto& flow_system, auto start) {
+    using Flow = std::decay_t<decltype(flow_system)>;
+    EventLog log(true);
+    const auto run = with_flow<Flow>(setup.method, stepper_settings(flow_system, setup),
+                                     [&](auto& stepper) {
+                                       return simulate(flow_system, stepper, start, mode, t,
+                                                       t + 2.0 * period, loop_options(setup), log);
+                                     });
+    EXPECT_EQ(run.termination, Termination::completed);
+    std::vector<double> needed;
+    for (const EventRecord& e : log.records())
+      if (e.kind == EventKind::impact) needed.push_back(friction_a_stick_needs(e, scene));
+    return needed;
+  };
+  const std::vector<double> needed = needed_along(system, x);
+  ASSERT_EQ(needed.size(), 2u);
+  EXPECT_NEAR(std::min(needed[0], needed[1]), 2.0, 2e-7)
+      << "the spin balance puts one impact on the edge";
+  EXPECT_GT(std::max(needed[0], needed[1]), 2.5) << "the other slides";
+
+  // the tangent run's own first impact (its flight does not depend on μ), put
+  // on the edge by setting μ to what it needs
+  const Tangent tangent{DecoratedSystem<System>(system)};
+  const double edge = needed_along(tangent, tangent.start(x, mode)).at(0);
+  auto tangent_run_at = [&](double mu) {
+    std::vector<std::string> at = assignments;
+    std::ostringstream value;
+    value << "mu=" << std::setprecision(17) << mu;
+    at.push_back(value.str());
+    const System edged(rigid_pendulum_parameters(pendulum_scene(at)));
+    const Tangent edged_tangent{DecoratedSystem<System>(edged)};
+    const auto image = with_flow<Tangent>(
+        setup.method, stepper_settings(edged_tangent, setup), [&](auto& stepper) {
+          return flow_with_jacobian(edged_tangent, stepper, setup, x, mode, t, t + 2.0 * period);
+        });
+    EXPECT_EQ(image.termination, Termination::completed) << mu;
+    return std::pair{image.one_sided,
+                     largest_lyapunov_exponent(edged, setup, x, mode, t, period, 4, 1)};
+  };
+  const auto [on_edge, lyapunov] = tangent_run_at(edge);
+  EXPECT_TRUE(on_edge);
+  EXPECT_EQ(lyapunov.termination, Termination::no_tangent_map);
+  EXPECT_TRUE(std::isnan(lyapunov.exponent));
+  // inside the cone the stick pulls the spin back onto the edge by −e_t per
+  // cycle, so only the first stretch is off it; outside, the slide leaves
+  // the spin alone and the exponent exists
+  EXPECT_FALSE(tangent_run_at(edge * (1.0 + 1e-6)).first);
+  const auto [one_sided, sliding] = tangent_run_at(edge * (1.0 - 1e-6));
+  EXPECT_FALSE(one_sided);
+  EXPECT_EQ(sliding.termination, Termination::completed);
+  EXPECT_TRUE(std::isfinite(sliding.exponent));
 }
 
 }  // namespace
