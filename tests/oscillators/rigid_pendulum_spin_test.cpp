@@ -18,7 +18,9 @@
 //   through every impact: the frictionless impulse has no tangential part);
 // * an impact on the friction cone's edge (the friction it needs, solved by
 //   hand, equal to μ) has a one-sided tangent map and no Lyapunov exponent,
-//   and one a part in a million off the edge has both.
+//   and one a part in a million off the edge has both;
+// * where continuation in μ locates an impact that stops sticking, the
+//   friction cone condition solved by hand holds to 1e-9 in μ.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -551,6 +553,58 @@ TEST(RigidPendulumSpin, AnImpactOnTheConesEdgeHasNoTangentMap) {
   EXPECT_FALSE(one_sided);
   EXPECT_EQ(sliding.termination, Termination::completed);
   EXPECT_TRUE(std::isfinite(sliding.exponent));
+}
+
+// Continued down in μ from 16, the period-2 orbit of V0 = 2 sticks at both
+// walls until the friction a stick needs exceeds μ; there an impact starts to
+// slide (stick_end). At the located μ, the impact's friction cone condition
+// |J_T| = μ J_N, solved by hand from the located orbit's impacts, holds.
+TEST(RigidPendulumSpin, ALocatedStickEndIsWhereTheImpulseReachesTheConesEdge) {
+  const std::vector<std::string> assignments = {"model=rigid", "radius=0.02", "spin=free", "V0=2",
+                                                "mu=16"};
+  ContinuationJob job;
+  job.parameter = "mu";
+  job.from = 16.0;
+  job.to = 12.0;
+  job.period = 2;
+  job.transient_periods = 2000;
+  const ContinuationJobResult continued = continue_orbit(pendulum_scene(assignments), job);
+  const ContinuationResult& branch = continued.branches.at(0).result;
+  const auto stick_end = std::find_if(branch.points.begin(), branch.points.end(),
+                                      [](const BifurcationPoint& point) {
+                                        return point.type == BifurcationType::stick_end;
+                                      });
+  ASSERT_NE(stick_end, branch.points.end()) << branch.stop_detail;
+  ASSERT_TRUE(stick_end->located);
+  const double mu = stick_end->parameter;
+  // on the edge, no multipliers
+  for (const auto& multiplier : stick_end->multipliers) EXPECT_TRUE(std::isnan(multiplier.real()));
+
+  // the located orbit, run at the located μ from its section state (phase 0)
+  std::vector<std::string> at = assignments;
+  std::ostringstream value;
+  value << "mu=" << std::setprecision(17) << mu;
+  at.push_back(value.str());
+  const Scene scene = pendulum_scene(at);
+  using System = FreeSpinPendulum;
+  const System system(rigid_pendulum_parameters(scene));
+  const FlowSetup setup = flow_setup(scene);
+  const double period = 2.0 * std::numbers::pi / system.parameters().omega;
+  ASSERT_EQ(stick_end->state.size(), 3u);
+  const System::State x{stick_end->state[0], stick_end->state[1], stick_end->state[2], 0.0, 0.0};
+  EventLog log(true);
+  const auto run = with_flow<System>(setup.method, stepper_settings(system, setup),
+                                     [&](auto& stepper) {
+                                       return simulate(system, stepper, x, System::Mode::free,
+                                                       0.0, 2.0 * period, loop_options(setup),
+                                                       log);
+                                     });
+  ASSERT_EQ(run.termination, Termination::completed);
+  double nearest = INFINITY;
+  for (const EventRecord& e : log.records())
+    if (e.kind == EventKind::impact)
+      nearest = std::min(nearest, std::fabs(friction_a_stick_needs(e, scene) - mu));
+  EXPECT_LE(nearest, 1e-9);  // measured: 4.4e-10 at μ = 13.6297158
 }
 
 }  // namespace
