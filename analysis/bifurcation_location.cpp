@@ -116,8 +116,7 @@ BifurcationPoint BifurcationLocator<Size>::locate_count_change(int OrbitEvaluati
     point.type = grows ? BifurcationType::stick_onset : BifurcationType::stick_end;
   point.parameter = 0.5 * (a.y[n] + b.y[n]) * scale;
   point.state = corrector_.reported_state(b.y);
-  point.multipliers = b.orbit.one_sided ? missing_multipliers(b.orbit.monodromy.size())
-                                        : multipliers_of(b.orbit.monodromy);
+  point.multipliers = multipliers_of(b.orbit);
   point.error_estimate = 0.5 * std::fabs(b.y[n] - a.y[n]) * scale;
   point.note = "detected between two branch points";
   if (!corrector_.request().locate) return point;
@@ -149,8 +148,7 @@ BifurcationPoint BifurcationLocator<Size>::locate_count_change(int OrbitEvaluati
   if (c.converged) {
     point.parameter = c.y[n] * scale;
     point.state = corrector_.reported_state(c.y);
-    point.multipliers = c.orbit.one_sided ? missing_multipliers(c.orbit.monodromy.size())
-                                          : multipliers_of(c.orbit.monodromy);
+    point.multipliers = multipliers_of(c.orbit);
     point.error_estimate = std::fabs(p_high - p_low) * scale;
     point.located = true;
     point.note = count_change_note(count, a.orbit.*count, b.orbit.*count);

@@ -89,8 +89,7 @@ class BranchDriver {
     b.phase = problem_.phase;
     b.impacts = node.orbit.impacts;
     b.contact_phases = node.orbit.contact_phases;
-    b.multipliers = node.orbit.one_sided ? missing_multipliers(node.orbit.monodromy.size())
-                                         : multipliers_of(node.orbit.monodromy);
+    b.multipliers = multipliers_of(node.orbit);
     b.stable = std::all_of(b.multipliers.begin(), b.multipliers.end(),
                            [](const std::complex<double>& m) { return std::abs(m) < 1.0; });
     b.min_impact_speed = node.orbit.min_impact_speed;

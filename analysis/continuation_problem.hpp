@@ -7,6 +7,7 @@
 // and impact_map_problem.hpp build a problem for a concrete system.
 #pragma once
 
+#include <complex>
 #include <cstddef>
 #include <functional>
 #include <limits>
@@ -53,6 +54,13 @@ struct OrbitEvaluation {
   double span = 0.0;                // nT (s)
   double omega = 0.0;               // forcing frequency (rad/s)
 };
+
+// The orbit's Floquet multipliers, NaN where its map crosses an event with a
+// one-sided tangent map (OrbitEvaluation::one_sided).
+inline std::vector<std::complex<double>> multipliers_of(const OrbitEvaluation& orbit) {
+  return orbit.one_sided ? missing_multipliers(orbit.monodromy.size())
+                         : multipliers_of(orbit.monodromy);
+}
 
 // A witness (wall gap) and its rate along the orbit at a time since the section.
 struct GapSample {

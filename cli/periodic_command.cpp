@@ -43,10 +43,10 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
   run_files.commit();
   if (!options.scene.quiet) {
     std::string multipliers;
-    if (result.termination == Termination::no_tangent_map) multipliers = "none";
-    else for (const auto& multiplier : result.multipliers)
+    for (const auto& multiplier : result.multipliers)
       multipliers += fmt::format("{}{:.9g}{:+.9g}i", multipliers.empty() ? "" : ", ",
                                  multiplier.real(), multiplier.imag());
+    if (result.termination == Termination::no_tangent_map) multipliers = "none";
     std::cout << fmt::format(
         "{}: period-{} orbit {} after {} iterations (residual {:.3g}); multipliers {}\nwrote {}\n",
         scene.name, request.period, result.converged ? "converged" : "NOT converged",
