@@ -182,6 +182,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
     if (std::fabs(result.periods_recorded - std::round(result.periods_recorded)) < 1e-6)
       result.periods_recorded = std::round(result.periods_recorded);
     result.impacts = record_log.count(EventKind::impact);
+    result.stick_impacts = record_log.stick_impacts();
     result.contact_phases =
         std::max(record_log.count(EventKind::contact_start), record_log.count(EventKind::contact_end));
     if (result.termination == SectionTermination::completed)

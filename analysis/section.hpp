@@ -161,6 +161,8 @@ struct SectionResult {
   double periods_recorded = 0.0;   // forcing periods in the record window
   std::uint64_t impacts = 0;       // impacts in the record window
   std::uint64_t contact_phases = 0;  // contact phases begun or ended in the record window
+  std::uint64_t stick_impacts = 0;   // impacts in the record window whose impulse stuck
+                                     // (EventRecord::sticks: the rigid model's friction)
   std::uint64_t steps = 0, rhs_evaluations = 0;  // over the whole run
   double lyapunov = std::numeric_limits<double>::quiet_NaN();  // largest exponent (1/time)
   std::string lyapunov_note;       // why it is NaN, where it is

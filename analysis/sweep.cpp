@@ -137,6 +137,9 @@ Classification classify(const SectionResult& result, const SweepPlan& plan) {
     classification.impacts_per_period =
         static_cast<double>(result.impacts) / result.periods_recorded;
   classification.contact = result.contact_phases > 0;
+  if (result.impacts > 0)
+    classification.stick_fraction =
+        static_cast<double>(result.stick_impacts) / static_cast<double>(result.impacts);
   const auto& points = result.points;
   const std::size_t n = points.size();
   double scale = 1.0;
@@ -176,6 +179,7 @@ std::string to_json_line(const SweepRecord& record) {
       {"periods_recorded", r.periods_recorded},
       {"impacts", r.impacts},
       {"contact_phases", r.contact_phases},
+      {"stick_impacts", r.stick_impacts},
       {"steps", r.steps},
       {"rhs_evaluations", r.rhs_evaluations},
       {"lyapunov", fmt::format("{}", r.lyapunov)},
@@ -188,6 +192,7 @@ std::string to_json_line(const SweepRecord& record) {
       {"period", record.classification.period},
       {"impacts_per_period", record.classification.impacts_per_period},
       {"contact", record.classification.contact},
+      {"stick_fraction", fmt::format("{}", record.classification.stick_fraction)},
   };
   if (r.final_state) {
     line["final_state"] = r.final_state->state;
@@ -214,6 +219,7 @@ std::optional<SweepRecord> from_json_line(std::string_view text) {
     r.periods_recorded = line.at("periods_recorded");
     r.impacts = line.at("impacts");
     r.contact_phases = line.at("contact_phases");
+    r.stick_impacts = line.at("stick_impacts");
     r.steps = line.at("steps");
     r.rhs_evaluations = line.at("rhs_evaluations");
     r.lyapunov = number_from_text(line.at("lyapunov"));
@@ -228,6 +234,7 @@ std::optional<SweepRecord> from_json_line(std::string_view text) {
     record.classification.period = line.at("period");
     record.classification.impacts_per_period = line.at("impacts_per_period");
     record.classification.contact = line.at("contact");
+    record.classification.stick_fraction = number_from_text(line.at("stick_fraction"));
     return record;
   } catch (const nlohmann::json::exception&) {
     return std::nullopt;

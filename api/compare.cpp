@@ -173,10 +173,10 @@ nlohmann::json comparison_numbers(const Comparison& comparison) {
       friction_work += c.friction_work;
     }
     std::vector<double> ratios;
-    std::size_t sticking = 0;  // impacts that leave no slip, |γ_T⁺| <= 1e-9 m/s
+    std::size_t sticking = 0;  // impacts whose impulse stuck (EventRecord::sticks)
     for (const auto& e : run.impacts) {
       if (std::isnan(e.tangential_velocity_after)) continue;
-      sticking += std::fabs(e.tangential_velocity_after) <= 1e-9 ? 1 : 0;
+      sticking += e.sticks ? 1 : 0;
       if (std::fabs(e.tangential_velocity) > 1e-9)
         ratios.push_back(e.tangential_velocity_after / e.tangential_velocity);
     }
@@ -241,7 +241,7 @@ std::string comparison_summary(const Comparison& comparison, const nlohmann::jso
       "Scene `{}` ({}), {} forcing periods of T = {:.6g} s from t0 = {:.6g} s. "
       "Each model runs the same scene with only the key `model` changed.\n\n"
       "| model | impacts | contact phases | time in contact (s) | friction work (J) | "
-      "median γ_T⁺/γ_T⁻ | impacts leaving no slip | termination | wall time (s) |\n"
+      "median γ_T⁺/γ_T⁻ | impacts that stick | termination | wall time (s) |\n"
       "|---|---|---|---|---|---|---|---|---|\n",
       scene.name, scene.name, scene.oscillator,
       std::round((comparison.runs.front().output.t_end - comparison.runs.front().output.t0) /
@@ -315,7 +315,7 @@ std::string comparison_summary(const Comparison& comparison, const nlohmann::jso
             radius, spin, std::asin((b - radius) / l), std::asin(b / l));
         if (spin == "free")
           text += "; friction impulses change the ball's spin, so the tangential velocity after "
-                  "an impact comes from the impulse mechanics (stick: γ_T⁺ = 0; slide: the "
+                  "an impact comes from the impulse mechanics (stick: γ_T⁺ = −e_t γ_T⁻; slide: the "
                   "friction impulse −μ s P_N acts on rod and ball together), and in contact the "
                   "ball may roll on the wall (stick) instead of sliding";
         else

@@ -211,6 +211,7 @@ void add_summary(SweepTable& table, const SweepRecord& r) {
   table.period.push_back(r.classification.period);
   table.impacts_per_period.push_back(r.classification.impacts_per_period);
   table.contact.push_back(r.classification.contact ? 1 : 0);
+  table.stick_fraction.push_back(r.classification.stick_fraction);
   table.lyapunov.push_back(r.result.lyapunov);
   table.termination.push_back(r.result.termination);
   table.points.push_back(static_cast<int>(

@@ -88,6 +88,7 @@ struct SweepTable {
   std::vector<int> contact;
   std::vector<SectionTermination> termination;
   std::vector<int> points;
+  std::vector<double> stick_fraction;  // impacts that stuck / impacts; NaN without impacts
 };
 
 SweepTable sweep_table(const SweepPlan& plan, const std::vector<SweepTask>& tasks,

@@ -99,7 +99,7 @@ void write_outputs(RunFiles& run_files, const SweepPlan& plan, const std::vector
     bifurcation.stream() << axis.name << ",k,t,q,qdot,wall,direction\n";
     summary.stream() << axis.name
                      << ",direction,period,impacts_per_period,contact,lyapunov,termination,"
-                        "points\n";
+                        "points,stick_fraction\n";
     for (const SweepRecordKey& key : sweep_row_order(plan, tasks)) {
       SweepTable rows;
       add_bifurcation_rows(rows, plan, checkpoints.load(key));
@@ -112,16 +112,17 @@ void write_outputs(RunFiles& run_files, const SweepPlan& plan, const std::vector
     }
     for (std::size_t row = 0; row < table.value.size(); ++row)
       summary.stream() << number(table.value[row]) << ',' << direction_name(table.direction[row])
-                       << ',' << summary_fields(row) << ',' << table.points[row] << '\n';
+                       << ',' << summary_fields(row) << ',' << table.points[row] << ','
+                       << number(table.stick_fraction[row]) << '\n';
     files = {"bifurcation.csv", "summary.csv"};
     return;
   }
   AtomicFile& classes = run_files.add("classes.csv");
   classes.stream() << plan.axes[0].name << ',' << plan.axes[1].name
-                   << ",period,impacts_per_period,contact,lyapunov,termination\n";
+                   << ",period,impacts_per_period,contact,lyapunov,termination,stick_fraction\n";
   for (std::size_t row = 0; row < table.value.size(); ++row)
     classes.stream() << number(table.value[row]) << ',' << number(table.value2[row]) << ','
-                     << summary_fields(row) << '\n';
+                     << summary_fields(row) << ',' << number(table.stick_fraction[row]) << '\n';
   files = {"classes.csv"};
 }
 
@@ -227,6 +228,8 @@ void write_meta(RunFiles& run_files, const nlohmann::json& definition,
                      "where nearby states merge (rest on a wall)"},
         {"termination", "completed, stopped_by_model, no_progress, ..."},
         {"points", "section points recorded"},
+        {"stick_fraction", "share of the record window's impacts whose impulse stuck (friction "
+                           "stopped the slip; the rigid model, else 0); nan without impacts"},
         {"attractor", "basins: the attractor the point settles on (attractors.csv; 0: none found)"},
         {"basin_points", "basins: grid points that settle on the attractor"}}},
       {"files", files},

@@ -379,6 +379,7 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
   out["period"] = owning_array(std::move(table.period));
   out["impacts_per_period"] = owning_array(std::move(table.impacts_per_period));
   out["contact"] = owning_array(std::move(table.contact));
+  out["stick_fraction"] = owning_array(std::move(table.stick_fraction));
   out["lyapunov"] = owning_array(std::move(table.lyapunov));
   out["termination"] = termination_names(table.termination);
   out["points"] = owning_array(std::move(table.points));

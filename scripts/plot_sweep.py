@@ -48,29 +48,51 @@ def classes(csv, png, param1, param2):
     data = read(csv)
     x = np.unique(data[param1])
     y = np.unique(data[param2])
-    period = np.full((len(y), len(x)), np.nan)
-    lyapunov = np.full((len(y), len(x)), np.nan)
     ix = np.searchsorted(x, data[param1])
     iy = np.searchsorted(y, data[param2])
-    period[iy, ix] = np.where(data["period"] > 0, data["period"], np.nan)
-    lyapunov[iy, ix] = np.asarray(data["lyapunov"], dtype=float)
+
+    def grid(values):
+        cells = np.full((len(y), len(x)), np.nan)
+        cells[iy, ix] = values
+        return cells
+
+    period = grid(np.where(data["period"] > 0, data["period"], np.nan))
+    lyapunov = grid(np.asarray(data["lyapunov"], dtype=float))
     merged = np.isneginf(lyapunov)  # rest on a wall: nearby states merge
     lyapunov[~np.isfinite(lyapunov)] = np.nan
-    panels = 2 if (np.isfinite(lyapunov).any() or merged.any()) else 1
+    names = data.dtype.names
+    sticks = grid(np.asarray(data["stick_fraction"], dtype=float)) \
+        if "stick_fraction" in names else np.full((len(y), len(x)), np.nan)
+    show_lyapunov = np.isfinite(lyapunov).any() or merged.any()
+    show_sticks = bool(np.isfinite(sticks).any() and np.nanmax(sticks) > 0.0)
+    panels = 1 + int(show_lyapunov) + int(show_sticks)
     fig, axes = plt.subplots(1, panels, figsize=(6 * panels, 5), squeeze=False)
     mesh = axes[0, 0].pcolormesh(x, y, period, shading="nearest", cmap="tab10", vmin=0.5,
                                  vmax=10.5)
     fig.colorbar(mesh, ax=axes[0, 0], label="period of the section map (blank: none found)")
     axes[0, 0].set_title("period")
-    if panels == 2:
-        limit = np.nanmax(np.abs(lyapunov)) if np.isfinite(lyapunov).any() else 1.0
-        mesh = axes[0, 1].pcolormesh(x, y, lyapunov, shading="nearest", cmap="coolwarm",
-                                     vmin=-limit, vmax=limit)
-        fig.colorbar(mesh, ax=axes[0, 1], label="largest Lyapunov exponent (1/time)")
+    panel = 1
+    if show_lyapunov:
+        ax = axes[0, panel]
+        panel += 1
+        # the colour range of the bulk of the map: a few transients far out
+        # would otherwise wash it out (arrows on the bar mark those beyond it)
+        finite = np.abs(lyapunov[np.isfinite(lyapunov)])
+        limit = np.percentile(finite, 98) if finite.size else 1.0
+        limit = limit if limit > 0.0 else 1.0
+        mesh = ax.pcolormesh(x, y, lyapunov, shading="nearest", cmap="coolwarm",
+                             vmin=-limit, vmax=limit)
+        fig.colorbar(mesh, ax=ax, label="largest Lyapunov exponent (1/time)", extend="both")
         # -inf (contact phases merge nearby states) in black
-        axes[0, 1].pcolormesh(x, y, np.where(merged, 1.0, np.nan), shading="nearest",
-                              cmap="gray", vmin=1.0, vmax=2.0)
-        axes[0, 1].set_title("largest Lyapunov exponent (black: -inf, contact)")
+        ax.pcolormesh(x, y, np.where(merged, 1.0, np.nan), shading="nearest",
+                      cmap="gray", vmin=1.0, vmax=2.0)
+        ax.set_title("largest Lyapunov exponent (black: -inf, contact; blank: none)")
+    if show_sticks:
+        ax = axes[0, panel]
+        mesh = ax.pcolormesh(x, y, sticks, shading="nearest", cmap="viridis", vmin=0.0,
+                             vmax=1.0)
+        fig.colorbar(mesh, ax=ax, label="share of impacts that stick (friction stops the slip)")
+        ax.set_title("sticking impacts")
     for ax in axes[0]:
         ax.set_xlabel(param1)
         ax.set_ylabel(param2)

@@ -368,6 +368,7 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
                    termination=raw["termination"])
     if len(params) == 1:
         summary["points"] = raw["points"]
+    summary["stick_fraction"] = raw["stick_fraction"]
     return Result(scene=loaded, bifurcation=bifurcation, summary=summary,
                   definition=raw["definition"], wall_time_s=raw["wall_time_s"])
 

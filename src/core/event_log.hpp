@@ -77,6 +77,7 @@ class EventLog {
 
   void record(const EventRecord& event) {
     ++counts_[static_cast<std::size_t>(event.kind)];
+    if (event.kind == EventKind::impact && event.sticks) ++stick_impacts_;
     if (event.kind == EventKind::accumulation && event.accumulation_error > largest_accumulation_error_)
       largest_accumulation_error_ = event.accumulation_error;
     if (keep_records_) records_.push_back(event);
@@ -88,6 +89,8 @@ class EventLog {
   [[nodiscard]] std::uint64_t count(EventKind kind) const {
     return counts_[static_cast<std::size_t>(kind)];
   }
+  // impacts whose impulse stuck (EventRecord::sticks)
+  [[nodiscard]] std::uint64_t stick_impacts() const { return stick_impacts_; }
   [[nodiscard]] std::uint64_t total() const {
     std::uint64_t sum = 0;
     for (const auto n : counts_) sum += n;
@@ -103,6 +106,7 @@ class EventLog {
   EventSink* sink_;
   std::vector<EventRecord> records_;
   std::uint64_t counts_[kind_count] = {};
+  std::uint64_t stick_impacts_ = 0;
   EventRecord last_{};
   double largest_accumulation_error_ = 0.0;
 };

@@ -143,6 +143,30 @@ TEST(Sweep, OneDimensionalColumnsAndBothDirections) {
   EXPECT_FALSE(fs::exists(out / "checkpoint-0.jsonl"));
 }
 
+// The share of impacts that stick, per point: the rigid pendulum at V0 = 2
+// needs a friction of about 13.6 for its impacts to stick and 2 or more for
+// any to (the cone condition solved by hand, tests/oscillators/
+// rigid_pendulum_spin_test.cpp), so μ = 16 sticks at every impact and
+// μ = 0.5 at none; Model N's impacts never stick.
+TEST(Sweep, StickFractionIsTheShareOfImpactsFrictionStops) {
+  const ScratchFolder scratch;
+  const std::string grid = " --param mu=0.5:16:2 --transient 300 --points 4 --quiet --out ";
+  const ProgramRun rigid = run_command_line(
+      "sweep jin2003 --set model=rigid --set spin=free --set radius=0.02 --set V0=2" + grid +
+      (scratch / "rigid").string());
+  ASSERT_EQ(rigid.status, 0) << rigid.err;
+  const auto rows = split_lines(slurp(scratch / "rigid" / "summary.csv"));
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_TRUE(rows[0].ends_with(",points,stick_fraction")) << rows[0];
+  EXPECT_EQ(fields(rows[1]).back(), 0.0) << rows[1];
+  EXPECT_EQ(fields(rows[2]).back(), 1.0) << rows[2];
+  const ProgramRun newton =
+      run_command_line("sweep jin2003 --set V0=2" + grid + (scratch / "newton").string());
+  ASSERT_EQ(newton.status, 0) << newton.err;
+  for (const auto& row : split_lines(slurp(scratch / "newton" / "summary.csv")))
+    if (row.rfind("mu", 0) != 0) EXPECT_EQ(fields(row).back(), 0.0) << row;
+}
+
 TEST(Sweep, SerialAndThreadedRunsWriteIdenticalFiles) {
   const ScratchFolder scratch;
   const auto serial = scratch / "serial", threaded = scratch / "threaded";
@@ -158,7 +182,7 @@ TEST(Sweep, SerialAndThreadedRunsWriteIdenticalFiles) {
   ASSERT_EQ(run_command_line(sweep_2d + " --threads 2 --out " + threaded_2d.string()).status, 0);
   const std::string classes = slurp(serial_2d / "classes.csv");
   EXPECT_EQ(split_lines(classes)[0],
-            "omega,V0,period,impacts_per_period,contact,lyapunov,termination");
+            "omega,V0,period,impacts_per_period,contact,lyapunov,termination,stick_fraction");
   EXPECT_EQ(split_lines(classes).size(), 1u + 24u);
   EXPECT_EQ(classes, slurp(threaded_2d / "classes.csv"));
 }
