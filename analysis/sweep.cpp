@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -131,15 +132,24 @@ std::vector<SweepTask> sweep_tasks(const SweepPlan& plan) {
   return tasks;
 }
 
+namespace {
+
+// the share of the record window's impacts that stuck; NaN without impacts
+double stick_fraction_of(const SectionResult& result) {
+  return result.impacts > 0
+             ? static_cast<double>(result.stick_impacts) / static_cast<double>(result.impacts)
+             : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
 Classification classify(const SectionResult& result, const SweepPlan& plan) {
   Classification classification;
   if (result.periods_recorded > 0.0)
     classification.impacts_per_period =
         static_cast<double>(result.impacts) / result.periods_recorded;
   classification.contact = result.contact_phases > 0;
-  if (result.impacts > 0)
-    classification.stick_fraction =
-        static_cast<double>(result.stick_impacts) / static_cast<double>(result.impacts);
+  classification.stick_fraction = stick_fraction_of(result);
   const auto& points = result.points;
   const std::size_t n = points.size();
   double scale = 1.0;
@@ -192,7 +202,6 @@ std::string to_json_line(const SweepRecord& record) {
       {"period", record.classification.period},
       {"impacts_per_period", record.classification.impacts_per_period},
       {"contact", record.classification.contact},
-      {"stick_fraction", fmt::format("{}", record.classification.stick_fraction)},
   };
   if (r.final_state) {
     line["final_state"] = r.final_state->state;
@@ -234,7 +243,7 @@ std::optional<SweepRecord> from_json_line(std::string_view text) {
     record.classification.period = line.at("period");
     record.classification.impacts_per_period = line.at("impacts_per_period");
     record.classification.contact = line.at("contact");
-    record.classification.stick_fraction = number_from_text(line.at("stick_fraction"));
+    record.classification.stick_fraction = stick_fraction_of(r);
     return record;
   } catch (const nlohmann::json::exception&) {
     return std::nullopt;

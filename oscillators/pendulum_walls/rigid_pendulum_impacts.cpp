@@ -21,9 +21,13 @@ auto RigidPendulumWalls::impact_at(int wall, const State& x, double t) const -> 
 
 auto RigidPendulumWalls::impact_case(int wall, const State& x, double t) const -> ImpactCase {
   const rigidbody::NewtonCoulombImpulse<2> impulse = impact_at(wall, x, t).impulse;
-  // the slide's impulse is j (1, −μ s) with j > 0: s is the tangential part's opposite sign
-  const double needed = friction_to_stick(wall, x, t);
+  // the friction the stick needs: a stick impulse is the one the law took, a
+  // slide's must be solved for
+  const double needed = spin_free_ && impulse.regime == rigidbody::ImpulseRegime::stick
+                            ? std::fabs(impulse.impulse(1)) / impulse.impulse(0)
+                            : friction_to_stick(wall, x, t);
   const bool on_edge = std::fabs(needed - p_.mu) <= cone_edge_tolerance * p_.mu;
+  // the slide's impulse is j (1, −μ s) with j > 0: s is the tangential part's opposite sign
   return {impulse.regime, impulse.impulse(1) > 0.0 ? -1.0 : 1.0, on_edge};
 }
 
