@@ -32,6 +32,7 @@
 
 #include <impactlab/analysis/continuation_problem.hpp>
 #include <impactlab/analysis/section.hpp>
+#include <impactlab/core/error_scale_groups.hpp>
 #include <impactlab/core/event_log.hpp>
 #include <impactlab/core/has_jacobian.hpp>
 #include <impactlab/core/hybrid_system.hpp>
@@ -73,6 +74,7 @@ class DecoratedSystem {
   static constexpr std::size_t max_witnesses = Base::max_witnesses + 1;
   static constexpr bool affine_flow = affine_flow_of<Base>();
   static constexpr std::size_t tangent_dimension = tangent_dimension_of<Base>;
+  static constexpr ErrorScaleGroupsOf<Base> error_scale_groups = error_scale_groups_of<Base>();
 
   explicit DecoratedSystem(const Base& base) : base_(base) {}
 

@@ -20,6 +20,7 @@
 #include <tuple>
 
 #include <impactlab/analysis/saltation.hpp>
+#include <impactlab/core/error_scale_groups.hpp>
 #include <impactlab/core/has_jacobian.hpp>
 #include <impactlab/integrate/dual_number.hpp>
 
@@ -36,6 +37,17 @@ class Variational {
   static constexpr std::size_t matrix_size = dimension * dimension;
   using State = std::array<double, base_size + matrix_size>;
   static constexpr std::size_t max_witnesses = Base::max_witnesses;
+  // the base's error scale groups, then Φ as one group of its own
+  // (core/error_scale_groups.hpp): the tangent vectors grow by the flow's
+  // stretching, and their size says nothing about the accuracy the base
+  // state needs
+  static constexpr std::array<std::size_t, base_size + matrix_size> error_scale_groups = [] {
+    std::array<std::size_t, base_size + matrix_size> groups{};
+    const auto base_groups = error_scale_groups_of<Base>();
+    std::copy(base_groups.begin(), base_groups.end(), groups.begin());
+    std::fill(groups.begin() + base_size, groups.end(), error_scale_group_count<Base>());
+    return groups;
+  }();
 
   explicit Variational(const Base& base) : base_(base) {}
 

@@ -7,7 +7,8 @@
 // Order and step (after Jorba & Zou 2005 and heyoka): the last two
 // coefficients estimate the radius of convergence,
 // ρ = min over j ∈ {p−1, p} of (s / ‖x_j‖∞)^{1/j}, with s = max(‖x_0‖∞, atol/rtol)
-// (relative error where the state is large, absolute where it is small), and
+// (relative error where the state is large, absolute where it is small;
+// ‖·‖∞ over each group of components, core/error_scale_groups.hpp), and
 // the step is the fixed fraction h = ρ · e^{−1.3} · exp(−0.7 / (p − 1)) of it;
 // the order p = ⌈−ln ε / 1.3⌉ (ε = rtol) makes the truncation error,
 // about (h/ρ)^p s, of order ε s. Jorba & Zou's and heyoka's fraction is e^{−2}
@@ -40,6 +41,7 @@
 #include <string>
 #include <tuple>
 
+#include <impactlab/core/error_scale_groups.hpp>
 #include <impactlab/core/hybrid_system.hpp>
 #include <impactlab/integrate/event_location.hpp>
 #include <impactlab/integrate/polynomial_roots.hpp>
@@ -127,9 +129,13 @@ class TaylorStepper {
     // the radius of convergence from the state's last two coefficients, and
     // from each witness's (a witness may be a function of t alone, such as
     // a moving table, over a state whose series ends: a free fall)
-    double scale = scale_floor_;
+    // each component against the size of its group (core/error_scale_groups.hpp)
+    std::array<double, scale_group_count> group_scale;
+    group_scale.fill(scale_floor_);
     for (std::size_t i = 0; i < dimension; ++i)
-      scale = std::max(scale, std::fabs(static_cast<double>(x_old_[i])));
+      group_scale[scale_group[i]] =
+          std::max(group_scale[scale_group[i]], std::fabs(static_cast<double>(x_old_[i])));
+    const double scale = group_scale[0];  // the mechanical state's
     // ρ = min_j min_rows (s_row / |c_j|)^{1/j} = min_j (max_rows |c_j| / s_row)^{−1/j}
     std::array<double, 2> ratio = {0.0, 0.0};  // orders p − 1 and p
     auto bound_by = [&](const Real* c, double row_scale) {
@@ -137,10 +143,10 @@ class TaylorStepper {
         ratio[j] = std::max(ratio[j], std::fabs(static_cast<double>(c[order_ - 1 + j])) / row_scale);
     };
     for (std::size_t i = 0; i < dimension; ++i)
-      bound_by(series_.state(i), scale);
+      bound_by(series_.state(i), group_scale[scale_group[i]]);
     for (int k = 0; k < series_.output_count(); ++k) {
       const Real* w = series_.output(k);
-      // (the state's scale, or the witness's own size where larger: a
+      // (the mechanical state's scale, or the witness's own size where larger: a
       // witness whose higher coefficients are the state's, such as a gap,
       // does not shorten the step)
       bound_by(w, std::max({scale, std::fabs(static_cast<double>(w[0])),
@@ -328,6 +334,8 @@ class TaylorStepper {
     return {};
   }
 
+  static constexpr ErrorScaleGroupsOf<System> scale_group = error_scale_groups_of<System>();
+  static constexpr std::size_t scale_group_count = impactlab::error_scale_group_count<System>();
   StepperSettings settings_;
   int order_;
   double safety_;       // h / ρ: e^{−1.3} e^{−0.7 / (p − 1)}

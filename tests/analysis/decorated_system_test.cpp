@@ -42,6 +42,8 @@ constexpr bool forwards_every_hook() {
   static_assert(impactlab::HasSeriesRhs<Base> == impactlab::HasSeriesRhs<Decorated>);
   static_assert(impactlab::tangent_dimension_of<Base> == impactlab::tangent_dimension_of<Decorated>);
   static_assert(impactlab::affine_flow_of<Base>() == Decorated::affine_flow);
+  static_assert(impactlab::error_scale_groups_of<Base>() ==
+                impactlab::error_scale_groups_of<Decorated>());
   if constexpr (impactlab::HasJacobian<Base>) {
     static_assert(impactlab::HasSeriesRhs<Variational<Base>> ==
                   impactlab::HasSeriesRhs<Variational<Decorated>>);

@@ -5,6 +5,7 @@
 //   pairs far closer than any sampling grid;
 // * whole runs against closed-form flows (the linear impact oscillator's
 //   exact flow), with steps far longer than the systems' max_step;
+// * the size of a bookkeeping component does not move the motion;
 // * systems whose right-hand side is not written over a number type are
 //   refused with a clear error.
 #include <array>
@@ -241,6 +242,36 @@ TEST(TaylorStepper, PendulumImpactTimesAgreeWithRkf78) {
   }
   EXPECT_LE(worst, 1e-9);
   RecordProperty("taylor_steps", std::to_string(taylor.counters.steps));
+}
+
+// Model N's friction work is bookkeeping (core/error_scale_groups.hpp): a
+// work of 1e6 J at the start, as a long run with sliding contacts gathers,
+// leaves the motion exactly as it is with none. Measured in one group with
+// the motion, it made the allowed error a million times the tolerance.
+TEST(TaylorStepper, ABookkeepingComponentsSizeDoesNotMoveTheMotion) {
+  PendulumWallsParameters p;
+  p.V0 = 1.5;
+  const PendulumWalls system(p);
+  const double t_end = 50.0 * 2.0 * pi / p.omega;
+  auto events_from = [&](double friction_work) {
+    StepperSettings settings;
+    settings.rtol = 1e-12;
+    settings.atol = 1e-14;
+    settings.max_step = system.max_step();
+    EventLog log(true);
+    TaylorStepper<PendulumWalls> stepper(settings);
+    const auto result = simulate(system, stepper, PendulumWalls::State{0.0, 0.1, friction_work},
+                                 PendulumWalls::Mode::free, 0.0, t_end, LoopOptions{}, log);
+    EXPECT_EQ(result.termination, Termination::completed);
+    return log.records();
+  };
+  const auto without = events_from(0.0), with_work = events_from(1e6);
+  ASSERT_GT(without.size(), 30u);
+  ASSERT_EQ(with_work.size(), without.size());
+  for (std::size_t i = 0; i < without.size(); ++i) {
+    EXPECT_EQ(with_work[i].t, without[i].t) << i;
+    EXPECT_EQ(with_work[i].qdot_before, without[i].qdot_before) << i;
+  }
 }
 
 // A system whose right-hand side takes doubles only
