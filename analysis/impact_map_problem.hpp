@@ -1,11 +1,13 @@
 // The impact map of one wall of a concrete system with Jacobians as a
-// ContinuationProblem (continuation_problem.hpp): the state is (φ, q̇⁻), the
-// forcing phase of an impact with the wall and the rate just before it, for
-// one-degree-of-freedom systems; and what a continuation on it needs to
-// start: the first impact with the wall, the wall's witness, the impacts
-// with it per orbit.
+// ContinuationProblem (continuation_problem.hpp): the state is (φ, q̇⁻, x₂⁻,
+// …), the forcing phase of an impact with the wall and the system's
+// tangent-space state just before it with q (on the wall) left out: (φ, q̇⁻)
+// for one degree of freedom, (φ, θ̇⁻, φ̇_ball⁻) for the rigid pendulum with
+// its spin free; and what a continuation on it needs to start: the first
+// impact with the wall, the wall's witness, the impacts with it per orbit.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -40,16 +42,17 @@ DecoratedSystem<System> stopping_at_wall_impact(const System& system,
   return decorated;
 }
 
-// The state on witness k's zero at time t with rate qdot: q by Newton on the
-// gap from q_guess; none where it does not converge.
+// The state on witness k's zero at time t with the section point's
+// components after the phase (q̇, x₂, …; bookkeeping components zero): q by
+// Newton on the gap from q_guess; none where it does not converge.
 template <HasJacobian System>
 std::optional<typename System::State> state_on_wall(const System& system,
                                                     typename System::Mode flight_mode,
-                                                    std::size_t witness, double t, double qdot,
-                                                    double q_guess) {
+                                                    std::size_t witness, double t,
+                                                    const OrbitPoint& section, double q_guess) {
   typename System::State x{};
   x[0] = q_guess;
-  x[1] = qdot;
+  for (std::size_t i = 1; i < tangent_dimension_of<System>; ++i) x[i] = section[i];
   for (int iteration = 0; iteration < 30; ++iteration) {
     const double gap = system.witness(flight_mode, witness, x, t).value;
     const double slope = system.witness_gradient(flight_mode, witness, x, t)[0];
@@ -64,11 +67,17 @@ std::optional<typename System::State> state_on_wall(const System& system,
   return x;
 }
 
+// the first n components of a state: its part on the tangent space
+template <std::size_t n, class State>
+OrbitPoint tangent_part(const State& x) {
+  return OrbitPoint(x.begin(), x.begin() + n);
+}
+
 // Where the run from state x (in mode) at t0 first hits wall `wall` before
 // t_end: (time, the state just before, the witness); none if it does not.
 struct WallImpact {
   double t = 0.0;
-  OrbitPoint state{};  // (q, q̇) just before the impact
+  OrbitPoint state{};  // (q, q̇, …) just before the impact, on the tangent space
   std::size_t witness = 0;
 };
 template <HasJacobian System>
@@ -84,25 +93,27 @@ std::optional<WallImpact> first_wall_impact(const System& system,
         return simulate(stopping, stepper, x, mode, t0, t_end, loop_options(setup), log);
       });
   if (!impacts.stopped) return std::nullopt;
-  return WallImpact{impacts.stop_time, {run.state[0], run.state[1]}, impacts.stop_witness};
+  return WallImpact{impacts.stop_time, tangent_part<tangent_dimension_of<System>>(run.state),
+                    impacts.stop_witness};
 }
 
 // The impact map of wall `wall` as a ContinuationProblem: the state is
-// (φ, q̇⁻), φ = ω tᵢ the forcing phase of an impact with the wall and q̇⁻ the
-// rate just before it; the map runs from that impact (applied at the start)
-// to the `wall_impacts`-th next impact with the wall, the orbit's return
-// after `period` forcing periods, and its image is
-//     (φ + ω (tⱼ − tᵢ) − 2π·period, q̇⁻ at tⱼ),
+// (φ, z⁻), φ = ω tᵢ the forcing phase of an impact with the wall and
+// z⁻ = (q̇, x₂, …) the tangent-space state just before it without q; the map
+// runs from that impact (applied at the start) to the `wall_impacts`-th next
+// impact with the wall, the orbit's return after `period` forcing periods,
+// and its image is
+//     (φ + ω (tⱼ − tᵢ) − 2π·period, z⁻ at tⱼ),
 // so that a fixed point is a period-n orbit. Its Jacobian is
 //     M = L Φ S B:
-// B takes (δφ, δq̇⁻) to the perturbation at the fixed time tᵢ before the
-// impact (the impact point slides along the wall, q = q_w(t, q̇), and the
-// perturbed orbit reaches it δt = δφ/ω later: δx = (∂q_w/∂t δt + ∂q_w/∂q̇ δq̇,
-// δq̇) − f⁻ δt); S is the saltation matrix of the start impact and Φ the
-// saltation-corrected flow to tⱼ (both from the variational run, which
-// applies the start impact as its first event); L projects onto the section:
-// the perturbed orbit reaches the wall δtⱼ = −∇h·δx / ḣ later, so
-// δφ' = ω δtⱼ and δq̇' = δq̇ + f₂ δtⱼ.
+// B takes (δφ, δz⁻) to the perturbation at the fixed time tᵢ before the
+// impact (the impact point slides along the wall, q = q_w(t, z) from the
+// wall's gap h(q, z, t) = 0, and the perturbed orbit reaches it δt = δφ/ω
+// later: δx = (∂q_w/∂t δt + ∂q_w/∂z · δz, δz) − f⁻ δt); S is the saltation
+// matrix of the start impact and Φ the saltation-corrected flow to tⱼ (both
+// from the variational run, which applies the start impact as its first
+// event); L projects onto the section: the perturbed orbit reaches the wall
+// δtⱼ = −∇h·δx / ḣ later, so δφ' = ω δtⱼ and δzₖ' = δzₖ + fₖ δtⱼ.
 template <HasJacobian System, class MakeSystem>
 ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::Mode flight_mode,
                                        const FlowSetup& setup, int wall, std::size_t witness,
@@ -111,6 +122,7 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
   using Mode = typename System::Mode;
   using Decorated = DecoratedSystem<System>;
   using Tangent = Variational<Decorated>;
+  constexpr std::size_t n = tangent_dimension_of<System>;
   constexpr int samples_per_period = 96;
   struct Shared {
     MakeSystem make_system;
@@ -125,6 +137,7 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
       Shared{make_system, flight_mode, setup, wall, witness, q_guess, period, wall_impacts});
 
   ContinuationProblem problem;
+  problem.dimension = n;
   problem.forcing_period_at_p = period * 2.0 * std::numbers::pi / forcing_omega_at_start;
   problem.phase = 0.0;
   problem.section_moves = false;
@@ -132,12 +145,12 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
                               const ContactWindow& suppressed) {
     OrbitEvaluation result;
     const System system = shared->make_system(p);
-    const double omega = system.parameters().omega;
+    const double omega = forcing_omega_of(system);
     const double forcing_period = 2.0 * std::numbers::pi / omega;
     const double t0 = x[0] / omega;
     const double span = shared->period * forcing_period;
-    const auto start = state_on_wall(system, shared->flight_mode, shared->witness, t0, x[1],
-                                     shared->q_guess);
+    const auto start =
+        state_on_wall(system, shared->flight_mode, shared->witness, t0, x, shared->q_guess);
     if (!start) return result;
     CrossingTrace trace;
     WallImpactTrace impacts;
@@ -164,31 +177,41 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
       return result;
     const auto end = Tangent::base_state(run.state);
     const double t1 = impacts.stop_time;
-    // B: (δφ, δq̇⁻) to the perturbation before the impact at the fixed time t0
+    // B: (δφ, δz⁻) to the perturbation before the impact at the fixed time t0
     typename System::State f{};
     system.rhs(shared->flight_mode, *start, f, t0);
-    const TangentVector gradient =
+    const TangentVectorOf<n> gradient =
         system.witness_gradient(shared->flight_mode, shared->witness, *start, t0);
-    const double gap_time_rate =
-        system.witness(shared->flight_mode, shared->witness, *start, t0).rate -
-        (gradient[0] * f[0] + gradient[1] * f[1]);
-    const double dq_dt = -gap_time_rate / gradient[0], dq_dqdot = -gradient[1] / gradient[0];
-    const TangentMatrix to_start{{{(dq_dt - f[0]) / omega, dq_dqdot}, {-f[1] / omega, 1.0}}};
+    double gap_time_rate = system.witness(shared->flight_mode, shared->witness, *start, t0).rate;
+    for (std::size_t i = 0; i < n; ++i) gap_time_rate -= gradient[i] * f[i];
+    const double dq_dt = -gap_time_rate / gradient[0];
+    TangentMatrixOf<n> to_start{};
+    to_start[0][0] = (dq_dt - f[0]) / omega;
+    for (std::size_t i = 1; i < n; ++i) {
+      to_start[0][i] = -gradient[i] / gradient[0];  // ∂q_w/∂zᵢ
+      to_start[i][0] = -f[i] / omega;
+      to_start[i][i] = 1.0;
+    }
     // L: the perturbation at t1 onto the section
     typename System::State f1{};
     system.rhs(shared->flight_mode, end, f1, t1);
-    const TangentVector normal =
+    const TangentVectorOf<n> normal =
         system.witness_gradient(shared->flight_mode, impacts.stop_witness, end, t1);
     const double approach = system.witness(shared->flight_mode, impacts.stop_witness, end, t1).rate;
     if (!(std::fabs(approach) > 0.0)) return result;  // a graze: the section is tangent
-    const TangentMatrix onto_section{
-        {{-omega * normal[0] / approach, -omega * normal[1] / approach},
-         {-f1[1] * normal[0] / approach, 1.0 - f1[1] * normal[1] / approach}}};
+    TangentMatrixOf<n> onto_section{};
+    for (std::size_t j = 0; j < n; ++j) {
+      onto_section[0][j] = -omega * normal[j] / approach;
+      for (std::size_t i = 1; i < n; ++i)
+        onto_section[i][j] = (i == j ? 1.0 : 0.0) - f1[i] * normal[j] / approach;
+    }
     for (const auto& row :
          multiply(onto_section, multiply(Tangent::fundamental_matrix(run.state), to_start)))
       result.monodromy.emplace_back(row.begin(), row.end());
-    result.image = {x[0] + omega * (t1 - t0) - 2.0 * std::numbers::pi * shared->period, end[1]};
-    result.completed = std::isfinite(result.image[0]) && std::isfinite(result.image[1]);
+    result.image = tangent_part<n>(end);
+    result.image[0] = x[0] + omega * (t1 - t0) - 2.0 * std::numbers::pi * shared->period;
+    result.completed = std::all_of(result.image.begin(), result.image.end(),
+                                   [](double v) { return std::isfinite(v); });
     result.span = span;
     result.omega = omega;
     // the orbit's events: after the start impact, up to the target impact
@@ -215,9 +238,9 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
                             double t) {
     GapSample sample;
     const System system = shared->make_system(p);
-    const double t0 = x[0] / system.parameters().omega;
-    const auto start = state_on_wall(system, shared->flight_mode, shared->witness, t0, x[1],
-                                     shared->q_guess);
+    const double t0 = x[0] / forcing_omega_of(system);
+    const auto start =
+        state_on_wall(system, shared->flight_mode, shared->witness, t0, x, shared->q_guess);
     if (!start || suppressed.witness < 0) return sample;
     ContactWindow window = suppressed;
     window.from += t0;
@@ -236,7 +259,7 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
     sample.completed = true;
     sample.value = h.value;
     sample.rate = h.rate;
-    sample.state = {run.state[0], run.state[1]};
+    sample.state = tangent_part<tangent_dimension_of<System>>(run.state);
     return sample;
   };
   problem.transport = [](const OrbitPoint&, double, double, double) -> std::optional<OrbitPoint> {
@@ -249,10 +272,10 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
   problem.to_strobe = [shared](const OrbitPoint& x, double p,
                                double phase) -> std::optional<OrbitPoint> {
     const System system = shared->make_system(p);
-    const double omega = system.parameters().omega;
+    const double omega = forcing_omega_of(system);
     const double t0 = x[0] / omega;
-    const auto start = state_on_wall(system, shared->flight_mode, shared->witness, t0, x[1],
-                                     shared->q_guess);
+    const auto start =
+        state_on_wall(system, shared->flight_mode, shared->witness, t0, x, shared->q_guess);
     if (!start) return std::nullopt;
     // the next ωt ≡ phase after the impact
     double shift = std::fmod(phase - x[0], 2.0 * std::numbers::pi);
@@ -269,21 +292,21 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
         });
     if (run.termination != Termination::completed || run.mode != shared->flight_mode)
       return std::nullopt;
-    return OrbitPoint{run.state[0], run.state[1]};
+    return tangent_part<tangent_dimension_of<System>>(run.state);
   };
   return problem;
 }
 
-// The impacts with wall `wall` from one at (φ, q̇⁻) until (period + ½)
+// The impacts with wall `wall` from one at (φ, z⁻) until (period + ½)
 // forcing periods later: the count whose last lands nearest `period`
 // periods on (the orbit's impacts with the wall per period), or 0.
 template <HasJacobian System>
 int wall_impacts_per_orbit(const System& system, typename System::Mode flight_mode,
                            const FlowSetup& setup, int wall, std::size_t witness, double q_guess,
                            const OrbitPoint& x, int period) {
-  const double omega = system.parameters().omega;
+  const double omega = forcing_omega_of(system);
   const double t0 = x[0] / omega, span = period * 2.0 * std::numbers::pi / omega;
-  const auto start = state_on_wall(system, flight_mode, witness, t0, x[1], q_guess);
+  const auto start = state_on_wall(system, flight_mode, witness, t0, x, q_guess);
   if (!start) return 0;
   WallImpactTrace impacts;
   const DecoratedSystem<System> counting = stopping_at_wall_impact(
@@ -303,17 +326,17 @@ int wall_impacts_per_orbit(const System& system, typename System::Mode flight_mo
   return best;
 }
 
-// The witness whose zero at (φ, q̇⁻) is an impact with wall `wall` (the run
+// The witness whose zero at (φ, z⁻) is an impact with wall `wall` (the run
 // from there begins with that impact), and q there; none if no witness is.
 template <HasJacobian System>
 std::optional<std::pair<std::size_t, double>> wall_witness(const System& system,
                                                            typename System::Mode flight_mode,
                                                            const FlowSetup& setup, int wall,
                                                            const OrbitPoint& x, double q_guess) {
-  const double omega = system.parameters().omega;
+  const double omega = forcing_omega_of(system);
   const double t0 = x[0] / omega;
   for (std::size_t k = 0; k < system.witness_count(flight_mode); ++k) {
-    const auto start = state_on_wall(system, flight_mode, k, t0, x[1], q_guess);
+    const auto start = state_on_wall(system, flight_mode, k, t0, x, q_guess);
     if (!start) continue;
     WallImpactTrace impacts;
     const DecoratedSystem<System> stopping =

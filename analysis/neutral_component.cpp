@@ -6,6 +6,9 @@
 #include <memory>
 #include <string>
 
+#include <Eigen/Core>
+
+#include <impactlab/analysis/dense_solve.hpp>
 #include <impactlab/io/scene.hpp>
 
 namespace impactlab {
@@ -48,16 +51,47 @@ std::vector<std::complex<double>> with_neutral_multiplier(
   return multipliers;
 }
 
+namespace {
+
+// The drift of the orbit itself, from the map evaluated at a point whose
+// other components o are converged only to the corrector's tolerance: their
+// residual r_o = P_o(x) − x_o puts them (M_oo − I)⁻¹ r_o off the orbit, which
+// moves the held component's image by M_co times that. So the orbit's drift
+// is d − M_co (M_oo − I)⁻¹ r_o (one Newton step's worth); d where M_oo − I
+// is singular.
+double orbit_drift(const OrbitEvaluation& at, const OrbitPoint& x, std::size_t held) {
+  const double drift = at.image[held] - x[held];
+  const std::size_t n = x.size();
+  if (n < 2 || at.monodromy.size() != n) return drift;
+  const auto other = [held](std::size_t k) { return k < held ? k : k + 1; };
+  const Eigen::Index m = static_cast<Eigen::Index>(n - 1);
+  Eigen::MatrixXd shifted(m, m);
+  Eigen::VectorXd residual(m), row(m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const std::size_t oi = other(static_cast<std::size_t>(i));
+    residual[i] = at.image[oi] - x[oi];
+    row[i] = at.monodromy[held][oi];
+    for (Eigen::Index j = 0; j < m; ++j)
+      shifted(i, j) = at.monodromy[oi][other(static_cast<std::size_t>(j))] - (i == j ? 1.0 : 0.0);
+  }
+  const Eigen::VectorXd offset = full_pivot_lu_solve(shifted, residual);
+  if (!offset.allFinite()) return drift;
+  return drift - row.dot(offset);
+}
+
+}  // namespace
+
 void end_where_held_component_drifts(ContinuationResult& branch, const ContinuationProblem& full,
-                                     const HeldComponent& held, double tolerance) {
+                                     const ContinuationProblem& tighter, const HeldComponent& held,
+                                     double tolerance) {
   for (std::size_t k = 0; k < branch.branch.size(); ++k) {
     const BranchPoint& point = branch.branch[k];
-    const OrbitEvaluation at = full.evaluate(with_held_component(point.state, held),
-                                             point.parameter, point.phase, false, {});
+    const OrbitPoint x = with_held_component(point.state, held);
+    const OrbitEvaluation at = full.evaluate(x, point.parameter, point.phase, false, {});
     if (!at.completed) continue;
-    const double drift = at.image[held.index] - held.value;
-    // the orbit is converged to tolerance (1 + |x|) in the other components,
-    // and the drift moves with them by the monodromy's row
+    const double drift = orbit_drift(at, x, held.index);
+    // what is left of the other components' error after the correction
+    // moves the drift by the monodromy's row
     double size = 0.0, sensitivity = 0.0;
     for (double component : point.state) size = std::max(size, std::fabs(component));
     for (std::size_t j = 0; j < at.monodromy.size(); ++j)
@@ -65,6 +99,9 @@ void end_where_held_component_drifts(ContinuationResult& branch, const Continuat
     const double allowed =
         tolerance * (1.0 + std::fabs(held.value) + sensitivity * (1.0 + size));
     if (std::fabs(drift) <= allowed) continue;
+    const OrbitEvaluation tight = tighter.evaluate(x, point.parameter, point.phase, false, {});
+    if (tight.completed && std::fabs(orbit_drift(tight, x, held.index)) < 0.5 * std::fabs(drift))
+      continue;
     const double where = point.parameter;
     branch.branch.resize(k);
     // the located points within the parameters the kept points span

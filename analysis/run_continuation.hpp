@@ -65,17 +65,12 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
     const System start_system = system_at(start_scene);
     const double omega = forcing_omega_of(start_system);
     const FlowSetup setup = flow_setup(scene);
-    [[maybe_unused]] double wall_q = 0.0;  // the impact section: q on the wall at the start (a guess)
+    double wall_q = 0.0;  // the impact section: q on the wall at the start (a guess)
     ContinuationRequest request = job.numerics;
     request.from = job.from;
     request.to = job.to;
     constexpr std::size_t n = tangent_dimension_of<System>;
     result.dimension = n;
-    // the impact section's state is (phase, rate before the impact): one
-    // degree of freedom
-    if (job.impact_wall != 0 && n != 2)
-      throw BadInput("section", "impact:" + std::to_string(job.impact_wall),
-                     "the impact section takes a one-degree-of-freedom orbit; use the strobe");
     if (job.has_start) {
       if (job.start.size() != n)
         throw BadInput("start", std::to_string(job.start.size()) + " numbers",
@@ -95,54 +90,52 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
                             loop_options(setup), log);
           });
       request.start.assign(transient.state.begin(), transient.state.begin() + n);
-      // (the impact section is built for one degree of freedom only, n = 2)
-      if constexpr (n == 2) {
-        if (job.impact_wall != 0) {
-          // on the impact section: the transient's next impact with the wall
-          const auto impact = first_wall_impact(
-              start_system, transient.state, transient.mode, t_section,
-              t_section + 20.0 * job.period * forcing_period, job.impact_wall, setup);
-          if (!impact) return no_start(result, job, "no impact with the wall after the transient");
-          request.start = {std::fmod(omega * impact->t, 2.0 * std::numbers::pi), impact->state[1]};
-          wall_q = impact->state[0];
-        }
+      if (job.impact_wall != 0) {
+        // on the impact section: the transient's next impact with the wall,
+        // (phase, the state before it without q)
+        const auto impact = first_wall_impact(start_system, transient.state, transient.mode,
+                                              t_section,
+                                              t_section + 20.0 * job.period * forcing_period,
+                                              job.impact_wall, setup);
+        if (!impact) return no_start(result, job, "no impact with the wall after the transient");
+        request.start = impact->state;
+        request.start[0] = std::fmod(omega * impact->t, 2.0 * std::numbers::pi);
+        wall_q = impact->state[0];
       }
     }
     // the impact section: the wall's witness and the impacts with it per orbit
-    [[maybe_unused]] std::size_t wall_witness_index = 0;
-    [[maybe_unused]] int wall_impacts = 0;
-    if constexpr (n == 2) {
-      if (job.impact_wall != 0) {
-        const auto witness =
-            wall_witness(start_system, flight_mode, setup, job.impact_wall, request.start, wall_q);
-        if (!witness)
-          return no_start(result, job, "the start is not on the wall, moving into it");
-        wall_witness_index = witness->first;
-        wall_q = witness->second;
-        wall_impacts = wall_impacts_per_orbit(start_system, flight_mode, setup, job.impact_wall,
-                                              wall_witness_index, wall_q, request.start, job.period);
-        if (wall_impacts == 0)
-          return no_start(result, job, "no return to the wall within the orbit's period");
-      }
+    std::size_t wall_witness_index = 0;
+    int wall_impacts = 0;
+    if (job.impact_wall != 0) {
+      const auto witness =
+          wall_witness(start_system, flight_mode, setup, job.impact_wall, request.start, wall_q);
+      if (!witness) return no_start(result, job, "the start is not on the wall, moving into it");
+      wall_witness_index = witness->first;
+      wall_q = witness->second;
+      wall_impacts = wall_impacts_per_orbit(start_system, flight_mode, setup, job.impact_wall,
+                                            wall_witness_index, wall_q, request.start, job.period);
+      if (wall_impacts == 0)
+        return no_start(result, job, "no return to the wall within the orbit's period");
     }
     // a component along which the map is neutral (neutral_component.hpp) is
-    // held at its start value; a one-degree-of-freedom orbit has none
+    // held at its start value (the free ball's spin where every impact
+    // slides); a one-degree-of-freedom orbit has none
     std::optional<HeldComponent> held;
-    // the section map of the system `base` describes, continued in job.parameter
-    auto full_map_at = [&](const Scene& base, int period) {
+    // the section map of the system `base` describes, continued in
+    // job.parameter, integrated with `flow` (the scene's setup unless said)
+    auto full_map_at = [&](const Scene& base, int period, const FlowSetup* flow = nullptr) {
       auto make_system = [base, parameter = job.parameter, system_at](double p) {
         Scene at = base;
         at.values[parameter] = p;
         return system_at(at);
       };
-      if constexpr (n == 2) {
-        if (job.impact_wall != 0)
-          return impact_map_problem<System>(make_system, flight_mode, setup, job.impact_wall,
-                                            wall_witness_index, wall_q, period,
-                                            wall_impacts * period / job.period, omega);
-      }
-      return stroboscopic_map_problem<System>(make_system, flight_mode, setup, job.phase, period,
-                                              omega);
+      const FlowSetup& integration = flow != nullptr ? *flow : setup;
+      if (job.impact_wall != 0)
+        return impact_map_problem<System>(make_system, flight_mode, integration, job.impact_wall,
+                                          wall_witness_index, wall_q, period,
+                                          wall_impacts * period / job.period, omega);
+      return stroboscopic_map_problem<System>(make_system, flight_mode, integration, job.phase,
+                                              period, omega);
     };
     auto map_at = [&](const Scene& base, int period) {
       if (!held) return full_map_at(base, period);
@@ -173,9 +166,14 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
     };
     // a held component checked on the full map at every point of a branch
     auto checked = [&](ContinuationResult branch, int period) {
-      if (held)
-        end_where_held_component_drifts(branch, full_map_at(scene, period), *held,
+      if (held) {
+        FlowSetup tighter = setup;
+        tighter.rtol /= 100.0;
+        tighter.atol /= 100.0;
+        end_where_held_component_drifts(branch, full_map_at(scene, period),
+                                        full_map_at(scene, period, &tighter), *held,
                                         request.tolerance);
+      }
       return branch;
     };
     int period = job.period;

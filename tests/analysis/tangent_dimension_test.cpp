@@ -24,6 +24,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -456,16 +457,45 @@ TEST(TangentDimension, PeriodicAndContinueRunOnTheImpactDamperFromTheCommandLine
     EXPECT_NE(header.find("multiplier4_im"), std::string::npos);
   }
   {
-    // the impact section's state (phase, rate) is one degree of freedom's:
-    // a 4-state model is refused it with exit 2, one line naming --section,
-    // and no output directory
-    const auto out = dir / "impact_section";
-    const auto run = impactlab::testing::run_impactlab(
-        {"continue", scene, "--param", "omega=1.5:1.6", "--section", "impact:1", "--quiet",
-         "--out", out.string()},
-        {.environment = cache, .limit_s = 300});
-    EXPECT_TRUE(impactlab::testing::refused_naming(run, "--section"));
-    EXPECT_FALSE(std::filesystem::exists(out));
+    // the impact section's state is (phase, the other states before the
+    // impact): four components here. The orbit's multipliers do not depend
+    // on the section, so the impact map's Neimark–Sacker point and its
+    // first point's multipliers are the stroboscopic map's
+    std::map<std::string, std::pair<double, std::vector<double>>> found;
+    for (const std::string section : {"strobe", "impact:1"}) {
+      const auto out = dir / ("section_" + section.substr(0, 6));
+      const auto run = impactlab::testing::run_impactlab(
+          {"continue", scene, "--param", "omega=2:2.5", "--section", section, "--quiet", "--out",
+           out.string()},
+          {.environment = cache, .limit_s = 300});
+      ASSERT_EQ(run.status, 0) << section << ": " << run.err;
+      std::ifstream branch(out / "branch.csv"), points(out / "points.csv");
+      std::string header, line;
+      ASSERT_TRUE(std::getline(branch, header));
+      ASSERT_TRUE(std::getline(branch, line));
+      const auto columns = csv_row(header);
+      const auto first = csv_row(line);
+      std::vector<double> moduli;
+      for (int k = 1; k <= 4; ++k) {
+        const auto column = std::find(columns.begin(), columns.end(),
+                                      "multiplier" + std::to_string(k) + "_abs");
+        ASSERT_NE(column, columns.end());
+        moduli.push_back(std::stod(first[column - columns.begin()]));
+      }
+      double neimark_sacker = NAN;
+      ASSERT_TRUE(std::getline(points, header));
+      while (std::getline(points, line)) {
+        const auto fields = csv_row(line);
+        if (fields.at(0) == "neimark_sacker") neimark_sacker = std::stod(fields.at(1));
+      }
+      found[section] = {neimark_sacker, moduli};
+    }
+    const auto& [strobe_point, strobe_moduli] = found["strobe"];
+    const auto& [impact_point, impact_moduli] = found["impact:1"];
+    ASSERT_TRUE(std::isfinite(strobe_point));
+    EXPECT_NEAR(impact_point, strobe_point, 1e-8);
+    for (std::size_t k = 0; k < 4; ++k)
+      EXPECT_NEAR(impact_moduli[k], strobe_moduli[k], 1e-9) << k;
   }
 }
 

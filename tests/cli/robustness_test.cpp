@@ -224,12 +224,9 @@ INSTANTIATE_TEST_SUITE_P(
                     {"sweep", "jin2003", "--param", "model=0:1:5"},
                     "--param = model: not a numeric key of oscillator pendulum_walls"},
         SpelledLine{"section",
-                    {"continue",
-                     std::string(IMPACTLAB_SOURCE_DIR) +
-                         "/oscillators/model_file/examples/impact_damper.toml",
-                     "--param", "omega=2:2.5", "--section", "impact:1"},
-                    "--section = impact:1: the impact section takes a one-degree-of-freedom "
-                    "orbit; use the strobe"}),
+                    {"continue", "jin2003", "--param", "omega=2:2.5", "--section", "impact:2"},
+                    "--section = impact:2: the wall after impact: must be +1, -1 or 0 (any "
+                    "wall)"}),
     [](const auto& info) { return info.param.name; });
 
 TEST(BadOptions, TEndNeverNamedWhenNotGiven) {

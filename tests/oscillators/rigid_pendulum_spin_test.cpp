@@ -19,6 +19,8 @@
 // * an impact on the friction cone's edge (the friction it needs, solved by
 //   hand, equal to μ) has a one-sided tangent map and no Lyapunov exponent,
 //   and one a part in a million off the edge has both;
+// * on the impact section too, with the spin free and held (neutral), the
+//   continued orbit is the brute-force run's impacts to 1e-8;
 // * where continuation in μ locates an impact that stops sticking, the
 //   friction cone condition solved by hand holds to 1e-9 in μ;
 // * with the spin angle grown to 1e4 rad, the impacts of a plain and of a
@@ -29,6 +31,7 @@
 #include <iomanip>
 #include <sstream>
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <random>
 #include <ranges>
@@ -434,6 +437,19 @@ TEST(RigidPendulumSpin, PeriodicAndContinuedOrbitsAreTheBruteForceSections) {
       ASSERT_EQ(point.state.size(), spin == "spin=free" ? 3u : 2u);
       ASSERT_EQ(point.multipliers.size(), point.state.size());
       if (!point.stable) continue;
+      // the brute-force run's 100 orbits settle on the orbit as the largest
+      // multiplier other than the held neutral one to the 100th power: near
+      // the fold at ω ≈ 6.98287 (free spin) it nears 1 and they do not
+      double slowest = 0.0;
+      bool neutral_left_out = !continued.neutral.has_value();
+      for (const std::complex<double>& multiplier : point.multipliers) {
+        if (!neutral_left_out && multiplier == std::complex<double>(1.0, 0.0)) {
+          neutral_left_out = true;
+          continue;
+        }
+        slowest = std::max(slowest, std::abs(multiplier));
+      }
+      if (slowest > 0.8) continue;
       ++compared;
       std::vector<std::string> at = assignments;
       at.push_back("omega=" + to_text(point.parameter));
@@ -443,6 +459,53 @@ TEST(RigidPendulumSpin, PeriodicAndContinuedOrbitsAreTheBruteForceSections) {
     }
     EXPECT_GE(compared, 1) << spin;
   }
+}
+
+// On the right wall's impact section, (phase, θ̇⁻, spin⁻), the free spin's
+// period-6 orbit at V0 = 4, every impact sliding, is continued in μ with the
+// spin held (neutral) through the whole range, and its (phase, θ̇⁻) are the
+// impacts of a brute-force run with that wall to 1e-8. The integrator's
+// error reaches the held spin amplified by the impulse's lever r/I_b; before
+// the drift check told it from the orbit's own, this branch ended after 5
+// points with neutral_drift.
+TEST(RigidPendulumSpin, ImpactSectionBranchOfTheFreeSpinIsTheBruteForceImpacts) {
+  const std::vector<std::string> assignments = {"model=rigid", "spin=free", "radius=0.02", "V0=4"};
+  ContinuationJob job;
+  job.parameter = "mu";
+  job.from = 0.6;
+  job.to = 0.9;
+  job.period = 6;
+  job.impact_wall = 1;
+  const ContinuationJobResult continued = continue_orbit(pendulum_scene(assignments), job);
+  const ContinuationResult& branch = continued.branches.at(0).result;
+  EXPECT_EQ(branch.stop_reason, StopReason::end_of_range) << branch.stop_detail;
+  ASSERT_TRUE(continued.neutral.has_value());
+  EXPECT_EQ(continued.neutral->index, 2u);
+  int compared = 0;
+  for (std::size_t k = 5; k < branch.branch.size() && compared < 3; k += 10) {
+    const BranchPoint& point = branch.branch[k];
+    ASSERT_EQ(point.state.size(), 3u);
+    ASSERT_TRUE(point.stable) << point.parameter;
+    ++compared;
+    std::vector<std::string> at = assignments;
+    at.push_back("mu=" + to_text(point.parameter));
+    const Scene scene = pendulum_scene(at);
+    SectionRequest request;
+    request.section = parse_section("impact:1", "section");
+    request.transient_periods = 600;
+    request.points = 40;
+    const SectionResult impacts = poincare(scene, request);
+    ASSERT_EQ(impacts.points.size(), 40u);
+    const double omega = scene.number("omega");
+    double nearest = INFINITY;
+    for (const SectionPoint& impact : impacts.points) {
+      const double phase = std::fmod(omega * impact.t, 2.0 * std::numbers::pi);
+      nearest = std::min(nearest, std::max(std::fabs(phase - point.state[0]),
+                                           std::fabs(impact.qdot - point.state[1])));
+    }
+    EXPECT_LE(nearest, 1e-8) << "mu = " << point.parameter;
+  }
+  EXPECT_EQ(compared, 3);
 }
 
 }  // namespace
