@@ -141,17 +141,23 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
       if (!held) return full_map_at(base, period);
       return with_component_held(full_map_at(base, period), *held);
     };
-    if constexpr (n > 2) {
-      const OrbitEvaluation at =
-          full_map_at(scene, job.period).evaluate(request.start, job.from, job.phase, false, {});
-      if (at.completed) {
-        if (const auto component = neutral_component(at.monodromy)) {
-          held = HeldComponent{*component, request.start[*component]};
-          request.start = without_held_component(request.start, *held);
-          result.neutral = held;
+    // hold the component along which the map is neutral at `start`, if any
+    auto hold_if_neutral = [&](const OrbitPoint& start) {
+      request.start = start;
+      if constexpr (n > 2) {
+        const OrbitEvaluation at =
+            full_map_at(scene, job.period).evaluate(start, job.from, job.phase, false, {});
+        if (at.completed) {
+          if (const auto component = neutral_component(at.monodromy)) {
+            held = HeldComponent{*component, start[*component]};
+            request.start = without_held_component(start, *held);
+            result.neutral = held;
+          }
         }
       }
-    }
+    };
+    const OrbitPoint full_start = request.start;
+    hold_if_neutral(full_start);
     auto problem_for = [&](int period) {
       ContinuationProblem problem = map_at(scene, period);
       for (const SceneBoundary& boundary : boundaries)
@@ -177,8 +183,27 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
       return branch;
     };
     int period = job.period;
-    result.branches.push_back(
-        {period, checked(continue_branch(problem_for(period), request), period)});
+    ContinuationResult first = checked(continue_branch(problem_for(period), request), period);
+    if (held && first.stop_reason == StopReason::neutral_drift && first.branch.empty()) {
+      // the start was on no family: the map looked neutral there, but the
+      // held component drifts at once (a transient that ended before the
+      // orbit's sticking impacts set in). Newton converges the start on the
+      // full map, the neutral component is looked for again on that orbit,
+      // and the branch runs from it
+      held.reset();
+      result.neutral.reset();
+      ContinuationRequest converge = request;
+      converge.start = full_start;
+      converge.max_points = 1;
+      const ContinuationResult converged = continue_branch(problem_for(period), converge);
+      if (!converged.branch.empty()) {
+        hold_if_neutral(converged.branch.front().state);
+        first = checked(continue_branch(problem_for(period), request), period);
+      } else {
+        first = converged;
+      }
+    }
+    result.branches.push_back({period, std::move(first)});
     for (int doubling = 0; doubling < job.doublings; ++doubling) {
       const ContinuationResult& previous = result.branches.back().result;
       const auto found = std::find_if(

@@ -21,6 +21,8 @@
 //   and one a part in a million off the edge has both;
 // * on the impact section too, with the spin free and held (neutral), the
 //   continued orbit is the brute-force run's impacts to 1e-8;
+// * a continuation whose transient ends on no family converges its start
+//   before holding the spin, and its points are periodic orbits;
 // * where continuation in μ locates an impact that stops sticking, the
 //   friction cone condition solved by hand holds to 1e-9 in μ;
 // * with the spin angle grown to 1e4 rad, the impacts of a plain and of a
@@ -506,6 +508,50 @@ TEST(RigidPendulumSpin, ImpactSectionBranchOfTheFreeSpinIsTheBruteForceImpacts) 
     EXPECT_LE(nearest, 1e-8) << "mu = " << point.parameter;
   }
   EXPECT_EQ(compared, 3);
+}
+
+// At V0 = 3, μ = 0.6, a 100-period transient ends sliding at every impact,
+// where the spin looks neutral, but no sliding orbit is near: the held spin
+// drifts by 1.2 rad/s per orbit at once. The start is then converged on the
+// full map first; it lands on the unstable sliding family (multiplier 1.24),
+// whose spin is neutral, and the branch runs on it with the spin held.
+// Every point is a periodic orbit: a plain run from it returns to it after
+// two periods to 1e-8. (Before, the branch ended at once with neutral_drift;
+// a 600-period transient reaches the stable orbit with a sticking impact.)
+TEST(RigidPendulumSpin, AStartOnNoFamilyIsConvergedBeforeTheSpinIsHeld) {
+  const std::vector<std::string> assignments = {"model=rigid", "spin=free", "radius=0.02", "V0=3"};
+  ContinuationJob job;
+  job.parameter = "mu";
+  job.from = 0.6;
+  job.to = 0.5;
+  job.period = 2;
+  job.transient_periods = 100;
+  const ContinuationJobResult continued = continue_orbit(pendulum_scene(assignments), job);
+  const ContinuationResult& branch = continued.branches.at(0).result;
+  EXPECT_EQ(branch.stop_reason, StopReason::end_of_range) << branch.stop_detail;
+  ASSERT_GE(branch.branch.size(), 3u);
+  ASSERT_TRUE(continued.neutral.has_value());
+  EXPECT_EQ(continued.neutral->index, 2u);
+  for (std::size_t k = 0; k < branch.branch.size(); k += branch.branch.size() / 3) {
+    const BranchPoint& point = branch.branch[k];
+    std::vector<std::string> at = assignments;
+    at.push_back("mu=" + to_text(point.parameter));
+    const Scene scene = pendulum_scene(at);
+    const FreeSpinPendulum system(rigid_pendulum_parameters(scene));
+    const FlowSetup setup = flow_setup(scene);
+    const double period = 2.0 * std::numbers::pi / system.parameters().omega;
+    const FreeSpinPendulum::State start{point.state[0], point.state[1], point.state[2], 0.0, 0.0};
+    EventLog log(false);
+    const auto run = with_flow<FreeSpinPendulum>(
+        setup.method, stepper_settings(system, setup), [&](auto& stepper) {
+          return simulate(system, stepper, start, FreeSpinPendulum::Mode::free, 0.0, 2.0 * period,
+                          loop_options(setup), log);
+        });
+    ASSERT_EQ(run.termination, Termination::completed);
+    for (std::size_t i = 0; i < 3; ++i)
+      EXPECT_NEAR(run.state[i], point.state[i], 1e-8 * (1.0 + std::fabs(point.state[i])))
+          << "mu = " << point.parameter << ", component " << i;
+  }
 }
 
 }  // namespace
