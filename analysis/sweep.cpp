@@ -110,6 +110,9 @@ std::vector<SweepTask> sweep_tasks(const SweepPlan& plan) {
     std::vector<int> directions;
     if (plan.direction != SweepDirection::down) directions.push_back(1);
     if (plan.direction != SweepDirection::up) directions.push_back(-1);
+    // up follows the parameter's increasing values, whichever way the range
+    // is written (FROM > TO puts them in decreasing index order)
+    const bool ascending = plan.axes[0].from <= plan.axes[0].to;
     for (int direction : directions)
       for (int c = 0; c < chunks; ++c) {
         SweepTask task;
@@ -118,7 +121,7 @@ std::vector<SweepTask> sweep_tasks(const SweepPlan& plan) {
         const int begin = static_cast<int>(static_cast<long>(n) * c / chunks);
         const int end = static_cast<int>(static_cast<long>(n) * (c + 1) / chunks);
         for (int k = 0; k < end - begin; ++k)
-          task.points.push_back({direction > 0 ? begin + k : end - 1 - k, 0});
+          task.points.push_back({(direction > 0) == ascending ? begin + k : end - 1 - k, 0});
         tasks.push_back(std::move(task));
       }
     return tasks;

@@ -27,6 +27,11 @@ namespace impactlab::cli {
 
 namespace {
 
+// " (detail)" after a stop reason, or nothing where there is no detail
+std::string in_brackets(const std::string& detail) {
+  return detail.empty() ? std::string() : " (" + detail + ")";
+}
+
 // The values as given; their defaults come from the "continue" option table.
 struct ContinueCommandOptions {
   SceneOptions scene;
@@ -293,9 +298,9 @@ int run_continue(const ContinueCommandOptions& command_options,
   }
   if (!command_options.scene.quiet) {
     for (const ContinuedBranch& branch : result.branches) {
-      std::cout << fmt::format("period-{} branch: {} points, stopped: {} ({})\n", branch.period,
+      std::cout << fmt::format("period-{} branch: {} points, stopped: {}{}\n", branch.period,
                                branch.result.branch.size(), to_string(branch.result.stop_reason),
-                               branch.result.stop_detail);
+                               in_brackets(branch.result.stop_detail));
       for (const BifurcationPoint& p : branch.result.points)
         std::cout << fmt::format("  {} at {} = {:.12g} (error {:.2g}){}\n", type_name(p),
                                  range.name,
@@ -303,18 +308,19 @@ int run_continue(const ContinueCommandOptions& command_options,
     }
     if (two_parameter) {
       if (result.has_curve)
-        std::cout << fmt::format("{} curve in ({}, {}): {} points, stopped: {} ({})\n",
+        std::cout << fmt::format("{} curve in ({}, {}): {} points, stopped: {}{}\n",
                                  to_string(result.curve.type), range.name, range2.name,
                                  result.curve.curve.size(), to_string(result.curve.stop_reason),
-                                 result.curve.stop_detail);
+                                 in_brackets(result.curve.stop_detail));
       else
         std::cout << "no curve: " << result.curve_note << '\n';
       for (const BranchCurve& doubled : result.doubled_curves) {
         if (doubled.has_curve)
-          std::cout << fmt::format("  period-{} branch's {} curve: {} points, stopped: {} ({})\n",
+          std::cout << fmt::format("  period-{} branch's {} curve: {} points, stopped: {}{}\n",
                                    doubled.period, to_string(doubled.curve.type),
                                    doubled.curve.curve.size(),
-                                   to_string(doubled.curve.stop_reason), doubled.curve.stop_detail);
+                                   to_string(doubled.curve.stop_reason),
+                                   in_brackets(doubled.curve.stop_detail));
         else
           std::cout << fmt::format("  period-{} branch: no curve: {}\n", doubled.period,
                                    doubled.note);

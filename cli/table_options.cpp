@@ -130,7 +130,17 @@ std::string TableOptions::help(const OptionSpec& spec) const {
 
 CLI::Option* TableOptions::finish(CLI::Option* option, const OptionSpec& spec) {
   if (spec.required) option->required();
-  if (spec.max_count > 0) option->expected(1, spec.max_count);
+  if (spec.max_count > 0) {
+    // counted after parsing, so that one too many is refused naming the
+    // option, as every other bad input is (CLI11's own count check says
+    // "At Most 2 required but received 3")
+    command_.parse_complete_callback([option, flag = cli_name(spec), most = spec.max_count] {
+      if (option->count() > static_cast<std::size_t>(most))
+        throw CLI::ValidationError(
+            flag + " = " + option->as<std::vector<std::string>>().back(),
+            fmt::format("given {} times; at most {}", option->count(), most));
+    });
+  }
   if (spec.comma_separated) option->delimiter(',');
   if (spec.for_tests_only) option->group("");
   if (spec.default_in_help && has_default(spec) && spec.type != OptionType::flag)

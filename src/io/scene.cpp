@@ -6,6 +6,8 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <string_view>
+#include <vector>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -13,6 +15,7 @@
 #include <impactlab/integrate/stepper_names.hpp>
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/builtin_scenes.hpp>
+#include <impactlab/io/nearest_name.hpp>
 #include <impactlab/io/toml_nesting.hpp>
 
 namespace impactlab {
@@ -25,13 +28,14 @@ const KeySpec* find_key(const SceneSchema& schema, std::string_view key) {
   return nullptr;
 }
 
-std::string known_keys(const SceneSchema& schema) {
-  std::string list;
-  for (const auto& spec : schema.keys) {
-    if (!list.empty()) list += ", ";
-    list += spec.key;
-  }
-  return list;
+// what an unknown key's message says after "unknown key for oscillator X":
+// the nearest key where one is close, and where every key is listed
+std::string unknown_key_hint(const SceneSchema& schema, std::string_view key) {
+  std::vector<std::string_view> keys;
+  for (const auto& spec : schema.keys) keys.emplace_back(spec.key);
+  const auto nearest = nearest_name(key, keys);
+  return (nearest ? fmt::format(": did you mean {}?", *nearest) : std::string()) +
+         " (impactlab scenes lists every key of each scene)";
 }
 
 std::string builtin_names() {
@@ -186,9 +190,9 @@ void validate(const Scene& scene, const SceneSchema& schema) {
   for (const auto& [key, value] : scene.values) {
     const KeySpec* spec = find_key(schema, key);
     if (!spec)
-      throw BadInput(key, to_text(value),
-                     fmt::format("unknown key for oscillator {} (known: {})", schema.oscillator,
-                                 known_keys(schema)));
+      throw BadInput(key, to_text(value), fmt::format("unknown key for oscillator {}{}",
+                                                      schema.oscillator,
+                                                      unknown_key_hint(schema, key)));
     if (spec->is_text) {
       const auto* text = std::get_if<std::string>(&value);
       if (!text) throw BadInput(key, to_text(value), "expected text");
@@ -263,9 +267,8 @@ void set_scene_key(Scene& scene, const SceneSchema& schema, std::string_view ass
   const std::string text(assignment.substr(equals + 1));
   const KeySpec* spec = find_key(schema, key);
   if (!spec)
-    throw BadInput(key, text,
-                   fmt::format("unknown key for oscillator {} (known: {})", schema.oscillator,
-                               known_keys(schema)));
+    throw BadInput(key, text, fmt::format("unknown key for oscillator {}{}", schema.oscillator,
+                                          unknown_key_hint(schema, key)));
   if (spec->is_text)
     scene.values[key] = text;
   else

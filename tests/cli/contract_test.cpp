@@ -168,6 +168,38 @@ TEST(Simulate, PainleveStopExitsThreeWithCompleteOutputs) {
   EXPECT_EQ(meta["run"]["t_final_s"].get<double>(), std::stod(fields[0]));
 }
 
+// --direction up follows the parameter's increasing values however the
+// range is written: omega=9:5:5 is the same sweep as omega=5:9:5, rows and
+// labels alike (it was walked 9 → 5 and labelled up)
+TEST(Sweep, UpFollowsIncreasingValuesWhicheverWayTheRangeIsWritten) {
+  const ScratchFolder scratch;
+  std::string written[2];
+  int k = 0;
+  for (const char* range : {"omega=5:9:5", "omega=9:5:5"}) {
+    const auto out_dir = scratch / ("sweep" + std::to_string(k));
+    const ProgramRun run = run_impactlab({"sweep", "jin2003", "--param", range, "--no-lyapunov",
+                                          "--direction", "both", "--quiet", "--out", out_dir});
+    ASSERT_EQ(run.status, 0) << run.err;
+    written[k++] = slurp(out_dir / "summary.csv");
+  }
+  EXPECT_EQ(written[1], written[0]);
+  std::stringstream rows(written[0]);
+  std::string header, first;
+  std::getline(rows, header);
+  std::getline(rows, first);
+  EXPECT_EQ(first.rfind("5,up,", 0), 0u) << first;
+}
+
+// a stop reason without detail is printed bare, not with empty brackets
+TEST(Continue, AStopWithoutDetailHasNoEmptyBrackets) {
+  const ScratchFolder scratch;
+  const ProgramRun run = run_impactlab({"continue", "linear_impact", "--set", "sigma=0.2", "--param",
+                                        "omega=1.5:1.6", "--out", scratch / "branch"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("stopped: end_of_range\n"), std::string::npos) << run.out;
+  EXPECT_EQ(run.out.find("()"), std::string::npos) << run.out;
+}
+
 TEST(Scenes, ListsTheDefaultScene) {
   const ProgramRun run = run_impactlab({"scenes"});
   ASSERT_EQ(run.status, 0) << run.err;

@@ -223,6 +223,14 @@ INSTANTIATE_TEST_SUITE_P(
         SpelledLine{"param",
                     {"sweep", "jin2003", "--param", "model=0:1:5"},
                     "--param = model: not a numeric key of oscillator pendulum_walls"},
+        SpelledLine{"misspelt_key",
+                    {"simulate", "jin2003", "--set", "omegaa=3"},
+                    "omegaa = 3: unknown key for oscillator pendulum_walls: did you mean omega? "
+                    "(impactlab scenes lists every key of each scene)"},
+        SpelledLine{"param_three_times",
+                    {"sweep", "jin2003", "--param", "omega=5:6:3", "--param", "V0=1:2:3",
+                     "--param", "mu=0:1:2"},
+                    "--param = mu=0:1:2: given 3 times; at most 2"},
         SpelledLine{"section",
                     {"continue", "jin2003", "--param", "omega=2:2.5", "--section", "impact:2"},
                     "--section = impact:2: the wall after impact: must be +1, -1 or 0 (any "
