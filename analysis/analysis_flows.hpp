@@ -10,6 +10,20 @@
 //   IMPACTLAB_TANGENT_FLOW_ENGINES(S)     and Lyapunov exponents, periodic orbits,
 //                                         continuation (S has Jacobians)
 //
+// A system whose flows take too long to compile in one unit (the pendulum's
+// Model N and its rigid-body model: their variational equations, in Taylor
+// series above all) spreads them over a few units with the lines
+// IMPACTLAB_TANGENT_FLOW_ENGINES is made of:
+//
+//   IMPACTLAB_SIMULATION_FLOW_ENGINES(S)   S
+//   IMPACTLAB_DECORATED_FLOW_ENGINES(S)    S decorated
+//   IMPACTLAB_VARIATIONAL_FLOW_ENGINES(S)  its variational equations
+//
+// and can take one stepper's engine of the variational equations further,
+// into a unit of its own: IMPACTLAB_VARIATIONAL_STEPPED_FLOW_ENGINE(METHOD, S)
+// there, and IMPACTLAB_EXTERN_VARIATIONAL_STEPPED_FLOW_ENGINE(METHOD, S)
+// before IMPACTLAB_VARIATIONAL_FLOW_ENGINES(S) (api/flows/rigid_free_flows.cpp).
+//
 // A new analysis that decorates a system another way adds its decoration to
 // DecoratedSystem; no binding changes. A flow that is missing fails to link,
 // naming the type.
@@ -21,10 +35,25 @@
 
 #define IMPACTLAB_SIMULATION_FLOW_ENGINES(...) IMPACTLAB_FLOW_ENGINES(__VA_ARGS__)
 
+#define IMPACTLAB_DECORATED_FLOW_ENGINES(...) \
+  IMPACTLAB_FLOW_ENGINES(::impactlab::DecoratedSystem<__VA_ARGS__>)
+
+#define IMPACTLAB_VARIATIONAL_FLOW_ENGINES(...) \
+  IMPACTLAB_FLOW_ENGINES(::impactlab::Variational<::impactlab::DecoratedSystem<__VA_ARGS__>>)
+
 #define IMPACTLAB_SECTION_FLOW_ENGINES(...)       \
   IMPACTLAB_SIMULATION_FLOW_ENGINES(__VA_ARGS__); \
-  IMPACTLAB_FLOW_ENGINES(::impactlab::DecoratedSystem<__VA_ARGS__>)
+  IMPACTLAB_DECORATED_FLOW_ENGINES(__VA_ARGS__)
 
 #define IMPACTLAB_TANGENT_FLOW_ENGINES(...)    \
   IMPACTLAB_SECTION_FLOW_ENGINES(__VA_ARGS__); \
-  IMPACTLAB_FLOW_ENGINES(::impactlab::Variational<::impactlab::DecoratedSystem<__VA_ARGS__>>)
+  IMPACTLAB_VARIATIONAL_FLOW_ENGINES(__VA_ARGS__)
+
+// one stepper's engine (METHOD: an integrator.method) of the variational
+// equations: compiled in this unit; declared compiled in another
+#define IMPACTLAB_VARIATIONAL_STEPPED_FLOW_ENGINE(METHOD, ...) \
+  IMPACTLAB_STEPPED_FLOW_ENGINE(                               \
+      METHOD, ::impactlab::Variational<::impactlab::DecoratedSystem<__VA_ARGS__>>)
+#define IMPACTLAB_EXTERN_VARIATIONAL_STEPPED_FLOW_ENGINE(METHOD, ...) \
+  IMPACTLAB_EXTERN_STEPPED_FLOW_ENGINE(                               \
+      METHOD, ::impactlab::Variational<::impactlab::DecoratedSystem<__VA_ARGS__>>)

@@ -1,7 +1,9 @@
 // The definition of make_flow_engine (simulate/flow.hpp): the event loop bound
 // to each stepper of integrate/. Included only by the translation units that
 // instantiate engines, through IMPACTLAB_FLOW_ENGINES(System): one such line
-// per system type the program runs.
+// per system type the program runs. Where one system's engines together take
+// too long to compile in one unit, each stepper's engine can be compiled in a
+// unit of its own (IMPACTLAB_STEPPED_FLOW_ENGINE below).
 #pragma once
 
 #include <memory>
@@ -39,19 +41,49 @@ class SteppedFlowEngine final : public FlowEngine<System> {
 
 }  // namespace detail
 
+// The event loop bound to one stepper of with_stepper_type's table for
+// System: one engine, compiled where a macro below names the pair.
+template <HybridSystem System, class Stepper>
+std::unique_ptr<FlowEngine<System>> make_stepped_flow_engine(const StepperSettings& settings) {
+  return std::make_unique<detail::SteppedFlowEngine<System, Stepper>>(settings);
+}
+
+// The dispatch: the stepper of the named method, its engine made by
+// make_stepped_flow_engine.
 template <HybridSystem System>
 std::unique_ptr<FlowEngine<System>> make_flow_engine(std::string_view method,
                                                      const StepperSettings& settings) {
   return with_stepper_type<System>(
       method, [&]<class Stepper>() -> std::unique_ptr<FlowEngine<System>> {
-        return std::make_unique<detail::SteppedFlowEngine<System, Stepper>>(settings);
+        return make_stepped_flow_engine<System, Stepper>(settings);
       });
 }
 
 }  // namespace impactlab
 
-// The engines of one system type, compiled in this translation unit (at
-// namespace scope, once per type in the whole program).
+// The engines of one system type, at namespace scope, once per type in the
+// whole program: the dispatch, and the engine of each of the system's
+// steppers, compiled in this translation unit but for those that an
+// IMPACTLAB_EXTERN_STEPPED_FLOW_ENGINE line above it declares compiled in
+// another.
 #define IMPACTLAB_FLOW_ENGINES(...)                                                      \
   template std::unique_ptr<::impactlab::FlowEngine<__VA_ARGS__>>                         \
   impactlab::make_flow_engine<__VA_ARGS__>(std::string_view, const ::impactlab::StepperSettings&)
+
+// The engine of one stepper for one system type, METHOD an integrator.method
+// (stepper_of in integrate/stepper_dispatch.hpp), compiled in this
+// translation unit: a system whose engines take too long to compile in one
+// unit spreads them over several, once per pair in the whole program.
+#define IMPACTLAB_STEPPED_FLOW_ENGINE(METHOD, ...)                                  \
+  template std::unique_ptr<::impactlab::FlowEngine<__VA_ARGS__>>                    \
+  impactlab::make_stepped_flow_engine<__VA_ARGS__,                                  \
+                                      ::impactlab::stepper_of::METHOD<__VA_ARGS__>>( \
+      const ::impactlab::StepperSettings&)
+
+// The same engine declared compiled in another translation unit, so that
+// IMPACTLAB_FLOW_ENGINES below it calls that one and does not compile it again.
+#define IMPACTLAB_EXTERN_STEPPED_FLOW_ENGINE(METHOD, ...)                           \
+  extern template std::unique_ptr<::impactlab::FlowEngine<__VA_ARGS__>>             \
+  impactlab::make_stepped_flow_engine<__VA_ARGS__,                                  \
+                                      ::impactlab::stepper_of::METHOD<__VA_ARGS__>>( \
+      const ::impactlab::StepperSettings&)

@@ -1,0 +1,6 @@
+// The decorated flows of the pendulum's rigid-body model with the spin free
+// (rigid_free_flows.cpp says why they have a unit of their own).
+#include <impactlab/analysis/analysis_flows.hpp>
+#include <impactlab/oscillators/pendulum_walls/rigid_pendulum_spin.hpp>
+
+IMPACTLAB_DECORATED_FLOW_ENGINES(impactlab::FreeSpinPendulum);

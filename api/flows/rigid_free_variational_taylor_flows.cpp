@@ -1,0 +1,7 @@
+// The variational equations of the pendulum's rigid-body model with the spin
+// free, bound to the Taylor stepper (rigid_free_flows.cpp says why they have a
+// unit of their own).
+#include <impactlab/analysis/analysis_flows.hpp>
+#include <impactlab/oscillators/pendulum_walls/rigid_pendulum_spin.hpp>
+
+IMPACTLAB_VARIATIONAL_STEPPED_FLOW_ENGINE(taylor, impactlab::FreeSpinPendulum);
