@@ -99,7 +99,10 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
       {"files", {"poincare.csv", "meta.json"}},
   };
   if (lyapunov) {
-    meta["lyapunov"] = {{"largest_exponent_per_time", fmt::format("{}", result.lyapunov)},
+    // a number; null where there is none (NaN: the note says why)
+    meta["lyapunov"] = {{"largest_exponent_per_time", std::isfinite(result.lyapunov)
+                                                          ? nlohmann::json(result.lyapunov)
+                                                          : nlohmann::json(nullptr)},
                         {"note", result.lyapunov_note}};
   }
   write_json(files.add("meta.json"), meta);

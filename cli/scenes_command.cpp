@@ -46,10 +46,7 @@ int run_scenes(const std::string& name) {
     if (spec.is_text) {
       for (auto choice : spec.choices) range += (range.empty() ? "" : "|") + std::string(choice);
     } else {
-      range = fmt::format("{}{}, {}{}", spec.lower_open ? "(" : "[",
-                          spec.lower <= -1e308 ? "-inf" : to_text(spec.lower),
-                          spec.upper >= 1e308 ? "inf" : to_text(spec.upper),
-                          spec.upper_open ? ")" : "]");
+      range = range_text(spec);
     }
     const std::string read_by =
         spec.read_by.empty()

@@ -212,11 +212,15 @@ void validate(const Scene& scene, const SceneSchema& schema) {
     if (!std::isfinite(*number)) throw BadInput(key, to_text(value), "not a finite number");
     const bool below = spec->lower_open ? !(*number > spec->lower) : !(*number >= spec->lower);
     const bool above = spec->upper_open ? !(*number < spec->upper) : !(*number <= spec->upper);
-    if (below || above)
-      throw BadInput(key, to_text(value),
-                     fmt::format("out of range {}{}, {}{}", spec->lower_open ? "(" : "[",
-                                 spec->lower, spec->upper, spec->upper_open ? ")" : "]"));
+    if (below || above) throw BadInput(key, to_text(value), "out of range " + range_text(*spec));
   }
+}
+
+std::string range_text(const KeySpec& spec) {
+  return fmt::format("{}{}, {}{}", spec.lower_open ? "(" : "[",
+                     spec.lower <= -1e308 ? "-inf" : to_text(spec.lower),
+                     spec.upper >= 1e308 ? "inf" : to_text(spec.upper),
+                     spec.upper_open ? ")" : "]");
 }
 
 std::string model_oscillator_name(std::string_view path) { return "model:" + std::string(path); }

@@ -35,6 +35,10 @@ struct KeySpec {
   std::vector<std::string_view> read_by{};
 };
 
+// A number key's range as the messages and `scenes` write it: "(0, inf]",
+// "[-1, 0]" (a bound at ±1e308 is none, written ±inf).
+std::string range_text(const KeySpec& spec);
+
 struct SceneSchema {
   std::string_view oscillator;
   std::string_view main_coordinate;  // q in events.csv: "theta", "x", "y"

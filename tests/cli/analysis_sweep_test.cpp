@@ -123,7 +123,21 @@ TEST(Poincare, PaperModelImpactMapWithoutLyapunov) {
   }
   const auto meta = nlohmann::json::parse(slurp(out / "meta.json"));
   EXPECT_EQ(meta["scene"]["keys"]["model"]["value"], "paper");
-  EXPECT_EQ(meta["lyapunov"]["largest_exponent_per_time"], "nan");
+  // no exponent (a number where there is one): null, the note says why
+  EXPECT_TRUE(meta["lyapunov"]["largest_exponent_per_time"].is_null());
+  EXPECT_FALSE(meta["lyapunov"]["note"].get<std::string>().empty());
+}
+
+// meta.json stores the exponent as a number (it was a string)
+TEST(Poincare, TheLyapunovExponentIsANumberInMeta) {
+  const ScratchFolder scratch;
+  const auto out = scratch / "poincare";
+  const ProgramRun run = run_impactlab(
+      {"poincare", "jin2003", "--points", "20", "--lyapunov", "--quiet", "--out", out});
+  ASSERT_EQ(run.status, 0) << run.err;
+  const auto meta = nlohmann::json::parse(slurp(out / "meta.json"));
+  ASSERT_TRUE(meta["lyapunov"]["largest_exponent_per_time"].is_number());
+  EXPECT_LT(meta["lyapunov"]["largest_exponent_per_time"].get<double>(), 0.0);
 }
 
 TEST(Sweep, OneDimensionalColumnsAndBothDirections) {

@@ -227,6 +227,9 @@ INSTANTIATE_TEST_SUITE_P(
                     {"simulate", "jin2003", "--set", "omegaa=3"},
                     "omegaa = 3: unknown key for oscillator pendulum_walls: did you mean omega? "
                     "(impactlab scenes lists every key of each scene)"},
+        SpelledLine{"unbounded_range",
+                    {"simulate", "jin2003", "--set", "d=-1"},
+                    "d = -1: out of range [0, inf]"},
         SpelledLine{"param_three_times",
                     {"sweep", "jin2003", "--param", "omega=5:6:3", "--param", "V0=1:2:3",
                      "--param", "mu=0:1:2"},
