@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <impactlab/api/model_spec.hpp>
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
@@ -90,7 +91,7 @@ Comparison compare_models(const Scene& scene, const std::vector<std::string>& mo
   request.keep_events = true;
   for (const auto& model : models) {
     ModelRun run{model, scene, {}, {}, {}};
-    apply_override(run.scene, "model=" + model);
+    apply_model(run.scene, model);
     run.output = run_of_scene(run.scene, request);
     for (const auto& e : run.output.events)
       if (e.kind == EventKind::impact) run.impacts.push_back(e);

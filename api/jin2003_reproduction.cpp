@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include <impactlab/api/model_spec.hpp>
 #include <impactlab/api/oscillator_registry.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/api/system_jobs.hpp>
@@ -177,18 +178,6 @@ SlipStatistics slip_statistics(const std::string& model, const std::vector<Event
 }
 
 }  // namespace
-
-void apply_model(Scene& scene, std::string_view model_spec) {
-  std::size_t start = 0;
-  bool first = true;
-  while (start <= model_spec.size()) {
-    const std::size_t end = std::min(model_spec.find(':', start), model_spec.size());
-    const std::string_view part = model_spec.substr(start, end - start);
-    apply_override(scene, first ? fmt::format("model={}", part) : std::string(part));
-    first = false;
-    start = end + 1;
-  }
-}
 
 Jin2003Results reproduce_jin2003(const Scene& scene, const Jin2003Settings& settings) {
   const auto start = std::chrono::steady_clock::now();

@@ -25,7 +25,7 @@ namespace impactlab {
 
 struct Jin2003Settings {
   // model specifications: a model name, then scene settings of its own after
-  // colons ("rigid:radius=0.01:spin=free"); see apply_model()
+  // colons ("rigid:radius=0.01:spin=free"); see api/model_spec.hpp
   std::vector<std::string> models = {"paper", "newton", "rigid:radius=0.01:spin=free"};
   // Fig. 4(a): ω grid (rad/s) at fixed V0 (m/s)
   double omega_from = 6.0, omega_to = 8.0;
@@ -114,10 +114,6 @@ struct Jin2003Results {
 // per run. Parallel over parameter values; the result does not depend on the
 // thread count.
 Jin2003Results reproduce_jin2003(const Scene& scene, const Jin2003Settings& settings);
-
-// Sets a model specification on a scene: "NAME[:KEY=VALUE]...", the model
-// name and then scene keys for that model alone (BadInput names a bad one).
-void apply_model(Scene& scene, std::string_view model_spec);
 
 // A closed interval of grid values.
 struct ParameterRange {

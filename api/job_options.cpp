@@ -261,7 +261,8 @@ Options continue_options() {
 Options compare_options() {
   return joined({run_options(),
                  {{.name = "models", .type = OptionType::text,
-                   .help = "comma-separated models (newton,paper,rigid); default: every model the "
+                   .help = "comma-separated models (newton,paper,rigid); NAME[:KEY=VALUE]... "
+                           "gives a model scene settings of its own; default: every model the "
                            "scene accepts",
                    .default_value = string_view(""), .default_in_help = false}}});
 }

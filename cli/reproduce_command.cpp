@@ -10,6 +10,7 @@
 
 #include <impactlab/api/jin2003_report.hpp>
 #include <impactlab/api/jin2003_reproduction.hpp>
+#include <impactlab/api/model_spec.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include "command.hpp"
 #include "interrupted_runs.hpp"

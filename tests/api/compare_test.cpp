@@ -121,6 +121,37 @@ TEST(CompareCommand, NewtonAndReducedRigidAgreeOnJin2003) {
   EXPECT_NE(slurp(out / "summary.md").find("reduces to Model N"), std::string::npos);
 }
 
+// A model specification with settings of its own, as reproduce --models
+// takes it: the rigid run is the one `simulate` makes with those settings,
+// impact for impact (it was refused as an unknown model)
+TEST(CompareCommand, AModelSpecificationCarriesItsOwnSettings) {
+  const ScratchFolder scratch;
+  const ProgramRun outcome = run_command_line(
+      "compare jin2003 --models newton,rigid:radius=0.01:spin=free --periods 10 --quiet --out " +
+      (scratch / "compare").string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const ProgramRun alone = run_command_line(
+      "simulate jin2003 --set model=rigid --set radius=0.01 --set spin=free --periods 10 --quiet "
+      "--out " + (scratch / "simulate").string());
+  ASSERT_EQ(alone.status, 0) << alone.err;
+  const auto compared = read_csv(scratch / "compare" / "compare_impacts.csv");
+  const auto& header = compared.front();
+  const auto column = static_cast<std::size_t>(
+      std::find(header.begin(), header.end(), "t_rigid:radius=0.01:spin=free") - header.begin());
+  ASSERT_LT(column, header.size());
+  std::vector<std::string> times;
+  for (const auto& row : read_csv(scratch / "simulate" / "events.csv"))
+    if (row.size() > 1 && row[1] == "impact") times.push_back(row[0]);
+  ASSERT_GT(times.size(), 5u);
+  std::size_t k = 0;
+  for (std::size_t i = 1; i < compared.size(); ++i)
+    if (!compared[i][column].empty()) {
+      ASSERT_LT(k, times.size());
+      EXPECT_EQ(std::stod(compared[i][column]), std::stod(times[k++])) << "impact " << i;
+    }
+  EXPECT_EQ(k, times.size());
+}
+
 TEST(CompareCommand, RejectedModelExitsTwoAndWritesNothing) {
   const ScratchFolder scratch;
   const auto out = scratch / "unknown";
