@@ -3,7 +3,10 @@
 // (api/model_keys.hpp), the models that read each key that not every model
 // reads; the header names every model, the readers of the keys unmarked.
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
+#include <system_error>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -12,6 +15,7 @@
 #include <impactlab/api/scene_loading.hpp>
 #include "command.hpp"
 #include "commands.hpp"
+#include "program_files.hpp"
 #include "table_options.hpp"
 #include <impactlab/io/builtin_scenes.hpp>
 
@@ -25,6 +29,19 @@ int run_scenes(const std::string& name) {
       const Scene scene = load_scene(builtin.name);
       std::cout << fmt::format("{:<16} {:<16} {}\n", builtin.name, scene.oscillator,
                                scene.text("description"));
+    }
+    // the model files that ship with the program (CMakeLists.txt copies
+    // them beside it): a path is a scene name to every command
+    const std::filesystem::path examples = program_file("oscillators/model_file/examples");
+    std::vector<std::filesystem::path> model_files;
+    std::error_code missing;
+    for (const auto& entry : std::filesystem::directory_iterator(examples, missing))
+      if (entry.path().extension() == ".toml") model_files.push_back(entry.path());
+    std::sort(model_files.begin(), model_files.end());
+    if (!model_files.empty()) {
+      std::cout << "model files shipped with impactlab (give the path as the scene):\n";
+      for (const auto& file : model_files)
+        std::cout << fmt::format("  {}  {}\n", file.string(), scene_file_description(file));
     }
     return exit_done;
   }

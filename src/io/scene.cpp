@@ -216,6 +216,15 @@ void validate(const Scene& scene, const SceneSchema& schema) {
   }
 }
 
+std::string scene_file_description(const std::filesystem::path& path) {
+  try {
+    const toml::table file = toml::parse_file(path.string());
+    return file["description"].value_or(std::string());
+  } catch (const toml::parse_error&) {
+    return {};
+  }
+}
+
 std::string range_text(const KeySpec& spec) {
   return fmt::format("{}{}, {}{}", spec.lower_open ? "(" : "[",
                      spec.lower <= -1e308 ? "-inf" : to_text(spec.lower),

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <set>
@@ -102,6 +103,10 @@ using SchemaLookup = std::function<const SceneSchema&(std::string_view oscillato
 
 // The name of the oscillator a scene file's [model] section defines.
 std::string model_oscillator_name(std::string_view path);
+
+// A scene file's top-level `description`, without reading its model (no
+// compile); empty where it has none or cannot be read.
+std::string scene_file_description(const std::filesystem::path& path);
 
 // Reads a built-in scene by name or a scene file by path, fills defaults from
 // the schema of the oscillator it names (or its [model] section defines), and validates every key and value.

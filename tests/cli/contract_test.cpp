@@ -200,6 +200,31 @@ TEST(Continue, AStopWithoutDetailHasNoEmptyBrackets) {
   EXPECT_EQ(run.out.find("()"), std::string::npos) << run.out;
 }
 
+// the model files that ship with the program are listed by a path the
+// program itself runs, beside their description
+TEST(Scenes, ListsTheShippedModelFilesByAPathThatRuns) {
+  const ProgramRun run = run_impactlab({"scenes"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  std::stringstream lines(run.out);
+  std::string line, duffing;
+  int listed = 0;
+  while (std::getline(lines, line))
+    if (line.find(".toml") != std::string::npos) {
+      ++listed;
+      if (line.find("duffing_stop.toml") != std::string::npos) duffing = line;
+    }
+  EXPECT_EQ(listed, 4);
+  ASSERT_FALSE(duffing.empty()) << run.out;
+  EXPECT_NE(duffing.find("Duffing oscillator against a rigid stop"), std::string::npos);
+  const std::size_t start = duffing.find_first_not_of(' ');
+  const std::string path = duffing.substr(start, duffing.find(".toml") + 5 - start);
+  const ScratchFolder scratch;
+  const ProgramRun simulated = run_impactlab(
+      {"simulate", path, "--periods", "2", "--quiet", "--out", scratch / "duffing"},
+      {.environment = {"IMPACTLAB_CACHE_DIR=" + (scratch / "cache").string()}, .limit_s = 120});
+  EXPECT_EQ(simulated.status, 0) << path << ": " << simulated.err;
+}
+
 TEST(Scenes, ListsTheDefaultScene) {
   const ProgramRun run = run_impactlab({"scenes"});
   ASSERT_EQ(run.status, 0) << run.err;
