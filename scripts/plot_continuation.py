@@ -28,6 +28,21 @@ def read(path):
     return np.atleast_1d(data)
 
 
+def marked_points(points, param):
+    """The located points of points.csv by type: {type: (parameters, q)}, and
+    how many could not be located (empty q: no state to draw them at; a
+    column of empty fields reads as False, which would draw them at q = 0)."""
+    located = np.asarray(points["located"]) == 1 if "located" in points.dtype.names else \
+        np.ones(len(points), dtype=bool)
+    marked = {}
+    for kind in np.unique(points["type"]) if len(points) else []:
+        rows = points[(points["type"] == kind) & located]
+        if len(rows):
+            marked[str(kind)] = (np.asarray(rows[param], dtype=float),
+                                 np.asarray(rows["q"], dtype=float))
+    return marked, int(np.count_nonzero(~located))
+
+
 def runs(mask):
     """(start, stop) index pairs of the runs of equal values in a boolean array."""
     edges = np.flatnonzero(np.diff(mask.astype(int))) + 1
@@ -57,12 +72,13 @@ def main(argv):
         ax.plot([], [], "-", color=colour, label=f"period {rows['period'][0]} (dashed: unstable)")
     points_csv = os.path.join(os.path.dirname(branch_csv), "points.csv")
     if os.path.exists(points_csv):
-        points = read(points_csv)
-        for kind in np.unique(points["type"]) if len(points) else []:
-            rows = points[points["type"] == kind]
-            marker, colour = MARKERS.get(str(kind), ("x", "black"))
-            ax.plot(rows[param], rows["q"], marker, color=colour, markersize=8,
-                    linestyle="none", label=str(kind).replace("_", " "))
+        marked, not_located = marked_points(read(points_csv), param)
+        for kind, (where, q) in marked.items():
+            marker, colour = MARKERS.get(kind, ("x", "black"))
+            ax.plot(where, q, marker, color=colour, markersize=8, linestyle="none",
+                    label=kind.replace("_", " "))
+        if not_located:
+            ax.plot([], [], " ", label=f"{not_located} not located (points.csv)")
     ax.set_xlabel(param)
     ax.set_ylabel(f"{q_name} on the section")
     ax.set_title("continuation")

@@ -1,0 +1,35 @@
+"""The data the plot scripts draw, checked where a figure went wrong: a
+continuation point that could not be located (empty q in points.csv) is not
+drawn at q = 0, off the branch."""
+import importlib.util
+import pathlib
+
+import numpy as np
+
+SCRIPTS = pathlib.Path(__file__).resolve().parents[2] / "scripts"
+
+
+def load(name):
+    spec = importlib.util.spec_from_file_location(name, SCRIPTS / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_a_point_not_located_is_not_drawn(tmp_path):
+    plot = load("plot_continuation")
+    header = "type,omega,q,qdot,error_estimate,located\n"
+    # every q empty: numpy reads the column as booleans, False where empty
+    only_failed = tmp_path / "only_failed.csv"
+    only_failed.write_text(header + "grazing,6.1,,,0.01,0\n")
+    marked, not_located = plot.marked_points(plot.read(only_failed), "omega")
+    assert marked == {}
+    assert not_located == 1
+    # beside a located point: only that one is drawn, where it is
+    mixed = tmp_path / "mixed.csv"
+    mixed.write_text(header + "fold,5.5,0.25,0.1,1e-12,1\ngrazing,6.1,,,0.01,0\n")
+    marked, not_located = plot.marked_points(plot.read(mixed), "omega")
+    assert list(marked) == ["fold"]
+    np.testing.assert_array_equal(marked["fold"][0], [5.5])
+    np.testing.assert_array_equal(marked["fold"][1], [0.25])
+    assert not_located == 1
