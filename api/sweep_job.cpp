@@ -291,4 +291,19 @@ nlohmann::json sweep_counts(const std::map<SweepRecordKey, SweepRecord>& records
           {"rhs_evaluations", rhs}};
 }
 
+std::string stopped_points_note(const std::map<SweepRecordKey, SweepRecord>& records) {
+  std::map<std::string_view, std::uint64_t> by_termination;
+  std::uint64_t stopped = 0;
+  for (const auto& [key, record] : records)
+    if (record.result.termination != SectionTermination::completed) {
+      ++by_termination[to_string(record.result.termination)];
+      ++stopped;
+    }
+  if (stopped == 0) return {};
+  std::string why;
+  for (const auto& [termination, count] : by_termination)
+    why += fmt::format("{}{} {}", why.empty() ? "" : ", ", termination, count);
+  return fmt::format("{} of {} points stopped early ({})", stopped, records.size(), why);
+}
+
 }  // namespace impactlab

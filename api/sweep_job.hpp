@@ -106,6 +106,10 @@ std::vector<SweepRecordKey> sweep_row_order(const SweepPlan& plan,
 // rhs_evaluations summed over the points.
 nlohmann::json sweep_counts(const std::map<SweepRecordKey, SweepRecord>& records);
 
+// The points that stopped early and why, for the run's summary: "7 of 20
+// points stopped early (no_progress 7)"; empty where every point completed.
+std::string stopped_points_note(const std::map<SweepRecordKey, SweepRecord>& records);
+
 // A 1D sweep's bifurcation rows of one record (its section points).
 void add_bifurcation_rows(SweepTable& table, const SweepPlan& plan, const SweepRecord& record);
 

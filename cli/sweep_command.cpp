@@ -344,6 +344,11 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
                              "wrote {}\n",
                              scene.name, all.size(), done.size(), options.threads, mpi.size(),
                              wall_time, (directory / files.front()).string());
+  // said even when quiet: a stopped point is a gap in the diagram otherwise
+  if (const std::string stopped = stopped_points_note(all); !stopped.empty())
+    std::cerr << "impactlab: warning: " << stopped << "; the termination column of "
+              << (options.basins ? "basins.csv" : plan.axes.size() == 1 ? "summary.csv" : "classes.csv")
+              << " says which\n";
   return exit_done;
 }
 

@@ -70,23 +70,6 @@ TEST(CompareNumbers, ModelListIsParsedAndChecked) {
   EXPECT_EQ(bad_input_key([] { parse_model_list(""); }), "models");
 }
 
-// ------------------------------------------------------------ the program
-
-std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::stringstream cells_in(line);
-    std::string cell;
-    while (std::getline(cells_in, cell, ',')) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.emplace_back();
-    rows.push_back(cells);
-  }
-  return rows;
-}
-
 TEST(CompareCommand, NewtonAndReducedRigidAgreeOnJin2003) {
   const ScratchFolder scratch;
   const auto out = scratch / "jin2003";

@@ -3,6 +3,7 @@
 // files, a sweep interrupted midway resuming without recomputing its finished
 // points (and leaving no data file before it is complete), and bad input
 // exiting with status 2 and one line naming the key and the value.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -140,6 +141,37 @@ TEST(Poincare, TheLyapunovExponentIsANumberInMeta) {
   EXPECT_LT(meta["lyapunov"]["largest_exponent_per_time"].get<double>(), 0.0);
 }
 
+// A sweep whose points stop early says so, even with --quiet, and how many
+// and why, as summary.csv records them. The shipped Duffing oscillator
+// without its wall's sticking table chatters into no_progress at some F.
+TEST(Sweep, PointsThatStopEarlyAreCountedInAWarning) {
+  const ScratchFolder scratch;
+  std::string model = slurp(std::filesystem::path(IMPACTLAB_SOURCE_DIR) /
+                            "oscillators/model_file/examples/duffing_stop.toml");
+  model = model.substr(0, model.find("[model.walls.sticking]"));
+  const auto scene = scratch / "no_sticking.toml";
+  std::ofstream(scene) << model;
+  const auto out = scratch / "sweep";
+  const ProgramRun run = run_impactlab(
+      {"sweep", scene.string(), "--set", "r=0.2", "--set", "sigma=0.1", "--param", "F=0.2:3:20",
+       "--no-lyapunov", "--quiet", "--out", out},
+      {.environment = {"IMPACTLAB_CACHE_DIR=" + (scratch / "cache").string()}, .limit_s = 120});
+  ASSERT_EQ(run.status, 0) << run.err;
+  const auto rows = read_csv(out / "summary.csv");
+  const auto& header = rows.front();
+  const auto column = static_cast<std::size_t>(
+      std::find(header.begin(), header.end(), "termination") - header.begin());
+  ASSERT_LT(column, header.size());
+  int stopped = 0;
+  for (std::size_t i = 1; i < rows.size(); ++i) stopped += rows[i][column] != "completed";
+  ASSERT_GT(stopped, 0);
+  EXPECT_NE(run.err.find("warning: " + std::to_string(stopped) +
+                         " of 20 points stopped early (no_progress "),
+            std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("summary.csv"), std::string::npos) << run.err;
+}
+
 TEST(Sweep, OneDimensionalColumnsAndBothDirections) {
   const ScratchFolder scratch;
   const auto out = scratch / "columns";
@@ -178,7 +210,9 @@ TEST(Sweep, StickFractionIsTheShareOfImpactsFrictionStops) {
       run_command_line("sweep jin2003 --set V0=2" + grid + (scratch / "newton").string());
   ASSERT_EQ(newton.status, 0) << newton.err;
   for (const auto& row : split_lines(slurp(scratch / "newton" / "summary.csv")))
-    if (row.rfind("mu", 0) != 0) EXPECT_EQ(fields(row).back(), 0.0) << row;
+    if (row.rfind("mu", 0) != 0) {
+      EXPECT_EQ(fields(row).back(), 0.0) << row;
+    }
 }
 
 TEST(Sweep, SerialAndThreadedRunsWriteIdenticalFiles) {

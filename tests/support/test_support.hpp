@@ -41,6 +41,9 @@ class ScratchFolder {
 
 // The whole content of a file; empty when it cannot be read.
 std::string slurp(const std::filesystem::path& path);
+// A CSV file's rows split at commas (no quoting), the header first; a
+// trailing comma is an empty last field.
+std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path);
 
 // The lines of a text, without their line breaks.
 std::vector<std::string> split_lines(std::string_view text);
