@@ -1,4 +1,4 @@
-// The same scene under several impact models, side by side (issue 5, item 7):
+// The same scene under several impact models, side by side:
 // runs the scene once per model by overriding its `model` key, keeps the
 // impacts, the contact intervals and the stroboscopic section points
 // (t = t0 + k T, T = 2π/ω) of each run, matches the impacts by their order,

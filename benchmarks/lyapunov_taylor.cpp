@@ -1,7 +1,7 @@
 // CPU time of the largest Lyapunov exponent (analysis/floquet.hpp) on the
 // jin2003 periodic case (Model N, V0 = 1.5 m/s, ω = 7 rad/s), with the
 // variational equations integrated by rkf78 (the scene's integrator) and by
-// the Taylor stepper (issue 14): the point is the state after a transient of
+// the Taylor stepper: the point is the state after a transient of
 // 100 forcing periods from θ = 0, θ̇ = 0.1 rad/s (rkf78 at 1e-12), the
 // exponent averaged over `periods` periods after 10 of alignment. CPU time of
 // this thread, the median of `repetitions` runs; the exponents with all

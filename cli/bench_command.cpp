@@ -314,7 +314,7 @@ int run_bench(const BenchOptions& options, const std::vector<std::string>& comma
       record_spread("speed_ratio_vs_scipy_dop853", dop853_values);
     }
     if (result.bench_case.name == "jin2003_periodic") {
-      // issue 14's goals: 3·10^5 impacts/s at an impact-time error <= 1e-9 s,
+      // the Taylor stepper's goals: 3·10^5 impacts/s at an impact-time error <= 1e-9 s,
       // 2·10^5 at <= 1e-12 s (one core)
       targets["impacts_per_second_at_time_error_1e-9_jin2003"] = {
           {"goal", 3e5},
@@ -326,7 +326,7 @@ int run_bench(const BenchOptions& options, const std::vector<std::string>& comma
           {"best", finest ? point_record(*finest) : nlohmann::json(nullptr)},
           {"reached", finest && 1.0 / finest->seconds_per_impact >= 2e5}};
       // at least 300 times SciPy's loop at equal or better error: over every
-      // SciPy method, and issue 14's own, against DOP853 alone
+      // SciPy method, and the Taylor stepper's own, against DOP853 alone
       const auto ratio_target = [&](const std::string& target, const std::string& of) {
         if (!record.contains(of + "_min")) return;
         targets[target] = {{"goal", 300.0},

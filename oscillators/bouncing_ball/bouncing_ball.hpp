@@ -1,4 +1,4 @@
-// A ball bouncing on a vertically vibrating table (MODEL.md §3; Holmes 1982,
+// A ball bouncing on a vertically vibrating table (docs/models.md; Holmes 1982,
 // Luck & Mehta 1993):
 //     table        z(t) = A sin ωt
 //     free flight  ÿ = −g,  y > z

@@ -1,5 +1,5 @@
 // The harmonically forced linear oscillator against a rigid stop (the linear
-// impact oscillator of MODEL.md §3; Shaw & Holmes 1983, Nordmark 1991):
+// impact oscillator, docs/models.md; Shaw & Holmes 1983, Nordmark 1991):
 //     free flight   ẍ + 2ζẋ + x = A cos ωt,   x < σ
 //     stop          x = σ, Newton impact ẋ⁺ = −r ẋ⁻
 // Chattering against the stop is resolved at its accumulation point, after

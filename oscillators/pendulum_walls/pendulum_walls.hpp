@@ -1,5 +1,5 @@
 // The parametrically excited pendulum between two walls (Jin, Hu & Bishop
-// 2003) under two impact models of MODEL.md:
+// 2003) under two impact models (docs/model-card.md):
 //   Model N (PendulumWalls): Newton impacts with Coulomb friction, chattering
 //     resolved at its accumulation point, a sustained sliding-contact phase
 //     with its normal force λ_N and friction work, release where λ_N

@@ -1,5 +1,5 @@
 // The pendulum between two walls as a rigid-body scene (model = "rigid",
-// MODEL.md §2): the rod of Model N with, at its end, a ball of radius r and
+// docs/rigidbody.md): the rod of Model N with, at its end, a ball of radius r and
 // mass m (a solid sphere, I_b = (2/5) m r² about its centre) that may spin on
 // a frictionless bearing. Impacts are resolved by the general Newton–Coulomb
 // impulse on the collision matrix K = W M⁻¹ Wᵀ (src/rigidbody/), persistent

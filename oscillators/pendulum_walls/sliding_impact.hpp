@@ -1,5 +1,5 @@
 // The sliding-impact conditions of Jin, Hu & Bishop (2003), Sec. 4, for the
-// pendulum between walls (Model P of MODEL.md). Pure functions of the
+// pendulum between walls (Model P). Pure functions of the
 // velocities at the instant of impact; docs/model-card.md gives each
 // equation, its garbled source text and the reading chosen.
 //

@@ -1,5 +1,5 @@
 // Newton's kinematic impact law for a one-degree-of-freedom contact with
-// Coulomb friction (Model N of MODEL.md).
+// Coulomb friction (Model N, docs/simulation.md).
 //
 // With one degree of freedom q and a wall whose normal contact velocity is
 // γ_N = W_N q̇, Newton's law γ_N⁺ = -e_n γ_N⁻ fixes q̇⁺ = -e_n q̇⁻ whatever the

@@ -1,5 +1,5 @@
 // The collision matrix K: how an impulse J at a contact changes the relative
-// contact velocity, Δu = K J (impulse lecture, slide 2; MODEL.md §2).
+// contact velocity, Δu = K J (docs/rigidbody.md).
 //
 // Two free bodies A and B touching at world offsets r_A, r_B from their
 // centres, J applied to A and −J to B, u = u_A − u_B:

@@ -1,5 +1,5 @@
-// A persistent unilateral contact resolved at acceleration level (MODEL.md
-// §2; Pfeiffer & Glocker, Multibody Dynamics with Unilateral Contacts (1996),
+// A persistent unilateral contact resolved at acceleration level
+// (docs/rigidbody.md; Pfeiffer & Glocker, Multibody Dynamics with Unilateral Contacts (1996),
 // ch. 6–7): given the state, find the contact forces λ = (λ_N, λ_T) with
 //     γ̈_N = a_N + (G λ)_N ≥ 0,   λ_N ≥ 0,   γ̈_N λ_N = 0      (Signorini)
 //     sliding (γ_T ≠ 0):  λ_T = −μ s λ_N, s = sgn γ_T          (Coulomb)

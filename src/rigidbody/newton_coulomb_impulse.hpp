@@ -1,5 +1,4 @@
-// The Newton–Coulomb impulse at one contact (impulse lecture, slides 3–4;
-// MODEL.md §2): a pure function of the collision matrix K, the relative
+// The Newton–Coulomb impulse at one contact (docs/rigidbody.md): a pure function of the collision matrix K, the relative
 // contact velocity before the impact u⁻ and the contact normal n.
 //
 //   approach      u_n⁻ = n·u⁻ < 0 (otherwise no impulse: the contact separates)

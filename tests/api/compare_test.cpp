@@ -3,7 +3,7 @@
 //   where they separate), the model list parser;
 // * the program on jin2003 with newton,rigid: complete outputs, and, since
 //   the rigid model at radius 0 with the spin locked is Model N, the two
-//   impact columns agree to 1e-9 (MODEL.md §2's reduction);
+//   impact columns agree to 1e-9 (the rigid model's reduction, docs/rigidbody.md);
 // * a model the scene rejects (an unknown one) exits 2 with one line naming
 //   the key and the value, and writes nothing.
 #include <algorithm>

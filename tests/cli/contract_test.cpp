@@ -1,4 +1,4 @@
-// The command-line contract of DESIGN.md: bad input exits with status 2 and
+// The command-line contract (docs/simulation.md, "Robustness"): bad input exits with status 2 and
 // one line on stderr naming the key and the value, writes nothing; a good run
 // writes complete events.csv and meta.json.
 #include <filesystem>

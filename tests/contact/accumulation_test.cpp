@@ -305,7 +305,7 @@ TEST_F(Jin2003Accumulation, EverySettingCompletesAndTheErrorFallsWithTheToleranc
 }
 
 
-// Model P with e_t = −1 is Model N impact for impact (MODEL.md): its
+// Model P with e_t = −1 is Model N impact for impact (docs/model-card.md): its
 // chatter at V0 = 4.163 m/s reaches the same accumulation point, against the
 // same reference, at every setting of both tolerances.
 TEST_F(Jin2003Accumulation, ModelPAtTangentialRestitutionMinusOneMatchesTheReference) {

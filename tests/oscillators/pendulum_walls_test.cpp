@@ -1,4 +1,4 @@
-// Tests of the pendulum between two walls (Model N of MODEL.md §1) run through
+// Tests of the pendulum between two walls (Model N, docs/simulation.md) run through
 // the event loop, against closed forms derived by hand:
 // * the release time of a contact phase, g_e(t_r) = g − V0 ω cos ωt_r = 0;
 // * the friction work of a contact phase, ∫ μ λ_N |V0 sin ωt| dt;
