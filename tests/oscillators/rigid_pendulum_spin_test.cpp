@@ -463,6 +463,26 @@ TEST(RigidPendulumSpin, PeriodicAndContinuedOrbitsAreTheBruteForceSections) {
   }
 }
 
+// The continuation in μ from `from` to `to` of the free spin's period-n orbit
+// of a scene (the strobe, or impact_wall's impact section), which runs to the
+// end of its range with the spin held as neutral.
+ContinuationJobResult spin_held_through(const std::vector<std::string>& assignments, double from,
+                                        double to, int period, int impact_wall,
+                                        double transient_periods) {
+  ContinuationJob job;
+  job.parameter = "mu";
+  job.from = from;
+  job.to = to;
+  job.period = period;
+  job.impact_wall = impact_wall;
+  job.transient_periods = transient_periods;
+  ContinuationJobResult continued = continue_orbit(pendulum_scene(assignments), job);
+  const ContinuationResult& branch = continued.branches.at(0).result;
+  EXPECT_EQ(branch.stop_reason, StopReason::end_of_range) << branch.stop_detail;
+  EXPECT_TRUE(continued.neutral.has_value() && continued.neutral->index == 2u);
+  return continued;
+}
+
 // On the right wall's impact section, (phase, θ̇⁻, spin⁻), the free spin's
 // period-6 orbit at V0 = 4, every impact sliding, is continued in μ with the
 // spin held (neutral) through the whole range, and its (phase, θ̇⁻) are the
@@ -472,17 +492,8 @@ TEST(RigidPendulumSpin, PeriodicAndContinuedOrbitsAreTheBruteForceSections) {
 // points with neutral_drift.
 TEST(RigidPendulumSpin, ImpactSectionBranchOfTheFreeSpinIsTheBruteForceImpacts) {
   const std::vector<std::string> assignments = {"model=rigid", "spin=free", "radius=0.02", "V0=4"};
-  ContinuationJob job;
-  job.parameter = "mu";
-  job.from = 0.6;
-  job.to = 0.9;
-  job.period = 6;
-  job.impact_wall = 1;
-  const ContinuationJobResult continued = continue_orbit(pendulum_scene(assignments), job);
+  const ContinuationJobResult continued = spin_held_through(assignments, 0.6, 0.9, 6, 1, 100);
   const ContinuationResult& branch = continued.branches.at(0).result;
-  EXPECT_EQ(branch.stop_reason, StopReason::end_of_range) << branch.stop_detail;
-  ASSERT_TRUE(continued.neutral.has_value());
-  EXPECT_EQ(continued.neutral->index, 2u);
   int compared = 0;
   for (std::size_t k = 5; k < branch.branch.size() && compared < 3; k += 10) {
     const BranchPoint& point = branch.branch[k];
@@ -520,18 +531,9 @@ TEST(RigidPendulumSpin, ImpactSectionBranchOfTheFreeSpinIsTheBruteForceImpacts) 
 // a 600-period transient reaches the stable orbit with a sticking impact.)
 TEST(RigidPendulumSpin, AStartOnNoFamilyIsConvergedBeforeTheSpinIsHeld) {
   const std::vector<std::string> assignments = {"model=rigid", "spin=free", "radius=0.02", "V0=3"};
-  ContinuationJob job;
-  job.parameter = "mu";
-  job.from = 0.6;
-  job.to = 0.5;
-  job.period = 2;
-  job.transient_periods = 100;
-  const ContinuationJobResult continued = continue_orbit(pendulum_scene(assignments), job);
+  const ContinuationJobResult continued = spin_held_through(assignments, 0.6, 0.5, 2, 0, 100);
   const ContinuationResult& branch = continued.branches.at(0).result;
-  EXPECT_EQ(branch.stop_reason, StopReason::end_of_range) << branch.stop_detail;
   ASSERT_GE(branch.branch.size(), 3u);
-  ASSERT_TRUE(continued.neutral.has_value());
-  EXPECT_EQ(continued.neutral->index, 2u);
   for (std::size_t k = 0; k < branch.branch.size(); k += branch.branch.size() / 3) {
     const BranchPoint& point = branch.branch[k];
     std::vector<std::string> at = assignments;
