@@ -89,8 +89,12 @@ void BifurcationLocator<Size>::detect(const Node& a, const Node& b, double step,
       point.type = BifurcationType::branch_point;
     points.push_back(point);
   }
-  for (const ParameterBoundary& boundary : corrector_.problem().boundaries)
-    if (auto point = locate_boundary(boundary, a, b)) points.push_back(*point);
+  // a scene's boundaries say where impacts or contact phases become possible:
+  // none concerns an orbit that meets no wall on either side (the hanging
+  // pendulum)
+  if (a.orbit.impacts > 0 || b.orbit.impacts > 0)
+    for (const ParameterBoundary& boundary : corrector_.problem().boundaries)
+      if (auto point = locate_boundary(boundary, a, b)) points.push_back(*point);
   for (int OrbitEvaluation::*count : {&OrbitEvaluation::contact_phases, &OrbitEvaluation::stick_impacts})
     if (a.orbit.*count != b.orbit.*count) points.push_back(locate_count_change(count, a, b, step));
 }

@@ -71,9 +71,10 @@ struct GapSample {
 };
 
 // A boundary that depends on the parameter alone, reported where the branch
-// crosses it (a sign change of `value`) and located exactly (the root of
-// `value`, then the orbit corrected there): the pendulum's V0·ω = g, below
-// which no contact phase can exist.
+// crosses it (a sign change of `value`) with an orbit that has impacts on
+// one side at least, and located exactly (the root of `value`, then the
+// orbit corrected there): the pendulum's V0·ω = g, below which no contact
+// phase can exist.
 struct ParameterBoundary {
   std::string name;  // its type in points.csv
   std::string note;

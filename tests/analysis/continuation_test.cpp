@@ -645,25 +645,49 @@ TEST(Continuation, ContactEndOfTheStickingOrbitLocatedAtItsClosedForm) {
   EXPECT_LT(onsets[0].error_estimate, 1e-9 * expected);
 }
 
-// jin2003 (Model N, V0 = 1.5 m/s, g = 9.81 m/s²): the pivot's peak
-// acceleration V0·ω reaches g at ω = g/V0, below which no contact phase can
-// exist; the branch reports where it crosses it.
-TEST(Continuation, PendulumBranchReportsTheContactBoundaryAtOmegaEqualToGOverV0) {
+// At V0 = 0.5 m/s the pendulum hangs, meeting no wall, from ω = 15 to 25:
+// V0·ω = g at ω = 19.62 concerns no orbit of that branch, and is not listed
+// on it (it was, as a contact_boundary)
+TEST(Continuation, AHangingBranchListsNoContactBoundary) {
+  Scene scene = impactlab::load_scene("jin2003");
+  impactlab::apply_override(scene, "V0=0.5");
+  const auto job = continue_scene(scene, "omega", 15.0, 25.0);
+  const auto& result = job.branches.at(0).result;
+  EXPECT_EQ(result.stop_reason, StopReason::end_of_range) << result.stop_detail;
+  ASSERT_FALSE(result.branch.empty());
+  EXPECT_LT(result.branch.front().parameter, 19.62);
+  EXPECT_GT(result.branch.back().parameter, 19.62);
+  for (const auto& point : result.branch) EXPECT_EQ(point.impacts, 0) << point.parameter;
+  EXPECT_TRUE(points_of_type(result, BifurcationType::boundary).empty());
+}
+
+// jin2003 (Model N, ω = 7 rad/s, g = 9.81 m/s²): the pivot's peak
+// acceleration V0·ω reaches g at V0 = g/ω, below which no contact phase can
+// exist; the period-2 impacting branch continued down in V0 reports where
+// it crosses it.
+TEST(Continuation, PendulumBranchReportsTheContactBoundaryAtV0EqualToGOverOmega) {
   const Scene scene = impactlab::load_scene("jin2003");
-  const auto job = continue_scene(scene, "omega", 5.0, 9.0);
-  const auto boundaries = points_of_type(job.branches.at(0).result, BifurcationType::boundary);
+  ContinuationJob job;
+  job.parameter = "V0";
+  job.from = 1.6;
+  job.to = 1.3;
+  job.period = 2;
+  const auto result = impactlab::continue_orbit(scene, job);
+  const auto& branch = result.branches.at(0).result.branch;
+  const auto boundaries = points_of_type(result.branches[0].result, BifurcationType::boundary);
   ASSERT_EQ(boundaries.size(), 1u);
   EXPECT_EQ(impactlab::type_name(boundaries[0]), "contact_boundary");
-  const double expected = scene.number("g") / scene.number("V0");
+  const double expected = scene.number("g") / scene.number("omega");
   EXPECT_NEAR(boundaries[0].parameter, expected, 1e-12 * expected);
   EXPECT_TRUE(boundaries[0].located) << boundaries[0].note;
-  // the orbit there: the branch's own, between its neighbours
-  const auto& branch = job.branches[0].result.branch;
+  // the orbit there: the branch's own, between its neighbours, with impacts
   const auto after = std::find_if(branch.begin(), branch.end(),
-                                  [&](const auto& p) { return p.parameter > expected; });
+                                  [&](const auto& p) { return p.parameter < expected; });
   ASSERT_NE(after, branch.end());
   ASSERT_NE(after, branch.begin());
   const auto before = after - 1;
+  EXPECT_GT(before->impacts, 0);
+  EXPECT_GT(after->impacts, 0);
   const double lower = std::min(before->state[0], after->state[0]) - 1e-6;
   const double upper = std::max(before->state[0], after->state[0]) + 1e-6;
   EXPECT_GE(boundaries[0].state[0], lower);
