@@ -14,6 +14,7 @@ RunOutput run_of_scene(const Scene& scene, const RunRequest& request) {
     const auto x0 = bound.initial_state();
     const double period = 2.0 * std::numbers::pi / bound.forcing_frequency();
     auto mode_name = [&bound](auto mode) { return bound.mode_name(mode); };
+    RunOutput output;
     if constexpr (requires { Binding::run_tally(system, scene); }) {
       // the derived quantities, tallied as the events pass (kept or streamed)
       auto tally = Binding::run_tally(system, scene);
@@ -21,13 +22,13 @@ RunOutput run_of_scene(const Scene& scene, const RunRequest& request) {
                    request.event_sink);
       RunRequest tallied = request;
       tallied.event_sink = &tap;
-      RunOutput output =
-          run_system(system, x0, bound.flight_mode(), scene, tallied, period, mode_name);
+      output = run_system(system, x0, bound.flight_mode(), scene, tallied, period, mode_name);
       tally.add_to(output);
-      return output;
     } else {
-      return run_system(system, x0, bound.flight_mode(), scene, request, period, mode_name);
+      output = run_system(system, x0, bound.flight_mode(), scene, request, period, mode_name);
     }
+    if (output.termination != Termination::completed) output.stop_advice = bound.stop_advice(output);
+    return output;
   });
 }
 

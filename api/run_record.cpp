@@ -8,7 +8,7 @@ namespace impactlab {
 nlohmann::json run_record(const Scene& scene, const RunOutput& output) {
   const SceneSchema& schema = scene_schema(scene);
   const std::string q_name(schema.main_coordinate);
-  return {
+  nlohmann::json record = {
       {"impactlab_version", IMPACTLAB_VERSION},
       {"scene", scene_record(scene)},
       {"model", scene.values.contains("model") ? to_text(scene.values.at("model")) : "newton"},
@@ -60,6 +60,9 @@ nlohmann::json run_record(const Scene& scene, const RunOutput& output) {
                             {"qdot", "d" + q_name + "/dt"},
                             {"mode", "mode of the hybrid system"}}}}},
   };
+  // what to do about a stopped run, where the oscillator knows
+  if (!output.stop_advice.empty()) record["run"]["stop_advice"] = output.stop_advice;
+  return record;
 }
 
 }  // namespace impactlab

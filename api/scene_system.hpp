@@ -25,6 +25,8 @@
 //                        Tally: on_event(const EventRecord&), add_to(RunOutput&)
 //   static EventExtender event_extender(const System&);   what its events add to the
 //                        core's record (io/event_extension.hpp): events.csv's own columns
+//   static std::string stop_advice(const System&, const RunOutput&);
+//                        what to do about a run that stopped early (empty: nothing to add)
 //
 // The analyses reach a binding through visit_scene (api/visit_scene.hpp) and
 // never name an oscillator; a binding never names an analysis.
@@ -37,6 +39,7 @@
 #include <impactlab/analysis/scene_boundary.hpp>
 #include <impactlab/core/has_jacobian.hpp>
 #include <impactlab/io/event_extension.hpp>
+#include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
 
 namespace impactlab {
@@ -78,6 +81,15 @@ class SceneSystem {
   [[nodiscard]] static std::vector<SceneBoundary> boundaries() {
     if constexpr (requires { Binding::boundaries(); })
       return Binding::boundaries();
+    else
+      return {};
+  }
+
+  // what to do about a run of this system that stopped early; empty where
+  // the binding has nothing to add
+  [[nodiscard]] std::string stop_advice(const RunOutput& output) const {
+    if constexpr (requires { Binding::stop_advice(system_, output); })
+      return Binding::stop_advice(system_, output);
     else
       return {};
   }

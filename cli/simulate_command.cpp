@@ -66,6 +66,7 @@ int run_simulate(const SceneOptions& options, const std::vector<std::string>& co
                              last ? fmt::format(", last event {} on wall {} at q = {}",
                                                 to_string(last->kind), last->wall, last->q)
                                   : "");
+    if (!output.stop_advice.empty()) std::cerr << "impactlab: " << output.stop_advice << '\n';
     return exit_stopped_early;
   }
   return exit_done;

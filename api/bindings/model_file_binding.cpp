@@ -126,6 +126,22 @@ std::string ModelFileBinding<N>::without_linearisation(const ModelSystem<N>& sys
   return {};
 }
 
+template <std::size_t N>
+std::string ModelFileBinding<N>::stop_advice(const ModelSystem<N>& system,
+                                             const RunOutput& output) {
+  if (output.termination != Termination::no_progress || !output.last_event ||
+      output.last_event->kind != EventKind::impact)
+    return {};
+  for (const auto& wall : system.model().walls)
+    if (wall.side == output.last_event->wall && !wall.has_sticking)
+      return fmt::format(
+          "impacts accumulate on wall {} (side {:+d}) and it has no sticking mode: give it a "
+          "[model.walls.sticking] table, the state at rest on it (docs/extending.md, \"The model "
+          "section\")",
+          wall.name, wall.side);
+  return {};
+}
+
 template struct ModelFileBinding<2>;
 template struct ModelFileBinding<4>;
 

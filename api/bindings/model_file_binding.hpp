@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
 #include <impactlab/oscillators/model_file/model_system.hpp>
 
@@ -36,6 +37,9 @@ struct ModelFileBinding {
   // a model of more than 2 states with a sticking wall has no linearisation
   // of its contact phases
   static std::string without_linearisation(const System& system);
+  // impacts that accumulate on a wall without a sticking table stop the run
+  // (no_progress): say which wall, and what to add
+  static std::string stop_advice(const System& system, const RunOutput& output);
 };
 
 extern template struct ModelFileBinding<2>;

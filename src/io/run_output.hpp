@@ -59,6 +59,9 @@ struct RunOutput {
   std::uint64_t impacts = 0, contact_phases = 0, accumulations = 0, grazings = 0;
   double wall_time = 0.0;        // s
   nlohmann::json derived = nlohmann::json::object();  // oscillator-specific quantities (θ0, ...)
+  // what to do about a run that stopped early, where the oscillator knows
+  // (a model file's wall that lacks a sticking table); empty otherwise
+  std::string stop_advice;
 };
 
 }  // namespace impactlab

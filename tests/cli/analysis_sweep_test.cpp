@@ -141,16 +141,22 @@ TEST(Poincare, TheLyapunovExponentIsANumberInMeta) {
   EXPECT_LT(meta["lyapunov"]["largest_exponent_per_time"].get<double>(), 0.0);
 }
 
-// A sweep whose points stop early says so, even with --quiet, and how many
-// and why, as summary.csv records them. The shipped Duffing oscillator
-// without its wall's sticking table chatters into no_progress at some F.
-TEST(Sweep, PointsThatStopEarlyAreCountedInAWarning) {
-  const ScratchFolder scratch;
+// The shipped Duffing oscillator without its wall's sticking table (the
+// table is the file's last section): it chatters into no_progress at some F.
+std::filesystem::path duffing_without_sticking(const ScratchFolder& scratch) {
   std::string model = slurp(std::filesystem::path(IMPACTLAB_SOURCE_DIR) /
                             "oscillators/model_file/examples/duffing_stop.toml");
   model = model.substr(0, model.find("[model.walls.sticking]"));
   const auto scene = scratch / "no_sticking.toml";
   std::ofstream(scene) << model;
+  return scene;
+}
+
+// A sweep whose points stop early says so, even with --quiet, and how many
+// and why, as summary.csv records them.
+TEST(Sweep, PointsThatStopEarlyAreCountedInAWarning) {
+  const ScratchFolder scratch;
+  const auto scene = duffing_without_sticking(scratch);
   const auto out = scratch / "sweep";
   const ProgramRun run = run_impactlab(
       {"sweep", scene.string(), "--set", "r=0.2", "--set", "sigma=0.1", "--param", "F=0.2:3:20",
@@ -170,6 +176,26 @@ TEST(Sweep, PointsThatStopEarlyAreCountedInAWarning) {
             std::string::npos)
       << run.err;
   EXPECT_NE(run.err.find("summary.csv"), std::string::npos) << run.err;
+}
+
+// A run that stops because impacts accumulate on a wall without a sticking
+// table says which wall and what to add, on stderr and in meta.json
+TEST(Simulate, ImpactsAccumulatingOnAWallWithoutStickingSayWhatToAdd) {
+  const ScratchFolder scratch;
+  const auto scene = duffing_without_sticking(scratch);
+  const auto out = scratch / "run";
+  const ProgramRun run = run_impactlab(
+      {"simulate", scene.string(), "--set", "r=0.2", "--set", "sigma=0.1", "--set", "F=2.5",
+       "--periods", "50", "--quiet", "--out", out},
+      {.environment = {"IMPACTLAB_CACHE_DIR=" + (scratch / "cache").string()}, .limit_s = 120});
+  EXPECT_EQ(run.status, 3) << run.err;
+  EXPECT_NE(run.err.find("(no_progress)"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("impacts accumulate on wall stop (side +1)"), std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("[model.walls.sticking]"), std::string::npos) << run.err;
+  const auto meta = nlohmann::json::parse(slurp(out / "meta.json"));
+  EXPECT_NE(meta["run"]["stop_advice"].get<std::string>().find("[model.walls.sticking]"),
+            std::string::npos);
 }
 
 TEST(Sweep, OneDimensionalColumnsAndBothDirections) {
