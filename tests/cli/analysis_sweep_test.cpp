@@ -141,27 +141,32 @@ TEST(Poincare, TheLyapunovExponentIsANumberInMeta) {
   EXPECT_LT(meta["lyapunov"]["largest_exponent_per_time"].get<double>(), 0.0);
 }
 
-// The shipped Duffing oscillator without its wall's sticking table (the
-// table is the file's last section): it chatters into no_progress at some F.
-std::filesystem::path duffing_without_sticking(const ScratchFolder& scratch) {
+// `command` run, with `more` arguments, on the shipped Duffing oscillator
+// without its wall's sticking table (the file's last section) at r = 0.2,
+// σ = 0.1, where it chatters into no_progress at some F; the model cache is
+// the scratch folder's own.
+ProgramRun run_without_sticking(const ScratchFolder& scratch, const std::string& command,
+                                const std::vector<std::string>& more) {
   std::string model = slurp(std::filesystem::path(IMPACTLAB_SOURCE_DIR) /
                             "oscillators/model_file/examples/duffing_stop.toml");
   model = model.substr(0, model.find("[model.walls.sticking]"));
   const auto scene = scratch / "no_sticking.toml";
   std::ofstream(scene) << model;
-  return scene;
+  std::vector<std::string> arguments = {command, scene.string(), "--set", "r=0.2", "--set",
+                                        "sigma=0.1", "--quiet"};
+  arguments.insert(arguments.end(), more.begin(), more.end());
+  return run_impactlab(arguments, {.environment = {"IMPACTLAB_CACHE_DIR=" +
+                                                   (scratch / "cache").string()},
+                                   .limit_s = 120});
 }
 
 // A sweep whose points stop early says so, even with --quiet, and how many
 // and why, as summary.csv records them.
 TEST(Sweep, PointsThatStopEarlyAreCountedInAWarning) {
   const ScratchFolder scratch;
-  const auto scene = duffing_without_sticking(scratch);
   const auto out = scratch / "sweep";
-  const ProgramRun run = run_impactlab(
-      {"sweep", scene.string(), "--set", "r=0.2", "--set", "sigma=0.1", "--param", "F=0.2:3:20",
-       "--no-lyapunov", "--quiet", "--out", out},
-      {.environment = {"IMPACTLAB_CACHE_DIR=" + (scratch / "cache").string()}, .limit_s = 120});
+  const ProgramRun run = run_without_sticking(
+      scratch, "sweep", {"--param", "F=0.2:3:20", "--no-lyapunov", "--out", out.string()});
   ASSERT_EQ(run.status, 0) << run.err;
   const auto rows = read_csv(out / "summary.csv");
   const auto& header = rows.front();
@@ -182,12 +187,9 @@ TEST(Sweep, PointsThatStopEarlyAreCountedInAWarning) {
 // table says which wall and what to add, on stderr and in meta.json
 TEST(Simulate, ImpactsAccumulatingOnAWallWithoutStickingSayWhatToAdd) {
   const ScratchFolder scratch;
-  const auto scene = duffing_without_sticking(scratch);
   const auto out = scratch / "run";
-  const ProgramRun run = run_impactlab(
-      {"simulate", scene.string(), "--set", "r=0.2", "--set", "sigma=0.1", "--set", "F=2.5",
-       "--periods", "50", "--quiet", "--out", out},
-      {.environment = {"IMPACTLAB_CACHE_DIR=" + (scratch / "cache").string()}, .limit_s = 120});
+  const ProgramRun run = run_without_sticking(
+      scratch, "simulate", {"--set", "F=2.5", "--periods", "50", "--out", out.string()});
   EXPECT_EQ(run.status, 3) << run.err;
   EXPECT_NE(run.err.find("(no_progress)"), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("impacts accumulate on wall stop (side +1)"), std::string::npos)
