@@ -10,7 +10,7 @@ packages=(
   libginac-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
-  python3 python3-numpy python3-matplotlib python3-scipy
+  python3 python3-numpy python3-matplotlib python3-scipy python3-tqdm
   jupyter-nbconvert python3-nbformat python3-ipykernel
   pybind11-dev python3-dev python3-pytest python3-setuptools python3-pip
 )

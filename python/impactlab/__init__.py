@@ -15,6 +15,7 @@ key that the scene's model does not read gives an UnreadKeyWarning.
 import math
 import numbers
 import re
+import sys
 import warnings
 
 import numpy as np
@@ -229,15 +230,37 @@ def _option(job, name, value):
     return value
 
 
+class _PlainProgress:
+    """A progress line on stderr ("sweep: 42%"), redrawn in place, where tqdm
+    is not installed."""
+
+    def __init__(self, label):
+        self.label, self.shown = label, -1
+
+    def update(self, fraction):
+        percent = int(100 * fraction)
+        if percent != self.shown:
+            self.shown = percent
+            sys.stderr.write("\r{}: {}%".format(self.label, percent))
+            sys.stderr.flush()
+
+    def close(self):
+        if self.shown >= 0:
+            sys.stderr.write("\n")
+            sys.stderr.flush()
+
+
 def _progress(progress, total_label):
-    """The callback handed to the C++ job: None, the user's callable, or a tqdm bar."""
+    """The callback handed to the C++ job: None, the user's callable, a tqdm
+    bar, or without tqdm a plain progress line."""
     if progress is None or progress is False:
         return None, None
     if progress is True:
         try:
             from tqdm.auto import tqdm
         except ImportError:
-            return None, None
+            line = _PlainProgress(total_label)
+            return line.update, line
         bar = tqdm(total=100, desc=total_label, unit="%")
 
         def advance(fraction):

@@ -4,6 +4,7 @@ stopped by a physical diagnostic returns its result and warns."""
 import math
 import os
 import signal
+import sys
 import threading
 import time
 
@@ -132,6 +133,18 @@ def test_progress_callback_is_called_with_growing_fractions():
     impactlab.simulate("jin2003", periods=50, progress=fractions.append)
     assert len(fractions) >= 10
     assert fractions == sorted(fractions) and 0.0 < fractions[-1] <= 1.0
+
+
+def test_progress_true_without_tqdm_draws_a_plain_line(monkeypatch, capsys):
+    # tqdm made unimportable: progress=True still shows progress, on stderr
+    monkeypatch.setitem(sys.modules, "tqdm", None)
+    monkeypatch.setitem(sys.modules, "tqdm.auto", None)
+    impactlab.simulate("jin2003", periods=50, progress=True)
+    err = capsys.readouterr().err
+    shown = [int(part.split(": ")[1].rstrip("%\n")) for part in err.split("\r") if part]
+    assert all(part.startswith("simulate: ") for part in err.split("\r") if part)
+    assert len(shown) >= 10 and shown == sorted(shown) and shown[-1] >= 90
+    assert err.endswith("\n")
 
 
 def test_exception_in_progress_callback_cancels_the_run():
