@@ -133,13 +133,17 @@ CLI::Option* TableOptions::finish(CLI::Option* option, const OptionSpec& spec) {
   if (spec.max_count > 0) {
     // counted after parsing, so that one too many is refused naming the
     // option, as every other bad input is (CLI11's own count check says
-    // "At Most 2 required but received 3")
-    command_.parse_complete_callback([option, flag = cli_name(spec), most = spec.max_count] {
-      if (option->count() > static_cast<std::size_t>(most))
-        throw CLI::ValidationError(
-            flag + " = " + option->as<std::vector<std::string>>().back(),
-            fmt::format("given {} times; at most {}", option->count(), most));
-    });
+    // "At Most 2 required but received 3"); one check per command, for all
+    // its counted options
+    if (counted_->empty())
+      command_.parse_complete_callback([counted = counted_] {
+        for (const CountLimit& limit : *counted)
+          if (limit.option->count() > static_cast<std::size_t>(limit.most))
+            throw CLI::ValidationError(
+                limit.flag + " = " + limit.option->as<std::vector<std::string>>().back(),
+                fmt::format("given {} times; at most {}", limit.option->count(), limit.most));
+      });
+    counted_->push_back({option, cli_name(spec), spec.max_count});
   }
   if (spec.comma_separated) option->delimiter(',');
   if (spec.for_tests_only) option->group("");

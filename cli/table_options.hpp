@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,9 +52,18 @@ class TableOptions {
   // required, hidden, list sizes, the shown default and exclusions
   CLI::Option* finish(CLI::Option* option, const OptionSpec& spec);
 
+  // an option given at most `most` times, counted once the command is parsed
+  struct CountLimit {
+    CLI::Option* option;
+    std::string flag;
+    int most;
+  };
+
   CLI::App& command_;
   std::string_view job_;
   std::map<std::string_view, CLI::Option*> added_;
+  // shared with the command's one parse-complete check
+  std::shared_ptr<std::vector<CountLimit>> counted_ = std::make_shared<std::vector<CountLimit>>();
 };
 
 // The command line's spelling of an option named in help or a message.

@@ -384,6 +384,7 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
   out["termination"] = termination_names(table.termination);
   out["points"] = owning_array(std::move(table.points));
   out["wall_time_s"] = wall_time;
+  out["stopped"] = stopped_points_note(run.records);
   out["threads"] = threads;
   return out;
 }

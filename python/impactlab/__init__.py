@@ -392,6 +392,10 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
     if len(params) == 1:
         summary["points"] = raw["points"]
     summary["stick_fraction"] = raw["stick_fraction"]
+    if raw["stopped"]:
+        # as the CLI says it: a stopped point is a gap in the diagram otherwise
+        warnings.warn("sweep: {}; summary['termination'] says which".format(raw["stopped"]),
+                      PhysicalDiagnosticWarning, stacklevel=2)
     return Result(scene=loaded, bifurcation=bifurcation, summary=summary,
                   definition=raw["definition"], wall_time_s=raw["wall_time_s"])
 

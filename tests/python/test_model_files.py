@@ -66,3 +66,19 @@ def test_a_bad_model_file_raises_value_error_at_its_line_and_column(tmp_path):
                    '[model.rhs]\nx = "v"\nv = "-x + y"\n')
     with pytest.raises(ValueError, match=str(bad) + ":6:11: unknown symbol 'y'"):
         impactlab.simulate(str(bad))
+
+
+def test_a_sweep_warns_of_its_points_that_stop_early(tmp_path):
+    # the shipped Duffing oscillator without its wall's sticking table (the
+    # file's last section) chatters into no_progress at some F, and the sweep
+    # says how many points stopped, as the CLI does, and as its summary has them
+    with open(os.path.join(EXAMPLES, "duffing_stop.toml")) as shipped:
+        model = shipped.read()
+    scene = tmp_path / "no_sticking.toml"
+    scene.write_text(model[:model.index("[model.walls.sticking]")])
+    with pytest.warns(impactlab.PhysicalDiagnosticWarning, match="points stopped early") as caught:
+        result = impactlab.sweep(str(scene), r=0.2, sigma=0.1, param="F=0.2:3:20",
+                                 lyapunov=False)
+    stopped = sum(t != "completed" for t in result.summary["termination"])
+    assert stopped > 0
+    assert "{} of 20 points stopped early".format(stopped) in str(caught[0].message)
