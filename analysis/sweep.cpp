@@ -111,8 +111,8 @@ std::vector<SweepTask> sweep_tasks(const SweepPlan& plan) {
     if (plan.direction != SweepDirection::down) directions.push_back(1);
     if (plan.direction != SweepDirection::up) directions.push_back(-1);
     // up follows the parameter's increasing values, whichever way the range
-    // is written (FROM > TO puts them in decreasing index order)
-    const bool ascending = plan.axes[0].from <= plan.axes[0].to;
+    // is written
+    const bool ascending = plan.axes[0].ascending();
     for (int direction : directions)
       for (int c = 0; c < chunks; ++c) {
         SweepTask task;

@@ -31,6 +31,9 @@ struct SweepAxis {
   double from = 0.0, to = 0.0;
   int count = 1;
   [[nodiscard]] double value(int index) const;
+  // the values increase with the index: `up` (increasing values) walks the
+  // indices forwards; FROM > TO walks them backwards
+  [[nodiscard]] bool ascending() const { return from <= to; }
 };
 
 // Parses NAME=FROM:TO:N; BadInput (key `option`) if malformed.

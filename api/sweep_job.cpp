@@ -232,8 +232,7 @@ std::vector<SweepRecordKey> sweep_row_order(const SweepPlan& plan,
           for (std::size_t p = 0; p < task.points.size(); ++p)
             by_index[task.points[p][0]] = {task.id, static_cast<int>(p)};
       // up: increasing parameter values, whichever way the range is written
-      const bool ascending = plan.axes[0].from <= plan.axes[0].to;
-      if ((direction > 0) == ascending)
+      if ((direction > 0) == plan.axes[0].ascending())
         for (const auto& [index, key] : by_index) order.push_back(key);
       else
         for (auto it = by_index.rbegin(); it != by_index.rend(); ++it) order.push_back(it->second);
