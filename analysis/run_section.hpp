@@ -16,6 +16,7 @@
 #include <impactlab/analysis/floquet.hpp>
 #include <impactlab/analysis/flow_setup.hpp>
 #include <impactlab/analysis/section.hpp>
+#include <impactlab/analysis/settling.hpp>
 #include <impactlab/core/has_jacobian.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/simulate/flow.hpp>
@@ -102,12 +103,51 @@ SectionResult run_section(const System& system, const typename System::State& x0
     };
     const auto max_periods = static_cast<std::uint64_t>(request.max_periods);
 
-    // transient: whole periods, or periods until enough impacts
+    // transient: whole periods, or periods until the stroboscopic points
+    // settle, or periods until enough impacts
     EventLog transient_log(false);
-    if (request.transient_impacts == 0) {
+    if (request.transient_impacts == 0 && !request.settle) {
       if (request.transient_periods > 0.0 &&
           !advance(t0 + request.transient_periods * period, transient_log, NoObserver{}))
         return result;
+    } else if (request.transient_impacts == 0) {
+      // the least transient with its last window observed (dense output: the
+      // steps are those of a run without the observer), then one window at a
+      // time while the points still converge
+      const double phase =
+          request.section.kind == SectionKind::strobe ? request.section.phase : 0.0;
+      const auto window_periods = static_cast<std::uint64_t>(request.settle_window_periods);
+      std::vector<SectionPoint> window;
+      double periods_run = std::max(request.transient_periods, 0.0);
+      auto run_window = [&](double to_periods) {
+        window.clear();
+        SectionPoints observed(window, nullptr, window_periods);
+        const double from =
+            std::max(t0 + (to_periods - static_cast<double>(window_periods)) * period, t);
+        detail::StrobeObserver observer(omega, phase, from, window_periods, observed);
+        return advance(t0 + to_periods * period, transient_log, observer);
+      };
+      if (periods_run > 0.0 && !run_window(periods_run)) return result;
+      for (;;) {
+        const SettlingVerdict verdict =
+            window.size() < 4 ? SettlingVerdict::converging
+                              : settling_verdict(window, request.settle_max_period,
+                                                 request.settle_tolerance);
+        if (verdict == SettlingVerdict::settled) {
+          result.transient_end = TransientEnd::settled;
+          break;
+        }
+        if (verdict == SettlingVerdict::not_periodic) {
+          result.transient_end = TransientEnd::not_periodic;
+          break;
+        }
+        if (periods_run + static_cast<double>(window_periods) > request.max_transient_periods) {
+          result.transient_end = TransientEnd::not_settled;
+          break;
+        }
+        periods_run += static_cast<double>(window_periods);
+        if (!run_window(periods_run)) return result;
+      }
     } else {
       for (std::uint64_t k = 1; transient_log.count(EventKind::impact) < request.transient_impacts;
            ++k) {
@@ -120,6 +160,10 @@ SectionResult run_section(const System& system, const typename System::State& x0
       }
     }
     result.record_start = t;
+    // whole periods, up to the round-off of the time sums
+    result.transient_periods = (t - t0) / period;
+    if (std::fabs(result.transient_periods - std::round(result.transient_periods)) < 1e-6)
+      result.transient_periods = std::round(result.transient_periods);
     const State x_record = x;
     const Mode mode_record = mode;
 

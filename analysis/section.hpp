@@ -97,10 +97,44 @@ struct IntegratorSetting {
   double atol = 0.0;  // absolute error per step (state units)
 };
 
+// How a run's transient ended (analysis/settling.hpp says when points settle).
+enum class TransientEnd {
+  fixed,         // after the periods or impacts asked for, with no settling test
+  settled,       // the stroboscopic points repeat to the settling tolerance
+  not_periodic,  // they neither repeat nor converge: chaos, a torus, a longer period
+  not_settled,   // still converging when max_transient_periods ran out
+};
+
+constexpr std::string_view to_string(TransientEnd end) {
+  switch (end) {
+    case TransientEnd::fixed: return "fixed";
+    case TransientEnd::settled: return "settled";
+    case TransientEnd::not_periodic: return "not_periodic";
+    case TransientEnd::not_settled: return "not_settled";
+  }
+  return "fixed";
+}
+
+// The end named `text` (a sweep checkpoint's); none for another word.
+constexpr std::optional<TransientEnd> parse_transient_end(std::string_view text) {
+  for (TransientEnd end : {TransientEnd::fixed, TransientEnd::settled,
+                           TransientEnd::not_periodic, TransientEnd::not_settled})
+    if (to_string(end) == text) return end;
+  return std::nullopt;
+}
+
 struct SectionRequest {
   SectionSpec section;
-  double transient_periods = 100.0;    // forcing periods discarded first
-  std::uint64_t transient_impacts = 0; // when > 0: discard this many impacts instead
+  // forcing periods discarded first: exactly these with `settle` false; with
+  // it, at least these, then windows of settle_window_periods until the
+  // stroboscopic points settle, at most max_transient_periods in all
+  double transient_periods = 100.0;
+  bool settle = true;
+  double max_transient_periods = 2000.0;
+  int settle_window_periods = 64;
+  double settle_tolerance = 1e-7;      // relative, as the sweep's period tolerance
+  int settle_max_period = 16;          // longest period the settling test looks for
+  std::uint64_t transient_impacts = 0; // when > 0: discard this many impacts instead (no settling)
   std::uint64_t points = 50;           // strobe: periods recorded; impact: impacts recorded
   bool lyapunov = false;               // also the largest Lyapunov exponent
   int lyapunov_alignment_periods = 10; // periods a tangent vector turns before averaging
@@ -158,6 +192,8 @@ struct SectionResult {
   double omega = 0.0;              // forcing frequency (rad per time unit)
   double forcing_period = 0.0;     // 2π/ω
   double record_start = 0.0;       // time the recording began
+  double transient_periods = 0.0;  // forcing periods the transient ran
+  TransientEnd transient_end = TransientEnd::fixed;
   double periods_recorded = 0.0;   // forcing periods in the record window
   std::uint64_t impacts = 0;       // impacts in the record window
   std::uint64_t contact_phases = 0;  // contact phases begun or ended in the record window

@@ -189,6 +189,8 @@ std::string to_json_line(const SweepRecord& record) {
       {"omega", r.omega},
       {"forcing_period", r.forcing_period},
       {"record_start", r.record_start},
+      {"transient_periods", r.transient_periods},
+      {"transient_end", to_string(r.transient_end)},
       {"periods_recorded", r.periods_recorded},
       {"impacts", r.impacts},
       {"contact_phases", r.contact_phases},
@@ -228,6 +230,10 @@ std::optional<SweepRecord> from_json_line(std::string_view text) {
     r.omega = line.at("omega");
     r.forcing_period = line.at("forcing_period");
     r.record_start = line.at("record_start");
+    r.transient_periods = line.at("transient_periods");
+    const auto transient_end = parse_transient_end(line.at("transient_end").get<std::string>());
+    if (!transient_end) return std::nullopt;
+    r.transient_end = *transient_end;
     r.periods_recorded = line.at("periods_recorded");
     r.impacts = line.at("impacts");
     r.contact_phases = line.at("contact_phases");

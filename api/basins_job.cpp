@@ -71,6 +71,7 @@ BasinsTable basins_table(const SweepPlan& plan, const std::vector<SweepTask>& ta
     table.impacts_per_period.push_back(r->classification.impacts_per_period);
     table.contact.push_back(r->classification.contact ? 1 : 0);
     table.termination.push_back(r->result.termination);
+    table.transient_end.push_back(r->result.transient_end);
   }
   return table;
 }

@@ -46,6 +46,7 @@ struct BasinsTable {
   std::vector<double> impacts_per_period;
   std::vector<int> contact;
   std::vector<SectionTermination> termination;
+  std::vector<TransientEnd> transient_end;
   BasinMap map;  // the attractors (by id) and the count of unclassified points
 };
 

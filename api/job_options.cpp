@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include <impactlab/analysis/continuation.hpp>
+#include <impactlab/analysis/section.hpp>
 #include <impactlab/io/bad_input.hpp>
 
 namespace impactlab {
@@ -78,9 +79,15 @@ Options section_options(string_view points_help) {
       {.name = "transient_impacts", .type = OptionType::count,
        .help = "discard this many impacts instead of periods", .default_value = 0.0,
        .default_in_help = false, .lower = 0, .upper = 1e9, .unit = "impacts"},
-      {.name = "transient", .type = OptionType::number, .help = "forcing periods discarded first",
-       .default_value = 100.0, .lower = 0, .upper = 1e9, .unit = "forcing periods",
-       .excludes = "transient_impacts"},
+      {.name = "transient", .type = OptionType::number,
+       .help = "forcing periods discarded first, exactly (default: at least 100, then until the "
+               "stroboscopic points settle, at most `max_transient`)",
+       .lower = 0, .upper = 1e9, .unit = "forcing periods", .excludes = "transient_impacts"},
+      {.name = "max_transient", .type = OptionType::number,
+       .help = "most forcing periods the settling transient runs; a point still converging then "
+               "is marked not_settled",
+       .default_value = SectionRequest{}.max_transient_periods, .lower = 0, .upper = 1e9,
+       .unit = "forcing periods", .excludes = "transient"},
       {.name = "points", .type = OptionType::count, .help = points_help, .default_value = 50.0,
        .lower = 1, .upper = 1e8},
       {.name = "plot", .type = OptionType::flag,

@@ -100,6 +100,10 @@ SweepPlan make_sweep_plan(const SweepSpec& spec, const Scene& scene, const Scene
   plan.section = spec.section;
   plan.period_tolerance = spec.period_tolerance;
   plan.max_period = spec.max_period;
+  // the settling transient tells repeats at a tenth of the period test's
+  // tolerance, so that a settled point's record passes that test
+  plan.section.settle_tolerance = spec.period_tolerance / 10.0;
+  plan.section.settle_max_period = spec.max_period;
   // Lyapunov: on by default for 2D maps, off for 1D sweeps
   plan.section.lyapunov = spec.lyapunov.value_or(plan.axes.size() == 2);
   check_sweep_size(plan, spec, scene);
@@ -214,6 +218,8 @@ void add_summary(SweepTable& table, const SweepRecord& r) {
   table.stick_fraction.push_back(r.classification.stick_fraction);
   table.lyapunov.push_back(r.result.lyapunov);
   table.termination.push_back(r.result.termination);
+  table.transient_periods.push_back(r.result.transient_periods);
+  table.transient_end.push_back(r.result.transient_end);
   table.points.push_back(static_cast<int>(
       std::max<std::uint64_t>(r.result.point_count, r.result.points.size())));
 }
@@ -278,14 +284,16 @@ SweepTable sweep_table(const SweepPlan& plan, const std::vector<SweepTask>& task
 }
 
 nlohmann::json sweep_counts(const std::map<SweepRecordKey, SweepRecord>& records) {
-  std::uint64_t steps = 0, rhs = 0, stopped_points = 0;
+  std::uint64_t steps = 0, rhs = 0, stopped_points = 0, unsettled_points = 0;
   for (const auto& [key, record] : records) {
     steps += record.result.steps;
     rhs += record.result.rhs_evaluations;
     if (record.result.termination != SectionTermination::completed) ++stopped_points;
+    if (record.result.transient_end == TransientEnd::not_settled) ++unsettled_points;
   }
   return {{"points", records.size()},
           {"points_stopped_early", stopped_points},
+          {"points_not_settled", unsettled_points},
           {"steps", steps},
           {"rhs_evaluations", rhs}};
 }
@@ -303,6 +311,18 @@ std::string stopped_points_note(const std::map<SweepRecordKey, SweepRecord>& rec
   for (const auto& [termination, count] : by_termination)
     why += fmt::format("{}{} {}", why.empty() ? "" : ", ", termination, count);
   return fmt::format("{} of {} points stopped early ({})", stopped, records.size(), why);
+}
+
+std::string unsettled_points_note(const std::map<SweepRecordKey, SweepRecord>& records,
+                                  const SweepPlan& plan) {
+  const auto unsettled = std::count_if(records.begin(), records.end(), [](const auto& entry) {
+    return entry.second.result.transient_end == TransientEnd::not_settled;
+  });
+  if (unsettled == 0) return {};
+  return fmt::format(
+      "{} of {} points did not settle within max_transient = {} forcing periods: their periods "
+      "may be a transient's",
+      unsettled, records.size(), plan.section.max_transient_periods);
 }
 
 }  // namespace impactlab

@@ -89,6 +89,8 @@ struct SweepTable {
   std::vector<SectionTermination> termination;
   std::vector<int> points;
   std::vector<double> stick_fraction;  // impacts that stuck / impacts; NaN without impacts
+  std::vector<double> transient_periods;  // forcing periods the point's transient ran
+  std::vector<TransientEnd> transient_end;
 };
 
 SweepTable sweep_table(const SweepPlan& plan, const std::vector<SweepTask>& tasks,
@@ -102,13 +104,20 @@ std::vector<SweepRecordKey> sweep_row_order(const SweepPlan& plan,
                                             const std::vector<SweepTask>& tasks);
 
 // What a finished sweep's records count (meta.json's "counts"): points,
-// points_stopped_early (termination other than completed), steps and
-// rhs_evaluations summed over the points.
+// points_stopped_early (termination other than completed),
+// points_not_settled (transient_end not_settled), steps and rhs_evaluations
+// summed over the points.
 nlohmann::json sweep_counts(const std::map<SweepRecordKey, SweepRecord>& records);
 
 // The points that stopped early and why, for the run's summary: "7 of 20
 // points stopped early (no_progress 7)"; empty where every point completed.
 std::string stopped_points_note(const std::map<SweepRecordKey, SweepRecord>& records);
+
+// The points whose transient was still converging when it ran out, for the
+// run's summary: "3 of 400 points did not settle within max_transient = 2000
+// forcing periods: their periods may be a transient's"; empty where none.
+std::string unsettled_points_note(const std::map<SweepRecordKey, SweepRecord>& records,
+                                  const SweepPlan& plan);
 
 // A 1D sweep's bifurcation rows of one record (its section points).
 void add_bifurcation_rows(SweepTable& table, const SweepPlan& plan, const SweepRecord& record);

@@ -11,6 +11,7 @@
 
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
+#include <impactlab/api/section_record.hpp>
 #include "command.hpp"
 #include "interrupted_runs.hpp"
 #include "commands.hpp"
@@ -77,10 +78,12 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
       {"command", command_line},
       {"created_utc", utc_now()},
       {"scene", scene_record(scene)},
-      {"section", options.record()},
+      {"section", section_request_record(options.section, request)},
       {"termination", to_string(result.termination)},
       {"forcing_period", result.forcing_period},
       {"record_start", result.record_start},
+      {"transient", {{"periods", result.transient_periods},
+                     {"end", to_string(result.transient_end)}}},
       {"counts",
        {{"points", result.point_count},
         {"periods_recorded", result.periods_recorded},
@@ -112,9 +115,17 @@ int run_poincare(const SectionOptions& options, bool lyapunov,
     plot_with_python("poincare", directory / "poincare.csv", directory / "poincare.png",
                      {q_name});
   if (!options.scene.quiet)
-    std::cout << fmt::format("{}: {} section points ({}), {:.3f} s wall\nwrote {}\n", scene.name,
-                             result.point_count, to_string(request.section), wall_time,
-                             (directory / "poincare.csv").string());
+    std::cout << fmt::format(
+        "{}: {} section points ({}) after a transient of {:g} forcing periods ({}), {:.3f} s "
+        "wall\nwrote {}\n",
+        scene.name, result.point_count, to_string(request.section), result.transient_periods,
+        to_string(result.transient_end), wall_time, (directory / "poincare.csv").string());
+  // said even when quiet: the points may be a transient's
+  if (result.transient_end == TransientEnd::not_settled)
+    std::cerr << fmt::format(
+        "impactlab: warning: the transient did not settle within max_transient = {:g} forcing "
+        "periods: the points may still be on their way to the attractor\n",
+        request.max_transient_periods);
   if (result.termination != SectionTermination::completed) {
     std::cerr << fmt::format("impactlab: run stopped early ({}); {} points recorded\n",
                              to_string(result.termination), result.point_count);

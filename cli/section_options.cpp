@@ -15,7 +15,8 @@ void SectionOptions::add_to(TableOptions& table) {
   scene.add_scene(table);
   table.add("section", section);
   table.add("transient_impacts", transient_impacts);
-  table.add("transient", transient);
+  transient_option = table.add("transient", transient);
+  table.add("max_transient", max_transient);
   table.add("points", points);
   table.add("plot", plot);
 }
@@ -23,17 +24,13 @@ void SectionOptions::add_to(TableOptions& table) {
 SectionRequest SectionOptions::request() const {
   SectionRequest request;
   request.section = parse_section(section, "section");
-  request.transient_periods = transient;
+  // an explicit transient runs exactly; the default settles
+  request.settle = !option_given(transient_option);
+  if (!request.settle) request.transient_periods = transient;
+  request.max_transient_periods = max_transient;
   request.transient_impacts = transient_impacts;
   request.points = points;
   return request;
-}
-
-nlohmann::json SectionOptions::record() const {
-  return {{"section", section},
-          {"transient_periods", transient_impacts > 0 ? 0.0 : transient},
-          {"transient_impacts", transient_impacts},
-          {"points", points}};
 }
 
 bool plot_with_python(const std::string& kind, const std::filesystem::path& csv,

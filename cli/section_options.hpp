@@ -8,8 +8,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include <impactlab/analysis/section.hpp>
 #include "command.hpp"
 #include "table_options.hpp"
@@ -20,7 +18,9 @@ namespace impactlab::cli {
 struct SectionOptions {
   SceneOptions scene;       // scene, --set, --out, --quiet (its other fields unused)
   std::string section;      // strobe[:PHASE] | impact[:WALL]
-  double transient = 0.0;   // forcing periods discarded
+  double transient = 0.0;   // forcing periods discarded, where given (transient_option)
+  double max_transient = 0.0;  // the settling transient's most forcing periods
+  CLI::Option* transient_option = nullptr;
   std::uint64_t transient_impacts = 0;
   std::uint64_t points = 0;
   bool plot = false;
@@ -29,7 +29,6 @@ struct SectionOptions {
   void add_to(TableOptions& table);
   // the section request (BadInput on a malformed --section)
   [[nodiscard]] SectionRequest request() const;
-  [[nodiscard]] nlohmann::json record() const;
 };
 
 // Runs scripts/plot_sweep.py with /usr/bin/python3 to write `png` from

@@ -17,8 +17,10 @@
 
 #include <impactlab/analysis/sweep.hpp>
 #include <impactlab/api/basins_job.hpp>
+#include <impactlab/api/section_record.hpp>
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/sweep_checkpoints.hpp>
+#include <impactlab/api/section_record.hpp>
 #include <impactlab/api/sweep_job.hpp>
 #include "command.hpp"
 #include "interrupted_runs.hpp"
@@ -63,12 +65,13 @@ void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<
   const BasinsTable table = basins_table(plan, tasks, records);
   AtomicFile& basins = run_files.add("basins.csv");
   basins.stream() << plan.axes[0].name << ',' << plan.axes[1].name
-                  << ",attractor,period,impacts_per_period,contact,termination\n";
+                  << ",attractor,period,impacts_per_period,contact,termination,transient_end\n";
   for (std::size_t k = 0; k < table.x.size(); ++k)
     basins.stream() << number(table.x[k]) << ',' << number(table.y[k]) << ','
                     << table.attractor[k] << ',' << table.period[k] << ','
                     << number(table.impacts_per_period[k]) << ',' << table.contact[k] << ','
-                    << to_string(table.termination[k]) << '\n';
+                    << to_string(table.termination[k]) << ',' << to_string(table.transient_end[k])
+                    << '\n';
   AtomicFile& attractors = run_files.add("attractors.csv");
   attractors.stream() << "attractor,period,impacts_per_period,contact,q,qdot,basin_points\n";
   const AttractorRows rows = attractor_rows(table.map);
@@ -91,6 +94,10 @@ void write_outputs(RunFiles& run_files, const SweepPlan& plan, const std::vector
                        table.contact[row], number(table.lyapunov[row]),
                        to_string(table.termination[row]));
   };
+  auto transient_fields = [&](std::size_t row) {
+    return fmt::format("{},{}", number(table.transient_periods[row]),
+                       to_string(table.transient_end[row]));
+  };
   auto direction_name = [](int direction) { return direction > 0 ? "up" : "down"; };
   if (plan.axes.size() == 1) {
     const SweepAxis& axis = plan.axes[0];
@@ -99,7 +106,7 @@ void write_outputs(RunFiles& run_files, const SweepPlan& plan, const std::vector
     bifurcation.stream() << axis.name << ",k,t,q,qdot,wall,direction\n";
     summary.stream() << axis.name
                      << ",direction,period,impacts_per_period,contact,lyapunov,termination,"
-                        "points,stick_fraction\n";
+                        "points,stick_fraction,transient_periods,transient_end\n";
     for (const SweepRecordKey& key : sweep_row_order(plan, tasks)) {
       SweepTable rows;
       add_bifurcation_rows(rows, plan, checkpoints.load(key));
@@ -113,16 +120,19 @@ void write_outputs(RunFiles& run_files, const SweepPlan& plan, const std::vector
     for (std::size_t row = 0; row < table.value.size(); ++row)
       summary.stream() << number(table.value[row]) << ',' << direction_name(table.direction[row])
                        << ',' << summary_fields(row) << ',' << table.points[row] << ','
-                       << number(table.stick_fraction[row]) << '\n';
+                       << number(table.stick_fraction[row]) << ',' << transient_fields(row)
+                       << '\n';
     files = {"bifurcation.csv", "summary.csv"};
     return;
   }
   AtomicFile& classes = run_files.add("classes.csv");
   classes.stream() << plan.axes[0].name << ',' << plan.axes[1].name
-                   << ",period,impacts_per_period,contact,lyapunov,termination,stick_fraction\n";
+                   << ",period,impacts_per_period,contact,lyapunov,termination,stick_fraction,"
+                      "transient_periods,transient_end\n";
   for (std::size_t row = 0; row < table.value.size(); ++row)
     classes.stream() << number(table.value[row]) << ',' << number(table.value2[row]) << ','
-                     << summary_fields(row) << ',' << number(table.stick_fraction[row]) << '\n';
+                     << summary_fields(row) << ',' << number(table.stick_fraction[row]) << ','
+                     << transient_fields(row) << '\n';
   files = {"classes.csv"};
 }
 
@@ -230,6 +240,12 @@ void write_meta(RunFiles& run_files, const nlohmann::json& definition,
         {"points", "section points recorded"},
         {"stick_fraction", "share of the record window's impacts whose impulse stuck (friction "
                            "stopped the slip; the rigid model, else 0); nan without impacts"},
+        {"transient_periods", "forcing periods the point's transient ran"},
+        {"transient_end",
+         "how the transient ended: settled (the stroboscopic points repeat), not_periodic "
+         "(they neither repeat nor converge: chaos, a torus, a period over max_period), "
+         "not_settled (still converging at max_transient: the period may be a transient's), "
+         "fixed (an explicit transient)"},
         {"attractor", "basins: the attractor the point settles on (attractors.csv; 0: none found)"},
         {"basin_points", "basins: grid points that settle on the attractor"}}},
       {"files", files},
@@ -253,8 +269,11 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   MpiSession mpi;
 
   const nlohmann::json definition =
-      options.basins ? basins_definition(plan, scene, schema, options.section.record())
-                     : sweep_definition(plan, scene, schema, options.section.record());
+      options.basins
+          ? basins_definition(plan, scene, schema,
+                              section_request_record(options.section.section, plan.section))
+          : sweep_definition(plan, scene, schema,
+                             section_request_record(options.section.section, plan.section));
   const std::string header = nlohmann::json{{"impactlab_sweep_checkpoint", definition}}.dump();
   // basins tell attractors apart by their section points: their records keep
   // them; a sweep's records shed them once they are in the checkpoint
@@ -349,6 +368,10 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
     std::cerr << "impactlab: warning: " << stopped << "; the termination column of "
               << (options.basins ? "basins.csv" : plan.axes.size() == 1 ? "summary.csv" : "classes.csv")
               << " says which\n";
+  if (const std::string unsettled = unsettled_points_note(all, plan); !unsettled.empty())
+    std::cerr << "impactlab: warning: " << unsettled << " (the transient_end column of "
+              << (options.basins ? "basins.csv" : plan.axes.size() == 1 ? "summary.csv" : "classes.csv")
+              << ")\n";
   return exit_done;
 }
 

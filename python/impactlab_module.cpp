@@ -39,6 +39,7 @@
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/api/scene_record.hpp>
+#include <impactlab/api/section_record.hpp>
 #include <impactlab/api/sweep_job.hpp>
 #include <impactlab/api/work_precision.hpp>
 #include <impactlab/integrate/stepper_names.hpp>
@@ -200,10 +201,12 @@ py::array event_array(const std::vector<EventRecord>& events, const Scene& scene
                    owner->data(), base);
 }
 
-// The names of a table's terminations, as the CLI's files write them.
-py::list termination_names(const std::vector<SectionTermination>& terminations) {
+// The names of a table's terminations or transient ends, as the CLI's files
+// write them.
+template <class Outcome>
+py::list outcome_names(const std::vector<Outcome>& outcomes) {
   py::list names;
-  for (const SectionTermination termination : terminations) names.append(to_string(termination));
+  for (const Outcome outcome : outcomes) names.append(to_string(outcome));
   return names;
 }
 
@@ -256,12 +259,15 @@ py::dict simulate_binding(const Scene& scene, double periods, double t_end, doub
   return result;
 }
 
-SectionRequest section_request(const std::string& section, double transient,
-                               std::uint64_t transient_impacts, std::uint64_t points,
-                               bool lyapunov) {
+// `transient` None: the settling transient (the options table's default)
+SectionRequest section_request(const std::string& section, std::optional<double> transient,
+                               double max_transient, std::uint64_t transient_impacts,
+                               std::uint64_t points, bool lyapunov) {
   SectionRequest request;
   request.section = parse_section(section, "section");
-  request.transient_periods = transient;
+  request.settle = !transient.has_value();
+  if (transient) request.transient_periods = *transient;
+  request.max_transient_periods = max_transient;
   request.transient_impacts = transient_impacts;
   request.points = points;
   request.lyapunov = lyapunov;
@@ -285,11 +291,12 @@ py::dict section_arrays(const SectionResult& result) {
   return arrays;
 }
 
-py::dict poincare_binding(const Scene& scene, const std::string& section, double transient,
+py::dict poincare_binding(const Scene& scene, const std::string& section,
+                          std::optional<double> transient, double max_transient,
                           std::uint64_t transient_impacts, std::uint64_t points, bool lyapunov,
                           py::object progress) {
   const SectionRequest request =
-      section_request(section, transient, transient_impacts, points, lyapunov);
+      section_request(section, transient, max_transient, transient_impacts, points, lyapunov);
   ProgressRelay relay(std::move(progress));
   // a Poincaré run reports no progress of its own: the check runs once after it
   const SectionResult result = relay.run([&] { return poincare(scene, request); });
@@ -299,6 +306,8 @@ py::dict poincare_binding(const Scene& scene, const std::string& section, double
   out["omega"] = result.omega;
   out["forcing_period"] = result.forcing_period;
   out["record_start"] = result.record_start;
+  out["transient_periods"] = result.transient_periods;
+  out["transient_end"] = to_string(result.transient_end);
   out["periods_recorded"] = result.periods_recorded;
   out["impacts"] = result.impacts;
   out["contact_phases"] = result.contact_phases;
@@ -338,7 +347,8 @@ PlanRun run_plan(const Scene& scene, const SweepTarget& target, const SweepPlan&
 
 py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& params,
                        const std::string& direction, int chunks, const std::string& section,
-                       double transient, std::uint64_t transient_impacts, std::uint64_t points,
+                       std::optional<double> transient, double max_transient,
+                       std::uint64_t transient_impacts, std::uint64_t points,
                        std::optional<bool> lyapunov, double period_tolerance, int max_period,
                        const std::string& classification_tolerance, int threads,
                        py::object progress) {
@@ -346,7 +356,8 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
   spec.params = params;
   spec.direction = direction;
   spec.chunks = chunks;
-  spec.section = section_request(section, transient, transient_impacts, points, false);
+  spec.section =
+      section_request(section, transient, max_transient, transient_impacts, points, false);
   spec.lyapunov = lyapunov;
   spec.period_tolerance = period_tolerance;
   spec.max_period = max_period;
@@ -357,11 +368,7 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
   const double wall_time = run.wall_time;
   SweepTable table = sweep_table(plan, run.tasks, run.records);
 
-  nlohmann::json section_record = {
-      {"section", section},
-      {"transient_periods", transient_impacts > 0 ? 0.0 : transient},
-      {"transient_impacts", transient_impacts},
-      {"points", points}};
+  const nlohmann::json section_record = section_request_record(section, plan.section);
   py::dict out;
   out["definition"] = json_to_python(sweep_definition(plan, scene, *target.schema, section_record));
   out["axes"] = py::cast(std::vector<std::string>{plan.axes[0].name,
@@ -381,23 +388,28 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
   out["contact"] = owning_array(std::move(table.contact));
   out["stick_fraction"] = owning_array(std::move(table.stick_fraction));
   out["lyapunov"] = owning_array(std::move(table.lyapunov));
-  out["termination"] = termination_names(table.termination);
+  out["termination"] = outcome_names(table.termination);
+  out["transient_periods"] = owning_array(std::move(table.transient_periods));
+  out["transient_end"] = outcome_names(table.transient_end);
   out["points"] = owning_array(std::move(table.points));
   out["wall_time_s"] = wall_time;
   out["stopped"] = stopped_points_note(run.records);
+  out["unsettled"] = unsettled_points_note(run.records, plan);
   out["threads"] = threads;
   return out;
 }
 
 py::dict basins_binding(const Scene& scene, const std::string& x, const std::string& y,
-                        const std::string& section, double transient,
-                        std::uint64_t transient_impacts, std::uint64_t points, bool lyapunov,
-                        double period_tolerance, int max_period, double attractor_tolerance,
+                        const std::string& section, std::optional<double> transient,
+                        double max_transient, std::uint64_t transient_impacts,
+                        std::uint64_t points, bool lyapunov, double period_tolerance,
+                        int max_period, double attractor_tolerance,
                         int threads, py::object progress) {
   BasinsSpec spec;
   spec.x = x;
   spec.y = y;
-  spec.section = section_request(section, transient, transient_impacts, points, false);
+  spec.section =
+      section_request(section, transient, max_transient, transient_impacts, points, false);
   spec.lyapunov = lyapunov;
   spec.period_tolerance = period_tolerance;
   spec.max_period = max_period;
@@ -409,11 +421,7 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
   BasinsTable table = basins_table(plan, run.tasks, run.records);
   AttractorRows attractors = attractor_rows(table.map);
 
-  nlohmann::json section_record = {
-      {"section", section},
-      {"transient_periods", transient_impacts > 0 ? 0.0 : transient},
-      {"transient_impacts", transient_impacts},
-      {"points", points}};
+  const nlohmann::json section_record = section_request_record(section, plan.section);
   const nlohmann::json meta = {
       {"impactlab_version", IMPACTLAB_VERSION},
       {"sweep", basins_definition(plan, scene, *target.schema, section_record)},
@@ -430,7 +438,8 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
   out["period"] = owning_array(std::move(table.period));
   out["impacts_per_period"] = owning_array(std::move(table.impacts_per_period));
   out["contact"] = owning_array(std::move(table.contact));
-  out["termination"] = termination_names(table.termination);
+  out["termination"] = outcome_names(table.termination);
+  out["transient_end"] = outcome_names(table.transient_end);
   out["attractor_id"] = owning_array(std::move(attractors.id));
   out["attractor_period"] = owning_array(std::move(attractors.period));
   out["attractor_impacts_per_period"] = owning_array(std::move(attractors.impacts_per_period));
@@ -439,6 +448,7 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
   out["attractor_qdot"] = owning_array(std::move(attractors.qdot));
   out["attractor_basin_points"] = owning_array(std::move(attractors.basin_points));
   out["wall_time_s"] = wall_time;
+  out["unsettled"] = unsettled_points_note(run.records, plan);
   return out;
 }
 

@@ -214,8 +214,11 @@ def _whole(key, value, row):
 
 
 def _option(job, name, value):
-    """`value` checked against the option `name` of `job`'s table; ValueError naming it."""
+    """`value` checked against the option `name` of `job`'s table; ValueError naming it.
+    None stays None where the option has no default (unset: the library's own rule)."""
     row = _OPTIONS[job][name]
+    if value is None and row["default"] is None and not row["required"]:
+        return None
     if row["type"] == "number":
         return _number(name, value, row)
     if row["type"] in ("integer", "count"):
@@ -320,6 +323,7 @@ def simulate(scene_=None, *, periods=_default("simulate", "periods"),
 @_documented("poincare")
 def poincare(scene_=None, *, section=_default("poincare", "section"),
              transient=_default("poincare", "transient"),
+             max_transient=_default("poincare", "max_transient"),
              transient_impacts=_default("poincare", "transient_impacts"),
              points=_default("poincare", "points"), lyapunov=_default("poincare", "lyapunov"),
              progress=None, **keys):
@@ -328,15 +332,21 @@ def poincare(scene_=None, *, section=_default("poincare", "section"),
     loaded = scene(scene_ if scene_ is not None else "jin2003", **keys)
     section = _option("poincare", "section", section)
     transient = _option("poincare", "transient", transient)
+    max_transient = _option("poincare", "max_transient", max_transient)
     transient_impacts = _option("poincare", "transient_impacts", transient_impacts)
     points = _option("poincare", "points", points)
-    raw = _run(lambda callback: _impactlab.poincare(loaded, section, transient, transient_impacts,
-                                                    points, bool(lyapunov), callback),
+    raw = _run(lambda callback: _impactlab.poincare(loaded, section, transient, max_transient,
+                                                    transient_impacts, points, bool(lyapunov),
+                                                    callback),
                progress, "poincare")
     raw["k"] = np.arange(len(raw["t"]))
     raw["phase"] = np.fmod(raw["omega"] * raw["t"], 2.0 * math.pi)
     result = Result(scene=loaded, **raw)
     _warn_if_stopped(result, "poincare")
+    if result.transient_end == "not_settled":
+        warnings.warn("poincare: the transient did not settle within max_transient = {:g} "
+                      "forcing periods: the points may still be on their way to the "
+                      "attractor".format(max_transient), PhysicalDiagnosticWarning, stacklevel=2)
     return result
 
 
@@ -344,6 +354,7 @@ def poincare(scene_=None, *, section=_default("poincare", "section"),
 def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
           threads=_default("sweep", "threads"), chunks=_default("sweep", "chunks"),
           section=_default("sweep", "section"), transient=_default("sweep", "transient"),
+          max_transient=_default("sweep", "max_transient"),
           transient_impacts=_default("sweep", "transient_impacts"),
           points=_default("sweep", "points"), lyapunov=_default("sweep", "lyapunov"),
           period_tol=_default("sweep", "period_tol"), max_period=_default("sweep", "max_period"),
@@ -368,11 +379,12 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
         _option("sweep", key, value)
     checked = {key: _option("sweep", key, value) for key, value in (
         ("threads", threads), ("chunks", chunks), ("transient", transient),
-        ("transient_impacts", transient_impacts), ("points", points),
+        ("max_transient", max_transient), ("transient_impacts", transient_impacts),
+        ("points", points),
         ("period_tol", period_tol), ("max_period", max_period))}
     raw = _run(lambda callback: _impactlab.sweep(
         loaded, params, direction, checked["chunks"], section, checked["transient"],
-        checked["transient_impacts"], checked["points"], lyapunov, checked["period_tol"],
+        checked["max_transient"], checked["transient_impacts"], checked["points"], lyapunov, checked["period_tol"],
         checked["max_period"], classification_tol, checked["threads"], callback),
         progress, "sweep")
     axes = raw["axes"]
@@ -392,6 +404,10 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
     if len(params) == 1:
         summary["points"] = raw["points"]
     summary["stick_fraction"] = raw["stick_fraction"]
+    summary.update(transient_periods=raw["transient_periods"], transient_end=raw["transient_end"])
+    if raw["unsettled"]:
+        warnings.warn("sweep: {}; summary['transient_end'] says which".format(raw["unsettled"]),
+                      PhysicalDiagnosticWarning, stacklevel=2)
     if raw["stopped"]:
         # as the CLI says it: a stopped point is a gap in the diagram otherwise
         warnings.warn("sweep: {}; summary['termination'] says which".format(raw["stopped"]),
@@ -403,6 +419,7 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
 @_documented("basins")
 def basins(scene_, *, x, y, threads=_default("basins", "threads"),
            section=_default("basins", "section"), transient=_default("basins", "transient"),
+           max_transient=_default("basins", "max_transient"),
            transient_impacts=_default("basins", "transient_impacts"),
            points=_default("basins", "points"), lyapunov=_default("basins", "lyapunov"),
            period_tol=_default("basins", "period_tol"),
@@ -418,18 +435,21 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
     for key, value in (("x", x), ("y", y), ("section", section), ("lyapunov", lyapunov)):
         _option("basins", key, value)
     checked = {key: _option("basins", key, value) for key, value in (
-        ("threads", threads), ("transient", transient), ("transient_impacts", transient_impacts),
-        ("points", points), ("period_tol", period_tol), ("max_period", max_period),
+        ("threads", threads), ("transient", transient), ("max_transient", max_transient),
+        ("transient_impacts", transient_impacts), ("points", points), ("period_tol", period_tol),
+        ("max_period", max_period),
         ("attractor_tol", attractor_tol))}
     raw = _run(lambda callback: _impactlab.basins(
-        loaded, x, y, section, checked["transient"], checked["transient_impacts"],
+        loaded, x, y, section, checked["transient"], checked["max_transient"],
+        checked["transient_impacts"],
         checked["points"], lyapunov, checked["period_tol"], checked["max_period"],
         checked["attractor_tol"], checked["threads"], callback), progress, "basins")
     axes = raw["axes"]
     nx, ny = raw["counts"]
     grid = {axes[0]: raw["x"], axes[1]: raw["y"], "attractor": raw["attractor"],
             "period": raw["period"], "impacts_per_period": raw["impacts_per_period"],
-            "contact": raw["contact"], "termination": raw["termination"]}
+            "contact": raw["contact"], "termination": raw["termination"],
+            "transient_end": raw["transient_end"]}
     columns = [("attractor", "attractor_id", "<i4"), ("period", "attractor_period", "<i4"),
                ("impacts_per_period", "attractor_impacts_per_period", "<f8"),
                ("contact", "attractor_contact", "<i4"), ("q", "attractor_q", "<f8"),
@@ -443,6 +463,9 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
                     x=raw["x"][:nx].copy(), y=raw["y"][::nx].copy(),
                     labels=raw["attractor"].reshape(ny, nx), grid=grid, attractors=attractors,
                     meta=raw["meta"], wall_time_s=raw["wall_time_s"])
+    if raw["unsettled"]:
+        warnings.warn("basins: {}; grid['transient_end'] says which".format(raw["unsettled"]),
+                      PhysicalDiagnosticWarning, stacklevel=2)
     return result
 
 

@@ -70,7 +70,7 @@ TEST(Basins, BouncingBallRestAndPeriodOneOrbitCoexistAsTheClosedFormsSay) {
   ASSERT_EQ(o.status, 0) << o.err;
   const auto basin_lines = split_lines(slurp(out / "basins.csv"));
   EXPECT_EQ(basin_lines[0], "initial.y,initial.y_dot,attractor,period,impacts_per_period,contact,"
-                            "termination");
+                            "termination,transient_end");
   EXPECT_EQ(basin_lines.size(), 1u + 96u);
 
   // the closed forms

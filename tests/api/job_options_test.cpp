@@ -88,7 +88,10 @@ TEST(JobOptions, RequestStructDefaultsAgreeWithTheTables) {
   const impactlab::SectionRequest section;
   for (std::string_view job : {"poincare", "sweep", "basins"}) {
     SCOPED_TRACE(std::string(job));
-    EXPECT_EQ(section.transient_periods, number_default(job, "transient"));
+    // no transient given: the settling transient, the library's default
+    EXPECT_TRUE(is_unset(job, "transient"));
+    EXPECT_TRUE(section.settle);
+    EXPECT_EQ(section.max_transient_periods, number_default(job, "max_transient"));
     EXPECT_EQ(static_cast<double>(section.transient_impacts),
               number_default(job, "transient_impacts"));
     EXPECT_EQ(static_cast<double>(section.points), number_default(job, "points"));

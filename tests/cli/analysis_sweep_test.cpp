@@ -141,6 +141,79 @@ TEST(Poincare, TheLyapunovExponentIsANumberInMeta) {
   EXPECT_LT(meta["lyapunov"]["largest_exponent_per_time"].get<double>(), 0.0);
 }
 
+// The largest distance of poincare.csv's points from the hanging rest
+// (θ, θ̇) = (0, 0), an exact equilibrium of the pendulum whose pivot moves
+// vertically.
+double farthest_from_rest(const std::filesystem::path& csv) {
+  double farthest = 0.0;
+  const auto rows = read_csv(csv);
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    farthest = std::max(farthest, std::hypot(std::stod(rows[i][2]), std::stod(rows[i][3])));
+  return farthest;
+}
+
+// At ω = 5.5, V0 = 1 the pendulum decays onto the hanging rest, slowly: 100
+// periods leave it 1e-2 away. The default transient runs until the points
+// settle; an explicit --transient runs exactly that; a budget too short to
+// settle says so.
+TEST(Poincare, TheTransientRunsUntilTheDecayingRestHasSettled) {
+  const ScratchFolder scratch;
+  const std::string scene = "poincare jin2003 --set omega=5.5 --set V0=1 --quiet --out ";
+  const ProgramRun settling = run_command_line(scene + (scratch / "settle").string());
+  ASSERT_EQ(settling.status, 0) << settling.err;
+  EXPECT_EQ(settling.err, "");
+  const auto meta = nlohmann::json::parse(slurp(scratch / "settle" / "meta.json"));
+  EXPECT_EQ(meta["transient"]["end"], "settled");
+  EXPECT_GT(meta["transient"]["periods"].get<double>(), 100.0);
+  EXPECT_EQ(meta["section"]["settling"]["max_periods"], 2000.0);
+  EXPECT_LT(farthest_from_rest(scratch / "settle" / "poincare.csv"), 1e-6);
+
+  const ProgramRun fixed =
+      run_command_line(scene + (scratch / "fixed").string() + " --transient 100");
+  ASSERT_EQ(fixed.status, 0) << fixed.err;
+  const auto fixed_meta = nlohmann::json::parse(slurp(scratch / "fixed" / "meta.json"));
+  EXPECT_EQ(fixed_meta["transient"]["end"], "fixed");
+  EXPECT_EQ(fixed_meta["transient"]["periods"], 100.0);
+  EXPECT_TRUE(fixed_meta["section"]["settling"].is_null());
+  EXPECT_GT(farthest_from_rest(scratch / "fixed" / "poincare.csv"), 1e-4);
+
+  const ProgramRun budget =
+      run_command_line(scene + (scratch / "budget").string() + " --max-transient 150");
+  ASSERT_EQ(budget.status, 0) << budget.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(scratch / "budget" / "meta.json"))["transient"]["end"],
+            "not_settled");
+  EXPECT_NE(budget.err.find("warning: the transient did not settle within max_transient = 150"),
+            std::string::npos)
+      << budget.err;
+
+  EXPECT_TRUE(refused_naming(
+      run_command_line(scene + (scratch / "both").string() + " --transient 100 --max-transient 300"),
+      "--transient"));
+}
+
+// A sweep's points that did not settle within the budget are marked in
+// summary.csv and counted in a warning, even with --quiet.
+TEST(Sweep, PointsThatDidNotSettleAreMarkedAndCounted) {
+  const ScratchFolder scratch;
+  const auto out = scratch / "unsettled";
+  const ProgramRun run = run_command_line(
+      "sweep jin2003 --set V0=1 --param omega=5.45:5.55:3 --no-lyapunov --max-transient 150 "
+      "--quiet --out " + out.string());
+  ASSERT_EQ(run.status, 0) << run.err;
+  const auto rows = read_csv(out / "summary.csv");
+  const auto& header = rows.front();
+  const auto column = static_cast<std::size_t>(
+      std::find(header.begin(), header.end(), "transient_end") - header.begin());
+  ASSERT_LT(column, header.size());
+  int unsettled = 0;
+  for (std::size_t i = 1; i < rows.size(); ++i) unsettled += rows[i][column] == "not_settled";
+  ASSERT_GT(unsettled, 0);
+  EXPECT_NE(run.err.find("warning: " + std::to_string(unsettled) +
+                         " of 3 points did not settle within max_transient = 150"),
+            std::string::npos)
+      << run.err;
+}
+
 // `command` run, with `more` arguments, on the shipped Duffing oscillator
 // without its wall's sticking table (the file's last section) at r = 0.2,
 // σ = 0.1, where it chatters into no_progress at some F; the model cache is
@@ -231,15 +304,21 @@ TEST(Sweep, StickFractionIsTheShareOfImpactsFrictionStops) {
   ASSERT_EQ(rigid.status, 0) << rigid.err;
   const auto rows = split_lines(slurp(scratch / "rigid" / "summary.csv"));
   ASSERT_EQ(rows.size(), 3u);
-  EXPECT_TRUE(rows[0].ends_with(",points,stick_fraction")) << rows[0];
-  EXPECT_EQ(fields(rows[1]).back(), 0.0) << rows[1];
-  EXPECT_EQ(fields(rows[2]).back(), 1.0) << rows[2];
+  EXPECT_TRUE(rows[0].ends_with(",points,stick_fraction,transient_periods,transient_end"))
+      << rows[0];
+  // stick_fraction, the third column from the end
+  auto stick_fraction = [](const std::string& row) {
+    const auto values = fields(row.substr(0, row.rfind(',')));
+    return values[values.size() - 2];
+  };
+  EXPECT_EQ(stick_fraction(rows[1]), 0.0) << rows[1];
+  EXPECT_EQ(stick_fraction(rows[2]), 1.0) << rows[2];
   const ProgramRun newton =
       run_command_line("sweep jin2003 --set V0=2" + grid + (scratch / "newton").string());
   ASSERT_EQ(newton.status, 0) << newton.err;
   for (const auto& row : split_lines(slurp(scratch / "newton" / "summary.csv")))
     if (row.rfind("mu", 0) != 0) {
-      EXPECT_EQ(fields(row).back(), 0.0) << row;
+      EXPECT_EQ(stick_fraction(row), 0.0) << row;
     }
 }
 
@@ -258,7 +337,8 @@ TEST(Sweep, SerialAndThreadedRunsWriteIdenticalFiles) {
   ASSERT_EQ(run_command_line(sweep_2d + " --threads 2 --out " + threaded_2d.string()).status, 0);
   const std::string classes = slurp(serial_2d / "classes.csv");
   EXPECT_EQ(split_lines(classes)[0],
-            "omega,V0,period,impacts_per_period,contact,lyapunov,termination,stick_fraction");
+            "omega,V0,period,impacts_per_period,contact,lyapunov,termination,stick_fraction,"
+            "transient_periods,transient_end");
   EXPECT_EQ(split_lines(classes).size(), 1u + 24u);
   EXPECT_EQ(classes, slurp(threaded_2d / "classes.csv"));
 }

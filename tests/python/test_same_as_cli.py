@@ -108,6 +108,33 @@ def test_poincare_equals_cli(cli):
         same_numbers(rows[column], getattr(section, column))
 
 
+def test_poincare_settling_transient_equals_cli(cli):
+    # no transient given: both run until the decaying rest has settled
+    out = cli("poincare", "jin2003", "--set", "omega=5.5", "--set", "V0=1")
+    section = impactlab.poincare("jin2003", omega=5.5, V0=1)
+    meta = read_json(out / "meta.json")
+    assert section.transient_end == meta["transient"]["end"] == "settled"
+    assert section.transient_periods == meta["transient"]["periods"] > 100
+    rows = read_csv(out / "poincare.csv")
+    for column in ("t", "q", "qdot"):
+        same_numbers(rows[column], getattr(section, column))
+
+
+def test_sweep_settling_columns_equal_cli(cli):
+    out = cli("sweep", "jin2003", "--set", "V0=1", "--param", "omega=5.4:5.6:3", "--points", "8",
+              "--max-transient", "500")
+    # a point still converging after 500 periods: warned of, as the CLI does
+    with pytest.warns(impactlab.PhysicalDiagnosticWarning,
+                      match="1 of 3 points did not settle within max_transient = 500"):
+        result = impactlab.sweep("jin2003", V0=1, param="omega=5.4:5.6:3", points=8,
+                                 max_transient=500)
+    summary = read_csv(out / "summary.csv")
+    assert summary["transient_end"].count("not_settled") == 1
+    same_numbers(summary["transient_periods"], result.summary["transient_periods"])
+    assert result.summary["transient_end"] == summary["transient_end"]
+    assert result.definition == read_json(out / "meta.json")["sweep"]
+
+
 def test_sweep_1d_both_directions_equals_cli(cli):
     out = cli("sweep", "jin2003", "--param", "omega=6.5:7.5:4", "--direction", "both",
               "--points", "8", "--transient", "10", "--threads", "2")
