@@ -28,6 +28,7 @@ PeriodicJobResult find_periodic_orbit(const Scene& scene, const PeriodicJob& job
     SectionRequest probe;
     probe.section.phase = job.phase;
     probe.transient_periods = job.transient;
+    probe.settle = false;  // the orbit search starts after exactly job.transient periods
     probe.points = 64;
     SweepPlan plan;
     plan.max_period = 32;

@@ -66,6 +66,14 @@ TEST(Settling, ASlowDecayAtARealMultiplierIsStillConverging) {
         first);
     EXPECT_EQ(settling_verdict(slow, max_period, tolerance), SettlingVerdict::converging);
   }
+  // the same decay once it is small: after 4 periods the points repeat to
+  // 1.3e-8, under the tolerance, but after 2 they are 4e-6 apart and that
+  // distance still shrinks. A fixed transient labelled this period 4.
+  const auto small = sequence(period_two, [&](int k) {
+    const double size = 2e-6 * std::pow(multiplier, k / 2);
+    return std::array<double, 2>{size, size};
+  });
+  EXPECT_EQ(settling_verdict(small, max_period, tolerance), SettlingVerdict::converging);
   // the decaying hanging rest: one point, approached at 0.975 per period
   const auto rest = sequence({{0.0, 0.0}}, [](int k) {
     const double size = 1e-2 * std::pow(0.975, k);
