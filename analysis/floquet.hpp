@@ -17,6 +17,7 @@
 #include <complex>
 #include <cstdint>
 #include <limits>
+#include <string_view>
 #include <optional>
 
 #include <impactlab/analysis/decorated_system.hpp>
@@ -108,6 +109,7 @@ struct PeriodicOrbit {
   int iterations = 0;
   double residual = std::numeric_limits<double>::quiet_NaN();  // |Pⁿ(x) − x| on the tangent space
   Termination termination = Termination::completed;
+  std::string_view failure;  // why Newton's method ended unconverged; empty where it converged
 };
 
 // Newton's method on Pⁿ(x) − x = 0 over the tangent space's N components,
@@ -146,14 +148,23 @@ locate_periodic_orbit(const Variational<System>& tangent, Stepper& stepper,
     orbit.monodromy = image.jacobian;
     orbit.iterations = iteration;
     orbit.residual = residual_of(orbit.state, image.state);
-    if (image.termination != Termination::completed) break;
+    if (image.termination != Termination::completed) {
+      orbit.failure = "the run from the iterate stopped early";
+      break;
+    }
     if (orbit.residual <= tolerance * (1.0 + tangent_norm<n>(tangent_part<n>(orbit.state)))) {
       orbit.converged = true;
       break;
     }
-    if (iteration == max_iterations) break;
+    if (iteration == max_iterations) {
+      orbit.failure = "max_iterations reached";
+      break;
+    }
     const auto step = newton_step<n>(orbit.monodromy, difference(orbit.state, image.state));
-    if (!step) break;
+    if (!step) {
+      orbit.failure = "M - I is singular at the iterate (a multiplier at 1): no Newton step";
+      break;
+    }
     bool accepted = false;
     for (double fraction = 1.0; fraction > 1e-6 && !accepted; fraction *= 0.5) {
       State trial = orbit.state;
@@ -166,7 +177,12 @@ locate_periodic_orbit(const Variational<System>& tangent, Stepper& stepper,
         accepted = true;
       }
     }
-    if (!accepted) break;
+    if (!accepted) {
+      orbit.failure =
+          "no step along Newton's direction, halved 20 times, lowers the residual: the start is "
+          "too far from an orbit of this period, or the map is not smooth there";
+      break;
+    }
   }
   if (image.one_sided && orbit.termination == Termination::completed) {
     // the orbit crosses an event with no derivative: Newton's steps may use

@@ -35,6 +35,7 @@ struct PeriodicResult {
   int iterations = 0;
   double residual = std::numeric_limits<double>::quiet_NaN();
   Termination termination = Termination::completed;
+  std::string failure;  // why Newton's method ended unconverged; empty where it converged
 };
 
 }  // namespace impactlab

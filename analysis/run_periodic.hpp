@@ -58,6 +58,7 @@ PeriodicResult run_periodic(const System& system, const typename System::State& 
     result.iterations = orbit.iterations;
     result.residual = orbit.residual;
     result.termination = orbit.termination;
+    result.failure = orbit.failure;
     return result;
   }
 }

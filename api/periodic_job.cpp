@@ -36,7 +36,7 @@ PeriodicJobResult find_periodic_orbit(const Scene& scene, const PeriodicJob& job
     const int detected = classify(points, plan).period;
     request.period = detected > 0 ? detected : 1;
     out.period_source = detected > 0 ? "detected from 64 stroboscopic points"
-                                     : "none detected in 64 stroboscopic points: 1 tried";
+                                     : "not detected in 64 stroboscopic points: 1 tried";
   } else {
     char* end = nullptr;
     const long n = std::strtol(job.period.c_str(), &end, 10);
@@ -71,6 +71,7 @@ nlohmann::json periodic_record(const Scene& scene, const PeriodicJobResult& job)
         {"max_iterations", request.max_iterations},
         {"tolerance", request.tolerance}}},
       {"converged", result.converged},
+      {"failure", result.failure},
       {"iterations", result.iterations},
       {"residual", result.residual},
       {"termination", to_string(result.termination)},

@@ -47,11 +47,22 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
       multipliers += fmt::format("{}{:.9g}{:+.9g}i", multipliers.empty() ? "" : ", ",
                                  multiplier.real(), multiplier.imag());
     if (result.termination == Termination::no_tangent_map) multipliers = "none";
-    std::cout << fmt::format(
-        "{}: period-{} orbit {} after {} iterations (residual {:.3g}); multipliers {}\nwrote {}\n",
-        scene.name, request.period, result.converged ? "converged" : "NOT converged",
-        result.iterations, result.residual, multipliers, (directory / "periodic.json").string());
+    if (result.converged)
+      std::cout << fmt::format(
+          "{}: period-{} orbit converged after {} iterations (residual {:.3g}); multipliers {}\n",
+          scene.name, request.period, result.iterations, result.residual, multipliers);
+    else
+      std::cout << fmt::format("{}: period-{} orbit NOT converged after {} iterations (residual "
+                               "{:.3g}): {}\n",
+                               scene.name, request.period, result.iterations, result.residual,
+                               result.failure);
+    std::cout << fmt::format("wrote {}\n", (directory / "periodic.json").string());
   }
+  // said even when quiet: where the search could not start well, and why
+  if (!result.converged && found.period_source != "given")
+    std::cerr << fmt::format("impactlab: warning: the period was {}; give one with --period N "
+                             "(a sweep or poincare shows the attractor's)\n",
+                             found.period_source);
   if (result.termination != Termination::completed)
     std::cerr << fmt::format("impactlab: run stopped early ({}) at the section time {} s{}\n",
                              to_string(result.termination), result.t_section,

@@ -26,6 +26,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <impactlab/analysis/continuation.hpp>
 #include <impactlab/analysis/section.hpp>
@@ -46,6 +47,8 @@
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/builtin_scenes.hpp>
 #include <impactlab/io/message_text.hpp>
+#include <impactlab/io/output_error.hpp>
+#include <impactlab/io/scene_file.hpp>
 
 namespace py = pybind11;
 using namespace impactlab;
@@ -861,6 +864,9 @@ PYBIND11_MODULE(_impactlab, m) {
       if (pointer) std::rethrow_exception(pointer);
     } catch (const BadInput& bad) {
       PyErr_SetString(PyExc_ValueError, keyword_message(bad).c_str());
+    } catch (const OutputError& error) {
+      // a file that cannot be written: the CLI's exit status 4
+      PyErr_SetString(PyExc_OSError, error.what());
     }
   });
 
@@ -872,7 +878,16 @@ PYBIND11_MODULE(_impactlab, m) {
       .def("values", &scene_values)
       .def("keys", &scene_keys)
       .def("record", [](const Scene& scene) { return json_to_python(scene_record(scene)); })
-      .def("copy", [](const Scene& scene) { return Scene(scene); });
+      .def("copy", [](const Scene& scene) { return Scene(scene); })
+      .def(
+          "to_toml", [](const Scene& scene) { return scene_file_text(scene, scene_schema(scene)); },
+          "the scene file that gives this scene again (every key with its value)")
+      .def(
+          "save",
+          [](const Scene& scene, const std::filesystem::path& path) {
+            save_scene_file(scene, scene_schema(scene), path);
+          },
+          py::arg("path"), "writes to_toml() to path, whole or not at all (OSError)");
 
   m.def("builtin_scene_names", [] {
     std::vector<std::string> names;
@@ -917,6 +932,7 @@ PYBIND11_MODULE(_impactlab, m) {
     return names;
   });
   m.def("job_options", &job_option_rows);
+  m.attr("version") = IMPACTLAB_VERSION;
   m.def("event_kind_names", [] {
     std::vector<std::string> names;
     for (int kind = 0; kind <= static_cast<int>(EventKind::painleve); ++kind)

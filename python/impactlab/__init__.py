@@ -24,10 +24,19 @@ from . import _impactlab
 
 __all__ = [
     "Scene", "scenes", "scene", "simulate", "poincare", "sweep", "basins", "periodic", "compare",
-    "bench", "continue_", "EventArray", "PhysicalDiagnosticWarning", "UnreadKeyWarning",
+    "bench", "continue_", "EventArray", "Result", "RunResult", "EVENT_KINDS",
+    "PhysicalDiagnosticWarning", "UnreadKeyWarning", "__version__",
 ]
 
+
+def __dir__():
+    """The API (what __all__ lists), not the modules the package imports."""
+    return sorted(__all__)
+
 Scene = _impactlab.Scene
+
+#: the toolkit's version, as meta.json's impactlab_version writes it
+__version__ = _impactlab.version
 
 #: names of the `kind` codes in an event array, by code
 EVENT_KINDS = tuple(_impactlab.event_kind_names())
@@ -492,7 +501,10 @@ def periodic(scene_=None, *, period=_default("periodic", "period"),
                     multipliers=np.array([complex(z["re"], z["im"])
                                           for z in meta["floquet_multipliers"]]))
     if not result.converged:
-        warnings.warn("periodic: Newton shooting did not converge ({})".format(result.termination),
+        # as the CLI says it: why, and how the period was chosen
+        warnings.warn("periodic: Newton shooting did not converge ({}): {}; the period was {}"
+                      .format(result.termination, meta["failure"],
+                              meta["request"]["period_source"]),
                       PhysicalDiagnosticWarning, stacklevel=2)
     return result
 

@@ -499,6 +499,27 @@ TEST(Periodic, DetectsThePeriodAndReportsFloquetMultipliers) {
   EXPECT_NEAR(product, 0.8 * 0.8 * std::exp(-2.0 * 0.05 * std::numbers::pi), 1e-10);
 }
 
+// At ω = 6.3 no period shows in 64 stroboscopic points and Newton's method
+// from period 1 stalls: the summary says why, prints no multipliers of the
+// iterate that is not an orbit, and says how the period was chosen.
+TEST(Periodic, AnUnconvergedSearchSaysWhyAndPrintsNoMultipliers) {
+  const ScratchFolder scratch;
+  const auto out = scratch / "stalled";
+  const ProgramRun run =
+      run_command_line("periodic jin2003 --set omega=6.3 --out " + out.string());
+  EXPECT_EQ(run.status, 3) << run.err;
+  EXPECT_NE(run.out.find("NOT converged after"), std::string::npos) << run.out;
+  EXPECT_EQ(run.out.find("multipliers"), std::string::npos) << run.out;
+  const auto result = nlohmann::json::parse(slurp(out / "periodic.json"));
+  ASSERT_FALSE(result["converged"].get<bool>());
+  const std::string failure = result["failure"];
+  ASSERT_FALSE(failure.empty());
+  EXPECT_NE(run.out.find(failure), std::string::npos) << run.out;
+  EXPECT_NE(run.err.find("the period was not detected in 64 stroboscopic points"),
+            std::string::npos)
+      << run.err;
+}
+
 struct BadCase {
   std::string arguments;
   std::string key, value;

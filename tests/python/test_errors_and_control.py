@@ -11,6 +11,7 @@ import time
 import pytest
 
 import impactlab
+from conftest import read_csv, same_numbers
 
 
 @pytest.mark.parametrize("keys, named", [
@@ -220,6 +221,45 @@ def test_physical_diagnostic_returns_result_and_warns():
     assert run.termination == "stopped_by_model"
     assert run.meta["run"]["termination"] == "stopped_by_model"
     assert run.events.kind_names()[-1] == "painleve"
+
+
+def test_unconverged_periodic_warns_why_as_the_cli_says():
+    with pytest.warns(impactlab.PhysicalDiagnosticWarning,
+                      match="the period was not detected in 64 stroboscopic points") as caught:
+        orbit = impactlab.periodic("jin2003", omega=6.3)
+    assert not orbit.converged
+    assert orbit.meta["failure"] and orbit.meta["failure"] in str(caught[0].message)
+
+
+def test_dir_shows_the_api_and_the_version_is_the_programs():
+    listed = dir(impactlab)
+    for name in ("simulate", "poincare", "sweep", "basins", "periodic", "continue_", "Scene"):
+        assert name in listed
+    for module in ("np", "math", "warnings", "re", "sys", "numbers"):
+        assert module not in listed
+    run = impactlab.simulate("jin2003", periods=1)
+    assert impactlab.__version__ == run.meta["impactlab_version"]
+
+
+def test_a_saved_scene_runs_as_the_scene_it_was_saved_from(tmp_path, cli):
+    original = impactlab.scene("jin2003", V0=4.163, omega=6.71, initial__theta=0.01)
+    text = original.to_toml()
+    assert "V0 = 4.163  # [m/s]" in text
+    path = tmp_path / "saved.toml"
+    original.save(path)
+    assert path.read_text() == text
+    loaded = impactlab.scene(str(path))
+    assert loaded.values() == original.values()
+    # the program runs the file as Python runs the scene it came from
+    out = cli("simulate", str(path), "--periods", "20")
+    run = impactlab.simulate(original, periods=20)
+    events = read_csv(out / "events.csv")
+    assert len(events["t"]) == len(run.events) > 10
+    same_numbers(events["t"], run.events["t"])
+    same_numbers(events["qdot_after"], run.events["qdot_after"])
+    with pytest.raises(OSError):
+        original.save(tmp_path / "no_such_folder" / "saved.toml")
+    assert not (tmp_path / "no_such_folder").exists()
 
 
 def test_scenes_lists_the_builtin_scenes():
