@@ -229,6 +229,9 @@ SectionResult run_section(const System& system, const typename System::State& x0
     result.stick_impacts = record_log.stick_impacts();
     result.contact_phases =
         std::max(record_log.count(EventKind::contact_start), record_log.count(EventKind::contact_end));
+    // mode 0 is every system's free flight
+    result.rests_in_contact = result.contact_phases == 0 && static_cast<int>(mode_record) != 0 &&
+                              static_cast<int>(mode) != 0;
     if (result.termination == SectionTermination::completed)
       result.final_state = ContinuationState{std::vector<double>(x.begin(), x.end()),
                                              static_cast<int>(mode)};

@@ -197,6 +197,9 @@ struct SectionResult {
   double periods_recorded = 0.0;   // forcing periods in the record window
   std::uint64_t impacts = 0;       // impacts in the record window
   std::uint64_t contact_phases = 0;  // contact phases begun or ended in the record window
+  // the whole record window in one contact phase (at rest on a wall: no
+  // contact phase begins or ends in it)
+  bool rests_in_contact = false;
   std::uint64_t stick_impacts = 0;   // impacts in the record window whose impulse stuck
                                      // (EventRecord::sticks: the rigid model's friction)
   std::uint64_t steps = 0, rhs_evaluations = 0;  // over the whole run

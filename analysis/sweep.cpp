@@ -151,7 +151,7 @@ Classification classify(const SectionResult& result, const SweepPlan& plan) {
   if (result.periods_recorded > 0.0)
     classification.impacts_per_period =
         static_cast<double>(result.impacts) / result.periods_recorded;
-  classification.contact = result.contact_phases > 0;
+  classification.contact = result.contact_phases > 0 || result.rests_in_contact;
   classification.stick_fraction = stick_fraction_of(result);
   const auto& points = result.points;
   const std::size_t n = points.size();
@@ -194,6 +194,7 @@ std::string to_json_line(const SweepRecord& record) {
       {"periods_recorded", r.periods_recorded},
       {"impacts", r.impacts},
       {"contact_phases", r.contact_phases},
+      {"rests_in_contact", r.rests_in_contact},
       {"stick_impacts", r.stick_impacts},
       {"steps", r.steps},
       {"rhs_evaluations", r.rhs_evaluations},
@@ -237,6 +238,7 @@ std::optional<SweepRecord> from_json_line(std::string_view text) {
     r.periods_recorded = line.at("periods_recorded");
     r.impacts = line.at("impacts");
     r.contact_phases = line.at("contact_phases");
+    r.rests_in_contact = line.at("rests_in_contact");
     r.stick_impacts = line.at("stick_impacts");
     r.steps = line.at("steps");
     r.rhs_evaluations = line.at("rhs_evaluations");

@@ -88,7 +88,7 @@ std::vector<SweepTask> sweep_tasks(const SweepPlan& plan);
 struct Classification {
   int period = 0;                   // smallest p with x_{k+p} ≈ x_k; 0: none up to max_period
   double impacts_per_period = 0.0;  // impacts per forcing period in the record window
-  bool contact = false;             // a contact (sticking/sliding) phase in the record window
+  bool contact = false;  // a contact (sticking/sliding) phase in the record window, or all of it
   // the share of the record window's impacts whose impulse stuck (friction
   // stopped the slip: the rigid model); NaN without impacts
   double stick_fraction = std::numeric_limits<double>::quiet_NaN();

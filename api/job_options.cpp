@@ -91,7 +91,7 @@ Options section_options(string_view points_help) {
       {.name = "points", .type = OptionType::count, .help = points_help, .default_value = 50.0,
        .lower = 1, .upper = 1e8},
       {.name = "plot", .type = OptionType::flag,
-       .help = "also write a PNG (matplotlib through /usr/bin/python3)", .default_value = false,
+       .help = "also write a PNG (matplotlib through $IMPACTLAB_PYTHON, else /usr/bin/python3)", .default_value = false,
        .front_ends = FrontEnds::cli},
   };
 }
@@ -130,7 +130,12 @@ Options simulate_options() {
   return joined({run_options(),
                  {{.name = "sample", .type = OptionType::number,
                    .help = "also write trajectory.csv sampled every DT s", .lower = 0.0,
-                   .lower_open = true, .unit = "s"}}});
+                   .lower_open = true, .unit = "s"},
+                  {.name = "plot", .type = OptionType::flag,
+                   .help = "also draw simulation.png (the coordinate against time with the "
+                           "walls, impacts and contact phases, and the phase portrait); without "
+                           "`sample`, 64 samples per forcing period, at most 20000",
+                   .default_value = false, .front_ends = FrontEnds::cli}}});
 }
 
 Options poincare_options() {

@@ -1,5 +1,6 @@
 #include <impactlab/api/scene_record.hpp>
 
+#include <impactlab/api/model_keys.hpp>
 #include <impactlab/api/scene_loading.hpp>
 
 namespace impactlab {
@@ -15,6 +16,8 @@ nlohmann::json scene_record(const Scene& scene) {
     else
       entry["value"] = std::get<std::string>(value);
     if (!spec.unit.empty()) entry["unit"] = spec.unit;
+    // a key the scene's model does not read changes nothing in its runs
+    if (!unread_key_reason(scene, schema, spec.key).empty()) entry["read"] = false;
     parameters[std::string(spec.key)] = entry;
   }
   return {{"source", scene.name}, {"oscillator", scene.oscillator}, {"keys", parameters}};

@@ -115,7 +115,7 @@ int run_compare(const SceneOptions& options, const std::string& model_list,
   // only; where it is drawn, compare.json is rewritten (atomically) to list it
   // an argument vector, never shell text: the directory is data
   const std::vector<std::string> plot = {
-      "/usr/bin/python3", program_file("scripts/plot_compare.py").string(),
+      plot_python().string(), program_file("scripts/plot_compare.py").string(),
       directory.string()};
   if (run_program(plot, ProgramOutput::discard) == 0) {
     files.insert(files.end() - 1, "compare.png");

@@ -15,4 +15,9 @@ namespace impactlab::cli {
 // that a warning names where it was looked for.
 std::filesystem::path program_file(std::string_view relative);
 
+// The Python that runs the plot scripts: $IMPACTLAB_PYTHON where it is set
+// and not empty, else /usr/bin/python3 (Debian's, with NumPy and matplotlib;
+// a python3 earlier on PATH may lack them).
+std::filesystem::path plot_python();
+
 }  // namespace impactlab::cli

@@ -42,7 +42,7 @@ struct ReproduceOptions {
 void draw_plots(const std::filesystem::path& directory, bool quiet) {
   const std::filesystem::path script =
       program_file("notebooks_data/jin2003/plot_jin2003.py");
-  const std::filesystem::path python = "/usr/bin/python3";
+  const std::filesystem::path python = plot_python();
   if (!std::filesystem::exists(script) || !std::filesystem::exists(python)) {
     std::cerr << "impactlab: warning: plots skipped (" << python.string() << " or "
               << script.string() << " not found); the data are complete\n";

@@ -37,7 +37,7 @@ bool plot_with_python(const std::string& kind, const std::filesystem::path& csv,
                       const std::filesystem::path& png, const std::vector<std::string>& extra) {
   const std::filesystem::path script =
       program_file("scripts/plot_sweep.py");
-  const std::filesystem::path python = "/usr/bin/python3";
+  const std::filesystem::path python = plot_python();
   if (!std::filesystem::exists(python) || !std::filesystem::exists(script)) {
     std::cerr << fmt::format("impactlab: warning: plot skipped ({} not found); the data are in {}\n",
                              std::filesystem::exists(python) ? script.string() : python.string(),

@@ -1,6 +1,10 @@
 // `impactlab simulate`: one run of a scene; writes events.csv, meta.json and,
-// with --sample, trajectory.csv, all atomically (meta.json last).
+// with --sample (or --plot), trajectory.csv, all atomically (meta.json last);
+// with --plot, simulation.png (scripts/plot_simulation.py).
+#include <algorithm>
+#include <filesystem>
 #include <iostream>
+#include <numbers>
 #include <optional>
 
 #include <fmt/format.h>
@@ -11,17 +15,34 @@
 #include "command.hpp"
 #include "interrupted_runs.hpp"
 #include "commands.hpp"
+#include "program_files.hpp"
 #include "table_options.hpp"
+#include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/output.hpp>
+#include <impactlab/platform/run_program.hpp>
 
 namespace impactlab::cli {
 
 namespace {
 
+// The sampling of a run drawn without --sample: 64 samples per forcing
+// period, at most 20 000 over the run (trajectory.csv stays small).
+double plot_sample_step(const Scene& scene, const RunRequest& request) {
+  if (!scene.values.contains("omega"))
+    throw BadInput("plot", "(given)",
+                   "give --sample DT as well: this scene has no forcing frequency omega to "
+                   "sample the picture by");
+  const double period = 2.0 * std::numbers::pi / scene.number("omega");
+  const double span =
+      request.periods > 0.0 ? request.periods * period : request.t_end - scene.number("t0");
+  return std::max(period / 64.0, span / 20000.0);
+}
+
 int run_simulate(const SceneOptions& options, const std::vector<std::string>& command_line,
-                 double sample_step) {
+                 double sample_step, bool plot) {
   const Scene scene = options.load();
   RunRequest request = options.request();
+  if (plot && sample_step == 0.0) sample_step = plot_sample_step(scene, request);
   request.sample_step = sample_step;
   const auto directory = options.output_directory();
   // the run's files, committed together at the end; the rows stream into
@@ -59,6 +80,18 @@ int run_simulate(const SceneOptions& options, const std::vector<std::string>& co
         scene.name, output.t0, output.t_final, output.impacts, output.contact_phases,
         output.steps, output.wall_time, (directory / "meta.json").string());
   }
+  // the picture, from the committed data: its failure costs the picture only
+  if (plot) {
+    const std::filesystem::path script = program_file("scripts/plot_simulation.py");
+    if (run_program({plot_python().string(), script.string(), directory.string()},
+                    ProgramOutput::discard) != 0)
+      std::cerr << fmt::format(
+          "impactlab: warning: simulation.png not drawn ({} {} failed: is matplotlib "
+          "installed?); the data are in {}\n",
+          plot_python().string(), script.string(), directory.string());
+    else if (!options.quiet)
+      std::cout << fmt::format("wrote {}\n", (directory / "simulation.png").string());
+  }
   if (stopped) {
     const EventRecord* last = output.last_event ? &*output.last_event : nullptr;
     std::cerr << fmt::format("impactlab: run stopped early ({}) at t = {} s{}\n",
@@ -80,12 +113,14 @@ Command add_simulate_command(CLI::App& app) {
       "run a scene; write events.csv and meta.json (and trajectory.csv with --sample)");
   auto options = std::make_shared<SceneOptions>();
   auto sample_step = std::make_shared<double>(0.0);
+  auto plot = std::make_shared<bool>(false);
   TableOptions table(*command, "simulate");
   options->add_run(table);
   table.add("sample", *sample_step);
+  table.add("plot", *plot);
   return {command,
-          [options, sample_step](const std::vector<std::string>& command_line) {
-            return run_simulate(*options, command_line, *sample_step);
+          [options, sample_step, plot](const std::vector<std::string>& command_line) {
+            return run_simulate(*options, command_line, *sample_step, *plot);
           },
           "simulate"};
 }

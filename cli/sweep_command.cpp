@@ -233,7 +233,8 @@ void write_meta(RunFiles& run_files, const nlohmann::json& definition,
         {"period", "smallest p with section point k+p within period_tolerance of point k "
                    "(relative to 1 + |(q, qdot)|); 0: none up to max_period"},
         {"impacts_per_period", "impacts per forcing period in the record window"},
-        {"contact", "1 if a contact (sticking/sliding) phase began or ended in the record window"},
+        {"contact", "1 if a contact (sticking/sliding) phase began or ended in the record window, "
+                    "or lasted through it (at rest on a wall)"},
         {"lyapunov", "largest Lyapunov exponent (1/time unit); nan where not computed, -inf "
                      "where nearby states merge (rest on a wall)"},
         {"termination", "completed, stopped_by_model, no_progress, ..."},

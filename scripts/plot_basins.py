@@ -5,7 +5,11 @@
 
 Each grid point coloured by the attractor it settles on, with a legend of the
 attractors (attractors.csv beside basins.csv: period, impacts per period,
-contact, canonical section point); attractor 0 (none found) in white.
+contact, canonical section point); attractor 0 (none found) in white. A
+rest is named as one: "at rest on the table" where the body sticks on a wall
+(contact, no impacts), "at rest" where it hangs free of the walls. Axes carry
+their quantities and units, and the title the scene and the parameters held
+fixed (meta.json beside basins.csv, scripts/plot_labels.py).
 """
 import os
 import sys
@@ -18,6 +22,9 @@ import numpy as np  # noqa: E402
 from matplotlib.colors import ListedColormap  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_labels  # noqa: E402
+
 
 def read(path):
     data = np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8",
@@ -25,19 +32,29 @@ def read(path):
     return np.atleast_1d(data)
 
 
-def describe(row):
-    if int(row["attractor"]) == 0:
+def describe(row, meta):
+    attractor = int(row["attractor"])
+    if attractor == 0:
         return "0: none found"
-    text = f"{int(row['attractor'])}: period {int(row['period'])}, " \
-           f"{float(row['impacts_per_period']):.3g} impacts/period"
+    impacts = float(row["impacts_per_period"])
+    if int(row["period"]) == 1 and impacts == 0.0:
+        # a fixed point without impacts: a rest, in contact or free of the walls
+        where = f"at rest {plot_labels.rest_place(meta)} (sticking)" if int(row["contact"]) \
+            else "at rest, free of the walls"
+        return f"{attractor}: {where}"
+    text = f"{attractor}: period {int(row['period'])}, {impacts:.3g} impacts/period"
     if int(row["contact"]):
         text += ", contact"
     return text + f" (q {float(row['q']):.4g}, qdot {float(row['qdot']):.4g})"
 
 
 def main(argv):
+    if len(argv) < 5 or argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
     basins_csv, png, x_key, y_key = argv[1:5]
     data = read(basins_csv)
+    meta = plot_labels.read_meta(os.path.dirname(basins_csv))
     attractors = read(os.path.join(os.path.dirname(basins_csv), "attractors.csv"))
     x = np.unique(data[x_key])
     y = np.unique(data[y_key])
@@ -50,12 +67,12 @@ def main(argv):
     ax.pcolormesh(x, y, grid, shading="nearest", cmap=ListedColormap(colours), vmin=-0.5,
                   vmax=count + 0.5)
     handles = [Patch(facecolor=colours[int(row["attractor"])], edgecolor="0.5",
-                     label=describe(row)) for row in attractors]
+                     label=describe(row, meta)) for row in attractors]
     ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.12), fontsize=8,
               ncol=1 if len(handles) < 6 else 2)
-    ax.set_xlabel(x_key)
-    ax.set_ylabel(y_key)
-    ax.set_title("basins of attraction")
+    ax.set_xlabel(plot_labels.key_label(meta, x_key))
+    ax.set_ylabel(plot_labels.key_label(meta, y_key))
+    ax.set_title(plot_labels.title(meta, "basins of attraction", (x_key, y_key)), fontsize=8)
     fig.tight_layout()
     fig.savefig(png, dpi=150)
 

@@ -21,6 +21,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def main():
+    if len(sys.argv) != 2 or sys.argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0 if len(sys.argv) == 2 else 2)
     directory = sys.argv[1]
     with open(os.path.join(directory, "work_precision.json")) as f:
         meta = json.load(f)

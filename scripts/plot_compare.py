@@ -6,7 +6,9 @@ section, one colour per model.
 usage: /usr/bin/python3 scripts/plot_compare.py COMPARE_DIR
 Reads COMPARE_DIR/compare_impacts.csv, compare_contacts.csv and
 compare_section.csv; writes COMPARE_DIR/compare.png (through a temporary
-file, renamed when complete). Exits non-zero if anything fails.
+file, renamed when complete). Exits non-zero if anything fails. Axes carry
+their quantities and units, and the title the scene and the parameters held
+fixed (compare.json, scripts/plot_labels.py).
 """
 import csv
 import os
@@ -16,6 +18,9 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_labels  # noqa: E402
 
 
 def read_csv(path):
@@ -33,6 +38,8 @@ def column(rows, name):
 
 
 def main(directory):
+    meta = plot_labels.read_meta(directory, ("compare.json",))
+    q_label, rate_label = plot_labels.coordinate_labels(meta, "theta")
     impacts = read_csv(os.path.join(directory, "compare_impacts.csv"))
     contacts = read_csv(os.path.join(directory, "compare_contacts.csv"))
     section = read_csv(os.path.join(directory, "compare_section.csv"))
@@ -59,21 +66,22 @@ def main(directory):
         if pairs:
             right.plot([p[0] for p in pairs], [p[1] for p in pairs], markers[index % 4],
                        markersize=3, label=model)
-    top.set_xlabel("t (s)")
-    top.set_ylabel("θ̇ before impact (rad/s)")
-    top.set_title("impacts, matched by order in compare_impacts.csv")
+    top.set_xlabel("$t$ (s)")
+    top.set_ylabel(rate_label + " before impact")
+    top.set_title("impacts, matched by order in compare_impacts.csv", fontsize=9)
     top.legend(fontsize=8)
     if not contacts:
         middle.text(0.5, 0.5, "no contact phase", transform=middle.transAxes, ha="center")
     middle.set_xlim(top.get_xlim())
     middle.set_yticks(range(len(models)))
     middle.set_yticklabels(models)
-    middle.set_xlabel("t (s)")
+    middle.set_xlabel("$t$ (s)")
     middle.set_title("contact intervals")
-    right.set_xlabel("θ (rad)")
-    right.set_ylabel("θ̇ (rad/s)")
-    right.set_title("strobe section t = t0 + kT")
+    right.set_xlabel(q_label)
+    right.set_ylabel(rate_label)
+    right.set_title("strobe section t = t0 + kT", fontsize=9)
     right.legend(fontsize=8)
+    figure.suptitle(plot_labels.title(meta, "the models compared", ("model",)), fontsize=8)
     figure.tight_layout()
     final = os.path.join(directory, "compare.png")
     temporary = final + ".tmp.png"
@@ -82,6 +90,9 @@ def main(directory):
 
 
 if __name__ == "__main__":
+    if len(sys.argv) == 2 and sys.argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0)
     if len(sys.argv) != 2:
         sys.exit(__doc__)
     main(sys.argv[1])

@@ -7,6 +7,11 @@ q on the section against the parameter for every branch (stable parts solid,
 unstable parts dashed, one colour per branch), the bifurcations of points.csv
 (found beside branch.csv) marked and labelled, and, when given, the points of a
 brute-force sweep's bifurcation.csv of the same range underneath in grey.
+Each kind of point has its own marker (a branch point and a boundary such as
+contact_boundary are told apart from folds); the legend sits below the axes.
+Axes carry their quantities and units, and the title the scene and the
+parameters held fixed (continuation.json beside branch.csv,
+scripts/plot_labels.py).
 """
 import os
 import sys
@@ -17,10 +22,16 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-MARKERS = {"fold": ("s", "tab:green"), "period_doubling": ("o", "tab:red"),
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_labels  # noqa: E402
+
+MARKERS = {"fold": ("s", "tab:green"), "branch_point": ("P", "tab:cyan"),
+           "period_doubling": ("o", "tab:red"),
            "neimark_sacker": ("D", "tab:purple"), "grazing": ("*", "black"),
            "contact_onset": ("^", "tab:orange"), "contact_end": ("v", "tab:orange"),
            "stick_onset": ("^", "tab:brown"), "stick_end": ("v", "tab:brown")}
+# a scene's boundaries (contact_boundary, ...): points.csv's type is their name
+BOUNDARY_MARKER = ("X", "tab:olive")
 
 
 def read(path):
@@ -52,9 +63,13 @@ def runs(mask):
 
 
 def main(argv):
+    if len(argv) < 5 or argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
     branch_csv, png, param, q_name, *sweep = argv[1:]
     branch = read(branch_csv)
-    fig, ax = plt.subplots(figsize=(8, 5))
+    meta = plot_labels.read_meta(os.path.dirname(branch_csv))
+    fig, ax = plt.subplots(figsize=(8, 6))
     if sweep:
         points = read(sweep[0])
         ax.plot(points[param], points["q"], ",", color="0.6", rasterized=True)
@@ -74,15 +89,16 @@ def main(argv):
     if os.path.exists(points_csv):
         marked, not_located = marked_points(read(points_csv), param)
         for kind, (where, q) in marked.items():
-            marker, colour = MARKERS.get(kind, ("x", "black"))
+            marker, colour = MARKERS.get(kind, BOUNDARY_MARKER)
             ax.plot(where, q, marker, color=colour, markersize=8, linestyle="none",
                     label=kind.replace("_", " "))
         if not_located:
             ax.plot([], [], " ", label=f"{not_located} not located (points.csv)")
-    ax.set_xlabel(param)
-    ax.set_ylabel(f"{q_name} on the section")
-    ax.set_title("continuation")
-    ax.legend(loc="best", fontsize=8)
+    ax.set_xlabel(plot_labels.key_label(meta, param))
+    ax.set_ylabel(plot_labels.coordinate_labels(meta, q_name)[0] + " on the section")
+    ax.set_title(plot_labels.title(meta, "continuation", (param,)), fontsize=8)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), fontsize=8, ncol=3,
+              frameon=False)
     fig.tight_layout()
     fig.savefig(png, dpi=150)
 

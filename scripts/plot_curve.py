@@ -5,7 +5,9 @@
 
 The curve of the fold, period-doubling or grazing point in (PARAM1, PARAM2),
 its type read from curve.json beside curve.csv, drawn over the period map of a
-2D sweep's classes.csv (the same two keys) when given.
+2D sweep's classes.csv (the same two keys) when given. Axes carry their
+quantities and units, and the title the scene and the parameters held fixed
+(continuation.json beside curve.csv, scripts/plot_labels.py).
 """
 import json
 import os
@@ -17,6 +19,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_labels  # noqa: E402
+
 
 def read(path):
     data = np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8",
@@ -25,7 +30,11 @@ def read(path):
 
 
 def main(argv):
+    if len(argv) < 5 or argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
     curve_csv, png, param1, param2, *sweep = argv[1:]
+    meta = plot_labels.read_meta(os.path.dirname(curve_csv))
     fig, ax = plt.subplots(figsize=(7, 5))
     if sweep:
         data = read(sweep[0])
@@ -56,9 +65,10 @@ def main(argv):
             ax.plot(piece[param1][:1], piece[param2][:1], "o", color=colour, markersize=6,
                     label="start (located on the branch)" if index == 0 else None)
         ax.legend(loc="best", fontsize=8)
-    ax.set_xlabel(param1)
-    ax.set_ylabel(param2)
-    ax.set_title("two-parameter continuation")
+    ax.set_xlabel(plot_labels.key_label(meta, param1))
+    ax.set_ylabel(plot_labels.key_label(meta, param2))
+    ax.set_title(plot_labels.title(meta, "two-parameter continuation", (param1, param2)),
+                 fontsize=8)
     fig.tight_layout()
     fig.savefig(png, dpi=150)
 

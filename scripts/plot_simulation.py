@@ -4,7 +4,9 @@ walls, impacts and contact phases marked, and the phase portrait.
 
 usage: /usr/bin/python3 scripts/plot_simulation.py RUN_DIR [RUN_DIR ...]
 Each RUN_DIR is an `impactlab simulate --sample DT --out RUN_DIR` output; the
-picture is written to RUN_DIR/simulation.png.
+picture is written to RUN_DIR/simulation.png. Axes carry their quantities
+and units (the scene's, scripts/plot_labels.py), and the title the scene and
+the parameters held fixed.
 """
 import csv
 import json
@@ -16,6 +18,9 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_labels  # noqa: E402
 
 
 def read_csv(path):
@@ -34,7 +39,7 @@ def plot_run(run_dir):
 
     figure, (history, phase) = plt.subplots(
         1, 2, figsize=(12, 4.5), gridspec_kw={"width_ratios": [2.2, 1]})
-    history.plot(t, q, lw=0.8, color="tab:blue", label=q_name)
+    history.plot(t, q, lw=0.8, color="tab:blue", label=plot_labels.symbol(q_name))
     keys = meta["scene"]["keys"]
     oscillator = meta["scene"]["oscillator"]
     if oscillator == "pendulum_walls":
@@ -60,19 +65,17 @@ def plot_run(run_dir):
                             label=None if shaded else "sustained contact")
             shaded = True
             start = None
-    history.set_xlabel("t (s)")
-    unit = {"theta": "rad", "y": "m", "x": "nondimensional"}.get(q_name, "")
-    history.set_ylabel(f"{q_name} ({unit})")
-    history.legend(loc="upper right", fontsize=8)
-    shown = [k for k in ("V0", "omega", "e_n", "mu", "A", "r", "zeta", "sigma") if k in keys]
-    model = f" (model {meta['model']})" if "model" in keys else ""
-    history.set_title(f"{meta['scene']['source']}{model}: "
-                      + ", ".join(f"{k} = {keys[k]['value']:g}" for k in shown)
+    q_label, rate_label = plot_labels.coordinate_labels(meta, q_name)
+    history.set_xlabel(plot_labels.with_unit("$t$", plot_labels.unit_of(meta, "t0")))
+    history.set_ylabel(q_label)
+    history.legend(loc="upper center", bbox_to_anchor=(0.5, -0.15), fontsize=8, ncol=4,
+                   frameon=False)
+    history.set_title(plot_labels.title(meta, "simulation")
                       + f"   [{meta['integrator']['method']}, rtol {meta['integrator']['rtol']:g}]",
-                      fontsize=9)
+                      fontsize=8)
     phase.plot(q, qdot, lw=0.5, color="tab:blue")
-    phase.set_xlabel(q_name)
-    phase.set_ylabel(f"d{q_name}/dt")
+    phase.set_xlabel(q_label)
+    phase.set_ylabel(rate_label)
     phase.set_title("phase portrait", fontsize=9)
     figure.tight_layout()
     target = os.path.join(run_dir, "simulation.png")
@@ -83,6 +86,9 @@ def plot_run(run_dir):
 
 
 if __name__ == "__main__":
+    if len(sys.argv) >= 2 and sys.argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0)
     if len(sys.argv) < 2:
         sys.exit(__doc__)
     for directory in sys.argv[1:]:

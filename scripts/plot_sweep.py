@@ -9,10 +9,16 @@
     plot_sweep.py basins       basins.csv     out.png XKEY YKEY
 
 bifurcation: the section's q against the parameter, up and down sweeps in two
-colours (hysteresis shows where they differ). classes: a colour map of the
-period of the section map over the two parameters, with the largest Lyapunov
-exponent beside it where computed. poincare: the section points in (q, qdot).
+colours and markers (hysteresis shows where they differ); the values whose
+run stopped early or whose transient did not settle (summary.csv beside it)
+marked along the bottom. classes: a colour map of the period of the section
+map over the two parameters, with the largest Lyapunov exponent beside it
+where computed, and those points marked. poincare: the section points in
+(q, qdot). Axes carry their quantities and units, and titles the scene and
+the parameters held fixed, from the meta.json beside the CSV
+(scripts/plot_labels.py).
 """
+import os
 import sys
 
 import matplotlib
@@ -21,31 +27,62 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_labels  # noqa: E402
+
 
 def read(path):
     data = np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8")
     return np.atleast_1d(data)
 
 
+def unfinished_values(summary, param):
+    """{label: parameter values} of the points that stopped early or did not
+    settle, from summary.csv's termination and transient_end columns."""
+    names = summary.dtype.names
+    marks = {}
+    if "termination" in names:
+        stopped = summary["termination"] != "completed"
+        if stopped.any():
+            marks["run stopped early"] = np.asarray(summary[param][stopped], dtype=float)
+    if "transient_end" in names:
+        unsettled = summary["transient_end"] == "not_settled"
+        if unsettled.any():
+            marks["transient not settled"] = np.asarray(summary[param][unsettled], dtype=float)
+    return marks
+
+
 def bifurcation(csv, png, param, q_name):
     data = read(csv)
-    fig, ax = plt.subplots(figsize=(8, 5))
-    for direction, colour, size in (("up", "tab:blue", 1.0), ("down", "tab:red", 0.5)):
+    meta = plot_labels.read_meta(os.path.dirname(csv))
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    for direction, colour, marker in (("up", "tab:blue", "."), ("down", "tab:red", "x")):
         rows = data[data["direction"] == direction]
         if len(rows):
-            ax.plot(rows[param], rows["q"], ",", color=colour, markersize=size,
-                    label=f"sweep {direction}", rasterized=True)
-            ax.scatter([], [], color=colour, s=4, label=None)
-    ax.set_xlabel(param)
-    ax.set_ylabel(f"{q_name} on the section")
-    ax.legend(markerscale=20, loc="best")
-    ax.set_title("bifurcation diagram")
+            ax.plot(rows[param], rows["q"], marker, color=colour, markersize=2.5,
+                    markeredgewidth=0.6, linestyle="none", label=f"sweep {direction}",
+                    rasterized=True)
+    summary_csv = os.path.join(os.path.dirname(csv), "summary.csv")
+    if os.path.exists(summary_csv):
+        styles = {"run stopped early": ("black", "|"), "transient not settled": ("tab:orange", "^")}
+        for label, values in unfinished_values(read(summary_csv), param).items():
+            colour, marker = styles[label]
+            ax.plot(values, np.zeros_like(values), marker, color=colour, markersize=9,
+                    linestyle="none", label=f"{label} ({len(values)})",
+                    transform=ax.get_xaxis_transform(), clip_on=False)
+    ax.set_xlabel(plot_labels.key_label(meta, param))
+    ax.set_ylabel(plot_labels.coordinate_labels(meta, q_name)[0] + " on the section")
+    # the legend below the axes, off the data
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=4, markerscale=3,
+              fontsize=8, frameon=False)
+    ax.set_title(plot_labels.title(meta, "bifurcation diagram", (param,)), fontsize=8)
     fig.tight_layout()
     fig.savefig(png, dpi=150)
 
 
 def classes(csv, png, param1, param2):
     data = read(csv)
+    meta = plot_labels.read_meta(os.path.dirname(csv))
     x = np.unique(data[param1])
     y = np.unique(data[param2])
     ix = np.searchsorted(x, data[param1])
@@ -82,7 +119,7 @@ def classes(csv, png, param1, param2):
         limit = limit if limit > 0.0 else 1.0
         mesh = ax.pcolormesh(x, y, lyapunov, shading="nearest", cmap="coolwarm",
                              vmin=-limit, vmax=limit)
-        fig.colorbar(mesh, ax=ax, label="largest Lyapunov exponent (1/time)", extend="both")
+        fig.colorbar(mesh, ax=ax, label="largest Lyapunov exponent (1/time unit)", extend="both")
         # -inf (contact phases merge nearby states) in black
         ax.pcolormesh(x, y, np.where(merged, 1.0, np.nan), shading="nearest",
                       cmap="gray", vmin=1.0, vmax=2.0)
@@ -93,38 +130,57 @@ def classes(csv, png, param1, param2):
                              vmax=1.0)
         fig.colorbar(mesh, ax=ax, label="share of impacts that stick (friction stops the slip)")
         ax.set_title("sticking impacts")
+    # points whose run stopped early or whose transient did not settle, on
+    # every panel: their classes are not the attractor's
+    marks = []
+    if "termination" in names:
+        marks.append((data["termination"] != "completed", "x", "black", "run stopped early"))
+    if "transient_end" in names:
+        marks.append((data["transient_end"] == "not_settled", "^", "tab:orange",
+                      "transient not settled"))
     for ax in axes[0]:
-        ax.set_xlabel(param1)
-        ax.set_ylabel(param2)
+        for where, marker, colour, label in marks:
+            if where.any():
+                ax.plot(data[param1][where], data[param2][where], marker, color=colour,
+                        markersize=4, linestyle="none", label=f"{label} ({where.sum()})")
+        ax.set_xlabel(plot_labels.key_label(meta, param1))
+        ax.set_ylabel(plot_labels.key_label(meta, param2))
+    if any(where.any() for where, *_ in marks):
+        axes[0, 0].legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), fontsize=8,
+                          frameon=False, ncol=2)
+    fig.suptitle(plot_labels.title(meta, "classes of the section map", (param1, param2)),
+                 fontsize=8)
     fig.tight_layout()
     fig.savefig(png, dpi=150)
 
 
 def poincare(csv, png, q_name):
     data = read(csv)
+    meta = plot_labels.read_meta(os.path.dirname(csv))
     fig, ax = plt.subplots(figsize=(6, 5))
-    ax.plot(data["q"], data["qdot"], ".", markersize=2)
-    ax.set_xlabel(q_name)
-    ax.set_ylabel(f"d{q_name}/dt")
-    ax.set_title("Poincare section")
+    ax.plot(data["q"], data["qdot"], ".", markersize=3)
+    q_label, rate_label = plot_labels.coordinate_labels(meta, q_name)
+    ax.set_xlabel(q_label)
+    ax.set_ylabel(rate_label)
+    ax.set_title(plot_labels.title(meta, "Poincare section"), fontsize=7)
     fig.tight_layout()
     fig.savefig(png, dpi=150)
 
 
 def main(argv):
+    if len(argv) < 4 or argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
     kind, csv, png, *names = argv[1:]
     if kind == "continuation":  # scripts/plot_continuation.py
-        sys.path.insert(0, __import__("os").path.dirname(__file__))
         import plot_continuation
         plot_continuation.main([argv[0], csv, png, *names])
         return
     if kind == "basins":  # scripts/plot_basins.py
-        sys.path.insert(0, __import__("os").path.dirname(__file__))
         import plot_basins
         plot_basins.main([argv[0], csv, png, *names])
         return
     if kind == "curve":  # scripts/plot_curve.py
-        sys.path.insert(0, __import__("os").path.dirname(__file__))
         import plot_curve
         plot_curve.main([argv[0], csv, png, *names])
         return

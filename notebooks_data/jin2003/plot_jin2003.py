@@ -147,6 +147,9 @@ def main(directory):
 
 
 if __name__ == "__main__":
+    if len(sys.argv) == 2 and sys.argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0)
     if len(sys.argv) != 2:
         sys.exit("usage: plot_jin2003.py DIRECTORY")
     matplotlib.use("Agg")  # files only; the notebook keeps its inline backend

@@ -479,6 +479,40 @@ TEST(Sweep, PlotWritesAPngOrSaysWhyNot) {
     EXPECT_NE(o.err.find("plot skipped"), std::string::npos) << o.err;
 }
 
+// The plots run under $IMPACTLAB_PYTHON where it is set: a stand-in
+// interpreter records how it was called.
+TEST(Plots, RunUnderThePythonImpactlabPythonNames) {
+  const ScratchFolder scratch;
+  const auto python = scratch / "python";
+  std::ofstream(python) << "#!/bin/sh\necho \"$@\" > \"$0.called\"\n";
+  fs::permissions(python, fs::perms::owner_all);
+  const auto out = scratch / "section";
+  const ProgramRun run = run_command_line(
+      "poincare jin2003 --transient 5 --points 5 --plot --quiet --out " + out.string(),
+      {.environment = {"IMPACTLAB_PYTHON=" + python.string()}});
+  ASSERT_EQ(run.status, 0) << run.err;
+  const std::string called = slurp(scratch / "python.called");
+  EXPECT_NE(called.find("plot_sweep.py poincare " + (out / "poincare.csv").string()),
+            std::string::npos)
+      << called;
+}
+
+// simulate --plot draws simulation.png as the other commands draw theirs,
+// sampling the run itself where --sample is not given.
+TEST(Plots, SimulateDrawsItsPicture) {
+  const ScratchFolder scratch;
+  const auto out = scratch / "run";
+  const ProgramRun run =
+      run_command_line("simulate jin2003 --periods 20 --plot --quiet --out " + out.string());
+  ASSERT_EQ(run.status, 0) << run.err;
+  // 64 samples per forcing period, and the end
+  EXPECT_EQ(count_lines(slurp(out / "trajectory.csv")), 1 + 20 * 64 + 1);
+  if (run_program({"/usr/bin/python3", "-c", "import matplotlib"}, ProgramOutput::discard) == 0)
+    EXPECT_TRUE(fs::exists(out / "simulation.png")) << run.err;
+  else
+    EXPECT_NE(run.err.find("simulation.png not drawn"), std::string::npos) << run.err;
+}
+
 TEST(Periodic, DetectsThePeriodAndReportsFloquetMultipliers) {
   const ScratchFolder scratch;
   // jin2003: the stroboscopic points repeat every second period

@@ -1,8 +1,12 @@
 """The data the plot scripts draw, checked where a figure went wrong: a
 continuation point that could not be located (empty q in points.csv) is not
-drawn at q = 0, off the branch."""
+drawn at q = 0, off the branch; axes carry quantities and units from the
+run's record; a rest is named as one; points that did not settle are marked;
+every script answers --help."""
 import importlib.util
 import pathlib
+import subprocess
+import sys
 
 import numpy as np
 
@@ -33,3 +37,58 @@ def test_a_point_not_located_is_not_drawn(tmp_path):
     np.testing.assert_array_equal(marked["fold"][0], [5.5])
     np.testing.assert_array_equal(marked["fold"][1], [0.25])
     assert not_located == 1
+
+
+def test_axes_carry_quantities_and_units_from_the_runs_record(cli):
+    labels = load("plot_labels")
+    out = cli("sweep", "jin2003", "--param", "omega=6:7:3", "--points", "4", "--transient", "2")
+    meta = labels.read_meta(out)
+    assert labels.key_label(meta, "omega") == r"$\omega$ (rad/s)"
+    assert labels.key_label(meta, "V0") == r"$V_0$ (m/s)"
+    # the dot over theta is mathtext's, not a combining character a font drops
+    assert labels.coordinate_labels(meta, "theta") == (r"$\theta$ (rad)", r"$\dot\theta$ (rad/s)")
+    title = labels.title(meta, "bifurcation diagram", ("omega",))
+    assert title.startswith("bifurcation diagram: jin2003")
+    assert "V0 = 1.5 m/s" in title and "model = newton" in title
+    assert "omega =" not in title  # the varied key
+    assert "e_t" not in title  # Model N does not read it
+    assert "integrator" not in title and "initial" not in title
+    # another oscillator's own units
+    out = cli("poincare", "linear_impact", "--points", "4", "--transient", "2")
+    meta = labels.read_meta(out)
+    assert labels.coordinate_labels(meta, "x") == ("$x$ (length)", r"$\dot x$ (length/time)")
+    assert labels.key_label(meta, "initial.x") == "$x_0$ (length)"
+
+
+def test_the_balls_rest_on_the_table_is_named_as_one(cli):
+    basins = load("plot_basins")
+    out = cli("basins", "bouncing_ball", "--set", "A=0.00981", "--x", "initial.y=0:0.1:12",
+              "--y", "initial.y_dot=-1:1:8")
+    meta = load("plot_labels").read_meta(out)
+    names = [basins.describe(row, meta) for row in basins.read(out / "attractors.csv")]
+    assert any(name.endswith("at rest on the table (sticking)") for name in names), names
+    assert any("period 1, 1 impacts/period" in name for name in names), names
+
+
+def test_the_diagrams_mark_points_that_did_not_settle(cli):
+    sweep = load("plot_sweep")
+    out = cli("sweep", "jin2003", "--set", "V0=1", "--param", "omega=5.45:5.55:3",
+              "--no-lyapunov", "--max-transient", "150")
+    summary = sweep.read(out / "summary.csv")
+    marks = sweep.unfinished_values(summary, "omega")
+    unsettled = summary["omega"][summary["transient_end"] == "not_settled"]
+    assert len(unsettled) > 0
+    np.testing.assert_array_equal(marks["transient not settled"], unsettled)
+    assert "run stopped early" not in marks
+
+
+def test_every_plot_script_answers_help():
+    scripts = sorted(SCRIPTS.glob("plot_*.py")) + [
+        SCRIPTS.parent / "notebooks_data" / "jin2003" / "plot_jin2003.py"]
+    assert len(scripts) >= 8
+    for script in scripts:
+        completed = subprocess.run([sys.executable, str(script), "--help"], capture_output=True,
+                                   text=True, check=False)
+        assert completed.returncode == 0, (script.name, completed.stderr)
+        assert script.name in completed.stdout or "usage" in completed.stdout.lower(), \
+            (script.name, completed.stdout)
