@@ -28,11 +28,13 @@
 #include <concepts>
 #include <cstddef>
 #include <limits>
+#include <string_view>
 #include <vector>
 
 #include <impactlab/analysis/continuation_problem.hpp>
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/core/error_scale_groups.hpp>
+#include <impactlab/core/state_names.hpp>
 #include <impactlab/core/event_log.hpp>
 #include <impactlab/core/has_jacobian.hpp>
 #include <impactlab/core/hybrid_system.hpp>
@@ -102,6 +104,11 @@ class DecoratedSystem {
 
   [[nodiscard]] const Base& base() const { return base_; }
   [[nodiscard]] double max_step() const { return base_.max_step(); }
+  [[nodiscard]] std::vector<std::string_view> state_names() const
+    requires HasStateNames<Base>
+  {
+    return base_.state_names();
+  }
 
   // over the base's number types (a series type runs through it where it
   // runs through the base)

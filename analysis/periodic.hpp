@@ -24,6 +24,7 @@ struct PeriodicResult {
   bool available = false;  // false: the oscillator/model has no Jacobians (see note)
   std::string note;
   std::vector<double> state;      // the orbit's point on the section (whole state)
+  std::vector<std::string> state_names;  // its components' names (core/state_names.hpp)
   int mode = 0;
   double t_section = 0.0;         // the section time the point belongs to
   double orbit_period = 0.0;      // nT

@@ -9,6 +9,7 @@
 #include <impactlab/analysis/floquet.hpp>
 #include <impactlab/analysis/periodic.hpp>
 #include <impactlab/analysis/section.hpp>
+#include <impactlab/core/state_names.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/simulate/flow.hpp>
 #include <impactlab/io/scene.hpp>
@@ -51,6 +52,7 @@ PeriodicResult run_periodic(const System& system, const typename System::State& 
                                              result.t_section, result.orbit_period,
                                              request.max_iterations, request.tolerance);
     result.state.assign(orbit.state.begin(), orbit.state.end());
+    result.state_names = state_names_of(system);
     result.mode = static_cast<int>(orbit.mode);
     for (const auto& row : orbit.monodromy) result.monodromy.emplace_back(row.begin(), row.end());
     result.multipliers.assign(orbit.multipliers.begin(), orbit.multipliers.end());

@@ -78,6 +78,7 @@ nlohmann::json periodic_record(const Scene& scene, const PeriodicJobResult& job)
       {"t_section", result.t_section},
       {"orbit_period", result.orbit_period},
       {"state", result.state},
+      {"state_names", result.state_names},
       {"mode", result.mode},
       {"monodromy", result.monodromy},
       {"floquet_multipliers", multipliers},

@@ -451,6 +451,7 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
   out["attractor_qdot"] = owning_array(std::move(attractors.qdot));
   out["attractor_basin_points"] = owning_array(std::move(attractors.basin_points));
   out["wall_time_s"] = wall_time;
+  out["stopped"] = stopped_points_note(run.records);
   out["unsettled"] = unsettled_points_note(run.records, plan);
   return out;
 }

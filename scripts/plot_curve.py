@@ -35,7 +35,7 @@ def main(argv):
         sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
     curve_csv, png, param1, param2, *sweep = argv[1:]
     meta = plot_labels.read_meta(os.path.dirname(curve_csv))
-    fig, ax = plt.subplots(figsize=(7, 5))
+    fig, ax = plt.subplots(figsize=(7, 6))
     if sweep:
         data = read(sweep[0])
         x = np.unique(data[param1])
@@ -47,9 +47,9 @@ def main(argv):
                              alpha=0.6)
         fig.colorbar(mesh, ax=ax, label="period of the section map, 2D sweep (blank: none found)")
     kind = "curve"
-    meta = os.path.join(os.path.dirname(curve_csv), "curve.json")
-    if os.path.exists(meta):
-        with open(meta, encoding="utf-8") as handle:
+    curve_json = os.path.join(os.path.dirname(curve_csv), "curve.json")
+    if os.path.exists(curve_json):
+        with open(curve_json, encoding="utf-8") as handle:
             kind = json.load(handle).get("type") or kind
     curve = read(curve_csv)
     if len(curve) and curve.dtype.names and param1 in curve.dtype.names:
@@ -64,7 +64,8 @@ def main(argv):
                     label=f"{kind.replace('_', ' ')} curve{period} (continuation)")
             ax.plot(piece[param1][:1], piece[param2][:1], "o", color=colour, markersize=6,
                     label="start (located on the branch)" if index == 0 else None)
-        ax.legend(loc="best", fontsize=8)
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), fontsize=8, ncol=2,
+                  frameon=False)
     ax.set_xlabel(plot_labels.key_label(meta, param1))
     ax.set_ylabel(plot_labels.key_label(meta, param2))
     ax.set_title(plot_labels.title(meta, "two-parameter continuation", (param1, param2)),

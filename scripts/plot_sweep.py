@@ -56,12 +56,15 @@ def bifurcation(csv, png, param, q_name):
     data = read(csv)
     meta = plot_labels.read_meta(os.path.dirname(csv))
     fig, ax = plt.subplots(figsize=(8, 5.5))
-    for direction, colour, marker in (("up", "tab:blue", "."), ("down", "tab:red", "x")):
+    # the down sweep's thin crosses under the up sweep's dots: where the two
+    # agree a dot sits in a cross, where they differ (hysteresis) each shows
+    for direction, colour, marker, size, layer in (("down", "tab:red", "x", 3.0, 2),
+                                                   ("up", "tab:blue", ".", 2.0, 3)):
         rows = data[data["direction"] == direction]
         if len(rows):
-            ax.plot(rows[param], rows["q"], marker, color=colour, markersize=2.5,
-                    markeredgewidth=0.6, linestyle="none", label=f"sweep {direction}",
-                    rasterized=True)
+            ax.plot(rows[param], rows["q"], marker, color=colour, markersize=size,
+                    markeredgewidth=0.4, linestyle="none", label=f"sweep {direction}",
+                    rasterized=True, zorder=layer)
     summary_csv = os.path.join(os.path.dirname(csv), "summary.csv")
     if os.path.exists(summary_csv):
         styles = {"run stopped early": ("black", "|"), "transient not settled": ("tab:orange", "^")}

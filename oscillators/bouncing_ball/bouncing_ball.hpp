@@ -18,6 +18,8 @@
 #include <cmath>
 #include <cstddef>
 #include <numbers>
+#include <string_view>
+#include <vector>
 
 #include <impactlab/contact/accumulation.hpp>
 #include <impactlab/contact/newton_impact.hpp>
@@ -40,6 +42,7 @@ struct BouncingBallParameters {
 class BouncingBall {
  public:
   using State = std::array<double, 2>;  // {y (m), ẏ (m/s)}
+  [[nodiscard]] std::vector<std::string_view> state_names() const { return {"y", "y_dot"}; }
   enum class Mode {
     free,   // flight, y > z (or leaving the table)
     stuck,  // riding on the table after an accumulation of impacts, y = z, ẏ = ż

@@ -20,6 +20,8 @@
 #include <cstddef>
 #include <limits>
 #include <numbers>
+#include <string_view>
+#include <vector>
 
 #include <impactlab/contact/accumulation.hpp>
 #include <impactlab/contact/newton_impact.hpp>
@@ -43,6 +45,7 @@ struct LinearImpactParameters {
 class LinearImpact {
  public:
   using State = std::array<double, 2>;  // {x (length), ẋ (length per unit time)}
+  [[nodiscard]] std::vector<std::string_view> state_names() const { return {"x", "x_dot"}; }
   enum class Mode {
     free,   // flight, x < σ (or leaving the stop)
     stuck,  // resting on the stop after an accumulation of impacts, x = σ, ẋ = 0

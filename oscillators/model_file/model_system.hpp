@@ -56,6 +56,10 @@ class ModelSystem {
   static constexpr std::size_t max_witnesses = 6;
   static constexpr std::size_t tangent_dimension = N;  // core/has_jacobian.hpp: every state
   static constexpr Mode free_mode{0};
+  // the model file's names of its states, in its order
+  [[nodiscard]] std::vector<std::string_view> state_names() const {
+    return {model_->states.begin(), model_->states.end()};
+  }
 
   // parameters: values in the model's order; accumulation: what an
   // accumulation estimate is held to, with the gap's resolution per unit of

@@ -28,6 +28,8 @@
 #include <cstddef>
 #include <numbers>
 #include <optional>
+#include <string_view>
+#include <vector>
 
 #include <impactlab/contact/accumulation.hpp>
 #include <impactlab/contact/newton_impact.hpp>
@@ -65,6 +67,10 @@ class BasicPendulumWalls {
   static constexpr bool is_paper_model = model == PendulumModel::paper;
   static constexpr std::size_t state_size = is_paper_model ? 4 : 3;
   using State = std::array<double, state_size>;
+  [[nodiscard]] std::vector<std::string_view> state_names() const {
+    if constexpr (is_paper_model) return {"theta", "theta_dot", "friction_work", "release_rate"};
+    return {"theta", "theta_dot", "friction_work"};
+  }
   using Mode = PendulumMode;
   static constexpr std::size_t max_witnesses = 2;
 

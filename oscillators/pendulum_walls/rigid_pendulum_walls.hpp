@@ -40,6 +40,8 @@
 #include <cmath>
 #include <cstddef>
 #include <numbers>
+#include <string_view>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -63,6 +65,9 @@ struct RigidPendulumParameters {
 class RigidPendulumWalls {
  public:
   using State = std::array<double, 5>;
+  [[nodiscard]] std::vector<std::string_view> state_names() const {
+    return {"theta", "theta_dot", "spin_rate", "spin_angle", "friction_work"};
+  }
   // the state's components after θ (0) and θ̇ (1)
   static constexpr std::size_t spin_rate = 2;      // φ̇ (rad/s)
   static constexpr std::size_t spin_angle = 3;     // φ (rad)

@@ -472,6 +472,10 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
                     x=raw["x"][:nx].copy(), y=raw["y"][::nx].copy(),
                     labels=raw["attractor"].reshape(ny, nx), grid=grid, attractors=attractors,
                     meta=raw["meta"], wall_time_s=raw["wall_time_s"])
+    # as the CLI says them: a stopped or unsettled point is a wrong label otherwise
+    if raw["stopped"]:
+        warnings.warn("basins: {}; grid['termination'] says which".format(raw["stopped"]),
+                      PhysicalDiagnosticWarning, stacklevel=2)
     if raw["unsettled"]:
         warnings.warn("basins: {}; grid['transient_end'] says which".format(raw["unsettled"]),
                       PhysicalDiagnosticWarning, stacklevel=2)
@@ -497,6 +501,7 @@ def periodic(scene_=None, *, period=_default("periodic", "period"),
     meta = raw["meta"]
     result = Result(scene=loaded, meta=meta, converged=raw["converged"],
                     termination=raw["termination"], state=np.array(meta["state"]),
+                    state_names=list(meta["state_names"]),
                     monodromy=np.array(meta["monodromy"]),
                     multipliers=np.array([complex(z["re"], z["im"])
                                           for z in meta["floquet_multipliers"]]))

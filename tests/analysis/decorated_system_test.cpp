@@ -44,6 +44,7 @@ constexpr bool forwards_every_hook() {
   static_assert(impactlab::affine_flow_of<Base>() == Decorated::affine_flow);
   static_assert(impactlab::error_scale_groups_of<Base>() ==
                 impactlab::error_scale_groups_of<Decorated>());
+  static_assert(impactlab::HasStateNames<Base> == impactlab::HasStateNames<Decorated>);
   if constexpr (impactlab::HasJacobian<Base>) {
     static_assert(impactlab::HasSeriesRhs<Variational<Base>> ==
                   impactlab::HasSeriesRhs<Variational<Decorated>>);

@@ -522,12 +522,17 @@ TEST(Periodic, DetectsThePeriodAndReportsFloquetMultipliers) {
   EXPECT_EQ(result["request"]["period"], 2);
   EXPECT_TRUE(result["converged"]);
   EXPECT_LT(result["floquet_multipliers"][0]["abs"].get<double>(), 1.0);
+  // every component of the state named, the coordinates as the scene's keys
+  EXPECT_EQ(result["state_names"],
+            nlohmann::json({"theta", "theta_dot", "friction_work"}));
+  EXPECT_EQ(result["state_names"].size(), result["state"].size());
 
   // the linear impact oscillator's one-impact orbit: det M = r² e^{−2ζT}
   // (the flow contracts areas by e^{−2ζT}, the impact by r²)
   ASSERT_EQ(run_command_line("periodic linear_impact --quiet --out " + out.string()).status, 0);
   result = nlohmann::json::parse(slurp(out / "periodic.json"));
   EXPECT_EQ(result["request"]["period"], 1);
+  EXPECT_EQ(result["state_names"], nlohmann::json({"x", "x_dot"}));
   const double product = result["floquet_multipliers"][0]["abs"].get<double>() *
                          result["floquet_multipliers"][1]["abs"].get<double>();
   EXPECT_NEAR(product, 0.8 * 0.8 * std::exp(-2.0 * 0.05 * std::numbers::pi), 1e-10);

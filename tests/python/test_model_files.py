@@ -82,3 +82,18 @@ def test_a_sweep_warns_of_its_points_that_stop_early(tmp_path):
     stopped = sum(t != "completed" for t in result.summary["termination"])
     assert stopped > 0
     assert "{} of 20 points stopped early".format(stopped) in str(caught[0].message)
+
+
+def test_basins_warn_of_their_points_that_stop_early(tmp_path):
+    # the same chattering oscillator, its basins over (F, x0): the points
+    # that stopped are counted in a warning, as grid['termination'] has them
+    with open(os.path.join(EXAMPLES, "duffing_stop.toml")) as shipped:
+        model = shipped.read()
+    scene = tmp_path / "no_sticking.toml"
+    scene.write_text(model[:model.index("[model.walls.sticking]")])
+    with pytest.warns(impactlab.PhysicalDiagnosticWarning, match="points stopped early") as caught:
+        result = impactlab.basins(str(scene), r=0.2, sigma=0.1, x="F=0.2:3:10",
+                                  y="initial.x=-0.5:0:2")
+    stopped = sum(t != "completed" for t in result.grid["termination"])
+    assert stopped > 0
+    assert "{} of 20 points stopped early".format(stopped) in str(caught[0].message)

@@ -23,6 +23,9 @@ def test_periodic_with_the_spin_free_equals_cli(cli):
     assert orbit.converged
     assert orbit.multipliers.shape == (3,) and orbit.monodromy.shape == (3, 3)
     assert abs(orbit.multipliers[0] - 1.0) < 1e-9
+    assert orbit.state_names == ["theta", "theta_dot", "spin_rate", "spin_angle",
+                                 "friction_work"]
+    assert len(orbit.state) == len(orbit.state_names)
 
 
 def test_continue_with_the_spin_held_equals_cli(cli):
