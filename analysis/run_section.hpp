@@ -8,13 +8,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <tuple>
 
+#include <fmt/format.h>
+
 #include <impactlab/analysis/decorated_system.hpp>
 #include <impactlab/analysis/floquet.hpp>
 #include <impactlab/analysis/flow_setup.hpp>
+#include <impactlab/analysis/lyapunov_spectrum.hpp>
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/analysis/settling.hpp>
 #include <impactlab/core/has_jacobian.hpp>
@@ -248,6 +252,29 @@ SectionResult run_section(const System& system, const typename System::State& x0
           result.lyapunov_note = "the tangent run stopped early";
       } else {
         result.lyapunov_note = "this oscillator/model has no Jacobians";
+      }
+    }
+
+    // all N exponents over the same periods, from the same start
+    if (request.lyapunov_spectrum) {
+      constexpr std::size_t dimension = tangent_dimension_of<System>;
+      result.lyapunov_spectrum.assign(dimension, std::numeric_limits<double>::quiet_NaN());
+      result.lyapunov_spectrum_error = result.lyapunov_spectrum;
+      if constexpr (HasJacobian<System>) {
+        const int periods = std::max(1, static_cast<int>(std::lround(result.periods_recorded)));
+        const LyapunovSpectrumResult spectrum = lyapunov_spectrum(
+            system, lyapunov_setup, x_record, mode_record, result.record_start, period, periods,
+            request.lyapunov_alignment_periods, request.lyapunov_spectrum_sink);
+        result.lyapunov_spectrum = spectrum.exponents;
+        result.lyapunov_spectrum_error = spectrum.errors;
+        if (spectrum.termination == Termination::no_tangent_map)
+          result.lyapunov_spectrum_note = "an event on the way has no tangent map (an impulse on "
+                                          "the friction cone's edge)";
+        else if (spectrum.termination != Termination::completed)
+          result.lyapunov_spectrum_note = fmt::format(
+              "the tangent run stopped early ({})", to_string(spectrum.termination));
+      } else {
+        result.lyapunov_spectrum_note = "this oscillator/model has no Jacobians";
       }
     }
     return result;
