@@ -72,6 +72,12 @@ SectionResult run_section(const System& system, const typename System::State& x0
   using Mode = typename System::Mode;
   SectionResult result;
   result.omega = omega;
+  // N exponents asked for: NaN until computed (a run that stops early keeps them)
+  if (request.lyapunov_spectrum) {
+    result.lyapunov_spectrum.assign(tangent_dimension_of<System>,
+                                    std::numeric_limits<double>::quiet_NaN());
+    result.lyapunov_spectrum_error = result.lyapunov_spectrum;
+  }
   result.forcing_period = 2.0 * std::numbers::pi / omega;
   const double period = result.forcing_period;
   // the transient and record at the request's stepper where it names one;
@@ -257,9 +263,6 @@ SectionResult run_section(const System& system, const typename System::State& x0
 
     // all N exponents over the same periods, from the same start
     if (request.lyapunov_spectrum) {
-      constexpr std::size_t dimension = tangent_dimension_of<System>;
-      result.lyapunov_spectrum.assign(dimension, std::numeric_limits<double>::quiet_NaN());
-      result.lyapunov_spectrum_error = result.lyapunov_spectrum;
       if constexpr (HasJacobian<System>) {
         const int periods = std::max(1, static_cast<int>(std::lround(result.periods_recorded)));
         const LyapunovSpectrumResult spectrum = lyapunov_spectrum(

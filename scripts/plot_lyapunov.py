@@ -1,0 +1,62 @@
+#!/usr/bin/python3
+"""The convergence of a Lyapunov spectrum (run by `impactlab poincare
+--lyapunov-spectrum --plot`, or by hand):
+
+    plot_lyapunov.py lyapunov.csv out.png [TIME_UNIT]
+
+Draws each exponent's running estimate (lyapunov.csv: t, lambda1..lambdaN,
+after a comment line) against the time at which it was taken. An exponent at
+-inf (a direction the contact collapsed) cannot be drawn: the legend says so.
+"""
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def read(path):
+    """lyapunov.csv's rows as a structured array (its comment line skipped)."""
+    data = np.genfromtxt(path, delimiter=",", names=True, comments=None, skip_header=1,
+                         dtype=float, encoding="utf-8")
+    return np.atleast_1d(data)
+
+
+def running_lines(data):
+    """{name: (t, finite running values) or None where the exponent ends at -inf}."""
+    lines = {}
+    for name in data.dtype.names[1:]:
+        values = data[name]
+        if len(values) and values[-1] == -np.inf:
+            lines[name] = None
+            continue
+        finite = np.isfinite(values)
+        lines[name] = (data["t"][finite], values[finite])
+    return lines
+
+
+def main(argv):
+    csv, png, *rest = argv[1:]
+    unit = rest[0] if rest else "scene time unit"
+    data = read(csv)
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for name, line in running_lines(data).items():
+        label = name.replace("lambda", "λ")
+        if line is None:
+            ax.plot([], [], " ", label=f"{label} = −∞ (collapsed by the contact)")
+            continue
+        t, values = line
+        ax.plot(t, values, label=f"{label} → {values[-1]:.4g}" if len(values) else label)
+    ax.axhline(0.0, color="0.6", linewidth=0.8)
+    ax.set_xlabel(f"time t ({unit})")
+    ax.set_ylabel(f"running estimate of λᵢ (1/{unit})")
+    ax.set_title("convergence of the Lyapunov spectrum")
+    ax.legend(loc="best")
+    fig.tight_layout()
+    fig.savefig(png, dpi=150)
+
+
+if __name__ == "__main__":
+    main(sys.argv)
