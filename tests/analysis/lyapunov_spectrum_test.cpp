@@ -366,4 +366,27 @@ TEST(LyapunovSpectrum, AccumulatorStartsAlongTheLargestExponentsVector) {
   EXPECT_FALSE(accumulator.advance(broken, true));
 }
 
+TEST(LyapunovSpectrum, RankOneJacobianCollapsesTwoDirectionsBelowRoundOff) {
+  // J = u vᵀ, rank 1: a contact that pins two of three directions, then a
+  // flight that mixes what is left into every component. The QR's round-off
+  // leaves |R_22|, |R_33| at about 1e-16 of |R_11|, not exactly zero;
+  // collapse_tolerance tells them from a contraction.
+  LyapunovSpectrumAccumulator accumulator(3, 2.0);
+  const double u[3] = {0.3, -1.7, 0.9}, v[3] = {1.1, 0.4, -0.7};
+  double pinned[9];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) pinned[3 * i + j] = u[i] * v[j];
+  for (int k = 0; k < 50; ++k) ASSERT_TRUE(accumulator.advance(pinned, true));
+  const auto exponents = accumulator.exponents();
+  EXPECT_TRUE(std::isfinite(exponents[0]));
+  EXPECT_EQ(exponents[1], minus_infinity);
+  EXPECT_EQ(exponents[2], minus_infinity);
+  // a strong but resolved contraction, 1e-9 per period, stays finite
+  LyapunovSpectrumAccumulator resolved(2, 1.0);
+  const double contracting[4] = {1.0, 0.0, 0.0, 1e-9};
+  for (int k = 0; k < 2; ++k) ASSERT_TRUE(resolved.advance(contracting, false));  // align
+  for (int k = 0; k < 50; ++k) ASSERT_TRUE(resolved.advance(contracting, true));
+  EXPECT_NEAR(resolved.exponents()[1], std::log(1e-9), 1e-6);
+}
+
 }  // namespace

@@ -5,6 +5,8 @@
 //   λ1 is the largest exponent of `--lyapunov` in the same run, to 1e-10;
 // * a ball that sticks to its table every period: -inf in lyapunov.csv, null
 //   in meta.json (JSON has no infinities) with a note that says why;
+// * the rigid pendulum resting on a wall every period: the two directions
+//   the contact pins are -inf, the free spin's stays finite;
 // * a 4-state model file (the impact damper): four exponents;
 // * a 4-state model file with a sticking wall has no linearisation: exit 0
 //   and a note, as the largest exponent does;
@@ -95,6 +97,30 @@ TEST(LyapunovSpectrumCli, StickingBallCollapsesToMinusInfinityNeverNaN) {
   EXPECT_EQ(rows.back()[1], "-inf");
   EXPECT_EQ(rows.back()[2], "-inf");
   EXPECT_EQ(slurp(out / "lyapunov.csv").find("nan"), std::string::npos);
+}
+
+TEST(LyapunovSpectrumCli, PendulumRestingOnAWallCollapsesItsSwingButNotItsSpin) {
+  // the rigid bob with a free spin (tangent space θ, θ̇, spin): at V0 = 8 m/s
+  // it comes to rest on a wall every period; the contact pins θ and θ̇ (their
+  // directions collapse: −∞) and leaves the spin to its own decay (finite)
+  const ScratchFolder scratch;
+  const fs::path out = scratch / "rigid";
+  const ProgramRun run = run_command_line(
+      "poincare jin2003 --set model=rigid --set spin=free --set radius=0.02 --set V0=8 "
+      "--points 60 --lyapunov --lyapunov-spectrum --quiet --out " + out.string());
+  ASSERT_EQ(run.status, 0) << run.err;
+  const auto meta = meta_of(out);
+  ASSERT_GT(meta["counts"]["contact_phases_recorded"].get<int>(), 10);
+  ASSERT_EQ(meta["lyapunov_spectrum"].size(), 3u);
+  ASSERT_TRUE(meta["lyapunov_spectrum"][0].is_number());
+  EXPECT_NEAR(meta["lyapunov_spectrum"][0].get<double>(),
+              meta["lyapunov"]["largest_exponent_per_time"].get<double>(), 1e-10);
+  EXPECT_TRUE(meta["lyapunov_spectrum"][1].is_null());
+  EXPECT_TRUE(meta["lyapunov_spectrum"][2].is_null());
+  const auto rows = read_csv(out / "lyapunov.csv");
+  EXPECT_TRUE(std::isfinite(number(rows.back()[1])));
+  EXPECT_EQ(rows.back()[2], "-inf");
+  EXPECT_EQ(rows.back()[3], "-inf");
 }
 
 TEST(LyapunovSpectrumCli, FourStateModelFileGivesFourExponents) {
