@@ -11,6 +11,7 @@
 // * a 4-state model file with a sticking wall has no linearisation: exit 0
 //   and a note, as the largest exponent does;
 // * `sweep` and `basins` gain the columns lyapunov1..N, only when asked for;
+//   a sweep stopped and resumed writes the same ones as a fresh sweep;
 // * bad input: exit status 2 and one line naming the option and the value.
 #include <algorithm>
 #include <cmath>
@@ -233,6 +234,23 @@ TEST(LyapunovSpectrumCli, SweepAndBasinsGainOneColumnPerExponent) {
     for (std::size_t row = 1; row < rows.size(); ++row)
       EXPECT_TRUE(std::isfinite(number(rows[row].back()))) << row;
   }
+}
+
+TEST(LyapunovSpectrumCli, ResumedSweepWritesTheSameSpectrum) {
+  // the checkpoint keeps each point's exponents (-inf and nan as text)
+  const ScratchFolder scratch;
+  const std::string sweep =
+      "sweep linear_impact --param omega=2.5:2.7:6 --chunks 3 --lyapunov-spectrum --points 30 "
+      "--quiet --out ";
+  const ProgramRun stopped = run_command_line(sweep + (scratch / "a").string() + " --stop-after 2");
+  ASSERT_EQ(stopped.status, 3) << stopped.err;
+  const ProgramRun resumed = run_command_line(sweep + (scratch / "a").string() + " --resume");
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  const ProgramRun fresh = run_command_line(sweep + (scratch / "b").string());
+  ASSERT_EQ(fresh.status, 0) << fresh.err;
+  const std::string summary = slurp(scratch / "a" / "summary.csv");
+  EXPECT_NE(summary.find("lyapunov2"), std::string::npos);
+  EXPECT_EQ(summary, slurp(scratch / "b" / "summary.csv"));
 }
 
 TEST(LyapunovSpectrumCli, BadValueIsRefusedNamingTheOption) {
