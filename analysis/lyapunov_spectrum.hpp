@@ -19,6 +19,8 @@
 // as that method does (J q / |J q|): λ1 is the largest exponent, to round-off.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>

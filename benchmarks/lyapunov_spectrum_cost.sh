@@ -3,7 +3,9 @@
 # same run: `poincare --lyapunov` and `poincare --lyapunov-spectrum`,
 # alternated REPEATS times each (default 5) per scene, and the median of each
 # run's own wall time (meta.json's wall_time_s: the section run and the
-# tangent run, no process start or file writing). Prints one line per scene:
+# tangent run, and for the spectrum the writing of lyapunov.csv's rows as
+# they come; no process start). A fixed transient of 100 periods, so that
+# both variants run the same periods. Prints one line per scene:
 # the two medians (s) and their ratio spectrum / largest.
 # usage: benchmarks/lyapunov_spectrum_cost.sh PROGRAM WORK_DIR [REPEATS]
 set -eu
@@ -12,9 +14,9 @@ here="$(cd "$(dirname "$0")" && pwd)"
 examples="$here/../oscillators/model_file/examples"
 mkdir -p "$work"
 cases=(
-  "jin2003 (N = 2, taylor)|jin2003 --points 10000"
-  "linear_impact chaotic (N = 2, exact flow)|linear_impact --set omega=2.6 --points 40000"
-  "impact_damper.toml (N = 4, dopri5)|$examples/impact_damper.toml --points 1500"
+  "jin2003 (N = 2, taylor)|jin2003 --transient 100 --points 10000"
+  "linear_impact chaotic (N = 2, exact flow)|linear_impact --set omega=2.6 --transient 100 --points 40000"
+  "impact_damper.toml (N = 4, dopri5)|$examples/impact_damper.toml --transient 100 --points 1500"
 )
 median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
 wall_time() { /usr/bin/python3 -c "import json, sys; print(json.load(open(sys.argv[1]))['wall_time_s'])" "$1"; }
