@@ -295,16 +295,16 @@ py::dict section_arrays(const SectionResult& result) {
   return arrays;
 }
 
-// The running estimate of a spectrum kept in memory: one row of N per period.
+// The running estimate of a spectrum kept in memory: one row of N per period
+// (Python reshapes the values by the spectrum's N).
 class LyapunovRows final : public LyapunovSpectrumSink {
  public:
-  void begin(std::size_t exponents) override { dimension = exponents; }
+  void begin(std::size_t) override {}
   void write(double t, const std::vector<double>& running) override {
     times.push_back(t);
     values.insert(values.end(), running.begin(), running.end());
   }
-  std::size_t dimension = 0;
-  std::vector<double> times, values;  // values row-major, times.size() × dimension
+  std::vector<double> times, values;  // values row-major, times.size() × N
 };
 
 py::dict poincare_binding(const Scene& scene, const std::string& section,
