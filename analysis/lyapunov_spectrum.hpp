@@ -34,10 +34,12 @@ namespace impactlab {
 // A direction whose stretch over one period, |(R_k)_ii|, is below this
 // fraction of the period's largest column of J_k Q_{k−1} is collapsed. A
 // Householder QR is backward stable, with an error of about N ε |J Q| in R
-// (ε = 2.2e-16); the tangent run that made J carries a rank the contact
-// removed at that round-off through its steps. A finite exponent more than
-// ln(1e12)/T ≈ 27.6/T below the largest is therefore beyond what one period's
-// Jacobian in double precision resolves, and is reported as collapsed too.
+// (ε = 2.2e-16), and the tangent run that made J (each step linear in Φ)
+// keeps the rank a contact removed only to round-off: a collapsed direction
+// comes out at 1e-16 to 1e-13 of the largest, not at zero. A finite
+// exponent more than ln(1e12)/T ≈ 27.6/T below the largest is beyond what
+// one period's Jacobian resolves in double precision, and is reported as
+// collapsed too.
 inline constexpr double collapse_tolerance = 1e-12;
 
 // The QR re-orthonormalisation and the running sums, for an N of run time
