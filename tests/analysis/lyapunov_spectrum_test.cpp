@@ -15,6 +15,8 @@
 //   the 4-state model file in that chaos (divergence −2ζ − 2ζ₂);
 // * on orbits with a sticking phase, the directions the contact collapses
 //   (here all of them: a ball riding on the table) are −∞, never NaN;
+// * the linear impact oscillator's orbit with every stepper, the Taylor
+//   stepper's variational equations on multi-direction duals included;
 // * λ1 is the largest exponent of largest_lyapunov_exponent on the same
 //   trajectory, to 1e-10 (1/time unit): the QR carries its first vector as
 //   that method carries its one vector, so they differ by round-off only.
@@ -93,6 +95,37 @@ TEST(LyapunovSpectrum, LinearImpactPeriodicOrbitGivesItsFloquetExponents) {
     EXPECT_LT(spectrum.errors[i], 1e-3);
   }
 }
+
+// The same orbit with every stepper: the variational equations of each (the
+// Taylor stepper's on multi-direction duals) and the QR give its exponents,
+// and λ1 is the largest exponent of the same stepper.
+class EveryStepper : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(EveryStepper, LinearImpactPeriodicOrbitGivesItsFloquetExponents) {
+  LinearImpactParameters p;
+  p.omega = 2.263;
+  const impactlab::testing::LinearImpactClosedForm closed(p);
+  const auto orbit = closed.orbit();
+  ASSERT_TRUE(orbit.has_value());
+  const double period = closed.period();
+  const auto [x, v] =
+      closed.state_after(orbit->impact_time, orbit->velocity, period - orbit->impact_time);
+  const LinearImpact system(p);
+  const FlowSetup setup{GetParam(), 1e-12, 1e-13};
+  const auto spectrum = lyapunov_spectrum(system, setup, LinearImpact::State{x, v},
+                                          LinearImpact::Mode::free, 0.0, period, 300, 100);
+  ASSERT_EQ(spectrum.termination, Termination::completed);
+  for (int i = 0; i < 2; ++i)
+    EXPECT_NEAR(spectrum.exponents[i], std::log(std::abs(orbit->multipliers[i])) / period, 1e-6)
+        << "exponent " << i + 1;
+  const auto largest = largest_lyapunov_exponent(system, setup, LinearImpact::State{x, v},
+                                                 LinearImpact::Mode::free, 0.0, period, 300, 100);
+  EXPECT_NEAR(spectrum.exponents[0], largest.exponent, 1e-10);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllSteppers, EveryStepper,
+                         ::testing::Values("dopri5", "rkf78", "bulirsch_stoer", "rk8pd", "taylor",
+                                           "exact"));
 
 // The bouncing ball's period-1 orbit (one bounce per table period T = 2π/ω)
 // and its multipliers, in closed form. The ball leaves the table z = A sin ωt
