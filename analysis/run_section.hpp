@@ -243,6 +243,34 @@ SectionResult run_section(const System& system, const typename System::State& x0
       result.final_state = ContinuationState{std::vector<double>(x.begin(), x.end()),
                                              static_cast<int>(mode)};
 
+    // all N exponents over the record window, from its start; their λ1 is
+    // the largest exponent (the same first vector, carried the same way), so
+    // where both are asked for one tangent run gives both
+    if (request.lyapunov_spectrum) {
+      if constexpr (HasJacobian<System>) {
+        const int periods = std::max(1, static_cast<int>(std::lround(result.periods_recorded)));
+        const LyapunovSpectrumResult spectrum = lyapunov_spectrum(
+            system, lyapunov_setup, x_record, mode_record, result.record_start, period, periods,
+            request.lyapunov_alignment_periods, request.lyapunov_spectrum_sink);
+        result.lyapunov_spectrum = spectrum.exponents;
+        result.lyapunov_spectrum_error = spectrum.errors;
+        if (spectrum.termination == Termination::no_tangent_map)
+          result.lyapunov_spectrum_note = "an event on the way has no tangent map (an impulse on "
+                                          "the friction cone's edge)";
+        else if (spectrum.termination != Termination::completed)
+          result.lyapunov_spectrum_note = fmt::format(
+              "the tangent run stopped early ({})", to_string(spectrum.termination));
+        if (request.lyapunov) {
+          result.lyapunov = spectrum.exponents.front();
+          result.lyapunov_note = result.lyapunov_spectrum_note;
+        }
+      } else {
+        result.lyapunov_spectrum_note = "this oscillator/model has no Jacobians";
+        if (request.lyapunov) result.lyapunov_note = result.lyapunov_spectrum_note;
+      }
+      return result;
+    }
+
     // the largest Lyapunov exponent over the record window, from its start
     if (request.lyapunov) {
       if constexpr (HasJacobian<System>) {
@@ -258,26 +286,6 @@ SectionResult run_section(const System& system, const typename System::State& x0
           result.lyapunov_note = "the tangent run stopped early";
       } else {
         result.lyapunov_note = "this oscillator/model has no Jacobians";
-      }
-    }
-
-    // all N exponents over the same periods, from the same start
-    if (request.lyapunov_spectrum) {
-      if constexpr (HasJacobian<System>) {
-        const int periods = std::max(1, static_cast<int>(std::lround(result.periods_recorded)));
-        const LyapunovSpectrumResult spectrum = lyapunov_spectrum(
-            system, lyapunov_setup, x_record, mode_record, result.record_start, period, periods,
-            request.lyapunov_alignment_periods, request.lyapunov_spectrum_sink);
-        result.lyapunov_spectrum = spectrum.exponents;
-        result.lyapunov_spectrum_error = spectrum.errors;
-        if (spectrum.termination == Termination::no_tangent_map)
-          result.lyapunov_spectrum_note = "an event on the way has no tangent map (an impulse on "
-                                          "the friction cone's edge)";
-        else if (spectrum.termination != Termination::completed)
-          result.lyapunov_spectrum_note = fmt::format(
-              "the tangent run stopped early ({})", to_string(spectrum.termination));
-      } else {
-        result.lyapunov_spectrum_note = "this oscillator/model has no Jacobians";
       }
     }
     return result;

@@ -2,7 +2,8 @@
 // * `poincare --lyapunov-spectrum` writes lyapunov.csv (a comment line with
 //   the units, then t, lambda1..lambdaN, one row per averaged period, the
 //   last row the result) and meta.json's lyapunov_spectrum with its error;
-//   λ1 is the largest exponent of `--lyapunov` in the same run, to 1e-10;
+//   with `--lyapunov` too, its exponent is λ1 (one tangent run gives both;
+//   tests/analysis/lyapunov_spectrum_test.cpp compares the two methods);
 // * a ball that sticks to its table every period: -inf in lyapunov.csv, null
 //   in meta.json (JSON has no infinities) with a note that says why;
 // * the rigid pendulum resting on a wall every period: the two directions
