@@ -5,9 +5,13 @@
     plot_lyapunov.py lyapunov.csv out.png [TIME_UNIT]
 
 Draws each exponent's running estimate (lyapunov.csv: t, lambda1..lambdaN,
-after a comment line) against the time at which it was taken. An exponent at
--inf (a direction the contact collapsed) cannot be drawn: the legend says so.
+after a comment line) against the time at which it was taken, t in the run's
+time unit and the exponents in its inverse (TIME_UNIT, or read from the
+meta.json beside lyapunov.csv). An exponent at -inf (a direction the contact
+collapsed) cannot be drawn: the legend says so.
 """
+import json
+import os
 import sys
 
 import matplotlib
@@ -37,9 +41,30 @@ def running_lines(data):
     return lines
 
 
+def read_record(csv):
+    """The run's meta.json beside lyapunov.csv ({} where there is none)."""
+    path = os.path.join(os.path.dirname(os.path.abspath(csv)), "meta.json")
+    if not os.path.exists(path):
+        return {}
+    with open(path, encoding="utf-8") as handle:
+        return json.load(handle)
+
+
+def time_unit(record):
+    """The run's time unit: "s" where the forcing frequency omega is in
+    rad/s, "time unit" for a nondimensional scene (or without a record)."""
+    unit = record.get("scene", {}).get("keys", {}).get("omega", {}).get("unit", "")
+    return unit.split("/", 1)[1] if unit.startswith("rad/") else "time unit"
+
+
 def main(argv):
+    if len(argv) < 3 or argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
     csv, png, *rest = argv[1:]
-    unit = rest[0] if rest else "scene time unit"
+    record = read_record(csv)
+    unit = rest[0] if rest else time_unit(record)
+    scene = record.get("scene", {}).get("source", "")
     data = read(csv)
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for name, line in running_lines(data).items():
@@ -52,7 +77,7 @@ def main(argv):
     ax.axhline(0.0, color="0.6", linewidth=0.8)
     ax.set_xlabel(f"time t ({unit})")
     ax.set_ylabel(f"running estimate of λᵢ (1/{unit})")
-    ax.set_title("convergence of the Lyapunov spectrum")
+    ax.set_title("convergence of the Lyapunov spectrum" + (f": {scene}" if scene else ""))
     ax.legend(loc="best")
     fig.tight_layout()
     fig.savefig(png, dpi=150)
