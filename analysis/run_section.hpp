@@ -8,13 +8,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <tuple>
 
+#include <fmt/format.h>
+
 #include <impactlab/analysis/decorated_system.hpp>
 #include <impactlab/analysis/floquet.hpp>
 #include <impactlab/analysis/flow_setup.hpp>
+#include <impactlab/analysis/lyapunov_spectrum.hpp>
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/analysis/settling.hpp>
 #include <impactlab/core/has_jacobian.hpp>
@@ -68,6 +72,12 @@ SectionResult run_section(const System& system, const typename System::State& x0
   using Mode = typename System::Mode;
   SectionResult result;
   result.omega = omega;
+  // N exponents asked for: NaN until computed (a run that stops early keeps them)
+  if (request.lyapunov_spectrum) {
+    result.lyapunov_spectrum.assign(tangent_dimension_of<System>,
+                                    std::numeric_limits<double>::quiet_NaN());
+    result.lyapunov_spectrum_error = result.lyapunov_spectrum;
+  }
   result.forcing_period = 2.0 * std::numbers::pi / omega;
   const double period = result.forcing_period;
   // the transient and record at the request's stepper where it names one;
@@ -235,6 +245,34 @@ SectionResult run_section(const System& system, const typename System::State& x0
     if (result.termination == SectionTermination::completed)
       result.final_state = ContinuationState{std::vector<double>(x.begin(), x.end()),
                                              static_cast<int>(mode)};
+
+    // all N exponents over the record window, from its start; their λ1 is
+    // the largest exponent (the same first vector, carried the same way), so
+    // where both are asked for one tangent run gives both
+    if (request.lyapunov_spectrum) {
+      if constexpr (HasJacobian<System>) {
+        const int periods = std::max(1, static_cast<int>(std::lround(result.periods_recorded)));
+        const LyapunovSpectrumResult spectrum = lyapunov_spectrum(
+            system, lyapunov_setup, x_record, mode_record, result.record_start, period, periods,
+            request.lyapunov_alignment_periods, request.lyapunov_spectrum_sink);
+        result.lyapunov_spectrum = spectrum.exponents;
+        result.lyapunov_spectrum_error = spectrum.errors;
+        if (spectrum.termination == Termination::no_tangent_map)
+          result.lyapunov_spectrum_note = "an event on the way has no tangent map (an impulse on "
+                                          "the friction cone's edge)";
+        else if (spectrum.termination != Termination::completed)
+          result.lyapunov_spectrum_note = fmt::format(
+              "the tangent run stopped early ({})", to_string(spectrum.termination));
+        if (request.lyapunov) {
+          result.lyapunov = spectrum.exponents.front();
+          result.lyapunov_note = result.lyapunov_spectrum_note;
+        }
+      } else {
+        result.lyapunov_spectrum_note = "this oscillator/model has no Jacobians";
+        if (request.lyapunov) result.lyapunov_note = result.lyapunov_spectrum_note;
+      }
+      return result;
+    }
 
     // the largest Lyapunov exponent over the record window, from its start
     if (request.lyapunov) {

@@ -5,6 +5,7 @@
 // analysis/run_section.hpp does the work for a concrete system).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -54,6 +55,18 @@ class SectionPointSink {
   // the run's forcing frequency ω (rad per time unit), before its first point
   virtual void begin(double omega) = 0;
   virtual void write(const SectionPoint& point) = 0;
+};
+
+// Where the running estimate of a Lyapunov spectrum goes, once per averaged
+// forcing period (analysis/lyapunov_spectrum.hpp): lyapunov.csv's rows.
+class LyapunovSpectrumSink {
+ public:
+  virtual ~LyapunovSpectrumSink() = default;
+  // the number of exponents N, before the first row
+  virtual void begin(std::size_t exponents) = 0;
+  // the time at the end of the period (time unit) and each exponent's
+  // estimate over the periods averaged so far (1/time unit; −∞ collapsed)
+  virtual void write(double t, const std::vector<double>& running) = 0;
 };
 
 // The points of one record, at most `limit`: appended to `points`, or handed
@@ -138,6 +151,9 @@ struct SectionRequest {
   std::uint64_t points = 50;           // strobe: periods recorded; impact: impacts recorded
   bool lyapunov = false;               // also the largest Lyapunov exponent
   int lyapunov_alignment_periods = 10; // periods a tangent vector turns before averaging
+  bool lyapunov_spectrum = false;      // also all N exponents (analysis/lyapunov_spectrum.hpp)
+  // where the spectrum's running estimate goes, period by period; none: not kept
+  LyapunovSpectrumSink* lyapunov_spectrum_sink = nullptr;
   // the transient's and record's stepper where it is not the scene's (a sweep
   // that only classifies, analysis/sweep.hpp); the system itself (its
   // accumulation criteria) and the Lyapunov run keep the scene's integrator
@@ -205,6 +221,12 @@ struct SectionResult {
   std::uint64_t steps = 0, rhs_evaluations = 0;  // over the whole run
   double lyapunov = std::numeric_limits<double>::quiet_NaN();  // largest exponent (1/time)
   std::string lyapunov_note;       // why it is NaN, where it is
+  // λ1 … λN (1/time unit) when asked for: −∞ for a direction the contact
+  // collapses; NaN where not computed (lyapunov_spectrum_note says why)
+  std::vector<double> lyapunov_spectrum;
+  std::vector<double> lyapunov_spectrum_error;  // half the range of the running estimate
+                                                // over the last quarter of the periods
+  std::string lyapunov_spectrum_note;
 };
 
 // Refuses (BadInput) a section run that cannot be sized: a forcing period

@@ -209,6 +209,17 @@ std::string to_json_line(const SweepRecord& record) {
       {"impacts_per_period", record.classification.impacts_per_period},
       {"contact", record.classification.contact},
   };
+  if (!r.lyapunov_spectrum.empty()) {
+    // as text, so that -inf and nan survive JSON
+    nlohmann::json exponents = nlohmann::json::array(), errors = nlohmann::json::array();
+    for (std::size_t i = 0; i < r.lyapunov_spectrum.size(); ++i) {
+      exponents.push_back(fmt::format("{}", r.lyapunov_spectrum[i]));
+      errors.push_back(fmt::format("{}", r.lyapunov_spectrum_error[i]));
+    }
+    line["lyapunov_spectrum"] = exponents;
+    line["lyapunov_spectrum_error"] = errors;
+    line["lyapunov_spectrum_note"] = r.lyapunov_spectrum_note;
+  }
   if (r.final_state) {
     line["final_state"] = r.final_state->state;
     line["final_mode"] = r.final_state->mode;
@@ -244,6 +255,13 @@ std::optional<SweepRecord> from_json_line(std::string_view text) {
     r.rhs_evaluations = line.at("rhs_evaluations");
     r.lyapunov = number_from_text(line.at("lyapunov"));
     r.lyapunov_note = line.at("lyapunov_note");
+    if (line.contains("lyapunov_spectrum")) {
+      for (const auto& text : line.at("lyapunov_spectrum"))
+        r.lyapunov_spectrum.push_back(number_from_text(text));
+      for (const auto& text : line.at("lyapunov_spectrum_error"))
+        r.lyapunov_spectrum_error.push_back(number_from_text(text));
+      r.lyapunov_spectrum_note = line.at("lyapunov_spectrum_note");
+    }
     const auto& t = line.at("t");
     for (std::size_t k = 0; k < t.size(); ++k)
       r.points.push_back({t[k], line.at("q")[k], line.at("qdot")[k], line.at("wall")[k]});

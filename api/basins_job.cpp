@@ -64,7 +64,9 @@ BasinsTable basins_table(const SweepPlan& plan, const std::vector<SweepTask>& ta
   BasinsTable table;
   table.map = identify_attractors(in_grid_order, plan.attractor_tolerance);
   table.attractor = table.map.attractor;
+  table.lyapunov_dimension = lyapunov_dimension(plan, records);
   for (const SweepRecord* r : in_grid_order) {
+    add_lyapunov_spectrum(table.lyapunov_spectrum, table.lyapunov_dimension, *r);
     table.x.push_back(plan.axes[0].value(r->index[0]));
     table.y.push_back(plan.axes[1].value(r->index[1]));
     table.period.push_back(r->classification.period);

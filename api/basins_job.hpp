@@ -47,6 +47,9 @@ struct BasinsTable {
   std::vector<int> contact;
   std::vector<SectionTermination> termination;
   std::vector<TransientEnd> transient_end;
+  // with the spectrum asked for: N exponents per row, row-major (sweep_job.hpp)
+  std::size_t lyapunov_dimension = 0;
+  std::vector<double> lyapunov_spectrum;
   BasinMap map;  // the attractors (by id) and the count of unclassified points
 };
 

@@ -96,6 +96,12 @@ Options section_options(string_view points_help) {
   };
 }
 
+// all N Lyapunov exponents (poincare, sweep, basins)
+OptionSpec lyapunov_spectrum(string_view help) {
+  return {.name = "lyapunov_spectrum", .type = OptionType::flag, .help = help,
+          .default_value = false};
+}
+
 // how a sweep tells periods apart (sweep, basins)
 Options period_detection() {
   return {
@@ -143,7 +149,9 @@ Options poincare_options() {
       {section_options("section points recorded (strobe: forcing periods; impact: impacts)"),
        {{.name = "lyapunov", .type = OptionType::flag,
          .help = "also the largest Lyapunov exponent over the recorded periods (meta.json)",
-         .default_value = false}}});
+         .default_value = false},
+        lyapunov_spectrum("also all N Lyapunov exponents over the recorded periods (meta.json) "
+                          "and their running estimate (lyapunov.csv)")}});
 }
 
 Options sweep_options() {
@@ -164,7 +172,8 @@ Options sweep_options() {
         {.name = "lyapunov", .type = OptionType::flag,
          .help = "compute the largest Lyapunov exponent (default: on for 2D, off for 1D)"},
         {.name = "no_lyapunov", .type = OptionType::flag, .help = "do not compute it in a 2D map",
-         .default_value = false, .front_ends = FrontEnds::cli, .excludes = "lyapunov"}},
+         .default_value = false, .front_ends = FrontEnds::cli, .excludes = "lyapunov"},
+        lyapunov_spectrum("also all N Lyapunov exponents of each point (columns lyapunov1..N)")},
        period_detection(),
        {{.name = "classification_tol", .type = OptionType::text,
          .help = "auto: a 2D map (classes only) integrates at the scene's "
@@ -185,7 +194,9 @@ Options basins_options() {
          .required = true},
         sweep_threads(),
         {.name = "lyapunov", .type = OptionType::flag,
-         .help = "also compute the largest Lyapunov exponent", .default_value = false}},
+         .help = "also compute the largest Lyapunov exponent", .default_value = false},
+        lyapunov_spectrum(
+            "also all N Lyapunov exponents of each initial condition (columns lyapunov1..N)")},
        period_detection(),
        {{.name = "attractor_tol", .type = OptionType::number,
          .help = "relative distance under which two canonical section points are one attractor",

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <string>
 
@@ -131,7 +132,7 @@ nlohmann::json sweep_definition(const SweepPlan& plan, const Scene& scene,
                     {"count", a.count}});
   }
   const IntegratorSetting own = scene_integrator(scene);
-  return {
+  nlohmann::json definition = {
       {"scene", scene_record(scene)},
       // the integrators actually used: the transient and record that classify
       // each point, and the Lyapunov exponent's variational run (null: none)
@@ -139,7 +140,8 @@ nlohmann::json sweep_definition(const SweepPlan& plan, const Scene& scene,
        integrator_record(plan.classification_integrator.value_or(own))},
       {"classification_integrator_note", plan.classification_note},
       {"lyapunov_integrator",
-       plan.section.lyapunov ? integrator_record(own) : nlohmann::json(nullptr)},
+       plan.section.lyapunov || plan.section.lyapunov_spectrum ? integrator_record(own)
+                                                               : nlohmann::json(nullptr)},
       {"axes", axes},
       {"direction", to_string(plan.direction)},
       {"chunks", plan.chunks},
@@ -150,6 +152,10 @@ nlohmann::json sweep_definition(const SweepPlan& plan, const Scene& scene,
       {"max_period", plan.max_period},
       {"impactlab_version", IMPACTLAB_VERSION},
   };
+  // only where asked for, so that a checkpoint written before the spectrum
+  // existed still resumes
+  if (plan.section.lyapunov_spectrum) definition["lyapunov_spectrum"] = true;
+  return definition;
 }
 
 SweepOutput run_sweep(const Scene& scene, const SweepTarget& target, const SweepPlan& plan,
@@ -265,11 +271,30 @@ void add_bifurcation_rows(SweepTable& table, const SweepPlan& plan, const SweepR
   }
 }
 
+std::size_t lyapunov_dimension(const SweepPlan& plan,
+                               const std::map<SweepRecordKey, SweepRecord>& records) {
+  if (!plan.section.lyapunov_spectrum) return 0;
+  std::size_t dimension = 0;
+  for (const auto& [key, record] : records)
+    dimension = std::max(dimension, record.result.lyapunov_spectrum.size());
+  return dimension;
+}
+
+void add_lyapunov_spectrum(std::vector<double>& columns, std::size_t dimension,
+                           const SweepRecord& record) {
+  const auto& exponents = record.result.lyapunov_spectrum;
+  for (std::size_t i = 0; i < dimension; ++i)
+    columns.push_back(i < exponents.size() ? exponents[i]
+                                           : std::numeric_limits<double>::quiet_NaN());
+}
+
 SweepTable sweep_table(const SweepPlan& plan, const std::vector<SweepTask>& tasks,
                        const std::map<SweepRecordKey, SweepRecord>& records) {
   SweepTable table;
+  table.lyapunov_dimension = lyapunov_dimension(plan, records);
   for (const SweepRecordKey& key : sweep_row_order(plan, tasks)) {
     const SweepRecord& r = records.at(key);
+    add_lyapunov_spectrum(table.lyapunov_spectrum, table.lyapunov_dimension, r);
     table.value.push_back(plan.axes[0].value(r.index[0]));
     if (plan.axes.size() == 1) {
       add_bifurcation_rows(table, plan, r);

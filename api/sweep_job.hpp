@@ -91,7 +91,20 @@ struct SweepTable {
   std::vector<double> stick_fraction;  // impacts that stuck / impacts; NaN without impacts
   std::vector<double> transient_periods;  // forcing periods the point's transient ran
   std::vector<TransientEnd> transient_end;
+  // with the spectrum asked for: N exponents per row (1/time unit, −∞
+  // collapsed, NaN not computed), row-major, rows × lyapunov_dimension
+  std::size_t lyapunov_dimension = 0;
+  std::vector<double> lyapunov_spectrum;
 };
+
+// N of a sweep's spectrum: the exponents its records hold (0 where the plan
+// does not ask for them).
+std::size_t lyapunov_dimension(const SweepPlan& plan,
+                               const std::map<SweepRecordKey, SweepRecord>& records);
+
+// A record's N exponents appended to `columns` (NaN for those it lacks).
+void add_lyapunov_spectrum(std::vector<double>& columns, std::size_t dimension,
+                           const SweepRecord& record);
 
 SweepTable sweep_table(const SweepPlan& plan, const std::vector<SweepTask>& tasks,
                        const std::map<SweepRecordKey, SweepRecord>& records);

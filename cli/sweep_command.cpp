@@ -45,6 +45,7 @@ struct SweepOptions {
   int threads = 0;
   int chunks = 0;
   bool lyapunov = false, no_lyapunov = false;
+  bool lyapunov_spectrum = false;  // also all N exponents (columns lyapunov1..N)
   bool resume = false;
   long stop_after = 0;  // hidden, for tests: stop after this many new points per rank
   double period_tolerance = 0.0;
@@ -58,6 +59,22 @@ std::string number(double value) { return fmt::format("{}", value); }
 
 using RecordKey = SweepRecordKey;
 
+// the spectrum's columns, where asked for: ",lyapunov1,...,lyapunovN"
+std::string lyapunov_header(std::size_t dimension) {
+  std::string header;
+  for (std::size_t i = 1; i <= dimension; ++i) header += fmt::format(",lyapunov{}", i);
+  return header;
+}
+
+// row `row` of a row-major table of N exponents per row (-inf, nan as such)
+std::string lyapunov_fields(const std::vector<double>& spectrum, std::size_t dimension,
+                            std::size_t row) {
+  std::string fields;
+  for (std::size_t i = 0; i < dimension; ++i)
+    fields += "," + number(spectrum[row * dimension + i]);
+  return fields;
+}
+
 // basins.csv (each grid point's attractor) and attractors.csv (each
 // attractor's class, canonical section point and basin size)
 void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<SweepTask>& tasks,
@@ -65,12 +82,14 @@ void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<
   const BasinsTable table = basins_table(plan, tasks, records);
   AtomicFile& basins = run_files.add("basins.csv");
   basins.stream() << plan.axes[0].name << ',' << plan.axes[1].name
-                  << ",attractor,period,impacts_per_period,contact,termination,transient_end\n";
+                  << ",attractor,period,impacts_per_period,contact,termination,transient_end"
+                  << lyapunov_header(table.lyapunov_dimension) << '\n';
   for (std::size_t k = 0; k < table.x.size(); ++k)
     basins.stream() << number(table.x[k]) << ',' << number(table.y[k]) << ','
                     << table.attractor[k] << ',' << table.period[k] << ','
                     << number(table.impacts_per_period[k]) << ',' << table.contact[k] << ','
                     << to_string(table.termination[k]) << ',' << to_string(table.transient_end[k])
+                    << lyapunov_fields(table.lyapunov_spectrum, table.lyapunov_dimension, k)
                     << '\n';
   AtomicFile& attractors = run_files.add("attractors.csv");
   attractors.stream() << "attractor,period,impacts_per_period,contact,q,qdot,basin_points\n";
@@ -106,7 +125,8 @@ void write_outputs(RunFiles& run_files, const SweepPlan& plan, const std::vector
     bifurcation.stream() << axis.name << ",k,t,q,qdot,wall,direction\n";
     summary.stream() << axis.name
                      << ",direction,period,impacts_per_period,contact,lyapunov,termination,"
-                        "points,stick_fraction,transient_periods,transient_end\n";
+                        "points,stick_fraction,transient_periods,transient_end"
+                     << lyapunov_header(table.lyapunov_dimension) << '\n';
     for (const SweepRecordKey& key : sweep_row_order(plan, tasks)) {
       SweepTable rows;
       add_bifurcation_rows(rows, plan, checkpoints.load(key));
@@ -121,6 +141,7 @@ void write_outputs(RunFiles& run_files, const SweepPlan& plan, const std::vector
       summary.stream() << number(table.value[row]) << ',' << direction_name(table.direction[row])
                        << ',' << summary_fields(row) << ',' << table.points[row] << ','
                        << number(table.stick_fraction[row]) << ',' << transient_fields(row)
+                       << lyapunov_fields(table.lyapunov_spectrum, table.lyapunov_dimension, row)
                        << '\n';
     files = {"bifurcation.csv", "summary.csv"};
     return;
@@ -128,11 +149,14 @@ void write_outputs(RunFiles& run_files, const SweepPlan& plan, const std::vector
   AtomicFile& classes = run_files.add("classes.csv");
   classes.stream() << plan.axes[0].name << ',' << plan.axes[1].name
                    << ",period,impacts_per_period,contact,lyapunov,termination,stick_fraction,"
-                      "transient_periods,transient_end\n";
+                      "transient_periods,transient_end"
+                   << lyapunov_header(table.lyapunov_dimension) << '\n';
   for (std::size_t row = 0; row < table.value.size(); ++row)
     classes.stream() << number(table.value[row]) << ',' << number(table.value2[row]) << ','
                      << summary_fields(row) << ',' << number(table.stick_fraction[row]) << ','
-                     << transient_fields(row) << '\n';
+                     << transient_fields(row)
+                     << lyapunov_fields(table.lyapunov_spectrum, table.lyapunov_dimension, row)
+                     << '\n';
   files = {"classes.csv"};
 }
 
@@ -143,6 +167,7 @@ SweepSpec sweep_spec(const SweepOptions& options) {
   spec.direction = options.direction;
   spec.chunks = options.chunks;
   spec.section = options.section.request();
+  spec.section.lyapunov_spectrum = options.lyapunov_spectrum;
   if (options.lyapunov) spec.lyapunov = true;
   if (options.no_lyapunov) spec.lyapunov = false;
   spec.period_tolerance = options.period_tolerance;
@@ -157,6 +182,7 @@ BasinsSpec basins_spec(const SweepOptions& options) {
   spec.x = options.params.at(0);
   spec.y = options.params.at(1);
   spec.section = options.section.request();
+  spec.section.lyapunov_spectrum = options.lyapunov_spectrum;
   spec.lyapunov = options.lyapunov;  // off unless asked for
   spec.period_tolerance = options.period_tolerance;
   spec.max_period = options.max_period;
@@ -237,6 +263,9 @@ void write_meta(RunFiles& run_files, const nlohmann::json& definition,
                     "or lasted through it (at rest on a wall)"},
         {"lyapunov", "largest Lyapunov exponent (1/time unit); nan where not computed, -inf "
                      "where nearby states merge (rest on a wall)"},
+        {"lyapunov1..N", "with lyapunov_spectrum: all N Lyapunov exponents, largest first "
+                         "(1/time unit; QR re-orthonormalisation); nan where not computed, "
+                         "-inf for a direction the contact collapses"},
         {"termination", "completed, stopped_by_model, no_progress, ..."},
         {"points", "section points recorded"},
         {"stick_fraction", "share of the record window's impacts whose impulse stuck (friction "
@@ -392,6 +421,7 @@ Command add_sweep_command(CLI::App& app) {
   table.add("chunks", options->chunks);
   table.add("lyapunov", options->lyapunov);
   table.add("no_lyapunov", options->no_lyapunov);
+  table.add("lyapunov_spectrum", options->lyapunov_spectrum);
   table.add("period_tol", options->period_tolerance);
   table.add("max_period", options->max_period);
   table.add("classification_tol", options->classification_tolerance);
@@ -418,6 +448,7 @@ Command add_basins_command(CLI::App& app) {
   table.add("y", options->params[1]);
   table.add("threads", options->threads);
   table.add("lyapunov", options->lyapunov);
+  table.add("lyapunov_spectrum", options->lyapunov_spectrum);
   table.add("period_tol", options->period_tolerance);
   table.add("max_period", options->max_period);
   table.add("attractor_tol", options->attractor_tolerance);

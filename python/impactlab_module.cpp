@@ -265,8 +265,9 @@ py::dict simulate_binding(const Scene& scene, double periods, double t_end, doub
 // `transient` None: the settling transient (the options table's default)
 SectionRequest section_request(const std::string& section, std::optional<double> transient,
                                double max_transient, std::uint64_t transient_impacts,
-                               std::uint64_t points, bool lyapunov) {
+                               std::uint64_t points, bool lyapunov, bool lyapunov_spectrum) {
   SectionRequest request;
+  request.lyapunov_spectrum = lyapunov_spectrum;
   request.section = parse_section(section, "section");
   request.settle = !transient.has_value();
   if (transient) request.transient_periods = *transient;
@@ -294,12 +295,26 @@ py::dict section_arrays(const SectionResult& result) {
   return arrays;
 }
 
+// The running estimate of a spectrum kept in memory: one row of N per period
+// (Python reshapes the values by the spectrum's N).
+class LyapunovRows final : public LyapunovSpectrumSink {
+ public:
+  void begin(std::size_t) override {}
+  void write(double t, const std::vector<double>& running) override {
+    times.push_back(t);
+    values.insert(values.end(), running.begin(), running.end());
+  }
+  std::vector<double> times, values;  // values row-major, times.size() × N
+};
+
 py::dict poincare_binding(const Scene& scene, const std::string& section,
                           std::optional<double> transient, double max_transient,
                           std::uint64_t transient_impacts, std::uint64_t points, bool lyapunov,
-                          py::object progress) {
-  const SectionRequest request =
-      section_request(section, transient, max_transient, transient_impacts, points, lyapunov);
+                          bool lyapunov_spectrum, py::object progress) {
+  SectionRequest request = section_request(section, transient, max_transient, transient_impacts,
+                                           points, lyapunov, lyapunov_spectrum);
+  LyapunovRows running;
+  if (lyapunov_spectrum) request.lyapunov_spectrum_sink = &running;
   ProgressRelay relay(std::move(progress));
   // a Poincaré run reports no progress of its own: the check runs once after it
   const SectionResult result = relay.run([&] { return poincare(scene, request); });
@@ -318,6 +333,14 @@ py::dict poincare_binding(const Scene& scene, const std::string& section,
   out["rhs_evaluations"] = result.rhs_evaluations;
   out["lyapunov"] = result.lyapunov;
   out["lyapunov_note"] = result.lyapunov_note;
+  if (lyapunov_spectrum) {
+    out["lyapunov_spectrum"] = owning_array(std::vector<double>(result.lyapunov_spectrum));
+    out["lyapunov_spectrum_error"] =
+        owning_array(std::vector<double>(result.lyapunov_spectrum_error));
+    out["lyapunov_spectrum_note"] = result.lyapunov_spectrum_note;
+    out["lyapunov_running_t"] = owning_array(std::move(running.times));
+    out["lyapunov_running"] = owning_array(std::move(running.values));
+  }
   return out;
 }
 
@@ -352,7 +375,8 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
                        const std::string& direction, int chunks, const std::string& section,
                        std::optional<double> transient, double max_transient,
                        std::uint64_t transient_impacts, std::uint64_t points,
-                       std::optional<bool> lyapunov, double period_tolerance, int max_period,
+                       std::optional<bool> lyapunov, bool lyapunov_spectrum,
+                       double period_tolerance, int max_period,
                        const std::string& classification_tolerance, int threads,
                        py::object progress) {
   SweepSpec spec;
@@ -360,7 +384,8 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
   spec.direction = direction;
   spec.chunks = chunks;
   spec.section =
-      section_request(section, transient, max_transient, transient_impacts, points, false);
+      section_request(section, transient, max_transient, transient_impacts, points, false,
+                      lyapunov_spectrum);
   spec.lyapunov = lyapunov;
   spec.period_tolerance = period_tolerance;
   spec.max_period = max_period;
@@ -394,6 +419,8 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
   out["termination"] = outcome_names(table.termination);
   out["transient_periods"] = owning_array(std::move(table.transient_periods));
   out["transient_end"] = outcome_names(table.transient_end);
+  out["lyapunov_dimension"] = table.lyapunov_dimension;
+  out["lyapunov_spectrum"] = owning_array(std::move(table.lyapunov_spectrum));
   out["points"] = owning_array(std::move(table.points));
   out["wall_time_s"] = wall_time;
   out["stopped"] = stopped_points_note(run.records);
@@ -405,14 +432,15 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
 py::dict basins_binding(const Scene& scene, const std::string& x, const std::string& y,
                         const std::string& section, std::optional<double> transient,
                         double max_transient, std::uint64_t transient_impacts,
-                        std::uint64_t points, bool lyapunov, double period_tolerance,
-                        int max_period, double attractor_tolerance,
+                        std::uint64_t points, bool lyapunov, bool lyapunov_spectrum,
+                        double period_tolerance, int max_period, double attractor_tolerance,
                         int threads, py::object progress) {
   BasinsSpec spec;
   spec.x = x;
   spec.y = y;
   spec.section =
-      section_request(section, transient, max_transient, transient_impacts, points, false);
+      section_request(section, transient, max_transient, transient_impacts, points, false,
+                      lyapunov_spectrum);
   spec.lyapunov = lyapunov;
   spec.period_tolerance = period_tolerance;
   spec.max_period = max_period;
@@ -443,6 +471,8 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
   out["contact"] = owning_array(std::move(table.contact));
   out["termination"] = outcome_names(table.termination);
   out["transient_end"] = outcome_names(table.transient_end);
+  out["lyapunov_dimension"] = table.lyapunov_dimension;
+  out["lyapunov_spectrum"] = owning_array(std::move(table.lyapunov_spectrum));
   out["attractor_id"] = owning_array(std::move(attractors.id));
   out["attractor_period"] = owning_array(std::move(attractors.period));
   out["attractor_impacts_per_period"] = owning_array(std::move(attractors.impacts_per_period));

@@ -7,6 +7,7 @@
     plot_sweep.py continuation branch.csv     out.png PARAM QNAME [bifurcation.csv]
     plot_sweep.py curve        curve.csv      out.png PARAM1 PARAM2 [classes.csv]
     plot_sweep.py basins       basins.csv     out.png XKEY YKEY
+    plot_sweep.py lyapunov     lyapunov.csv   out.png [TIME_UNIT]
 
 bifurcation: the section's q against the parameter, up and down sweeps in two
 colours and markers (hysteresis shows where they differ); the values whose
@@ -182,6 +183,11 @@ def main(argv):
     if kind == "basins":  # scripts/plot_basins.py
         import plot_basins
         plot_basins.main([argv[0], csv, png, *names])
+        return
+    if kind == "lyapunov":  # scripts/plot_lyapunov.py
+        sys.path.insert(0, __import__("os").path.dirname(__file__))
+        import plot_lyapunov
+        plot_lyapunov.main([argv[0], csv, png, *names])
         return
     if kind == "curve":  # scripts/plot_curve.py
         import plot_curve

@@ -335,19 +335,30 @@ def poincare(scene_=None, *, section=_default("poincare", "section"),
              max_transient=_default("poincare", "max_transient"),
              transient_impacts=_default("poincare", "transient_impacts"),
              points=_default("poincare", "points"), lyapunov=_default("poincare", "lyapunov"),
+             lyapunov_spectrum=_default("poincare", "lyapunov_spectrum"),
              progress=None, **keys):
     """The scene's orbit on a Poincaré section (the CLI's `poincare`): t, q,
-    qdot, wall arrays (poincare.csv's rows), phase, counts, Lyapunov exponent."""
+    qdot, wall arrays (poincare.csv's rows), phase, counts, Lyapunov exponent.
+    With lyapunov_spectrum=True also lyapunov_spectrum (λ1..λN, 1/time unit;
+    -inf for a direction the contact collapses, nan where not computed:
+    lyapunov_spectrum_note says why), lyapunov_spectrum_error (half the range
+    of each running estimate over the last quarter of the periods), and the
+    running estimate itself (lyapunov.csv's rows): lyapunov_running_t and
+    lyapunov_running (shape (periods, N))."""
     loaded = scene(scene_ if scene_ is not None else "jin2003", **keys)
     section = _option("poincare", "section", section)
     transient = _option("poincare", "transient", transient)
     max_transient = _option("poincare", "max_transient", max_transient)
     transient_impacts = _option("poincare", "transient_impacts", transient_impacts)
     points = _option("poincare", "points", points)
+    spectrum = _option("poincare", "lyapunov_spectrum", lyapunov_spectrum)
     raw = _run(lambda callback: _impactlab.poincare(loaded, section, transient, max_transient,
                                                     transient_impacts, points, bool(lyapunov),
-                                                    callback),
+                                                    spectrum, callback),
                progress, "poincare")
+    if spectrum:
+        raw["lyapunov_running"] = raw["lyapunov_running"].reshape(
+            len(raw["lyapunov_running_t"]), len(raw["lyapunov_spectrum"]))
     raw["k"] = np.arange(len(raw["t"]))
     raw["phase"] = np.fmod(raw["omega"] * raw["t"], 2.0 * math.pi)
     result = Result(scene=loaded, **raw)
@@ -359,6 +370,16 @@ def poincare(scene_=None, *, section=_default("poincare", "section"),
     return result
 
 
+def _spectrum_columns(raw):
+    """The columns lyapunov1..N of a sweep's or a map's rows (none where the
+    spectrum was not asked for)."""
+    dimension = raw["lyapunov_dimension"]
+    if dimension == 0:
+        return {}
+    rows = raw["lyapunov_spectrum"].reshape(-1, dimension)
+    return {"lyapunov{}".format(i + 1): rows[:, i].copy() for i in range(dimension)}
+
+
 @_documented("sweep")
 def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
           threads=_default("sweep", "threads"), chunks=_default("sweep", "chunks"),
@@ -366,6 +387,7 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
           max_transient=_default("sweep", "max_transient"),
           transient_impacts=_default("sweep", "transient_impacts"),
           points=_default("sweep", "points"), lyapunov=_default("sweep", "lyapunov"),
+          lyapunov_spectrum=_default("sweep", "lyapunov_spectrum"),
           period_tol=_default("sweep", "period_tol"), max_period=_default("sweep", "max_period"),
           classification_tol=_default("sweep", "classification_tol"), progress=None, **keys):
     """A 1D bifurcation sweep (param="omega=FROM:TO:N") or a 2D map (a list of
@@ -384,7 +406,8 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
     if lyapunov is not None and not isinstance(lyapunov, bool):
         raise ValueError("lyapunov = {!r}: expected True, False or None".format(lyapunov))
     for key, value in (("direction", direction), ("section", section),
-                       ("classification_tol", classification_tol)):
+                       ("classification_tol", classification_tol),
+                       ("lyapunov_spectrum", lyapunov_spectrum)):
         _option("sweep", key, value)
     checked = {key: _option("sweep", key, value) for key, value in (
         ("threads", threads), ("chunks", chunks), ("transient", transient),
@@ -393,8 +416,9 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
         ("period_tol", period_tol), ("max_period", max_period))}
     raw = _run(lambda callback: _impactlab.sweep(
         loaded, params, direction, checked["chunks"], section, checked["transient"],
-        checked["max_transient"], checked["transient_impacts"], checked["points"], lyapunov, checked["period_tol"],
-        checked["max_period"], classification_tol, checked["threads"], callback),
+        checked["max_transient"], checked["transient_impacts"], checked["points"], lyapunov,
+        lyapunov_spectrum, checked["period_tol"], checked["max_period"], classification_tol,
+        checked["threads"], callback),
         progress, "sweep")
     axes = raw["axes"]
     names = ["up" if d > 0 else "down" for d in raw["direction"]]
@@ -414,6 +438,7 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
         summary["points"] = raw["points"]
     summary["stick_fraction"] = raw["stick_fraction"]
     summary.update(transient_periods=raw["transient_periods"], transient_end=raw["transient_end"])
+    summary.update(_spectrum_columns(raw))
     if raw["unsettled"]:
         warnings.warn("sweep: {}; summary['transient_end'] says which".format(raw["unsettled"]),
                       PhysicalDiagnosticWarning, stacklevel=2)
@@ -431,6 +456,7 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
            max_transient=_default("basins", "max_transient"),
            transient_impacts=_default("basins", "transient_impacts"),
            points=_default("basins", "points"), lyapunov=_default("basins", "lyapunov"),
+           lyapunov_spectrum=_default("basins", "lyapunov_spectrum"),
            period_tol=_default("basins", "period_tol"),
            max_period=_default("basins", "max_period"),
            attractor_tol=_default("basins", "attractor_tol"), progress=None, **keys):
@@ -441,7 +467,8 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
     values), grid (the rows of basins.csv), attractors (a structured array:
     the rows of attractors.csv) and meta."""
     loaded = scene(scene_, **keys)
-    for key, value in (("x", x), ("y", y), ("section", section), ("lyapunov", lyapunov)):
+    for key, value in (("x", x), ("y", y), ("section", section), ("lyapunov", lyapunov),
+                       ("lyapunov_spectrum", lyapunov_spectrum)):
         _option("basins", key, value)
     checked = {key: _option("basins", key, value) for key, value in (
         ("threads", threads), ("transient", transient), ("max_transient", max_transient),
@@ -450,15 +477,16 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
         ("attractor_tol", attractor_tol))}
     raw = _run(lambda callback: _impactlab.basins(
         loaded, x, y, section, checked["transient"], checked["max_transient"],
-        checked["transient_impacts"],
-        checked["points"], lyapunov, checked["period_tol"], checked["max_period"],
-        checked["attractor_tol"], checked["threads"], callback), progress, "basins")
+        checked["transient_impacts"], checked["points"], lyapunov, lyapunov_spectrum,
+        checked["period_tol"], checked["max_period"], checked["attractor_tol"],
+        checked["threads"], callback), progress, "basins")
     axes = raw["axes"]
     nx, ny = raw["counts"]
     grid = {axes[0]: raw["x"], axes[1]: raw["y"], "attractor": raw["attractor"],
             "period": raw["period"], "impacts_per_period": raw["impacts_per_period"],
             "contact": raw["contact"], "termination": raw["termination"],
             "transient_end": raw["transient_end"]}
+    grid.update(_spectrum_columns(raw))
     columns = [("attractor", "attractor_id", "<i4"), ("period", "attractor_period", "<i4"),
                ("impacts_per_period", "attractor_impacts_per_period", "<f8"),
                ("contact", "attractor_contact", "<i4"), ("q", "attractor_q", "<f8"),

@@ -97,6 +97,8 @@ TEST(JobOptions, RequestStructDefaultsAgreeWithTheTables) {
     EXPECT_EQ(static_cast<double>(section.points), number_default(job, "points"));
   }
   EXPECT_EQ(section.lyapunov, flag_default("poincare", "lyapunov"));
+  for (std::string_view job : {"poincare", "sweep", "basins"})
+    EXPECT_EQ(section.lyapunov_spectrum, flag_default(job, "lyapunov_spectrum")) << job;
 
   const impactlab::SweepSpec sweep;
   EXPECT_EQ(sweep.direction, text_default("sweep", "direction"));

@@ -92,3 +92,16 @@ def test_every_plot_script_answers_help():
         assert completed.returncode == 0, (script.name, completed.stderr)
         assert script.name in completed.stdout or "usage" in completed.stdout.lower(), \
             (script.name, completed.stdout)
+
+
+def test_lyapunov_convergence_leaves_out_collapsed_directions(tmp_path):
+    plot = load("plot_lyapunov")
+    csv = tmp_path / "lyapunov.csv"
+    csv.write_text("# running estimate ...\nt,lambda1,lambda2\n1.0,0.5,-inf\n2.0,0.25,-inf\n")
+    lines = plot.running_lines(plot.read(csv))
+    assert lines["lambda2"] is None  # -inf: drawn as a legend entry only
+    np.testing.assert_array_equal(lines["lambda1"][0], [1.0, 2.0])
+    np.testing.assert_array_equal(lines["lambda1"][1], [0.5, 0.25])
+    # the time unit from the run's record: s where omega is in rad/s
+    assert plot.time_unit({"scene": {"keys": {"omega": {"unit": "rad/s"}}}}) == "s"
+    assert plot.time_unit({"scene": {"keys": {"omega": {"value": 2.0}}}}) == "time unit"
