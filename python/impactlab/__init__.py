@@ -299,6 +299,16 @@ def _warn_if_stopped(result, what):
                       PhysicalDiagnosticWarning, stacklevel=3)
 
 
+def _warn_of_unfinished_points(job, raw, table):
+    """The CLI's warnings of a sweep's points that stopped early or did not
+    settle (a gap, or a transient's label, in the diagram otherwise), with
+    the column of `table` that says which. Issued from the job's caller."""
+    for note, column in ((raw["unsettled"], "transient_end"), (raw["stopped"], "termination")):
+        if note:
+            warnings.warn("{}: {}; {}['{}'] says which".format(job, note, table, column),
+                          PhysicalDiagnosticWarning, stacklevel=3)
+
+
 def _time_span(job, periods, t_end):
     if t_end is not None and periods is not None:
         raise ValueError("t_end = {!r}: give periods or t_end, not both".format(t_end))
@@ -439,13 +449,7 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
     summary["stick_fraction"] = raw["stick_fraction"]
     summary.update(transient_periods=raw["transient_periods"], transient_end=raw["transient_end"])
     summary.update(_spectrum_columns(raw))
-    if raw["unsettled"]:
-        warnings.warn("sweep: {}; summary['transient_end'] says which".format(raw["unsettled"]),
-                      PhysicalDiagnosticWarning, stacklevel=2)
-    if raw["stopped"]:
-        # as the CLI says it: a stopped point is a gap in the diagram otherwise
-        warnings.warn("sweep: {}; summary['termination'] says which".format(raw["stopped"]),
-                      PhysicalDiagnosticWarning, stacklevel=2)
+    _warn_of_unfinished_points("sweep", raw, "summary")
     return Result(scene=loaded, bifurcation=bifurcation, summary=summary,
                   definition=raw["definition"], wall_time_s=raw["wall_time_s"])
 
@@ -500,13 +504,7 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
                     x=raw["x"][:nx].copy(), y=raw["y"][::nx].copy(),
                     labels=raw["attractor"].reshape(ny, nx), grid=grid, attractors=attractors,
                     meta=raw["meta"], wall_time_s=raw["wall_time_s"])
-    # as the CLI says them: a stopped or unsettled point is a wrong label otherwise
-    if raw["stopped"]:
-        warnings.warn("basins: {}; grid['termination'] says which".format(raw["stopped"]),
-                      PhysicalDiagnosticWarning, stacklevel=2)
-    if raw["unsettled"]:
-        warnings.warn("basins: {}; grid['transient_end'] says which".format(raw["unsettled"]),
-                      PhysicalDiagnosticWarning, stacklevel=2)
+    _warn_of_unfinished_points("basins", raw, "grid")
     return result
 
 

@@ -141,6 +141,20 @@ TEST(Poincare, TheLyapunovExponentIsANumberInMeta) {
   EXPECT_LT(meta["lyapunov"]["largest_exponent_per_time"].get<double>(), 0.0);
 }
 
+// The rows of a CSV file whose `column` passes `test`; -1 where the file has
+// no such column.
+template <class Test>
+int rows_where(const std::filesystem::path& csv, const std::string& column, Test test) {
+  const auto rows = read_csv(csv);
+  const auto& header = rows.front();
+  const auto index =
+      static_cast<std::size_t>(std::find(header.begin(), header.end(), column) - header.begin());
+  if (index == header.size()) return -1;
+  int passing = 0;
+  for (std::size_t i = 1; i < rows.size(); ++i) passing += test(rows[i][index]) ? 1 : 0;
+  return passing;
+}
+
 // The largest distance of poincare.csv's points from the hanging rest
 // (θ, θ̇) = (0, 0), an exact equilibrium of the pendulum whose pivot moves
 // vertically.
@@ -200,13 +214,8 @@ TEST(Sweep, PointsThatDidNotSettleAreMarkedAndCounted) {
       "sweep jin2003 --set V0=1 --param omega=5.45:5.55:3 --no-lyapunov --max-transient 150 "
       "--quiet --out " + out.string());
   ASSERT_EQ(run.status, 0) << run.err;
-  const auto rows = read_csv(out / "summary.csv");
-  const auto& header = rows.front();
-  const auto column = static_cast<std::size_t>(
-      std::find(header.begin(), header.end(), "transient_end") - header.begin());
-  ASSERT_LT(column, header.size());
-  int unsettled = 0;
-  for (std::size_t i = 1; i < rows.size(); ++i) unsettled += rows[i][column] == "not_settled";
+  const int unsettled = rows_where(out / "summary.csv", "transient_end",
+                                   [](const std::string& end) { return end == "not_settled"; });
   ASSERT_GT(unsettled, 0);
   EXPECT_NE(run.err.find("warning: " + std::to_string(unsettled) +
                          " of 3 points did not settle within max_transient = 150"),
@@ -241,13 +250,8 @@ TEST(Sweep, PointsThatStopEarlyAreCountedInAWarning) {
   const ProgramRun run = run_without_sticking(
       scratch, "sweep", {"--param", "F=0.2:3:20", "--no-lyapunov", "--out", out.string()});
   ASSERT_EQ(run.status, 0) << run.err;
-  const auto rows = read_csv(out / "summary.csv");
-  const auto& header = rows.front();
-  const auto column = static_cast<std::size_t>(
-      std::find(header.begin(), header.end(), "termination") - header.begin());
-  ASSERT_LT(column, header.size());
-  int stopped = 0;
-  for (std::size_t i = 1; i < rows.size(); ++i) stopped += rows[i][column] != "completed";
+  const int stopped = rows_where(out / "summary.csv", "termination",
+                                 [](const std::string& end) { return end != "completed"; });
   ASSERT_GT(stopped, 0);
   EXPECT_NE(run.err.find("warning: " + std::to_string(stopped) +
                          " of 20 points stopped early (no_progress "),

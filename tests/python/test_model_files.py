@@ -68,14 +68,20 @@ def test_a_bad_model_file_raises_value_error_at_its_line_and_column(tmp_path):
         impactlab.simulate(str(bad))
 
 
-def test_a_sweep_warns_of_its_points_that_stop_early(tmp_path):
-    # the shipped Duffing oscillator without its wall's sticking table (the
-    # file's last section) chatters into no_progress at some F, and the sweep
-    # says how many points stopped, as the CLI does, and as its summary has them
+def duffing_without_sticking(folder):
+    """The shipped Duffing oscillator without its wall's sticking table (the
+    file's last section): it chatters into no_progress at some F."""
     with open(os.path.join(EXAMPLES, "duffing_stop.toml")) as shipped:
         model = shipped.read()
-    scene = tmp_path / "no_sticking.toml"
+    scene = folder / "no_sticking.toml"
     scene.write_text(model[:model.index("[model.walls.sticking]")])
+    return scene
+
+
+def test_a_sweep_warns_of_its_points_that_stop_early(tmp_path):
+    # the sweep says how many points stopped, as the CLI does, and as its
+    # summary has them
+    scene = duffing_without_sticking(tmp_path)
     with pytest.warns(impactlab.PhysicalDiagnosticWarning, match="points stopped early") as caught:
         result = impactlab.sweep(str(scene), r=0.2, sigma=0.1, param="F=0.2:3:20",
                                  lyapunov=False)
@@ -85,12 +91,9 @@ def test_a_sweep_warns_of_its_points_that_stop_early(tmp_path):
 
 
 def test_basins_warn_of_their_points_that_stop_early(tmp_path):
-    # the same chattering oscillator, its basins over (F, x0): the points
-    # that stopped are counted in a warning, as grid['termination'] has them
-    with open(os.path.join(EXAMPLES, "duffing_stop.toml")) as shipped:
-        model = shipped.read()
-    scene = tmp_path / "no_sticking.toml"
-    scene.write_text(model[:model.index("[model.walls.sticking]")])
+    # its basins over (F, x0): the points that stopped are counted in a
+    # warning, as grid['termination'] has them
+    scene = duffing_without_sticking(tmp_path)
     with pytest.warns(impactlab.PhysicalDiagnosticWarning, match="points stopped early") as caught:
         result = impactlab.basins(str(scene), r=0.2, sigma=0.1, x="F=0.2:3:10",
                                   y="initial.x=-0.5:0:2")
