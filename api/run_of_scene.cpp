@@ -36,4 +36,8 @@ EventExtender event_extender_of_scene(const Scene& scene) {
   return visit_scene(scene, [](const auto& bound) { return bound.event_extender(); });
 }
 
+EventColumns event_columns_of_scene(const Scene& scene) {
+  return visit_scene(scene, [](const auto& bound) { return bound.event_columns(); });
+}
+
 }  // namespace impactlab

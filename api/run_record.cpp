@@ -1,9 +1,41 @@
 #include <impactlab/api/run_record.hpp>
 
+#include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/api/scene_record.hpp>
 
 namespace impactlab {
+
+namespace {
+
+// What each of the run's events.csv columns holds, with its unit.
+nlohmann::json event_column_units(const EventColumns& columns, const std::string& q_name) {
+  const nlohmann::json every = {
+      {"t", "s"},
+      {"kind", "impact | grazing | accumulation | contact_start | contact_end | "
+               "slip_reversal | painleve"},
+      {"wall", "+1 / -1, 0 for none"},
+      {"q", q_name},
+      {"qdot_before", "d" + q_name + "/dt before the event"},
+      {"qdot_after", "d" + q_name + "/dt after the event"},
+      {"normal_impulse", "N s"},
+      {"tangential_velocity", "m/s"},
+      {"normal_force", "N"},
+      {"friction_work", "J, cumulative over contact phases since t0"},
+      {"instantaneous_residual",
+       "m/s, pendulum Model P impacts: the paper's Eq. 26 residual (0: instantaneous)"},
+      {"sliding_residual", "m/s, pendulum Model P impacts: the paper's Eqs. 21-22 residual (Fig. 4)"},
+      {"tangential_velocity_after", "m/s, just after an impact (rigid model)"},
+      {"accumulation_error",
+       "s, accumulations: bound on the error of the accumulation time "
+       "(contact/accumulation.hpp)"}};
+  nlohmann::json units = nlohmann::json::object();
+  for (const std::string_view name : columns.names())
+    units[std::string(name)] = every.at(std::string(name));
+  return units;
+}
+
+}  // namespace
 
 nlohmann::json run_record(const Scene& scene, const RunOutput& output) {
   const SceneSchema& schema = scene_schema(scene);
@@ -36,26 +68,7 @@ nlohmann::json run_record(const Scene& scene, const RunOutput& output) {
       {"wall_time_s", output.wall_time},
       {"derived", output.derived},
       {"columns",
-       {{"events.csv",
-         {{"t", "s"},
-          {"kind", "impact | grazing | accumulation | contact_start | contact_end | "
-                   "slip_reversal | painleve"},
-          {"wall", "+1 / -1, 0 for none"},
-          {"q", q_name},
-          {"qdot_before", "d" + q_name + "/dt before the event"},
-          {"qdot_after", "d" + q_name + "/dt after the event"},
-          {"normal_impulse", "N s"},
-          {"tangential_velocity", "m/s"},
-          {"normal_force", "N"},
-          {"friction_work", "J, cumulative over contact phases since t0"},
-          {"instantaneous_residual",
-           "m/s, pendulum Model P impacts: the paper's Eq. 26 residual (0: instantaneous)"},
-          {"sliding_residual",
-           "m/s, pendulum Model P impacts: the paper's Eqs. 21-22 residual (Fig. 4)"},
-          {"tangential_velocity_after", "m/s, just after an impact (rigid model)"},
-          {"accumulation_error",
-           "s, accumulations: bound on the error of the accumulation time "
-           "(contact/accumulation.hpp)"}}},
+       {{"events.csv", event_column_units(event_columns(scene), q_name)},
         {"trajectory.csv", {{"t", "s"}, {"q", q_name},
                             {"qdot", "d" + q_name + "/dt"},
                             {"mode", "mode of the hybrid system"}}}}},

@@ -18,6 +18,8 @@ RunOutput simulate(const Scene& scene, const RunRequest& request) {
 
 EventExtender event_extender(const Scene& scene) { return event_extender_of_scene(scene); }
 
+EventColumns event_columns(const Scene& scene) { return event_columns_of_scene(scene); }
+
 SectionResult poincare(const Scene& scene, const SectionRequest& request) {
   return sweep_target(scene).section(scene, request);
 }

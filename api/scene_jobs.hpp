@@ -8,6 +8,7 @@
 #include <impactlab/analysis/periodic.hpp>
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/analysis/sweep.hpp>
+#include <impactlab/io/event_columns.hpp>
 #include <impactlab/io/event_extension.hpp>
 #include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
@@ -21,6 +22,8 @@ RunOutput simulate(const Scene& scene, const RunRequest& request);
 // events writer and Python's events array (io/event_extension.hpp); empty
 // where nothing (every model but the pendulum's Model P).
 EventExtender event_extender(const Scene& scene);
+// events.csv's columns of a run of the scene: the core's and its model's own
+EventColumns event_columns(const Scene& scene);
 
 // The scene's orbit on a Poincaré section. BadInput (key `oscillator`) when
 // the scene's oscillator or model has no section binding.

@@ -25,6 +25,8 @@
 //                        Tally: on_event(const EventRecord&), add_to(RunOutput&)
 //   static EventExtender event_extender(const System&);   what its events add to the
 //                        core's record (io/event_extension.hpp): events.csv's own columns
+//   static EventColumns event_columns(const System&);     events.csv's columns beyond the
+//                        core's that its events fill (io/event_columns.hpp; none without)
 //   static std::string stop_advice(const System&, const RunOutput&);
 //                        what to do about a run that stopped early (empty: nothing to add)
 //
@@ -38,6 +40,7 @@
 
 #include <impactlab/analysis/scene_boundary.hpp>
 #include <impactlab/core/has_jacobian.hpp>
+#include <impactlab/io/event_columns.hpp>
 #include <impactlab/io/event_extension.hpp>
 #include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
@@ -71,6 +74,14 @@ class SceneSystem {
   [[nodiscard]] EventExtender event_extender() const {
     if constexpr (requires { Binding::event_extender(system_); })
       return Binding::event_extender(system_);
+    else
+      return {};
+  }
+
+  // events.csv's columns beyond the core's that the system's events fill
+  [[nodiscard]] EventColumns event_columns() const {
+    if constexpr (requires { Binding::event_columns(system_); })
+      return Binding::event_columns(system_);
     else
       return {};
   }

@@ -8,6 +8,7 @@
 #include <impactlab/analysis/continuation.hpp>
 #include <impactlab/analysis/periodic.hpp>
 #include <impactlab/analysis/section.hpp>
+#include <impactlab/io/event_columns.hpp>
 #include <impactlab/io/event_extension.hpp>
 #include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
@@ -21,6 +22,8 @@ RunOutput run_of_scene(const Scene& scene, const RunRequest& request);
 // What the events of the scene's model add to the core's record (the
 // pendulum's Model P: its impact residuals); empty where nothing.
 EventExtender event_extender_of_scene(const Scene& scene);
+// events.csv's columns beyond the core's that the scene's model fills
+EventColumns event_columns_of_scene(const Scene& scene);
 
 // The orbit on a Poincaré section, after a transient (analysis/run_section.hpp).
 SectionResult section_of_scene(const Scene& scene, const SectionRequest& request);

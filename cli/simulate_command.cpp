@@ -49,7 +49,7 @@ int run_simulate(const SceneOptions& options, const std::vector<std::string>& co
   // them as the run goes (memory does not grow with the run's length)
   RunFiles files = open_run_files(directory);
   std::vector<std::string> names = {"events.csv", "meta.json"};
-  EventsCsvWriter events(files.add("events.csv"), event_extender(scene));
+  EventsCsvWriter events(files.add("events.csv"), event_extender(scene), event_columns(scene));
   request.keep_events = false;
   request.event_sink = &events;
   std::optional<TrajectoryCsvWriter> trajectory;

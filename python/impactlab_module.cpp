@@ -10,6 +10,7 @@
 #include <cmath>
 #include <complex>
 #include <exception>
+#include <map>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -154,32 +155,36 @@ struct EventRow {
   EventExtension extension;
 };
 
-// The structured dtype of EventRow, field by field at its C++ offsets, so
-// that the event log is one array (the rows copied once, with their
-// extensions).
-py::dtype event_dtype() {
+// The structured dtype of EventRow, field by field at its C++ offsets, for
+// the columns of a run's events.csv (the core's and its model's own), so that
+// the event log is one array (the rows copied once, with their extensions).
+py::dtype event_dtype(const EventColumns& columns) {
+  const std::size_t event = offsetof(EventRow, event), extension = offsetof(EventRow, extension);
+  // every field's format and offset, by events.csv's column name
+  const std::map<std::string_view, std::pair<const char*, std::size_t>> fields = {
+      {"t", {"<f8", event + offsetof(EventRecord, t)}},
+      {"kind", {"u1", event + offsetof(EventRecord, kind)}},
+      {"wall", {"<i4", event + offsetof(EventRecord, wall)}},
+      {"q", {"<f8", event + offsetof(EventRecord, q)}},
+      {"qdot_before", {"<f8", event + offsetof(EventRecord, qdot_before)}},
+      {"qdot_after", {"<f8", event + offsetof(EventRecord, qdot_after)}},
+      {"normal_impulse", {"<f8", event + offsetof(EventRecord, normal_impulse)}},
+      {"tangential_velocity", {"<f8", event + offsetof(EventRecord, tangential_velocity)}},
+      {"normal_force", {"<f8", event + offsetof(EventRecord, normal_force)}},
+      {"friction_work", {"<f8", event + offsetof(EventRecord, friction_work)}},
+      {"instantaneous_residual",
+       {"<f8", extension + offsetof(EventExtension, instantaneous_residual)}},
+      {"sliding_residual", {"<f8", extension + offsetof(EventExtension, sliding_residual)}},
+      {"tangential_velocity_after",
+       {"<f8", event + offsetof(EventRecord, tangential_velocity_after)}},
+      {"accumulation_error", {"<f8", event + offsetof(EventRecord, accumulation_error)}}};
   py::list names, formats, offsets;
-  auto add = [&](const char* name, const char* format, std::size_t offset) {
-    names.append(name);
+  for (const std::string_view name : columns.names()) {
+    const auto& [format, offset] = fields.at(name);
+    names.append(py::str(std::string(name)));
     formats.append(format);
     offsets.append(offset);
-  };
-  const std::size_t event = offsetof(EventRow, event), extension = offsetof(EventRow, extension);
-  add("t", "<f8", event + offsetof(EventRecord, t));
-  add("kind", "u1", event + offsetof(EventRecord, kind));
-  add("wall", "<i4", event + offsetof(EventRecord, wall));
-  add("q", "<f8", event + offsetof(EventRecord, q));
-  add("qdot_before", "<f8", event + offsetof(EventRecord, qdot_before));
-  add("qdot_after", "<f8", event + offsetof(EventRecord, qdot_after));
-  add("normal_impulse", "<f8", event + offsetof(EventRecord, normal_impulse));
-  add("tangential_velocity", "<f8", event + offsetof(EventRecord, tangential_velocity));
-  add("normal_force", "<f8", event + offsetof(EventRecord, normal_force));
-  add("friction_work", "<f8", event + offsetof(EventRecord, friction_work));
-  add("instantaneous_residual", "<f8",
-      extension + offsetof(EventExtension, instantaneous_residual));
-  add("sliding_residual", "<f8", extension + offsetof(EventExtension, sliding_residual));
-  add("tangential_velocity_after", "<f8", event + offsetof(EventRecord, tangential_velocity_after));
-  add("accumulation_error", "<f8", event + offsetof(EventRecord, accumulation_error));
+  }
   py::dict spec;
   spec["names"] = names;
   spec["formats"] = formats;
@@ -188,11 +193,9 @@ py::dtype event_dtype() {
   return py::dtype::from_args(spec);
 }
 
-// The events of a run of `scene`, each with its extension.
+// The events of a run of `scene`, each with its extension, in the columns of
+// the run's events.csv.
 py::array event_array(const std::vector<EventRecord>& events, const Scene& scene) {
-  // built once: the dtype is the same for every run (never freed, so that it
-  // outlives no interpreter)
-  static const auto* dtype = new py::dtype(event_dtype());
   const EventExtender extender = event_extender(scene);
   auto* owner = new std::vector<EventRow>();
   owner->reserve(events.size());
@@ -200,8 +203,8 @@ py::array event_array(const std::vector<EventRecord>& events, const Scene& scene
     owner->push_back({event, extender ? extender(event) : EventExtension{}});
   py::capsule base(owner,
                    [](void* pointer) { delete static_cast<std::vector<EventRow>*>(pointer); });
-  return py::array(*dtype, {static_cast<py::ssize_t>(owner->size())}, {},
-                   owner->data(), base);
+  return py::array(event_dtype(event_columns(scene)), {static_cast<py::ssize_t>(owner->size())},
+                   {}, owner->data(), base);
 }
 
 // The names of a table's terminations or transient ends, as the CLI's files
@@ -802,7 +805,8 @@ std::string keyword_message(const BadInput& bad) {
 // A job's option table (api/job_options.hpp) as a list of dicts, one per
 // option: name, type, default (None where unset; an int for whole numbers, a
 // tuple for a list of numbers), lower, upper, lower_open, unit, help (other
-// options named as `name`), choices, front_ends, required, for_tests_only.
+// options named as `name`), choices, front_ends, required, for_tests_only,
+// excludes (the option it cannot be given with; "" for none).
 py::list job_option_rows(const std::string& job) {
   static constexpr const char* type_names[] = {"number", "integer", "count", "text",
                                                "file", "flag", "text_list", "number_list"};
@@ -839,6 +843,7 @@ py::list job_option_rows(const std::string& job) {
     row["front_ends"] = front_end_names[static_cast<int>(spec.front_ends)];
     row["required"] = spec.required;
     row["for_tests_only"] = spec.for_tests_only;
+    row["excludes"] = std::string(spec.excludes);
     rows.append(row);
   }
   return rows;

@@ -17,6 +17,7 @@
 #include <impactlab/api/bindings/pendulum_walls_parameters.hpp>
 #include <impactlab/core/event_log.hpp>
 #include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/event_columns.hpp>
 #include <impactlab/io/event_extension.hpp>
 #include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
@@ -104,6 +105,17 @@ struct PendulumBinding {
   static PendulumRunTally run_tally(const System& system, const Scene&) {
     return PendulumRunTally(system.parameters(), system.wall_angle(), System::is_paper_model);
   }
+  // the impulse, slip, contact force and friction work of every model of the
+  // bob; Model P adds its impact residuals (event_extender below)
+  static EventColumns event_columns(const System&) {
+    if constexpr (System::is_paper_model)
+      return {EventColumn::normal_impulse, EventColumn::tangential_velocity,
+              EventColumn::normal_force, EventColumn::friction_work,
+              EventColumn::instantaneous_residual, EventColumn::sliding_residual};
+    else
+      return {EventColumn::normal_impulse, EventColumn::tangential_velocity,
+              EventColumn::normal_force, EventColumn::friction_work};
+  }
   // Model P's impact residuals (PaperImpactResiduals), events.csv's columns for them
   static EventExtender event_extender(const System& system)
     requires System::is_paper_model
@@ -182,6 +194,12 @@ struct RigidPendulumBinding {
   static RigidPendulumRunTally run_tally(const System& system, const Scene&) {
     return RigidPendulumRunTally(system, 2.0 * std::numbers::pi / forcing_frequency(system),
                                  system.spin_free());
+  }
+  // the impulse, slip before and after an impact, contact force and friction work
+  static EventColumns event_columns(const System&) {
+    return {EventColumn::normal_impulse, EventColumn::tangential_velocity,
+            EventColumn::normal_force, EventColumn::friction_work,
+            EventColumn::tangential_velocity_after};
   }
 };
 

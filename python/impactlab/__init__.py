@@ -242,6 +242,17 @@ def _option(job, name, value):
     return value
 
 
+def _refuse_excluded(job, given):
+    """ValueError where two options of `given` (name -> value) that exclude
+    each other are both away from their defaults, as the CLI refuses them."""
+    for name, value in given.items():
+        other = _OPTIONS[job][name]["excludes"]
+        if other and other in given and value != _default(job, name) \
+                and given[other] != _default(job, other):
+            raise ValueError("{} = {!r}: excludes {} (given {!r})".format(
+                name, value, other, given[other]))
+
+
 class _PlainProgress:
     """A progress line on stderr ("sweep: 42%"), redrawn in place, where tqdm
     is not installed."""
@@ -360,6 +371,8 @@ def poincare(scene_=None, *, section=_default("poincare", "section"),
     transient = _option("poincare", "transient", transient)
     max_transient = _option("poincare", "max_transient", max_transient)
     transient_impacts = _option("poincare", "transient_impacts", transient_impacts)
+    _refuse_excluded("poincare", {"transient": transient, "max_transient": max_transient,
+                                  "transient_impacts": transient_impacts})
     points = _option("poincare", "points", points)
     spectrum = _option("poincare", "lyapunov_spectrum", lyapunov_spectrum)
     raw = _run(lambda callback: _impactlab.poincare(loaded, section, transient, max_transient,
@@ -424,6 +437,7 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
         ("max_transient", max_transient), ("transient_impacts", transient_impacts),
         ("points", points),
         ("period_tol", period_tol), ("max_period", max_period))}
+    _refuse_excluded("sweep", checked)
     raw = _run(lambda callback: _impactlab.sweep(
         loaded, params, direction, checked["chunks"], section, checked["transient"],
         checked["max_transient"], checked["transient_impacts"], checked["points"], lyapunov,
@@ -479,6 +493,7 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
         ("transient_impacts", transient_impacts), ("points", points), ("period_tol", period_tol),
         ("max_period", max_period),
         ("attractor_tol", attractor_tol))}
+    _refuse_excluded("basins", checked)
     raw = _run(lambda callback: _impactlab.basins(
         loaded, x, y, section, checked["transient"], checked["max_transient"],
         checked["transient_impacts"], checked["points"], lyapunov, lyapunov_spectrum,

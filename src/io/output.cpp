@@ -228,11 +228,9 @@ void append_csv_text(fmt::memory_buffer& row, std::string_view text) {
   row.push_back('"');
 }
 
-EventsCsvWriter::EventsCsvWriter(AtomicFile& file, EventExtender extender)
-    : out_(file.stream()), extender_(std::move(extender)) {
-  out_ << "t,kind,wall,q,qdot_before,qdot_after,normal_impulse,tangential_velocity,normal_force,"
-          "friction_work,instantaneous_residual,sliding_residual,tangential_velocity_after,"
-          "accumulation_error\n";
+EventsCsvWriter::EventsCsvWriter(AtomicFile& file, EventExtender extender, EventColumns columns)
+    : out_(file.stream()), extender_(std::move(extender)), columns_(columns) {
+  out_ << columns_.header();
 }
 
 void EventsCsvWriter::write(const EventRecord& e) {
@@ -243,13 +241,20 @@ void EventsCsvWriter::write(const EventRecord& e) {
   const std::string_view kind = to_string(e.kind);
   row_.append(kind.data(), kind.data() + kind.size());
   fmt::format_to(fmt::appender(row_), FMT_COMPILE(",{},"), e.wall);
-  const EventExtension extension = extender_ ? extender_(e) : EventExtension{};
-  for (double value : {e.q, e.qdot_before, e.qdot_after, e.normal_impulse, e.tangential_velocity,
-                       e.normal_force, e.friction_work, extension.instantaneous_residual,
-                       extension.sliding_residual, e.tangential_velocity_after}) {
+  for (double value : {e.q, e.qdot_before, e.qdot_after}) {
     append_field(row_, value);
     comma();
   }
+  const EventExtension extension = extender_ ? extender_(e) : EventExtension{};
+  // the model's own columns, in EventColumn's order
+  const std::array<double, event_column_count> optional = {
+      e.normal_impulse, e.tangential_velocity, e.normal_force, e.friction_work,
+      extension.instantaneous_residual, extension.sliding_residual, e.tangential_velocity_after};
+  for (std::size_t k = 0; k < event_column_count; ++k)
+    if (columns_.has(static_cast<EventColumn>(k))) {
+      append_field(row_, optional[k]);
+      comma();
+    }
   append_field(row_, e.accumulation_error);
   row_.push_back('\n');
   out_.write(row_.data(), static_cast<std::streamsize>(row_.size()));
@@ -273,8 +278,8 @@ void TrajectoryCsvWriter::write(const TrajectorySample& s) {
 }
 
 void write_events_csv(AtomicFile& file, std::span<const EventRecord> events,
-                      EventExtender extender) {
-  EventsCsvWriter writer(file, std::move(extender));
+                      EventExtender extender, EventColumns columns) {
+  EventsCsvWriter writer(file, std::move(extender), columns);
   for (const auto& e : events) writer.write(e);
 }
 

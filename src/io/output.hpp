@@ -17,6 +17,7 @@
 
 #include <impactlab/core/event_log.hpp>
 #include <impactlab/core/event_sink.hpp>
+#include <impactlab/io/event_columns.hpp>
 #include <impactlab/io/event_extension.hpp>
 #include <impactlab/io/run_output.hpp>
 
@@ -106,12 +107,15 @@ void prepare_output_directory(const std::filesystem::path& directory);
 // computed). Numbers with all their digits (round-trip).
 class EventsCsvWriter final : public EventSink {
  public:
-  explicit EventsCsvWriter(AtomicFile& file, EventExtender extender = {});  // writes the header
+  // writes the header: the core's columns and `columns` of the model's
+  explicit EventsCsvWriter(AtomicFile& file, EventExtender extender = {},
+                           EventColumns columns = EventColumns::all());
   void write(const EventRecord& event) override;
 
  private:
   std::ofstream& out_;
   EventExtender extender_;
+  EventColumns columns_;
   fmt::memory_buffer row_;
 };
 
@@ -128,7 +132,7 @@ class TrajectoryCsvWriter final : public SampleSink {
 
 // The same files from events and samples held in memory.
 void write_events_csv(AtomicFile& file, std::span<const EventRecord> events,
-                      EventExtender extender = {});
+                      EventExtender extender = {}, EventColumns columns = EventColumns::all());
 void write_trajectory_csv(AtomicFile& file, std::span<const TrajectorySample> samples);
 
 void write_json(AtomicFile& file, const nlohmann::json& document);

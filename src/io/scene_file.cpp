@@ -65,7 +65,9 @@ std::string scene_file_text(const Scene& scene, const SceneSchema& schema) {
     }
     std::ostringstream section;
     section << model;
-    text += "\n" + section.str() + "\n";
+    text += '\n';
+    text += section.str();
+    text += '\n';
   }
   return text;
 }

@@ -1,10 +1,12 @@
 // The command-line contract (docs/simulation.md, "Robustness"): bad input exits with status 2 and
 // one line on stderr naming the key and the value, writes nothing; a good run
 // writes complete events.csv and meta.json.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -103,6 +105,38 @@ TEST(Simulate, WritesCompleteEventsAndMeta) {
   // no temporary left behind
   for (const auto& entry : std::filesystem::directory_iterator(out_dir))
     EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
+}
+
+// events.csv carries the columns its model fills and no others: the core's
+// for every model, the bob's impulse, slip, contact force and friction work
+// for the pendulum, Model P's residuals, the rigid model's slip after an
+// impact; a model file and the bouncing ball, the core's alone. meta.json
+// describes the same columns.
+TEST(Simulate, EventsCarryOnlyTheColumnsTheirModelFills) {
+  const ScratchFolder scratch;
+  const std::string core = "t,kind,wall,q,qdot_before,qdot_after,";
+  const std::string bob = "normal_impulse,tangential_velocity,normal_force,friction_work,";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"simulate jin2003", core + bob + "accumulation_error"},
+      {"simulate jin2003 --set model=paper",
+       core + bob + "instantaneous_residual,sliding_residual,accumulation_error"},
+      {"simulate jin2003 --set model=rigid", core + bob + "tangential_velocity_after,accumulation_error"},
+      {"simulate bouncing_ball", core + "accumulation_error"},
+      {"simulate " + std::string(IMPACTLAB_SOURCE_DIR) +
+           "/oscillators/model_file/examples/duffing_stop.toml",
+       core + "accumulation_error"}};
+  for (const auto& [command, header] : cases) {
+    SCOPED_TRACE(command);
+    const auto out = scratch / "run";
+    const ProgramRun run = run_command_line(
+        command + " --periods 5 --quiet --out " + out.string(),
+        {.environment = {"IMPACTLAB_CACHE_DIR=" + (scratch / "cache").string()}, .limit_s = 120});
+    ASSERT_EQ(run.status, 0) << run.err;
+    const std::string events = slurp(out / "events.csv");
+    EXPECT_EQ(events.substr(0, events.find('\n')), header);
+    const auto described = nlohmann::json::parse(slurp(out / "meta.json"))["columns"]["events.csv"];
+    EXPECT_EQ(described.size(), static_cast<std::size_t>(std::count(header.begin(), header.end(), ',') + 1));
+  }
 }
 
 TEST(Simulate, SetOverridesReachTheRun) {

@@ -262,6 +262,16 @@ def test_a_saved_scene_runs_as_the_scene_it_was_saved_from(tmp_path, cli):
     assert not (tmp_path / "no_such_folder").exists()
 
 
+def test_options_that_exclude_each_other_are_refused_as_the_cli_refuses_them():
+    # the CLI: "--transient excludes --max-transient"
+    with pytest.raises(ValueError, match="max_transient = 300.0: excludes transient"):
+        impactlab.poincare("jin2003", transient=100, max_transient=300)
+    with pytest.raises(ValueError, match="excludes transient"):
+        impactlab.sweep("jin2003", param="omega=6:7:3", transient=10, transient_impacts=5)
+    # one of them, or the other at its default, runs
+    assert impactlab.poincare("jin2003", transient=5, points=2).transient_end == "fixed"
+
+
 def test_scenes_lists_the_builtin_scenes():
     listed = impactlab.scenes()
     assert "jin2003" in [s["name"] for s in listed]

@@ -9,9 +9,18 @@ import pytest
 import impactlab
 from conftest import read_csv, read_json, same_numbers
 
-EVENT_COLUMNS = ["t", "wall", "q", "qdot_before", "qdot_after", "normal_impulse",
-                 "tangential_velocity", "normal_force", "friction_work", "instantaneous_residual",
-                 "sliding_residual", "tangential_velocity_after", "accumulation_error"]
+
+
+def same_events(events_csv, events):
+    """The events array has events.csv's columns, in its order, with the same
+    numbers bit for bit (kind as names)."""
+    columns = list(events_csv)
+    assert list(events.dtype.names) == columns
+    for column in columns:
+        if column != "kind":
+            same_numbers(events_csv[column], events[column])
+    assert list(events.kind_names()) == events_csv["kind"]
+
 
 # what meta.json holds that a second run cannot reproduce, or that only a file has
 FILE_ONLY = {"command", "created_utc", "files", "wall_time_s"}
@@ -26,9 +35,7 @@ def test_simulate_equals_cli_events_trajectory_and_meta(cli):
     run = impactlab.simulate("jin2003", V0=4.163, periods=30, sample=0.05)
     events = read_csv(out / "events.csv")
     assert len(run.events) == len(events["t"]) > 10
-    for column in EVENT_COLUMNS:
-        same_numbers(events[column], run.events[column])
-    assert list(run.events.kind_names()) == events["kind"]
+    same_events(events, run.events)
     trajectory = read_csv(out / "trajectory.csv")
     same_numbers(trajectory["t"], run.trajectory.t)
     same_numbers(trajectory["q"], run.trajectory.q)
@@ -44,9 +51,7 @@ def test_simulate_the_issue_example_equals_cli_events(cli):
     events = read_csv(out / "events.csv")
     assert "accumulation" in events["kind"] and "contact_start" in events["kind"]
     assert len(run.events) == len(events["t"])
-    for column in EVENT_COLUMNS:
-        same_numbers(events[column], run.events[column])
-    assert list(run.events.kind_names()) == events["kind"]
+    same_events(events, run.events)
 
 
 def test_simulate_paper_model_equals_cli_events_with_its_residuals(cli):
@@ -56,8 +61,8 @@ def test_simulate_paper_model_equals_cli_events_with_its_residuals(cli):
     run = impactlab.simulate("jin2003", model="paper", V0=4.163, periods=30)
     events = read_csv(out / "events.csv")
     assert len(run.events) == len(events["t"]) > 10
-    for column in EVENT_COLUMNS:
-        same_numbers(events[column], run.events[column])
+    same_events(events, run.events)
+    assert "instantaneous_residual" in events and "sliding_residual" in events
     impacts = [k for k, kind in enumerate(events["kind"]) if kind == "impact"]
     assert impacts
     assert all(math.isfinite(run.events["instantaneous_residual"][k]) for k in impacts)
