@@ -21,6 +21,7 @@
 //   trajectory, to 1e-10 (1/time unit): the QR carries its first vector as
 //   that method carries its one vector, so they differ by round-off only.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <filesystem>
@@ -28,6 +29,7 @@
 #include <functional>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,18 +73,34 @@ typename System::State after(const System& system, const FlowSetup& setup,
 
 // --- stable periodic orbits: λ_i = ln |μ_i| / T ---
 
-TEST(LyapunovSpectrum, LinearImpactPeriodicOrbitGivesItsFloquetExponents) {
-  // just below the period doubling (ω ≈ 2.2653): real, distinct multipliers
+// The linear impact oscillator's period-1 orbit at ω = 2.263, just below its
+// period doubling (ω ≈ 2.2653: real, distinct multipliers), in closed form:
+// its multipliers, its period and its state at t = 0 on the orbit.
+struct ClosedFormOrbit {
+  LinearImpactParameters parameters;
+  std::array<std::complex<double>, 2> multipliers;
+  double period;
+  double x, v;
+};
+
+std::optional<ClosedFormOrbit> orbit_below_the_doubling() {
   LinearImpactParameters p;
   p.omega = 2.263;
   const impactlab::testing::LinearImpactClosedForm closed(p);
   const auto orbit = closed.orbit();
-  ASSERT_TRUE(orbit.has_value());
-  ASSERT_EQ(orbit->multipliers[1].imag(), 0.0);
+  if (!orbit || orbit->multipliers[1].imag() != 0.0) return std::nullopt;
   const double period = closed.period();
   const auto [x, v] =
       closed.state_after(orbit->impact_time, orbit->velocity, period - orbit->impact_time);
-  const LinearImpact system(p);
+  return ClosedFormOrbit{p, {orbit->multipliers[0], orbit->multipliers[1]}, period, x, v};
+}
+
+TEST(LyapunovSpectrum, LinearImpactPeriodicOrbitGivesItsFloquetExponents) {
+  const auto orbit = orbit_below_the_doubling();
+  ASSERT_TRUE(orbit.has_value());
+  const double period = orbit->period;
+  const double x = orbit->x, v = orbit->v;
+  const LinearImpact system(orbit->parameters);
   const auto spectrum = lyapunov_spectrum(system, exact_flow, LinearImpact::State{x, v},
                                           LinearImpact::Mode::free, 0.0, period, 400, 100);
   ASSERT_EQ(spectrum.termination, Termination::completed);
@@ -102,15 +120,11 @@ TEST(LyapunovSpectrum, LinearImpactPeriodicOrbitGivesItsFloquetExponents) {
 class EveryStepper : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(EveryStepper, LinearImpactPeriodicOrbitGivesItsFloquetExponents) {
-  LinearImpactParameters p;
-  p.omega = 2.263;
-  const impactlab::testing::LinearImpactClosedForm closed(p);
-  const auto orbit = closed.orbit();
+  const auto orbit = orbit_below_the_doubling();
   ASSERT_TRUE(orbit.has_value());
-  const double period = closed.period();
-  const auto [x, v] =
-      closed.state_after(orbit->impact_time, orbit->velocity, period - orbit->impact_time);
-  const LinearImpact system(p);
+  const double period = orbit->period;
+  const double x = orbit->x, v = orbit->v;
+  const LinearImpact system(orbit->parameters);
   const FlowSetup setup{GetParam(), 1e-12, 1e-13};
   const auto spectrum = lyapunov_spectrum(system, setup, LinearImpact::State{x, v},
                                           LinearImpact::Mode::free, 0.0, period, 300, 100);
@@ -250,15 +264,10 @@ ModelSystem<4> four_state_system(double omega) {
 TEST(LyapunovSpectrum, FourStateModelPeriodicOrbitGivesItsFloquetExponents) {
   const ModelSystem<4> system = four_state_system(2.263);
 
-  LinearImpactParameters p;
-  p.omega = 2.263;
-  const impactlab::testing::LinearImpactClosedForm closed(p);
-  const auto orbit = closed.orbit();
+  const auto orbit = orbit_below_the_doubling();
   ASSERT_TRUE(orbit.has_value());
-  ASSERT_EQ(orbit->multipliers[1].imag(), 0.0);
-  const double period = closed.period();
-  const auto [x, v] =
-      closed.state_after(orbit->impact_time, orbit->velocity, period - orbit->impact_time);
+  const double period = orbit->period;
+  const double x = orbit->x, v = orbit->v;
   const double zeta2 = 1.25, root = std::sqrt(zeta2 * zeta2 - 1.0);
   // ln |μ| / T of each pair: the impact oscillator's, then the free pair's
   // (−ζ₂ + √(ζ₂² − 1) = −0.5, −ζ₂ − √(ζ₂² − 1) = −2)
