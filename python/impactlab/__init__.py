@@ -24,7 +24,7 @@ from . import _impactlab
 
 __all__ = [
     "Scene", "scenes", "scene", "simulate", "poincare", "sweep", "basins", "periodic", "compare",
-    "bench", "continue_", "EventArray", "Result", "RunResult", "EVENT_KINDS",
+    "bench", "continue_", "EventArray", "Table", "Result", "RunResult", "EVENT_KINDS",
     "PhysicalDiagnosticWarning", "UnreadKeyWarning", "__version__",
 ]
 
@@ -58,12 +58,40 @@ class EventArray(np.ndarray):
     def kind_names(self):
         return np.array(EVENT_KINDS, dtype=object)[np.asarray(self["kind"], dtype=np.intp)]
 
+    def __getattr__(self, name):
+        # a column by attribute, as every result's fields (events.t)
+        if name in (self.dtype.names or ()):
+            return self[name]
+        raise AttributeError("no column {!r}; the columns: {}".format(
+            name, ", ".join(self.dtype.names or ())))
+
     def to_pandas(self):
         import pandas  # optional dependency
 
         frame = pandas.DataFrame({name: np.asarray(self[name]) for name in self.dtype.names})
         frame["kind"] = self.kind_names()
         return frame
+
+
+class Table(dict):
+    """Columns by name (a CSV file's: NumPy arrays, or lists of words), read
+    as a dict (table["period"]) or as attributes (table.period); a column
+    whose name is not an identifier ("initial.y") by its key only."""
+
+    def __getattr__(self, name):
+        try:
+            return self[name]
+        except KeyError:
+            raise AttributeError("no column {!r}; the columns: {}".format(
+                name, ", ".join(self))) from None
+
+    def __dir__(self):
+        return sorted(set(dir(dict)) | {name for name in self if name.isidentifier()})
+
+    def to_pandas(self):
+        import pandas  # optional dependency
+
+        return pandas.DataFrame({name: np.asarray(column) for name, column in self.items()})
 
 
 class Result:
@@ -464,8 +492,17 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
     summary.update(transient_periods=raw["transient_periods"], transient_end=raw["transient_end"])
     summary.update(_spectrum_columns(raw))
     _warn_of_unfinished_points("sweep", raw, "summary")
-    return Result(scene=loaded, bifurcation=bifurcation, summary=summary,
-                  definition=raw["definition"], wall_time_s=raw["wall_time_s"])
+    result = Result(scene=loaded, bifurcation=Table(bifurcation) if bifurcation else None,
+                    summary=Table(summary), definition=raw["definition"],
+                    wall_time_s=raw["wall_time_s"])
+    if len(params) == 2:
+        # the map's columns shaped like the map: [j, i] is the second key's
+        # j-th value and the first key's i-th (classes.csv: the first fastest)
+        counts = [axis["count"] for axis in raw["definition"]["axes"]]
+        result.grids = Table({name: np.asarray(column, dtype=None if isinstance(
+            column, np.ndarray) else object).reshape(counts[1], counts[0])
+            for name, column in summary.items()})
+    return result
 
 
 @_documented("basins")
@@ -501,10 +538,10 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
         checked["threads"], callback), progress, "basins")
     axes = raw["axes"]
     nx, ny = raw["counts"]
-    grid = {axes[0]: raw["x"], axes[1]: raw["y"], "attractor": raw["attractor"],
-            "period": raw["period"], "impacts_per_period": raw["impacts_per_period"],
-            "contact": raw["contact"], "termination": raw["termination"],
-            "transient_end": raw["transient_end"]}
+    grid = Table({axes[0]: raw["x"], axes[1]: raw["y"], "attractor": raw["attractor"],
+                  "period": raw["period"], "impacts_per_period": raw["impacts_per_period"],
+                  "contact": raw["contact"], "termination": raw["termination"],
+                  "transient_end": raw["transient_end"]})
     grid.update(_spectrum_columns(raw))
     columns = [("attractor", "attractor_id", "<i4"), ("period", "attractor_period", "<i4"),
                ("impacts_per_period", "attractor_impacts_per_period", "<f8"),
@@ -647,4 +684,9 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
         start or [], checked["transient"], checked["max_points"], checked["tolerance"],
         checked["max_step"], callback),
         progress, "continue")
+    # branch.csv's, points.csv's and curve.csv's columns as tables
+    raw["branches"] = [Table(branch) for branch in raw["branches"]]
+    raw["points"] = Table(raw["points"])
+    if "curves" in raw:
+        raw["curves"] = [Table(curve) for curve in raw["curves"]]
     return Result(scene=loaded, **raw)

@@ -167,6 +167,28 @@ def test_sweep_2d_map_equals_cli(cli):
         same_numbers(classes[column], result.summary[column])
     # one truth for the classification tolerance: the same integrators recorded
     assert result.definition == read_json(out / "meta.json")["sweep"]
+    # the same columns as attributes, and shaped like the map: [j, i] is V0's
+    # j-th value and omega's i-th (classes.csv: omega fastest)
+    assert result.summary.period is result.summary["period"]
+    assert result.grids.period.shape == (2, 3)
+    for row, (omega, v0) in enumerate(zip(classes["omega"], classes["V0"])):
+        i, j = row % 3, row // 3
+        assert result.grids.omega[j, i] == omega and result.grids.V0[j, i] == v0
+        assert result.grids.period[j, i] == classes["period"][row]
+        assert result.grids.termination[j, i] == classes["termination"][row]
+
+
+def test_every_result_reads_its_columns_as_attributes():
+    run = impactlab.simulate("jin2003", periods=5)
+    assert run.events.t is not None and (run.events.t == run.events["t"]).all()
+    assert run.trajectory is None or hasattr(run.trajectory, "t")
+    branches = impactlab.continue_("linear_impact", param="omega=2:2.1").branches
+    assert (branches[0].q == branches[0]["q"]).all()
+    with pytest.raises(AttributeError, match="no column 'nope'; the columns: "):
+        branches[0].nope
+    sweep = impactlab.sweep("jin2003", param="omega=6:7:3", points=4, transient=2)
+    assert sweep.summary.period is sweep.summary["period"]
+    assert sweep.bifurcation.q is sweep.bifurcation["q"]
 
 
 @pytest.mark.parametrize("cli_options, python_options", [
