@@ -46,11 +46,11 @@ SweepPlan make_basins_plan(const BasinsSpec& spec, const Scene& scene, const Sce
   plan.attractor_tolerance = spec.attractor_tolerance;
   // the entropies' boxes fit in the grid
   const int shorter_side = std::min(plan.axes[0].count, plan.axes[1].count);
+  if (spec.entropy_box && *spec.entropy_box < 1)
+    throw BadInput("entropy_box", std::to_string(*spec.entropy_box), "must be a whole number >= 1");
   if (spec.entropy_box && *spec.entropy_box > shorter_side)
     throw BadInput("entropy_box", std::to_string(*spec.entropy_box),
                    fmt::format("larger than the grid's shorter side ({} points)", shorter_side));
-  if (spec.entropy_box && *spec.entropy_box < 1)
-    throw BadInput("entropy_box", std::to_string(*spec.entropy_box), "must be a whole number >= 1");
   plan.entropy_box = spec.entropy_box.value_or(std::min(default_entropy_box, shorter_side));
   return plan;
 }
