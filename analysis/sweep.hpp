@@ -55,6 +55,7 @@ struct SweepPlan {
   // state, which the axes may set (basins of attraction)
   bool follow_attractor = true;
   double attractor_tolerance = 1e-4;  // basins: relative distance of two attractors' canonical points
+  int entropy_box = 5;  // basins: box side of the basin entropies (grid points; analysis/basin_measures.hpp)
   // the transient and record of every point stepped at this integrator
   // instead of the scene's (a classification-only sweep, api/sweep_job.hpp);
   // the system's accumulation criteria and the Lyapunov exponent keep the

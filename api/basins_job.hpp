@@ -6,11 +6,13 @@
 // as the rows of basins.csv and attractors.csv.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include <impactlab/analysis/basin_measures.hpp>
 #include <impactlab/analysis/basins.hpp>
 #include <impactlab/api/sweep_job.hpp>
 
@@ -18,7 +20,7 @@ namespace impactlab {
 
 // A basins map as its options state it (the "basins" table of
 // api/job_options.hpp); BadInput names the options by those names (x, y,
-// attractor_tol; x/y for the grid as a whole).
+// attractor_tol, entropy_box; x/y for the grid as a whole).
 struct BasinsSpec {
   std::string x, y;  // KEY=FROM:TO:N: the first (fastest) and second grid key
   SectionRequest section;
@@ -26,7 +28,15 @@ struct BasinsSpec {
   double period_tolerance = 1e-6;
   int max_period = 16;
   double attractor_tolerance = 1e-4;  // relative distance of two canonical points
+  // box side of the basin entropies (grid points); unset: 5, or the grid's
+  // shorter side where that is smaller; one given must fit in the grid
+  std::optional<int> entropy_box;
 };
+
+// The box side an unset entropy_box takes (grid points): 5 × 5 boxes, as
+// Daza et al. (2016) use, hold enough points for a box's label shares while
+// staying small against the grid.
+constexpr int default_entropy_box = 5;
 
 // The validated plan: both keys numeric keys of the scene's oscillator that
 // its model reads (api/model_keys.hpp), and different, every point from the
@@ -51,6 +61,7 @@ struct BasinsTable {
   std::size_t lyapunov_dimension = 0;
   std::vector<double> lyapunov_spectrum;
   BasinMap map;  // the attractors (by id) and the count of unclassified points
+  BasinMeasures measures;  // the label grid's entropies and uncertainty exponent
 };
 
 BasinsTable basins_table(const SweepPlan& plan, const std::vector<SweepTask>& tasks,
@@ -65,5 +76,12 @@ struct AttractorRows {
 };
 
 AttractorRows attractor_rows(const BasinMap& map);
+
+// meta.json's "basin_measures" (the CLI's and Python's alike): each number
+// with its meaning and unit, the box size and the scales; nan as null.
+nlohmann::json basin_measures_record(const BasinMeasures& measures);
+
+// The one line the CLI prints after its summary: S_b, S_bb and α ± its error.
+std::string basin_measures_line(const BasinMeasures& measures);
 
 }  // namespace impactlab

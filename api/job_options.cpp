@@ -201,6 +201,10 @@ Options basins_options() {
        {{.name = "attractor_tol", .type = OptionType::number,
          .help = "relative distance under which two canonical section points are one attractor",
          .default_value = 1e-4, .lower = 0.0, .lower_open = true},
+        {.name = "entropy_box", .type = OptionType::integer,
+         .help = "box side for the basin entropies, at most the grid's shorter side (default 5, "
+                 "or the shorter side where that is smaller)",
+         .lower = 1, .upper = 100000, .unit = "grid points"},
         resume("reuse the finished points of an interrupted run of the same map in `out`"),
         stop_after()}});
 }

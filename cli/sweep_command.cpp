@@ -12,6 +12,7 @@
 #include <iostream>
 #include <iterator>
 #include <map>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -53,6 +54,7 @@ struct SweepOptions {
   std::string classification_tolerance;  // auto | off (api/sweep_job.hpp)
   bool basins = false;                 // `impactlab basins`: params are --x, --y
   double attractor_tolerance = 0.0;    // basins: relative distance of canonical points
+  int entropy_box = 0;  // basins: box side of the basin entropies (grid points); 0: not given
 };
 
 std::string number(double value) { return fmt::format("{}", value); }
@@ -76,9 +78,12 @@ std::string lyapunov_fields(const std::vector<double>& spectrum, std::size_t dim
 }
 
 // basins.csv (each grid point's attractor) and attractors.csv (each
-// attractor's class, canonical section point and basin size)
-void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<SweepTask>& tasks,
-                  const std::map<RecordKey, SweepRecord>& records, std::vector<std::string>& files) {
+// attractor's class, canonical section point and basin size); returns the
+// map's basin measures
+BasinMeasures write_basins(RunFiles& run_files, const SweepPlan& plan,
+                           const std::vector<SweepTask>& tasks,
+                           const std::map<RecordKey, SweepRecord>& records,
+                           std::vector<std::string>& files) {
   const BasinsTable table = basins_table(plan, tasks, records);
   AtomicFile& basins = run_files.add("basins.csv");
   basins.stream() << plan.axes[0].name << ',' << plan.axes[1].name
@@ -100,6 +105,7 @@ void write_basins(RunFiles& run_files, const SweepPlan& plan, const std::vector<
                         << number(rows.q[k]) << ',' << number(rows.qdot[k]) << ','
                         << rows.basin_points[k] << '\n';
   files = {"basins.csv", "attractors.csv"};
+  return table.measures;
 }
 
 // bifurcation.csv and summary.csv (1D) or classes.csv (2D). `table` holds the
@@ -187,6 +193,7 @@ BasinsSpec basins_spec(const SweepOptions& options) {
   spec.period_tolerance = options.period_tolerance;
   spec.max_period = options.max_period;
   spec.attractor_tolerance = options.attractor_tolerance;
+  if (options.entropy_box > 0) spec.entropy_box = options.entropy_box;
   return spec;
 }
 
@@ -238,10 +245,11 @@ std::map<RecordKey, SweepRecord> parse_records(const std::vector<std::string>& t
 void write_meta(RunFiles& run_files, const nlohmann::json& definition,
                 const Scene& scene, const SceneSchema& schema,
                 const std::map<RecordKey, SweepRecord>& all, nlohmann::json run,
-                const std::vector<std::string>& command_line, std::vector<std::string> files) {
+                const std::vector<std::string>& command_line, std::vector<std::string> files,
+                const std::optional<BasinMeasures>& basin_measures) {
   files.push_back("meta.json");
   const std::string q_name(schema.main_coordinate);
-  const nlohmann::json meta = {
+  nlohmann::json meta = {
       {"impactlab_version", IMPACTLAB_VERSION},
       {"command", command_line},
       {"created_utc", utc_now()},
@@ -280,6 +288,7 @@ void write_meta(RunFiles& run_files, const nlohmann::json& definition,
         {"basin_points", "basins: grid points that settle on the attractor"}}},
       {"files", files},
   };
+  if (basin_measures) meta["basin_measures"] = basin_measures_record(*basin_measures);
   write_json(run_files.add("meta.json"), meta);
 }
 
@@ -356,8 +365,9 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   }
 
   std::vector<std::string> files;
+  std::optional<BasinMeasures> basin_measures;
   if (options.basins)
-    write_basins(run_files, plan, tasks, all, files);
+    basin_measures = write_basins(run_files, plan, tasks, all, files);
   else
     write_outputs(run_files, plan, tasks, sweep_table(plan, tasks, all),
                   SweepCheckpoints(directory, header, false), files);
@@ -367,7 +377,7 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
               {"tasks", tasks.size()},
               {"points_reused_from_checkpoint", done.size()},
               {"wall_time_s", wall_time}},
-             command_line, files);
+             command_line, files, basin_measures);
   run_files.commit();
   // the sweep is complete: its checkpoints (of any rank count) are spent
   for (const auto& file : std::filesystem::directory_iterator(directory)) {
@@ -393,6 +403,8 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
                              "wrote {}\n",
                              scene.name, all.size(), done.size(), options.threads, mpi.size(),
                              wall_time, (directory / files.front()).string());
+  if (basin_measures && !options.section.scene.quiet)
+    std::cout << basin_measures_line(*basin_measures) << '\n';
   // said even when quiet: a stopped point is a gap in the diagram otherwise
   if (const std::string stopped = stopped_points_note(all); !stopped.empty())
     std::cerr << "impactlab: warning: " << stopped << "; the termination column of "
@@ -452,6 +464,7 @@ Command add_basins_command(CLI::App& app) {
   table.add("period_tol", options->period_tolerance);
   table.add("max_period", options->max_period);
   table.add("attractor_tol", options->attractor_tolerance);
+  table.add("entropy_box", options->entropy_box);
   table.add("resume", options->resume);
   table.add("stop_after", options->stop_after);
   return {command,

@@ -437,7 +437,7 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
                         double max_transient, std::uint64_t transient_impacts,
                         std::uint64_t points, bool lyapunov, bool lyapunov_spectrum,
                         double period_tolerance, int max_period, double attractor_tolerance,
-                        int threads, py::object progress) {
+                        std::optional<int> entropy_box, int threads, py::object progress) {
   BasinsSpec spec;
   spec.x = x;
   spec.y = y;
@@ -448,6 +448,7 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
   spec.period_tolerance = period_tolerance;
   spec.max_period = max_period;
   spec.attractor_tolerance = attractor_tolerance;
+  spec.entropy_box = entropy_box;
   const SweepTarget target = sweep_target(scene);
   const SweepPlan plan = make_basins_plan(spec, scene, *target.schema);
   const PlanRun run = run_plan(scene, target, plan, threads, std::move(progress));
@@ -461,7 +462,8 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
       {"sweep", basins_definition(plan, scene, *target.schema, section_record)},
       {"scene", scene_record(scene)},
       {"run", {{"threads", threads}, {"tasks", run.tasks.size()}, {"wall_time_s", wall_time}}},
-      {"counts", sweep_counts(run.records)}};
+      {"counts", sweep_counts(run.records)},
+      {"basin_measures", basin_measures_record(table.measures)}};
   py::dict out;
   out["meta"] = json_to_python(meta);
   out["axes"] = py::cast(std::vector<std::string>{plan.axes[0].name, plan.axes[1].name});

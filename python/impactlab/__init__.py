@@ -514,13 +514,15 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
            lyapunov_spectrum=_default("basins", "lyapunov_spectrum"),
            period_tol=_default("basins", "period_tol"),
            max_period=_default("basins", "max_period"),
-           attractor_tol=_default("basins", "attractor_tol"), progress=None, **keys):
+           attractor_tol=_default("basins", "attractor_tol"),
+           entropy_box=_default("basins", "entropy_box"), progress=None, **keys):
     """Basins of attraction (the CLI's `basins`): every initial condition of
     the grid x="KEY=FROM:TO:N" (fastest) by y="KEY=FROM:TO:N", run from the
     scene's state with the two keys set, labelled by the attractor it settles
     on. Returns labels (attractor ids, shape (Ny, Nx)), x and y (the axis
     values), grid (the rows of basins.csv), attractors (a structured array:
-    the rows of attractors.csv) and meta."""
+    the rows of attractors.csv), basin_measures (the basin entropies and the
+    uncertainty exponent, as meta.json's "basin_measures") and meta."""
     loaded = scene(scene_, **keys)
     for key, value in (("x", x), ("y", y), ("section", section), ("lyapunov", lyapunov),
                        ("lyapunov_spectrum", lyapunov_spectrum)):
@@ -529,13 +531,13 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
         ("threads", threads), ("transient", transient), ("max_transient", max_transient),
         ("transient_impacts", transient_impacts), ("points", points), ("period_tol", period_tol),
         ("max_period", max_period),
-        ("attractor_tol", attractor_tol))}
+        ("attractor_tol", attractor_tol), ("entropy_box", entropy_box))}
     _refuse_excluded("basins", checked)
     raw = _run(lambda callback: _impactlab.basins(
         loaded, x, y, section, checked["transient"], checked["max_transient"],
         checked["transient_impacts"], checked["points"], lyapunov, lyapunov_spectrum,
         checked["period_tol"], checked["max_period"], checked["attractor_tol"],
-        checked["threads"], callback), progress, "basins")
+        checked["entropy_box"], checked["threads"], callback), progress, "basins")
     axes = raw["axes"]
     nx, ny = raw["counts"]
     grid = Table({axes[0]: raw["x"], axes[1]: raw["y"], "attractor": raw["attractor"],
@@ -555,7 +557,8 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
     result = Result(scene=loaded, axes=tuple(axes),
                     x=raw["x"][:nx].copy(), y=raw["y"][::nx].copy(),
                     labels=raw["attractor"].reshape(ny, nx), grid=grid, attractors=attractors,
-                    meta=raw["meta"], wall_time_s=raw["wall_time_s"])
+                    basin_measures=raw["meta"]["basin_measures"], meta=raw["meta"],
+                    wall_time_s=raw["wall_time_s"])
     _warn_of_unfinished_points("basins", raw, "grid")
     return result
 

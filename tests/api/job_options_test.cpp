@@ -115,6 +115,8 @@ TEST(JobOptions, RequestStructDefaultsAgreeWithTheTables) {
   EXPECT_EQ(basins.period_tolerance, number_default("basins", "period_tol"));
   EXPECT_EQ(basins.max_period, number_default("basins", "max_period"));
   EXPECT_EQ(basins.attractor_tolerance, number_default("basins", "attractor_tol"));
+  EXPECT_FALSE(basins.entropy_box.has_value());
+  EXPECT_TRUE(is_unset("basins", "entropy_box"));
 
   const impactlab::PeriodicJob periodic;
   EXPECT_EQ(periodic.period, text_default("periodic", "period"));

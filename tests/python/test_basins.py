@@ -39,6 +39,25 @@ def test_basins_equal_cli_basins_and_attractors(cli):
     meta = read_json(out / "meta.json")
     assert result.meta["sweep"] == meta["sweep"]
     assert result.meta["counts"] == meta["counts"]
+    # the basin measures of the 6 x 4 grid: 4 x 4 boxes (the shorter side)
+    assert result.basin_measures == meta["basin_measures"] == result.meta["basin_measures"]
+    assert result.basin_measures["box_size"] == 4
+
+
+def test_basin_measures_equal_the_cli_measures(cli):
+    """The measures of a 12 x 8 grid with 4 x 4 boxes are the CLI's meta.json's
+    numbers (scales 1 and 2: an exponent without an error)."""
+    x, y = "initial.y=0:0.1:12", "initial.y_dot=-1:1:8"
+    out = cli("basins", "bouncing_ball", "--set", "A=0.00981", "--x", x, "--y", y,
+              "--threads", "2", "--entropy-box", "4")
+    result = impactlab.basins("bouncing_ball", x=x, y=y, threads=2, entropy_box=4, A=0.00981)
+    measures = read_json(out / "meta.json")["basin_measures"]
+    assert result.basin_measures == measures
+    assert measures["box_size"] == 4 and measures["scales"] == [1, 2]
+    assert measures["uncertainty_exponent_error"] is None
+    assert 0.0 <= measures["basin_entropy"] <= math.log(measures["labels"])
+    with pytest.raises(ValueError, match="entropy_box"):
+        impactlab.basins("bouncing_ball", x=x, y=y, entropy_box=9, A=0.00981)
 
 
 @pytest.mark.parametrize("x, key, shown", [
