@@ -59,6 +59,13 @@ class StrobeObserver {
   SectionPoints& points_;
 };
 
+// A time span in forcing periods, whole where it is one up to the round-off
+// of the time sums.
+inline double periods_in(double span, double period) {
+  const double periods = span / period;
+  return std::fabs(periods - std::round(periods)) < 1e-6 ? std::round(periods) : periods;
+}
+
 }  // namespace detail
 
 // x0, mode0: the scene's initial state; omega: the forcing frequency (rad per
@@ -170,10 +177,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
       }
     }
     result.record_start = t;
-    // whole periods, up to the round-off of the time sums
-    result.transient_periods = (t - t0) / period;
-    if (std::fabs(result.transient_periods - std::round(result.transient_periods)) < 1e-6)
-      result.transient_periods = std::round(result.transient_periods);
+    result.transient_periods = detail::periods_in(t - t0, period);
     const State x_record = x;
     const Mode mode_record = mode;
 
@@ -231,10 +235,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
       }
     }
     result.point_count = collected.count();
-    // whole periods, up to the round-off of the time sums
-    result.periods_recorded = (t - result.record_start) / period;
-    if (std::fabs(result.periods_recorded - std::round(result.periods_recorded)) < 1e-6)
-      result.periods_recorded = std::round(result.periods_recorded);
+    result.periods_recorded = detail::periods_in(t - result.record_start, period);
     result.impacts = record_log.count(EventKind::impact);
     result.stick_impacts = record_log.stick_impacts();
     result.contact_phases =

@@ -28,6 +28,7 @@ RunOutput run_of_scene(const Scene& scene, const RunRequest& request) {
       output = run_system(system, x0, bound.flight_mode(), scene, request, period, mode_name);
     }
     if (output.termination != Termination::completed) output.stop_advice = bound.stop_advice(output);
+    output.event_columns = bound.event_columns();
     return output;
   });
 }

@@ -1,6 +1,5 @@
 #include <impactlab/api/run_record.hpp>
 
-#include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/api/scene_record.hpp>
 
@@ -68,7 +67,7 @@ nlohmann::json run_record(const Scene& scene, const RunOutput& output) {
       {"wall_time_s", output.wall_time},
       {"derived", output.derived},
       {"columns",
-       {{"events.csv", event_column_units(event_columns(scene), q_name)},
+       {{"events.csv", event_column_units(output.event_columns, q_name)},
         {"trajectory.csv", {{"t", "s"}, {"q", q_name},
                             {"qdot", "d" + q_name + "/dt"},
                             {"mode", "mode of the hybrid system"}}}}},

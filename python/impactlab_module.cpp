@@ -193,9 +193,10 @@ py::dtype event_dtype(const EventColumns& columns) {
   return py::dtype::from_args(spec);
 }
 
-// The events of a run of `scene`, each with its extension, in the columns of
-// the run's events.csv.
-py::array event_array(const std::vector<EventRecord>& events, const Scene& scene) {
+// The events of a run of `scene`, each with its extension, in `columns` (the
+// run's events.csv's, RunOutput::event_columns).
+py::array event_array(const std::vector<EventRecord>& events, const EventColumns& columns,
+                      const Scene& scene) {
   const EventExtender extender = event_extender(scene);
   auto* owner = new std::vector<EventRow>();
   owner->reserve(events.size());
@@ -203,7 +204,7 @@ py::array event_array(const std::vector<EventRecord>& events, const Scene& scene
     owner->push_back({event, extender ? extender(event) : EventExtension{}});
   py::capsule base(owner,
                    [](void* pointer) { delete static_cast<std::vector<EventRow>*>(pointer); });
-  return py::array(event_dtype(event_columns(scene)), {static_cast<py::ssize_t>(owner->size())},
+  return py::array(event_dtype(columns), {static_cast<py::ssize_t>(owner->size())},
                    {}, owner->data(), base);
 }
 
@@ -258,7 +259,7 @@ py::dict simulate_binding(const Scene& scene, double periods, double t_end, doub
   result["samples_q"] = owning_array(std::move(q));
   result["samples_qdot"] = owning_array(std::move(qdot));
   result["samples_mode"] = modes;
-  result["events"] = event_array(output.events, scene);
+  result["events"] = event_array(output.events, output.event_columns, scene);
   output.events = {};  // the array holds its own rows
   output.samples.clear();
   result["record"] = PendingRunRecord{scene, std::move(output)};
@@ -543,7 +544,7 @@ py::dict compare_binding(const Scene& scene, const std::string& models, double p
     py::dict one;
     one["meta"] = json_to_python(run_record(run.scene, run.output));
     one["termination"] = to_string(run.output.termination);
-    one["events"] = event_array(run.output.events, run.scene);
+    one["events"] = event_array(run.output.events, run.output.event_columns, run.scene);
     runs[py::str(run.model)] = one;
   }
   out["runs"] = runs;

@@ -10,7 +10,6 @@ time unit and the exponents in its inverse (TIME_UNIT, or read from the
 meta.json beside lyapunov.csv). An exponent at -inf (a direction the contact
 collapsed) cannot be drawn: the legend says so.
 """
-import json
 import os
 import sys
 
@@ -44,15 +43,6 @@ def running_lines(data):
     return lines
 
 
-def read_record(csv):
-    """The run's meta.json beside lyapunov.csv ({} where there is none)."""
-    path = os.path.join(os.path.dirname(os.path.abspath(csv)), "meta.json")
-    if not os.path.exists(path):
-        return {}
-    with open(path, encoding="utf-8") as handle:
-        return json.load(handle)
-
-
 def time_unit(record):
     """The run's time unit: "s" where the forcing frequency omega is in
     rad/s, "time unit" for a nondimensional scene (or without a record)."""
@@ -65,7 +55,7 @@ def main(argv):
         print(__doc__)
         sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
     csv, png, *rest = argv[1:]
-    record = read_record(csv)
+    record = plot_labels.read_meta(os.path.dirname(os.path.abspath(csv)), ("meta.json",))
     unit = rest[0] if rest else time_unit(record)
     data = read(csv)
     fig, ax = plt.subplots(figsize=(7, 5.5))

@@ -12,6 +12,7 @@
 
 #include <impactlab/core/event_log.hpp>
 #include <impactlab/core/event_sink.hpp>
+#include <impactlab/io/event_columns.hpp>
 #include <impactlab/simulate/termination.hpp>
 
 namespace impactlab {
@@ -62,6 +63,8 @@ struct RunOutput {
   // what to do about a run that stopped early, where the oscillator knows
   // (a model file's wall that lacks a sticking table); empty otherwise
   std::string stop_advice;
+  // events.csv's columns: the core's and those the run's model fills
+  EventColumns event_columns;
 };
 
 }  // namespace impactlab

@@ -205,6 +205,20 @@ TEST(Poincare, TheTransientRunsUntilTheDecayingRestHasSettled) {
       "--transient"));
 }
 
+// The settling transient watches its last window through dense output: a
+// run whose points end the least transient as not_periodic (the chattering
+// V0 = 4.163) has, bit for bit, the section points of --transient 100.
+TEST(Poincare, AWindowWatchedLeavesTheTrajectoryAsItWas) {
+  const ScratchFolder scratch;
+  const std::string scene = "poincare jin2003 --set V0=4.163 --quiet --out ";
+  ASSERT_EQ(run_command_line(scene + (scratch / "settle").string()).status, 0);
+  ASSERT_EQ(run_command_line(scene + (scratch / "fixed").string() + " --transient 100").status, 0);
+  const auto meta = nlohmann::json::parse(slurp(scratch / "settle" / "meta.json"));
+  ASSERT_EQ(meta["transient"]["end"], "not_periodic");
+  ASSERT_EQ(meta["transient"]["periods"], 100.0);
+  EXPECT_EQ(slurp(scratch / "settle" / "poincare.csv"), slurp(scratch / "fixed" / "poincare.csv"));
+}
+
 // A sweep's points that did not settle within the budget are marked in
 // summary.csv and counted in a warning, even with --quiet.
 TEST(Sweep, PointsThatDidNotSettleAreMarkedAndCounted) {

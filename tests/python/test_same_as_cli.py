@@ -181,7 +181,6 @@ def test_sweep_2d_map_equals_cli(cli):
 def test_every_result_reads_its_columns_as_attributes():
     run = impactlab.simulate("jin2003", periods=5)
     assert run.events.t is not None and (run.events.t == run.events["t"]).all()
-    assert run.trajectory is None or hasattr(run.trajectory, "t")
     branches = impactlab.continue_("linear_impact", param="omega=2:2.1").branches
     assert (branches[0].q == branches[0]["q"]).all()
     with pytest.raises(AttributeError, match="no column 'nope'; the columns: "):
