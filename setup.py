@@ -8,6 +8,7 @@ import sys
 
 from setuptools import Extension, setup
 from setuptools.command.build_ext import build_ext
+from setuptools.command.build_py import build_py
 
 ROOT = pathlib.Path(__file__).resolve().parent
 
@@ -35,14 +36,27 @@ class CMakeBuild(build_ext):
         self.copy_file(str(built), str(target_dir / built.name))
 
 
+class WithFigures(build_py):
+    """Puts the plot scripts' drawing functions (scripts/plot_*.py) into the
+    package impactlab.figures, as the CMake build does, so that a result's
+    plot() draws with the CLI's code."""
+
+    def run(self):
+        super().run()
+        target = pathlib.Path(self.build_lib) / "impactlab" / "figures"
+        target.mkdir(parents=True, exist_ok=True)
+        for script in sorted((ROOT / "scripts").glob("plot_*.py")):
+            self.copy_file(str(script), str(target / script.name))
+
+
 setup(
     name="impactlab",
     version="0.1.0",
     description="Impact oscillators: event-driven simulation, sections, sweeps, Floquet analysis",
-    packages=["impactlab"],
+    packages=["impactlab", "impactlab.figures"],
     package_dir={"": "python"},
     ext_modules=[CMakeExtension("impactlab._impactlab")],
-    cmdclass={"build_ext": CMakeBuild},
+    cmdclass={"build_ext": CMakeBuild, "build_py": WithFigures},
     install_requires=["numpy"],
     python_requires=">=3.9",
     zip_safe=False,

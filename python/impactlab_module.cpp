@@ -789,6 +789,7 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
       if (doubled.has_curve)
         curves.append(curve_columns(doubled, parameter, parameter2, dimension));
     out["curves"] = curves;
+    out["parameter2"] = parameter2;
     out["curve_note"] = result.has_curve ? std::string() : result.curve_note;
   }
   return out;
@@ -914,6 +915,10 @@ PYBIND11_MODULE(_impactlab, m) {
   py::class_<Scene>(m, "Scene")
       .def_readonly("name", &Scene::name)
       .def_readonly("oscillator", &Scene::oscillator)
+      .def_property_readonly(
+          "main_coordinate",
+          [](const Scene& scene) { return std::string(scene_schema(scene).main_coordinate); },
+          "the coordinate q of the scene's sections and events (\"theta\", \"x\", \"y\")")
       .def("values", &scene_values)
       .def("keys", &scene_keys)
       .def("record", [](const Scene& scene) { return json_to_python(scene_record(scene)); })

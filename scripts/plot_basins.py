@@ -16,20 +16,19 @@ import sys
 
 import matplotlib
 
-matplotlib.use("Agg")
+if __name__ == "__main__":
+    matplotlib.use("Agg")  # a script writes files; no window
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.colors import ListedColormap  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import plot_labels  # noqa: E402
-
-
-def read(path):
-    data = np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8",
-                         deletechars="")
-    return np.atleast_1d(data)
+try:  # in the Python package impactlab (impactlab.figures)
+    from . import plot_files, plot_labels
+except ImportError:  # run as a script beside its modules
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import plot_files  # noqa: E402
+    import plot_labels  # noqa: E402
 
 
 def describe(row, meta):
@@ -48,14 +47,12 @@ def describe(row, meta):
     return text + f" (q {float(row['q']):.4g}, qdot {float(row['qdot']):.4g})"
 
 
-def main(argv):
-    if len(argv) < 5 or argv[1] in ("-h", "--help"):
-        print(__doc__)
-        sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
-    basins_csv, png, x_key, y_key = argv[1:5]
-    data = read(basins_csv)
-    meta = plot_labels.read_meta(os.path.dirname(basins_csv))
-    attractors = read(os.path.join(os.path.dirname(basins_csv), "attractors.csv"))
+def draw_basins(grid_table, attractor_table, meta, x_key, y_key):
+    """The basins: `grid_table` (basins.csv's columns: x_key, y_key,
+    attractor) coloured by attractor, with a legend of `attractor_table`
+    (attractors.csv's columns)."""
+    data = plot_files.as_columns(grid_table)
+    attractors = plot_files.as_columns(attractor_table)
     x = np.unique(data[x_key])
     y = np.unique(data[y_key])
     grid = np.full((len(y), len(x)), np.nan)
@@ -67,14 +64,26 @@ def main(argv):
     ax.pcolormesh(x, y, grid, shading="nearest", cmap=ListedColormap(colours), vmin=-0.5,
                   vmax=count + 0.5)
     handles = [Patch(facecolor=colours[int(row["attractor"])], edgecolor="0.5",
-                     label=describe(row, meta)) for row in attractors]
+                     label=describe(row, meta)) for row in plot_files.rows_of(attractors)]
     ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.12), fontsize=8,
               ncol=1 if len(handles) < 6 else 2)
     ax.set_xlabel(plot_labels.key_label(meta, x_key))
     ax.set_ylabel(plot_labels.key_label(meta, y_key))
     ax.set_title(plot_labels.title(meta, "basins of attraction", (x_key, y_key)), fontsize=8)
     fig.tight_layout()
-    fig.savefig(png, dpi=150)
+    return fig
+
+
+def main(argv):
+    if len(argv) < 5 or argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
+    basins_csv, png, x_key, y_key = argv[1:5]
+    directory = os.path.dirname(basins_csv)
+    figure = draw_basins(plot_files.read_columns(basins_csv),
+                         plot_files.read_columns(os.path.join(directory, "attractors.csv")),
+                         plot_labels.read_meta(directory), x_key, y_key)
+    plot_files.save_figure(figure, png)
 
 
 if __name__ == "__main__":

@@ -9,15 +9,63 @@ impacts against the CPU time per impact (left) and against the right-hand-side
 evaluations per impact (right), one line per stepper over its tolerance
 ladder; impactlab's steppers solid, SciPy's solve_ivp event loop dashed.
 """
-import csv
 import json
 import os
 import sys
 
 import matplotlib
 
-matplotlib.use("Agg")
+if __name__ == "__main__":
+    matplotlib.use("Agg")  # a script writes files; no window
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+try:  # in the Python package impactlab (impactlab.figures)
+    from . import plot_files
+except ImportError:  # run as a script beside its modules
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import plot_files  # noqa: E402
+
+
+def draw_work_precision(rows, name, reference):
+    """One case's work-precision figure. `rows`: work_precision.csv's
+    columns (tool, method, rtol, max_time_error, seconds_per_impact,
+    rhs_per_impact, compared_impacts, reference_impacts) of that case;
+    `reference`: work_precision.json's (method, time_spread,
+    impacts_compared). A row that compared fewer impacts than the reference
+    has (it stopped early) is left out."""
+    rows = plot_files.as_columns(rows)
+    figure, (by_time, by_rhs) = plt.subplots(1, 2, figsize=(11, 4.5))
+    error = np.asarray(rows["max_time_error"], dtype=float)
+    seconds = np.asarray(rows["seconds_per_impact"], dtype=float)
+    usable = (np.isfinite(error) & np.isfinite(seconds)
+              & (np.asarray(rows["compared_impacts"], dtype=float)
+                 >= np.asarray(rows["reference_impacts"], dtype=float)))
+    tools = np.asarray(rows["tool"], dtype=str)
+    methods = np.asarray(rows["method"], dtype=str)
+    for tool, method in sorted(set(zip(tools[usable], methods[usable]))):
+        mine = usable & (tools == tool) & (methods == method)
+        order = np.argsort(np.asarray(rows["rtol"], dtype=float)[mine])
+        shown = np.maximum(error[mine][order], 1e-17)
+        style = "-o" if tool == "impactlab" else "--s"
+        label = f"{tool} {method}"
+        by_time.loglog(seconds[mine][order] * 1e6, shown, style, label=label, markersize=4)
+        by_rhs.loglog(np.asarray(rows["rhs_per_impact"], dtype=float)[mine][order], shown, style,
+                      label=label, markersize=4)
+    if reference.get("time_spread", 0) > 0:
+        for axis in (by_time, by_rhs):
+            axis.axhline(reference["time_spread"], color="grey", linewidth=0.8, linestyle=":",
+                         label="reference spread")
+    by_time.set_xlabel("CPU time per impact (µs, one core)")
+    by_rhs.set_xlabel("right-hand-side evaluations per impact")
+    for axis in (by_time, by_rhs):
+        axis.set_ylabel("max impact-time error over the first "
+                        f"{reference['impacts_compared']} impacts")
+        axis.grid(True, which="major", alpha=0.3)
+    by_time.legend(fontsize=7)
+    figure.suptitle(f"{name}: work-precision (reference: {reference['method']})")
+    figure.tight_layout()
+    return figure
 
 
 def main():
@@ -25,47 +73,14 @@ def main():
         print(__doc__)
         sys.exit(0 if len(sys.argv) == 2 else 2)
     directory = sys.argv[1]
-    with open(os.path.join(directory, "work_precision.json")) as f:
-        meta = json.load(f)
-    with open(os.path.join(directory, "work_precision.csv")) as f:
-        rows = list(csv.DictReader(f))
+    with open(os.path.join(directory, "work_precision.json"), encoding="utf-8") as handle:
+        meta = json.load(handle)
+    rows = plot_files.read_columns(os.path.join(directory, "work_precision.csv"))
+    cases = np.asarray(rows["case"], dtype=str)
     for case in meta["cases"]:
-        name = case["name"]
-        reference = case["reference"]
-        figure, (by_time, by_rhs) = plt.subplots(1, 2, figsize=(11, 4.5))
-        series = {}
-        for row in rows:
-            if row["case"] != name or not row["max_time_error"] or not row["seconds_per_impact"]:
-                continue
-            if int(row["compared_impacts"]) < int(row["reference_impacts"]):
-                continue
-            key = (row["tool"], row["method"])
-            error = max(float(row["max_time_error"]), 1e-17)
-            series.setdefault(key, []).append(
-                (float(row["rtol"]), error, float(row["seconds_per_impact"]) * 1e6,
-                 float(row["rhs_per_impact"])))
-        for (tool, method), points in sorted(series.items()):
-            points.sort()
-            style = "-o" if tool == "impactlab" else "--s"
-            label = f"{tool} {method}"
-            by_time.loglog([p[2] for p in points], [p[1] for p in points], style, label=label,
-                           markersize=4)
-            by_rhs.loglog([p[3] for p in points], [p[1] for p in points], style, label=label,
-                          markersize=4)
-        if reference["time_spread"] > 0:
-            for axis in (by_time, by_rhs):
-                axis.axhline(reference["time_spread"], color="grey", linewidth=0.8, linestyle=":",
-                             label="reference spread")
-        by_time.set_xlabel("CPU time per impact (µs, one core)")
-        by_rhs.set_xlabel("right-hand-side evaluations per impact")
-        for axis in (by_time, by_rhs):
-            axis.set_ylabel("max impact-time error over the first "
-                            f"{reference['impacts_compared']} impacts")
-            axis.grid(True, which="major", alpha=0.3)
-        by_time.legend(fontsize=7)
-        figure.suptitle(f"{name}: work-precision (reference: {reference['method']})")
-        figure.tight_layout()
-        figure.savefig(os.path.join(directory, f"{name}.png"), dpi=110)
+        figure = draw_work_precision(plot_files.rows_where(rows, cases == case["name"]),
+                                     case["name"], case["reference"])
+        plot_files.save_figure(figure, os.path.join(directory, f"{case['name']}.png"))
         plt.close(figure)
 
 

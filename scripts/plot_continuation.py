@@ -18,12 +18,17 @@ import sys
 
 import matplotlib
 
-matplotlib.use("Agg")
+if __name__ == "__main__":
+    matplotlib.use("Agg")  # a script writes files; no window
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import plot_labels  # noqa: E402
+try:  # in the Python package impactlab (impactlab.figures)
+    from . import plot_files, plot_labels
+except ImportError:  # run as a script beside its modules
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import plot_files  # noqa: E402
+    import plot_labels  # noqa: E402
 
 MARKERS = {"fold": ("s", "tab:green"), "branch_point": ("P", "tab:cyan"),
            "period_doubling": ("o", "tab:red"),
@@ -35,22 +40,23 @@ BOUNDARY_MARKER = ("X", "tab:olive")
 
 
 def read(path):
-    data = np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8")
-    return np.atleast_1d(data)
+    return plot_files.read_columns(path)
 
 
 def marked_points(points, param):
-    """The located points of points.csv by type: {type: (parameters, q)}, and
-    how many could not be located (empty q: no state to draw them at; a
-    column of empty fields reads as False, which would draw them at q = 0)."""
-    located = np.asarray(points["located"]) == 1 if "located" in points.dtype.names else \
-        np.ones(len(points), dtype=bool)
+    """The located points of `points` (points.csv's columns) by type:
+    {type: (parameters, q)}, and how many could not be located (empty q: no
+    state to draw them at)."""
+    count = len(points["type"])
+    located = np.asarray(points["located"]) == 1 if "located" in points else \
+        np.ones(count, dtype=bool)
+    types = np.asarray(points["type"])
     marked = {}
-    for kind in np.unique(points["type"]) if len(points) else []:
-        rows = points[(points["type"] == kind) & located]
-        if len(rows):
-            marked[str(kind)] = (np.asarray(rows[param], dtype=float),
-                                 np.asarray(rows["q"], dtype=float))
+    for kind in np.unique(types) if count else []:
+        rows = (types == kind) & located
+        if rows.any():
+            marked[str(kind)] = (np.asarray(points[param], dtype=float)[rows],
+                                 np.asarray(points["q"], dtype=float)[rows])
     return marked, int(np.count_nonzero(~located))
 
 
@@ -62,32 +68,38 @@ def runs(mask):
     return zip(starts, stops)
 
 
-def main(argv):
-    if len(argv) < 5 or argv[1] in ("-h", "--help"):
-        print(__doc__)
-        sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
-    branch_csv, png, param, q_name, *sweep = argv[1:]
-    branch = read(branch_csv)
-    meta = plot_labels.read_meta(os.path.dirname(branch_csv))
+def branches_of(branch_table):
+    """branch.csv's columns split into one table per branch (its `branch`
+    column)."""
+    numbers = branch_table["branch"]
+    return [plot_files.rows_where(branch_table, numbers == number)
+            for number in np.unique(numbers)]
+
+
+def draw_continuation(branches, points, meta, param, q_name, sweep=None):
+    """The branches (a list of tables with the columns of branch.csv: param,
+    q, stable, period) stable solid and unstable dashed, the located points
+    of `points` (points.csv's columns, or None) marked, and a sweep's points
+    (bifurcation.csv's columns, or None) underneath in grey."""
     fig, ax = plt.subplots(figsize=(8, 6))
-    if sweep:
-        points = read(sweep[0])
-        ax.plot(points[param], points["q"], ",", color="0.6", rasterized=True)
+    if sweep is not None:
+        swept = plot_files.as_columns(sweep)
+        ax.plot(swept[param], swept["q"], ",", color="0.6", rasterized=True)
         ax.plot([], [], ".", color="0.6", label="sweep (brute force)")
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    for index in np.unique(branch["branch"]):
-        rows = branch[branch["branch"] == index]
-        colour = colours[int(index) % len(colours)]
-        stable = rows["stable"] == 1
+    for index, table in enumerate(branches):
+        rows = plot_files.as_columns(table)
+        colour = colours[index % len(colours)]
+        stable = np.asarray(rows["stable"]) == 1
         for start, stop in runs(stable):
             # overlap one point so that the stable and unstable pieces join
-            piece = rows[start:min(stop + 1, len(rows))]
-            ax.plot(piece[param], piece["q"], "-" if stable[start] else "--", color=colour,
-                    linewidth=1.4)
-        ax.plot([], [], "-", color=colour, label=f"period {rows['period'][0]} (dashed: unstable)")
-    points_csv = os.path.join(os.path.dirname(branch_csv), "points.csv")
-    if os.path.exists(points_csv):
-        marked, not_located = marked_points(read(points_csv), param)
+            piece = slice(start, min(stop + 1, len(stable)))
+            ax.plot(rows[param][piece], rows["q"][piece], "-" if stable[start] else "--",
+                    color=colour, linewidth=1.4)
+        period = int(np.ravel(rows["period"])[0])
+        ax.plot([], [], "-", color=colour, label=f"period {period} (dashed: unstable)")
+    if points is not None:
+        marked, not_located = marked_points(plot_files.as_columns(points), param)
         for kind, (where, q) in marked.items():
             marker, colour = MARKERS.get(kind, BOUNDARY_MARKER)
             ax.plot(where, q, marker, color=colour, markersize=8, linestyle="none",
@@ -100,7 +112,21 @@ def main(argv):
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), fontsize=8, ncol=3,
               frameon=False)
     fig.tight_layout()
-    fig.savefig(png, dpi=150)
+    return fig
+
+
+def main(argv):
+    if len(argv) < 5 or argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
+    branch_csv, png, param, q_name, *sweep = argv[1:]
+    directory = os.path.dirname(branch_csv)
+    points_csv = os.path.join(directory, "points.csv")
+    figure = draw_continuation(branches_of(read(branch_csv)),
+                               read(points_csv) if os.path.exists(points_csv) else None,
+                               plot_labels.read_meta(directory), param, q_name,
+                               read(sweep[0]) if sweep else None)
+    plot_files.save_figure(figure, png)
 
 
 if __name__ == "__main__":

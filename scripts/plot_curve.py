@@ -15,29 +15,36 @@ import sys
 
 import matplotlib
 
-matplotlib.use("Agg")
+if __name__ == "__main__":
+    matplotlib.use("Agg")  # a script writes files; no window
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import plot_labels  # noqa: E402
+try:  # in the Python package impactlab (impactlab.figures)
+    from . import plot_files, plot_labels
+except ImportError:  # run as a script beside its modules
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import plot_files  # noqa: E402
+    import plot_labels  # noqa: E402
 
 
-def read(path):
-    data = np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8",
-                         deletechars="")
-    return np.atleast_1d(data)
+def curves_of(curve_table):
+    """curve.csv's columns split into one table per branch's curve (its
+    `branch` column; one curve where there is none)."""
+    if "branch" not in curve_table:
+        return [curve_table]
+    numbers = curve_table["branch"]
+    return [plot_files.rows_where(curve_table, numbers == number)
+            for number in np.unique(numbers)]
 
 
-def main(argv):
-    if len(argv) < 5 or argv[1] in ("-h", "--help"):
-        print(__doc__)
-        sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
-    curve_csv, png, param1, param2, *sweep = argv[1:]
-    meta = plot_labels.read_meta(os.path.dirname(curve_csv))
+def draw_curve(curves, kind, meta, param1, param2, classes=None):
+    """The curves (tables with curve.csv's columns param1, param2, period) of
+    the point of type `kind` in (param1, param2), over the period map of a
+    2D sweep (classes.csv's columns, or None)."""
     fig, ax = plt.subplots(figsize=(7, 6))
-    if sweep:
-        data = read(sweep[0])
+    if classes is not None:
+        data = plot_files.as_columns(classes)
         x = np.unique(data[param1])
         y = np.unique(data[param2])
         period = np.full((len(y), len(x)), np.nan)
@@ -46,24 +53,18 @@ def main(argv):
         mesh = ax.pcolormesh(x, y, period, shading="nearest", cmap="tab10", vmin=0.5, vmax=10.5,
                              alpha=0.6)
         fig.colorbar(mesh, ax=ax, label="period of the section map, 2D sweep (blank: none found)")
-    kind = "curve"
-    curve_json = os.path.join(os.path.dirname(curve_csv), "curve.json")
-    if os.path.exists(curve_json):
-        with open(curve_json, encoding="utf-8") as handle:
-            kind = json.load(handle).get("type") or kind
-    curve = read(curve_csv)
-    if len(curve) and curve.dtype.names and param1 in curve.dtype.names:
+    drawn = [plot_files.as_columns(curve) for curve in curves]
+    drawn = [curve for curve in drawn if param1 in curve and len(curve[param1])]
+    colours = ["black", "tab:red", "tab:blue", "tab:green"]
+    for index, piece in enumerate(drawn):
         # one curve per branch (--switch: the doubled branches' curves too)
-        branches = curve["branch"] if "branch" in curve.dtype.names else np.zeros(len(curve))
-        colours = ["black", "tab:red", "tab:blue", "tab:green"]
-        for index, number in enumerate(np.unique(branches)):
-            piece = curve[branches == number]
-            period = f", period {int(piece['period'][0])}" if "period" in piece.dtype.names else ""
-            colour = colours[index % len(colours)]
-            ax.plot(piece[param1], piece[param2], "-", color=colour, linewidth=1.8,
-                    label=f"{kind.replace('_', ' ')} curve{period} (continuation)")
-            ax.plot(piece[param1][:1], piece[param2][:1], "o", color=colour, markersize=6,
-                    label="start (located on the branch)" if index == 0 else None)
+        period = f", period {int(np.ravel(piece['period'])[0])}" if "period" in piece else ""
+        colour = colours[index % len(colours)]
+        ax.plot(piece[param1], piece[param2], "-", color=colour, linewidth=1.8,
+                label=f"{kind.replace('_', ' ')} curve{period} (continuation)")
+        ax.plot(piece[param1][:1], piece[param2][:1], "o", color=colour, markersize=6,
+                label="start (located on the branch)" if index == 0 else None)
+    if drawn:
         ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), fontsize=8, ncol=2,
                   frameon=False)
     ax.set_xlabel(plot_labels.key_label(meta, param1))
@@ -71,7 +72,24 @@ def main(argv):
     ax.set_title(plot_labels.title(meta, "two-parameter continuation", (param1, param2)),
                  fontsize=8)
     fig.tight_layout()
-    fig.savefig(png, dpi=150)
+    return fig
+
+
+def main(argv):
+    if len(argv) < 5 or argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
+    curve_csv, png, param1, param2, *sweep = argv[1:]
+    directory = os.path.dirname(curve_csv)
+    kind = "curve"
+    curve_json = os.path.join(directory, "curve.json")
+    if os.path.exists(curve_json):
+        with open(curve_json, encoding="utf-8") as handle:
+            kind = json.load(handle).get("type") or kind
+    figure = draw_curve(curves_of(plot_files.read_columns(curve_csv)), kind,
+                        plot_labels.read_meta(directory), param1, param2,
+                        plot_files.read_columns(sweep[0]) if sweep else None)
+    plot_files.save_figure(figure, png)
 
 
 if __name__ == "__main__":

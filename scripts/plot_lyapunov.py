@@ -15,31 +15,35 @@ import sys
 
 import matplotlib
 
-matplotlib.use("Agg")
+if __name__ == "__main__":
+    matplotlib.use("Agg")  # a script writes files; no window
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import plot_labels  # noqa: E402
+try:  # in the Python package impactlab (impactlab.figures)
+    from . import plot_files, plot_labels
+except ImportError:  # run as a script beside its modules
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import plot_files  # noqa: E402
+    import plot_labels  # noqa: E402
 
 
 def read(path):
-    """lyapunov.csv's rows as a structured array (its comment line skipped)."""
-    data = np.genfromtxt(path, delimiter=",", names=True, comments=None, skip_header=1,
-                         dtype=float, encoding="utf-8")
-    return np.atleast_1d(data)
+    """lyapunov.csv's columns (its comment line skipped)."""
+    return plot_files.read_columns(path, comment_lines=1)
 
 
 def running_lines(data):
-    """{name: (t, finite running values) or None where the exponent ends at -inf}."""
+    """{name: (t, finite running values) or None where the exponent ends at
+    -inf}, of `data`'s columns t, lambda1..lambdaN."""
     lines = {}
-    for name in data.dtype.names[1:]:
-        values = data[name]
+    for name in [name for name in data if name != "t"]:
+        values = np.asarray(data[name], dtype=float)
         if len(values) and values[-1] == -np.inf:
             lines[name] = None
             continue
         finite = np.isfinite(values)
-        lines[name] = (data["t"][finite], values[finite])
+        lines[name] = (np.asarray(data["t"])[finite], values[finite])
     return lines
 
 
@@ -50,16 +54,12 @@ def time_unit(record):
     return unit.split("/", 1)[1] if unit.startswith("rad/") else "time unit"
 
 
-def main(argv):
-    if len(argv) < 3 or argv[1] in ("-h", "--help"):
-        print(__doc__)
-        sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
-    csv, png, *rest = argv[1:]
-    record = plot_labels.read_meta(os.path.dirname(os.path.abspath(csv)), ("meta.json",))
-    unit = rest[0] if rest else time_unit(record)
-    data = read(csv)
+def draw_spectrum(running, record, unit=None):
+    """Each exponent's running estimate (`running`: lyapunov.csv's columns t,
+    lambda1..lambdaN) against the time at which it was taken."""
+    unit = unit or time_unit(record)
     fig, ax = plt.subplots(figsize=(7, 5.5))
-    for name, line in running_lines(data).items():
+    for name, line in running_lines(plot_files.as_columns(running)).items():
         label = name.replace("lambda", "λ")
         if line is None:
             ax.plot([], [], " ", label=f"{label} = −∞ (collapsed by the contact)")
@@ -72,7 +72,17 @@ def main(argv):
     ax.set_title(plot_labels.title(record, "convergence of the Lyapunov spectrum"), fontsize=8)
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=2, fontsize=8, frameon=False)
     fig.tight_layout()
-    fig.savefig(png, dpi=150)
+    return fig
+
+
+def main(argv):
+    if len(argv) < 3 or argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
+    csv, png, *rest = argv[1:]
+    record = plot_labels.read_meta(os.path.dirname(os.path.abspath(csv)), ("meta.json",))
+    figure = draw_spectrum(read(csv), record, rest[0] if rest else None)
+    plot_files.save_figure(figure, png)
 
 
 if __name__ == "__main__":

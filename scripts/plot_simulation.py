@@ -8,7 +8,6 @@ picture is written to RUN_DIR/simulation.png. Axes carry their quantities
 and units (the scene's, scripts/plot_labels.py), and the title the scene and
 the parameters held fixed.
 """
-import csv
 import json
 import math
 import os
@@ -16,27 +15,28 @@ import sys
 
 import matplotlib
 
-matplotlib.use("Agg")
+if __name__ == "__main__":
+    matplotlib.use("Agg")  # a script writes files; no window
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import plot_labels  # noqa: E402
+try:  # in the Python package impactlab (impactlab.figures)
+    from . import plot_files, plot_labels
+except ImportError:  # run as a script beside its modules
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import plot_files  # noqa: E402
+    import plot_labels  # noqa: E402
 
 
-def read_csv(path):
-    with open(path, newline="") as handle:
-        return list(csv.DictReader(handle))
-
-
-def plot_run(run_dir):
-    meta = json.load(open(os.path.join(run_dir, "meta.json")))
-    samples = read_csv(os.path.join(run_dir, "trajectory.csv"))
-    events = read_csv(os.path.join(run_dir, "events.csv"))
+def draw_simulation(samples, events, meta):
+    """The main coordinate against time (`samples`: trajectory.csv's columns
+    t, q, qdot) with the walls, the impacts and the contact phases of
+    `events` (events.csv's columns kind, t, q; kind by name), and the phase
+    portrait; `meta` is the run's record (meta.json)."""
+    samples = plot_files.as_columns(samples)
+    events = plot_files.as_columns(events)
     q_name = meta["columns"]["events.csv"]["q"]
-    t = [float(s["t"]) for s in samples]
-    q = [float(s["q"]) for s in samples]
-    qdot = [float(s["qdot"]) for s in samples]
-
+    t, q, qdot = samples["t"], samples["q"], samples["qdot"]
     figure, (history, phase) = plt.subplots(
         1, 2, figsize=(12, 4.5), gridspec_kw={"width_ratios": [2.2, 1]})
     history.plot(t, q, lw=0.8, color="tab:blue", label=plot_labels.symbol(q_name))
@@ -52,16 +52,17 @@ def plot_run(run_dir):
         amplitude, omega = keys["A"]["value"], keys["omega"]["value"]
         history.plot(t, [amplitude * math.sin(omega * ti) for ti in t], color="k", lw=0.8,
                      label="table")
-    impacts = [e for e in events if e["kind"] == "impact"]
-    history.plot([float(e["t"]) for e in impacts], [float(e["q"]) for e in impacts],
-                 "o", ms=2.5, color="tab:red", label=f"impacts ({len(impacts)})")
+    kinds = np.asarray(events["kind"], dtype=str)
+    impacts = kinds == "impact"
+    history.plot(events["t"][impacts], events["q"][impacts], "o", ms=2.5, color="tab:red",
+                 label=f"impacts ({int(impacts.sum())})")
     start = None
     shaded = False
-    for e in events:
-        if e["kind"] == "contact_start":
-            start = float(e["t"])
-        elif e["kind"] == "contact_end" and start is not None:
-            history.axvspan(start, float(e["t"]), color="tab:orange", alpha=0.35,
+    for kind, time in zip(kinds, events["t"]):
+        if kind == "contact_start":
+            start = float(time)
+        elif kind == "contact_end" and start is not None:
+            history.axvspan(start, float(time), color="tab:orange", alpha=0.35,
                             label=None if shaded else "sustained contact")
             shaded = True
             start = None
@@ -78,9 +79,16 @@ def plot_run(run_dir):
     phase.set_ylabel(rate_label)
     phase.set_title("phase portrait", fontsize=9)
     figure.tight_layout()
+    return figure
+
+
+def plot_run(run_dir):
+    with open(os.path.join(run_dir, "meta.json"), encoding="utf-8") as handle:
+        meta = json.load(handle)
+    figure = draw_simulation(plot_files.read_columns(os.path.join(run_dir, "trajectory.csv")),
+                             plot_files.read_columns(os.path.join(run_dir, "events.csv")), meta)
     target = os.path.join(run_dir, "simulation.png")
-    figure.savefig(target + ".tmp.png", dpi=110)
-    os.replace(target + ".tmp.png", target)
+    plot_files.save_figure(figure, target)
     plt.close(figure)
     print(f"wrote {target}")
 

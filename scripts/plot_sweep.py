@@ -18,58 +18,62 @@ where computed, and those points marked. poincare: the section points in
 (q, qdot). Axes carry their quantities and units, and titles the scene and
 the parameters held fixed, from the meta.json beside the CSV
 (scripts/plot_labels.py).
+
+Each figure is drawn by a draw_* function over columns that returns the
+matplotlib Figure; this script feeds it from the CSV files, the Python
+package's result.plot() from a result (impactlab.figures).
 """
 import os
 import sys
 
 import matplotlib
 
-matplotlib.use("Agg")
+if __name__ == "__main__":
+    matplotlib.use("Agg")  # a script writes files; no window
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import plot_labels  # noqa: E402
-
-
-def read(path):
-    data = np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8")
-    return np.atleast_1d(data)
+try:  # in the Python package impactlab (impactlab.figures)
+    from . import plot_files, plot_labels
+except ImportError:  # run as a script beside its modules
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import plot_files  # noqa: E402
+    import plot_labels  # noqa: E402
 
 
 def unfinished_values(summary, param):
     """{label: parameter values} of the points that stopped early or did not
     settle, from summary.csv's termination and transient_end columns."""
-    names = summary.dtype.names
     marks = {}
-    if "termination" in names:
-        stopped = summary["termination"] != "completed"
+    if "termination" in summary:
+        stopped = np.asarray(summary["termination"], dtype=str) != "completed"
         if stopped.any():
             marks["run stopped early"] = np.asarray(summary[param][stopped], dtype=float)
-    if "transient_end" in names:
-        unsettled = summary["transient_end"] == "not_settled"
+    if "transient_end" in summary:
+        unsettled = np.asarray(summary["transient_end"], dtype=str) == "not_settled"
         if unsettled.any():
             marks["transient not settled"] = np.asarray(summary[param][unsettled], dtype=float)
     return marks
 
 
-def bifurcation(csv, png, param, q_name):
-    data = read(csv)
-    meta = plot_labels.read_meta(os.path.dirname(csv))
+def draw_bifurcation(points, summary, meta, param, q_name):
+    """The bifurcation diagram: `points` (bifurcation.csv's columns: param,
+    q, direction) and the points of `summary` (summary.csv's, or None) that
+    stopped early or did not settle, marked along the bottom."""
+    data = plot_files.as_columns(points)
     fig, ax = plt.subplots(figsize=(8, 5.5))
     # the down sweep's thin crosses under the up sweep's dots: where the two
     # agree a dot sits in a cross, where they differ (hysteresis) each shows
     for direction, colour, marker, size, layer in (("down", "tab:red", "x", 3.0, 2),
                                                    ("up", "tab:blue", ".", 2.0, 3)):
-        rows = data[data["direction"] == direction]
-        if len(rows):
-            ax.plot(rows[param], rows["q"], marker, color=colour, markersize=size,
+        rows = np.asarray(data["direction"], dtype=str) == direction
+        if rows.any():
+            ax.plot(data[param][rows], data["q"][rows], marker, color=colour, markersize=size,
                     markeredgewidth=0.4, linestyle="none", label=f"sweep {direction}",
                     rasterized=True, zorder=layer)
-    summary_csv = os.path.join(os.path.dirname(csv), "summary.csv")
-    if os.path.exists(summary_csv):
+    if summary is not None:
         styles = {"run stopped early": ("black", "|"), "transient not settled": ("tab:orange", "^")}
-        for label, values in unfinished_values(read(summary_csv), param).items():
+        for label, values in unfinished_values(plot_files.as_columns(summary), param).items():
             colour, marker = styles[label]
             ax.plot(values, np.zeros_like(values), marker, color=colour, markersize=9,
                     linestyle="none", label=f"{label} ({len(values)})",
@@ -81,12 +85,24 @@ def bifurcation(csv, png, param, q_name):
               fontsize=8, frameon=False)
     ax.set_title(plot_labels.title(meta, "bifurcation diagram", (param,)), fontsize=8)
     fig.tight_layout()
-    fig.savefig(png, dpi=150)
+    return fig
 
 
-def classes(csv, png, param1, param2):
-    data = read(csv)
-    meta = plot_labels.read_meta(os.path.dirname(csv))
+def bifurcation(csv, png, param, q_name):
+    directory = os.path.dirname(csv)
+    summary_csv = os.path.join(directory, "summary.csv")
+    summary = plot_files.read_columns(summary_csv) if os.path.exists(summary_csv) else None
+    figure = draw_bifurcation(plot_files.read_columns(csv), summary,
+                              plot_labels.read_meta(directory), param, q_name)
+    plot_files.save_figure(figure, png)
+
+
+def draw_classes(table, meta, param1, param2):
+    """The 2D map: the period of the section map over (param1, param2) from
+    `table` (classes.csv's columns), the largest Lyapunov exponent and the
+    share of sticking impacts beside it where computed, and the points that
+    stopped early or did not settle marked on every panel."""
+    data = plot_files.as_columns(table)
     x = np.unique(data[param1])
     y = np.unique(data[param2])
     ix = np.searchsorted(x, data[param1])
@@ -101,9 +117,8 @@ def classes(csv, png, param1, param2):
     lyapunov = grid(np.asarray(data["lyapunov"], dtype=float))
     merged = np.isneginf(lyapunov)  # rest on a wall: nearby states merge
     lyapunov[~np.isfinite(lyapunov)] = np.nan
-    names = data.dtype.names
     sticks = grid(np.asarray(data["stick_fraction"], dtype=float)) \
-        if "stick_fraction" in names else np.full((len(y), len(x)), np.nan)
+        if "stick_fraction" in data else np.full((len(y), len(x)), np.nan)
     show_lyapunov = np.isfinite(lyapunov).any() or merged.any()
     show_sticks = bool(np.isfinite(sticks).any() and np.nanmax(sticks) > 0.0)
     panels = 1 + int(show_lyapunov) + int(show_sticks)
@@ -136,11 +151,13 @@ def classes(csv, png, param1, param2):
         ax.set_title("sticking impacts")
     # points whose run stopped early or whose transient did not settle, on
     # every panel: their classes are not the attractor's
+    words = {name: np.asarray(data[name], dtype=str) for name in ("termination", "transient_end")
+             if name in data}
     marks = []
-    if "termination" in names:
-        marks.append((data["termination"] != "completed", "x", "black", "run stopped early"))
-    if "transient_end" in names:
-        marks.append((data["transient_end"] == "not_settled", "^", "tab:orange",
+    if "termination" in words:
+        marks.append((words["termination"] != "completed", "x", "black", "run stopped early"))
+    if "transient_end" in words:
+        marks.append((words["transient_end"] == "not_settled", "^", "tab:orange",
                       "transient not settled"))
     for ax in axes[0]:
         for where, marker, colour, label in marks:
@@ -155,12 +172,18 @@ def classes(csv, png, param1, param2):
     fig.suptitle(plot_labels.title(meta, "classes of the section map", (param1, param2)),
                  fontsize=8)
     fig.tight_layout()
-    fig.savefig(png, dpi=150)
+    return fig
 
 
-def poincare(csv, png, q_name):
-    data = read(csv)
-    meta = plot_labels.read_meta(os.path.dirname(csv))
+def classes(csv, png, param1, param2):
+    figure = draw_classes(plot_files.read_columns(csv),
+                          plot_labels.read_meta(os.path.dirname(csv)), param1, param2)
+    plot_files.save_figure(figure, png)
+
+
+def draw_poincare(table, meta, q_name):
+    """The section points (poincare.csv's columns q, qdot) in the phase plane."""
+    data = plot_files.as_columns(table)
     fig, ax = plt.subplots(figsize=(6, 5))
     ax.plot(data["q"], data["qdot"], ".", markersize=3)
     q_label, rate_label = plot_labels.coordinate_labels(meta, q_name)
@@ -168,7 +191,13 @@ def poincare(csv, png, q_name):
     ax.set_ylabel(rate_label)
     ax.set_title(plot_labels.title(meta, "Poincare section"), fontsize=7)
     fig.tight_layout()
-    fig.savefig(png, dpi=150)
+    return fig
+
+
+def poincare(csv, png, q_name):
+    figure = draw_poincare(plot_files.read_columns(csv),
+                           plot_labels.read_meta(os.path.dirname(csv)), q_name)
+    plot_files.save_figure(figure, png)
 
 
 def main(argv):
@@ -176,22 +205,11 @@ def main(argv):
         print(__doc__)
         sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
     kind, csv, png, *names = argv[1:]
-    if kind == "continuation":  # scripts/plot_continuation.py
-        import plot_continuation
-        plot_continuation.main([argv[0], csv, png, *names])
-        return
-    if kind == "basins":  # scripts/plot_basins.py
-        import plot_basins
-        plot_basins.main([argv[0], csv, png, *names])
-        return
-    if kind == "lyapunov":  # scripts/plot_lyapunov.py
-        sys.path.insert(0, __import__("os").path.dirname(__file__))
-        import plot_lyapunov
-        plot_lyapunov.main([argv[0], csv, png, *names])
-        return
-    if kind == "curve":  # scripts/plot_curve.py
-        import plot_curve
-        plot_curve.main([argv[0], csv, png, *names])
+    # the other figures' own scripts, beside this one
+    others = {"continuation": "plot_continuation", "basins": "plot_basins",
+              "lyapunov": "plot_lyapunov", "curve": "plot_curve"}
+    if kind in others:
+        __import__(others[kind]).main([argv[0], csv, png, *names])
         return
     {"bifurcation": bifurcation, "classes": classes, "poincare": poincare}[kind](csv, png, *names)
 

@@ -14,6 +14,7 @@ key that the scene's model does not read gives an UnreadKeyWarning.
 
 import math
 import numbers
+import os
 import re
 import sys
 import warnings
@@ -24,7 +25,9 @@ from . import _impactlab
 
 __all__ = [
     "Scene", "scenes", "scene", "simulate", "poincare", "sweep", "basins", "periodic", "compare",
-    "bench", "continue_", "EventArray", "Table", "Result", "RunResult", "EVENT_KINDS",
+    "bench", "continue_", "EventArray", "Table", "Result", "RunResult", "SectionResult",
+    "SweepResult", "BasinsResult", "ComparisonResult", "WorkPrecisionResult",
+    "ContinuationResult", "EVENT_KINDS",
     "PhysicalDiagnosticWarning", "UnreadKeyWarning", "__version__",
 ]
 
@@ -95,7 +98,15 @@ class Table(dict):
 
 
 class Result:
-    """A job's result: its fields as attributes (see docs/python.md)."""
+    """A job's result: its fields as attributes (see docs/python.md).
+
+    `plot()` draws what the CLI's --plot draws for the job, from the same
+    numbers, with the plot scripts' own drawing functions (impactlab.figures):
+    one figure, not two that can drift apart."""
+
+    #: the figures plot() draws (`which`), the CLI's --plot's first; a result
+    #: type of a job the CLI draws nothing for has none
+    FIGURES = ()
 
     def __init__(self, **fields):
         self.__dict__.update(fields)
@@ -103,15 +114,176 @@ class Result:
     def __repr__(self):
         return "{}({})".format(type(self).__name__, ", ".join(sorted(self.__dict__)))
 
+    def plot(self, path=None, which=None, **extra):
+        """The figure the CLI's --plot draws for this job, as a matplotlib
+        Figure; with path, also written there as the CLI writes its PNG
+        (whole or not at all). which: one of FIGURES (None: the first)."""
+        if not self.FIGURES:
+            raise TypeError("{} draws no figure (the CLI draws none for this job)".format(
+                type(self).__name__))
+        which = self.FIGURES[0] if which is None else which
+        if which not in self.FIGURES:
+            raise ValueError("which = {!r}: expected {}".format(which, " or ".join(
+                repr(name) for name in self.FIGURES)))
+        from .figures import plot_files  # matplotlib is needed only to draw
+
+        figure = self._draw(which, **extra)
+        if path is not None:
+            plot_files.save_figure(figure, os.fspath(path))
+        return figure
+
+    def _run_record(self):
+        """The scene's part of the run's record: what the figures' labels,
+        units and titles are read from (meta.json's "scene")."""
+        meta = self.__dict__.get("meta")
+        return meta if meta and "scene" in meta else {"scene": self.scene.record()}
+
 
 class RunResult(Result):
-    """simulate's result; `meta` (meta.json's content) is made on first use."""
+    """simulate's result; `meta` (meta.json's content) is made on first use.
+    plot(): the coordinate against time with the walls, the impacts and the
+    contact phases, and the phase portrait (needs simulate(..., sample=DT))."""
+
+    FIGURES = ("simulation",)
 
     @property
     def meta(self):
         if "_meta" not in self.__dict__:
-            self._meta = self._record.meta()
+            self._meta = self._pending_record.meta()
         return self._meta
+
+    def _run_record(self):
+        return self.meta
+
+    def _draw(self, which):
+        from .figures import plot_simulation
+
+        if len(self.trajectory.t) == 0:
+            raise ValueError("plot: the run recorded no trajectory; simulate(..., sample=DT) "
+                             "records one")
+        events = {"kind": self.events.kind_names().astype(str), "t": self.events["t"],
+                  "q": self.events["q"]}
+        return plot_simulation.draw_simulation(
+            {"t": self.trajectory.t, "q": self.trajectory.q, "qdot": self.trajectory.qdot},
+            events, self.meta)
+
+
+class SectionResult(Result):
+    """poincare's result. plot(): the section points (which="section"), or
+    the running estimates of the Lyapunov spectrum (which="lyapunov", with
+    lyapunov_spectrum=True)."""
+
+    FIGURES = ("section", "lyapunov")
+
+    def _draw(self, which):
+        from .figures import plot_lyapunov, plot_sweep
+
+        if which == "section":
+            return plot_sweep.draw_poincare({"q": self.q, "qdot": self.qdot}, self._run_record(),
+                                            self.scene.main_coordinate)
+        if "lyapunov_running" not in self.__dict__:
+            raise ValueError("which = 'lyapunov': the run has no spectrum; "
+                             "poincare(..., lyapunov_spectrum=True) computes one")
+        running = {"t": self.lyapunov_running_t}
+        for index in range(self.lyapunov_running.shape[1]):
+            running["lambda{}".format(index + 1)] = self.lyapunov_running[:, index]
+        return plot_lyapunov.draw_spectrum(running, self._run_record())
+
+
+class SweepResult(Result):
+    """sweep's result. plot(): the bifurcation diagram (1D) or the map of
+    periods, Lyapunov exponents and sticking impacts (2D), with the points
+    that stopped early or did not settle marked."""
+
+    FIGURES = ("sweep",)
+
+    def _draw(self, which):
+        from .figures import plot_sweep
+
+        if self.bifurcation is not None:
+            return plot_sweep.draw_bifurcation(self.bifurcation, self.summary, self._run_record(),
+                                               self.axes[0], self.scene.main_coordinate)
+        return plot_sweep.draw_classes(self.summary, self._run_record(), *self.axes)
+
+
+class BasinsResult(Result):
+    """basins' result. plot(): the grid coloured by attractor, with a legend
+    of the attractors."""
+
+    FIGURES = ("basins",)
+
+    def _draw(self, which):
+        from .figures import plot_basins
+
+        return plot_basins.draw_basins(self.grid, self.attractors, self._run_record(), *self.axes)
+
+
+class ComparisonResult(Result):
+    """compare's result. plot(): the rates before impact, the contact
+    intervals and the strobe section, one colour per model."""
+
+    FIGURES = ("compare",)
+
+    def _draw(self, which):
+        from .figures import plot_compare, plot_files
+
+        tables = [plot_files.parse_columns(text)
+                  for text in (self.impacts_csv, self.contacts_csv, self.section_csv)]
+        return plot_compare.draw_compare(*tables, self._run_record())
+
+
+class WorkPrecisionResult(Result):
+    """bench's result. plot(): the largest impact-time error against the CPU
+    time and against the right-hand sides per impact, one line per method."""
+
+    FIGURES = ("work_precision",)
+
+    def _draw(self, which):
+        from .figures import plot_bench
+
+        rows = {"tool": ["impactlab"] * len(self.method), "method": self.method,
+                "rtol": self.rtol, "max_time_error": self.impact_time_error,
+                "seconds_per_impact": self.seconds_per_impact,
+                "rhs_per_impact": self.rhs_per_impact, "compared_impacts": self.impacts_compared,
+                "reference_impacts": np.full(len(self.method), self.reference_impacts)}
+        reference = {"method": self.reference_method, "time_spread": 0.0,
+                     "impacts_compared": self.reference_impacts}
+        return plot_bench.draw_work_precision(rows, self.scene.name, reference)
+
+
+class ContinuationResult(Result):
+    """continue_'s result. plot(): the branches, stable solid and unstable
+    dashed, with the located points (which="branches"; sweep=a 1D sweep's
+    result draws its points underneath), or the two-parameter curves
+    (which="curve", with param2; sweep=a 2D sweep's result draws its period
+    map underneath)."""
+
+    FIGURES = ("branches", "curve")
+
+    def _draw(self, which, sweep=None):
+        from .figures import plot_continuation, plot_curve
+
+        if sweep is not None and not isinstance(sweep, SweepResult):
+            raise ValueError("sweep = {!r}: expected a result of impactlab.sweep".format(sweep))
+        record = self._run_record()
+        if which == "branches":
+            underneath = None
+            if sweep is not None:
+                if sweep.bifurcation is None:
+                    raise ValueError("sweep: a 2D map; the branches are drawn over a 1D sweep")
+                underneath = sweep.bifurcation
+            return plot_continuation.draw_continuation(
+                self.branches, self.points, record, self.parameter, self.scene.main_coordinate,
+                underneath)
+        if "curves" not in self.__dict__:
+            raise ValueError("which = 'curve': the run followed no curve; continue_(..., "
+                             "param2=...) follows one")
+        if sweep is not None and sweep.bifurcation is not None:
+            raise ValueError("sweep: a 1D sweep; the curve is drawn over a 2D map")
+        second = self.parameter2
+        kind = self.curves[0].get("type", "curve") if self.curves else "curve"
+        return plot_curve.draw_curve(self.curves, kind, record, self.parameter, second,
+                                     None if sweep is None else sweep.summary)
 
 
 def _finite_float(value):
@@ -373,7 +545,7 @@ def simulate(scene_=None, *, periods=_default("simulate", "periods"),
         events=raw["events"].view(EventArray),
         trajectory=Result(t=raw["samples_t"], q=raw["samples_q"], qdot=raw["samples_qdot"],
                           mode=raw["samples_mode"]),
-        termination=raw["termination"], _record=raw["record"])
+        termination=raw["termination"], _pending_record=raw["record"])
     _warn_if_stopped(result, "simulate")
     return result
 
@@ -412,7 +584,7 @@ def poincare(scene_=None, *, section=_default("poincare", "section"),
             len(raw["lyapunov_running_t"]), len(raw["lyapunov_spectrum"]))
     raw["k"] = np.arange(len(raw["t"]))
     raw["phase"] = np.fmod(raw["omega"] * raw["t"], 2.0 * math.pi)
-    result = Result(scene=loaded, **raw)
+    result = SectionResult(scene=loaded, **raw)
     _warn_if_stopped(result, "poincare")
     if result.transient_end == "not_settled":
         warnings.warn("poincare: the transient did not settle within max_transient = {:g} "
@@ -492,9 +664,10 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
     summary.update(transient_periods=raw["transient_periods"], transient_end=raw["transient_end"])
     summary.update(_spectrum_columns(raw))
     _warn_of_unfinished_points("sweep", raw, "summary")
-    result = Result(scene=loaded, bifurcation=Table(bifurcation) if bifurcation else None,
-                    summary=Table(summary), definition=raw["definition"],
-                    wall_time_s=raw["wall_time_s"])
+    result = SweepResult(scene=loaded, axes=tuple(axes),
+                         bifurcation=Table(bifurcation) if bifurcation else None,
+                         summary=Table(summary), definition=raw["definition"],
+                         wall_time_s=raw["wall_time_s"])
     if len(params) == 2:
         # the map's columns shaped like the map: [j, i] is the second key's
         # j-th value and the first key's i-th (classes.csv: the first fastest)
@@ -554,11 +727,11 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
                           dtype=[(name, kind) for name, _, kind in columns])
     for name, source, _ in columns:
         attractors[name] = raw[source]
-    result = Result(scene=loaded, axes=tuple(axes),
-                    x=raw["x"][:nx].copy(), y=raw["y"][::nx].copy(),
-                    labels=raw["attractor"].reshape(ny, nx), grid=grid, attractors=attractors,
-                    basin_measures=raw["meta"]["basin_measures"], meta=raw["meta"],
-                    wall_time_s=raw["wall_time_s"])
+    result = BasinsResult(scene=loaded, axes=tuple(axes),
+                          x=raw["x"][:nx].copy(), y=raw["y"][::nx].copy(),
+                          labels=raw["attractor"].reshape(ny, nx), grid=grid,
+                          attractors=attractors, basin_measures=raw["meta"]["basin_measures"],
+                          meta=raw["meta"], wall_time_s=raw["wall_time_s"])
     _warn_of_unfinished_points("basins", raw, "grid")
     return result
 
@@ -611,7 +784,7 @@ def compare(scene_=None, *, models=_default("compare", "models"),
                progress, "compare")
     for run in raw["runs"].values():
         run["events"] = run["events"].view(EventArray)
-    return Result(scene=loaded, **raw)
+    return ComparisonResult(scene=loaded, **raw)
 
 
 @_documented("work_precision")
@@ -641,7 +814,7 @@ def bench(scene_=None, *, methods=_default("work_precision", "methods"),
         loaded, list(methods or []), rtol_list, checked["atol_ratio"], checked["periods"],
         checked["reference_periods"], checked["max_reference_impacts"], checked["repetitions"],
         callback), progress, "bench")
-    return Result(scene=loaded, **raw)
+    return WorkPrecisionResult(scene=loaded, **raw)
 
 
 @_documented("continue")
@@ -692,4 +865,4 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     raw["points"] = Table(raw["points"])
     if "curves" in raw:
         raw["curves"] = [Table(curve) for curve in raw["curves"]]
-    return Result(scene=loaded, **raw)
+    return ContinuationResult(scene=loaded, **raw)

@@ -62,10 +62,12 @@ def test_axes_carry_quantities_and_units_from_the_runs_record(cli):
 
 def test_the_balls_rest_on_the_table_is_named_as_one(cli):
     basins = load("plot_basins")
+    files = load("plot_files")
     out = cli("basins", "bouncing_ball", "--set", "A=0.00981", "--x", "initial.y=0:0.1:12",
               "--y", "initial.y_dot=-1:1:8")
     meta = load("plot_labels").read_meta(out)
-    names = [basins.describe(row, meta) for row in basins.read(out / "attractors.csv")]
+    names = [basins.describe(row, meta)
+             for row in files.rows_of(files.read_columns(out / "attractors.csv"))]
     assert any(name.endswith("at rest on the table (sticking)") for name in names), names
     assert any("period 1, 1 impacts/period" in name for name in names), names
 
@@ -74,7 +76,7 @@ def test_the_diagrams_mark_points_that_did_not_settle(cli):
     sweep = load("plot_sweep")
     out = cli("sweep", "jin2003", "--set", "V0=1", "--param", "omega=5.45:5.55:3",
               "--no-lyapunov", "--max-transient", "150")
-    summary = sweep.read(out / "summary.csv")
+    summary = load("plot_files").read_columns(out / "summary.csv")
     marks = sweep.unfinished_values(summary, "omega")
     unsettled = summary["omega"][summary["transient_end"] == "not_settled"]
     assert len(unsettled) > 0
