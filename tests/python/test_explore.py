@@ -1,0 +1,47 @@
+"""impactlab.explore: the explorer's server started for a notebook, its page
+shown inline (an IFrame of the address with the token), stopped on request."""
+import http.client
+import json
+import urllib.parse
+
+import pytest
+
+import impactlab
+
+
+def get(url, path):
+    address = urllib.parse.urlsplit(url)
+    token = urllib.parse.parse_qs(address.query)["token"][0]
+    connection = http.client.HTTPConnection(address.hostname, address.port, timeout=30)
+    connection.request("GET", path, headers={"Authorization": "token " + token})
+    response = connection.getresponse()
+    return response.status, response.read().decode()
+
+
+def test_explore_serves_the_scene_inline_and_stops():
+    with impactlab.explore("jin2003") as explorer:
+        assert explorer.url.startswith("http://127.0.0.1:")
+        assert '<iframe src="{}"'.format(explorer.url) in explorer._repr_html_()
+        status, body = get(explorer.url, "/api/scene")
+        assert status == 200
+        assert json.loads(body)["scene_source"] == "jin2003"
+    assert not explorer.running
+
+
+def test_explore_takes_a_scene_object_with_its_keys():
+    loaded = impactlab.scene("jin2003", V0=2.25)
+    explorer = impactlab.explore(loaded)
+    try:
+        status, body = get(explorer.url, "/api/scene")
+        values = {key["key"]: key["value"] for key in json.loads(body)["keys"]}
+        assert values["V0"] == 2.25
+    finally:
+        explorer.stop()
+    assert not explorer.running
+
+
+def test_explore_refuses_a_bad_port_and_scene():
+    with pytest.raises(ValueError, match="port"):
+        impactlab.explore("jin2003", port=70000)
+    with pytest.raises(ValueError, match="no_such_scene"):
+        impactlab.explore("no_such_scene")
