@@ -1,7 +1,9 @@
 #include <impactlab/api/explore_requests.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <optional>
 
@@ -69,8 +71,6 @@ double forcing_period(const Scene& scene) {
                    "this scene has no forcing frequency omega to count periods by");
   return 2.0 * std::numbers::pi / scene.number("omega");
 }
-
-json array_of(const std::vector<double>& values) { return json(values); }
 
 // one key as `--set` and Python spell it, where `scene` differs from `base`
 struct Assignment {
@@ -314,7 +314,7 @@ json run_trajectory(const Scene& scene, const TrajectoryView& view, const Explor
     impact_t.push_back(event.t);
     impact_q.push_back(event.q);
     impact_wall.push_back(event.wall);
-    auto [span, fresh] = wall_span.try_emplace(event.wall, event.q, event.q);
+    const auto span = wall_span.try_emplace(event.wall, event.q, event.q).first;
     span->second.first = std::min(span->second.first, event.q);
     span->second.second = std::max(span->second.second, event.q);
   }
@@ -383,18 +383,24 @@ json run_orbit(const Scene& scene, const OrbitView& view, const ExploreProgress&
   const PeriodicJobResult found = find_periodic_orbit(at, job);
   checkpoint(0.4);
   json out = {{"periodic", periodic_record(at, found)}};
-  // the orbit over its period, run from its point on the section where the
-  // scene has an initial key for each component of the state
+  // the orbit over its period, run from its point on the section: each
+  // component of the state that the scene has an initial key for (a
+  // tally such as the friction work has none and feeds nothing back)
   const PeriodicResult& orbit = found.result;
   const SceneSchema& schema = scene_schema(at);
-  bool startable = orbit.converged && !orbit.state.empty();
-  for (const std::string& name : orbit.state_names)
-    startable = startable && find_key(schema, "initial." + name) != nullptr;
-  if (startable) {
-    Scene start = at;
+  const std::string main(schema.main_coordinate);
+  Scene start = at;
+  int coordinates_set = 0;
+  if (orbit.converged && orbit.state.size() == orbit.state_names.size()) {
     apply_override(start, "t0=" + exact(orbit.t_section));
-    for (std::size_t i = 0; i < orbit.state.size(); ++i)
-      apply_override(start, "initial." + orbit.state_names[i] + "=" + exact(orbit.state[i]));
+    for (std::size_t i = 0; i < orbit.state.size(); ++i) {
+      const std::string key = "initial." + orbit.state_names[i];
+      if (find_key(schema, key) == nullptr) continue;
+      apply_override(start, key + "=" + exact(orbit.state[i]));
+      coordinates_set += orbit.state_names[i] == main || orbit.state_names[i] == main + "_dot";
+    }
+  }
+  if (coordinates_set == 2) {
     RunRequest request;
     request.periods = found.request.period;
     request.sample_step = forcing_period(at) / 256.0;

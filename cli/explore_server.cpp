@@ -6,6 +6,9 @@
 #include <random>
 #include <sstream>
 
+#include <netinet/in.h>
+#include <sys/socket.h>
+
 #include <fmt/format.h>
 #include <httplib.h>
 #include <nlohmann/json.hpp>
@@ -89,6 +92,25 @@ std::string text_member(const json& body, const char* name) {
   return body.contains(name) && body.at(name).is_string() ? body.at(name).get<std::string>() : "";
 }
 
+// Debian's cpp-httplib (0.11) listens with a backlog of 5 connections,
+// compiled into its library: a burst of requests overflows it and the
+// kernel resets some. Listening again on the same socket with a longer
+// backlog widens the queue (Linux); the socket is the one bound to `port`.
+void widen_listen_backlog(int port) {
+  for (int descriptor = 0; descriptor < 1024; ++descriptor) {
+    sockaddr_in address{};
+    socklen_t length = sizeof address;
+    int listening = 0;
+    socklen_t flag_length = sizeof listening;
+    if (::getsockname(descriptor, reinterpret_cast<sockaddr*>(&address), &length) != 0 ||
+        address.sin_family != AF_INET || ntohs(address.sin_port) != port)
+      continue;
+    if (::getsockopt(descriptor, SOL_SOCKET, SO_ACCEPTCONN, &listening, &flag_length) == 0 &&
+        listening != 0)
+      ::listen(descriptor, SOMAXCONN);
+  }
+}
+
 }  // namespace
 
 std::string random_token() {
@@ -121,6 +143,7 @@ void serve_explorer(const ExploreServerSettings& settings,
   }
   if (port <= 0)
     throw BadInput("port", std::to_string(settings.port), "cannot listen on 127.0.0.1 there");
+  widen_listen_backlog(port);
   const std::vector<std::string> hosts = {fmt::format("127.0.0.1:{}", port),
                                           fmt::format("localhost:{}", port)};
 

@@ -80,13 +80,17 @@ def test_bad_scene_values_are_refused_with_the_scenes_own_message(explorer):
     cases = [({"no_such_key": 1}, ("--set", "no_such_key=1")),
              ({"V0": "nan"}, ("--set", "V0=nan")),
              ({"e_n": 1.5}, ("--set", "e_n=1.5")),
-             ({"b": 0.9}, ("--set", "b=0.9")),
              ({"model": "quantum"}, ("--set", "model=quantum"))]
     for values, assignment in cases:
         status, body, _ = explorer.request("POST", "/api/jobs",
                                            {"kind": "trajectory", "values": values})
         assert status == 400, values
         assert body["error"]["message"] == cli_refusal("simulate", "jin2003", *assignment), values
+        assert body["error"]["key"] == list(values)[0]
+    # a clash of keys (b >= l) is found where the system is built: the job fails with it
+    state = explorer.job("trajectory", {"b": 0.9})
+    assert state["state"] == "failed" and state["error"]["key"] == "b"
+    assert state["error"]["message"] == cli_refusal("simulate", "jin2003", "--set", "b=0.9")
     # JSON's own non-numbers are no values either
     status, body, _ = explorer.request("POST", "/api/jobs",
                                        '{"kind": "trajectory", "values": {"V0": NaN}}')
