@@ -224,24 +224,30 @@ function addControl(form, spec) {
     for (const choice of spec.choices) input.add(new Option(choice, choice, false, choice === spec.value));
     input.addEventListener("change", () => changeKey(spec.key, input.value));
   } else if (spec.slider) {
-    // a slider over the key's range, 1000 steps; an open bound is left out
+    // a slider over the key's range, 1000 steps (an open bound left out),
+    // and beside it an entry for an exact value
     const steps = 1000, step = (spec.upper - spec.lower) / steps;
-    input = document.createElement("input");
-    input.type = "range";
-    input.min = spec.lower_open ? spec.lower + step : spec.lower;
-    input.max = spec.upper_open ? spec.upper - step : spec.upper;
-    input.step = step;
-    input.value = spec.value;
-    const shown = document.createElement("span");
-    shown.className = "value";
-    shown.textContent = numberText(spec.value);
-    input.addEventListener("input", () => {
-      shown.textContent = numberText(Number(input.value));
-      changeKey(spec.key, Number(input.value));
+    const slider = document.createElement("input");
+    slider.type = "range";
+    slider.name = spec.key;
+    slider.min = spec.lower_open ? spec.lower + step : spec.lower;
+    slider.max = spec.upper_open ? spec.upper - step : spec.upper;
+    slider.step = step;
+    slider.value = spec.value;
+    const exact = document.createElement("input");
+    exact.type = "text";
+    exact.className = "value";
+    exact.value = numberText(spec.value);
+    slider.addEventListener("input", () => {
+      exact.value = numberText(Number(slider.value));
+      changeKey(spec.key, Number(slider.value));
     });
-    row.appendChild(input);
-    row.appendChild(shown);
-    input = null;
+    exact.addEventListener("change", () => {
+      slider.value = exact.value;
+      changeKey(spec.key, exact.value.trim());
+    });
+    row.appendChild(slider);
+    row.appendChild(exact);
   } else {
     input = document.createElement("input");
     input.type = "text";
@@ -477,6 +483,10 @@ async function start() {
   document.getElementById("diagram-run").addEventListener("click", () => {
     explorer.zoomHistory = [];
     runDiagram(diagramRequestFromInputs());
+  });
+  document.getElementById("diagram-fit").addEventListener("click", () => {
+    explorer.plots.diagram.yRange = null;
+    drawDiagram();
   });
   document.getElementById("diagram-back").addEventListener("click", () => {
     const previous = explorer.zoomHistory.pop();
