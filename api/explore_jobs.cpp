@@ -1,10 +1,18 @@
 #include <impactlab/api/explore_jobs.hpp>
 
+#include <algorithm>
 #include <atomic>
 
 #include <impactlab/io/bad_input.hpp>
 
 namespace impactlab {
+
+namespace {
+
+// the shortest time between two answers of a poll of a running job
+constexpr std::chrono::milliseconds poll_batch{100};
+
+}  // namespace
 
 struct ExploreJobs::Job {
   std::uint64_t id = 0;
@@ -151,8 +159,15 @@ nlohmann::json ExploreJobs::poll(std::uint64_t id, std::size_t first_item,
   // wait for something new: an end, progress, or items beyond first_item
   const std::uint64_t seen = job->version;
   const bool nothing_new = job->state == "running" && job->items.size() <= first_item;
-  if (nothing_new)
-    changed_.wait_for(lock, wait, [&] { return job->version != seen; });
+  if (nothing_new) {
+    const auto deadline = std::chrono::steady_clock::now() + wait;
+    changed_.wait_until(lock, deadline, [&] { return job->version != seen; });
+    // progress of a job that runs on is handed out at most every
+    // poll_batch, so that polling costs the job little of the CPU; its end
+    // is handed out at once
+    changed_.wait_until(lock, std::min(deadline, std::chrono::steady_clock::now() + poll_batch),
+                        [&] { return job->state != "running"; });
+  }
   nlohmann::json items = nlohmann::json::array();
   for (std::size_t k = first_item; k < job->items.size(); ++k) items.push_back(job->items[k]);
   const double elapsed =
