@@ -252,11 +252,8 @@ function addControl(form, spec) {
     input = document.createElement("input");
     input.type = "text";
     input.value = spec.text ? spec.value : numberText(spec.value);
-    input.addEventListener("change", () => {
-      const text = input.value.trim();
-      // a number is sent as text, so that the scene's own parser and checks judge it
-      changeKey(spec.key, spec.text ? text : text);
-    });
+    // sent as typed: the scene's own parser and checks judge it
+    input.addEventListener("change", () => changeKey(spec.key, input.value.trim()));
   }
   if (input) { input.name = spec.key; row.appendChild(input); }
   const message = document.createElement("div");
