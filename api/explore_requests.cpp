@@ -35,6 +35,11 @@ const KeySpec* find_key(const SceneSchema& schema, std::string_view key) {
   return found == schema.keys.end() ? nullptr : &*found;
 }
 
+// a view's options: an object (absent: {}, every option at its default)
+void check_options(const json& options) {
+  if (!options.is_object()) throw BadInput("options", options.dump(), "expected an object");
+}
+
 // option `name` of a view as a number within [lower, upper]; `fallback` where absent
 double number_option(const json& options, const char* name, double fallback, double lower,
                      double upper) {
@@ -220,6 +225,7 @@ Scene explore_scene(const Scene& base, const json& values, const ExploreLimits& 
 }
 
 TrajectoryView trajectory_view(const json& options, const ExploreLimits& limits) {
+  check_options(options);
   TrajectoryView view;
   view.periods = number_option(options, "periods", view.periods, 1e-3, limits.max_periods);
   view.samples_per_period = static_cast<int>(
@@ -231,6 +237,7 @@ TrajectoryView trajectory_view(const json& options, const ExploreLimits& limits)
 }
 
 SectionView section_view(const json& options, const ExploreLimits& limits) {
+  check_options(options);
   SectionView view;
   view.transient = number_option(options, "transient", view.transient, 0, limits.max_periods);
   view.points = static_cast<std::uint64_t>(whole_option(
@@ -240,6 +247,7 @@ SectionView section_view(const json& options, const ExploreLimits& limits) {
 }
 
 DiagramView diagram_view(const json& options, const Scene& scene, const ExploreLimits& limits) {
+  check_options(options);
   DiagramView view;
   view.key = text_option(options, "key", 100);
   check_numeric_key(scene, view.key, "key");
@@ -260,6 +268,7 @@ DiagramView diagram_view(const json& options, const Scene& scene, const ExploreL
 }
 
 OrbitView orbit_view(const json& options, const Scene& scene, const ExploreLimits& limits) {
+  check_options(options);
   OrbitView view;
   if (options.contains("key")) {
     view.key = text_option(options, "key", 100);

@@ -80,7 +80,7 @@ OrbitView orbit_view(const nlohmann::json& options, const Scene& scene,
 Scene orbit_scene(const Scene& scene, const OrbitView& view);
 
 // How a running view reports: `progress` gets the fraction done and may throw
-// to cancel; `add_columns` (diagram) gets finished columns as they come.
+// to cancel; `add_column` (diagram) gets each finished column as it comes.
 struct ExploreProgress {
   std::function<void(double)> progress;
   std::function<void(const nlohmann::json&)> add_column;

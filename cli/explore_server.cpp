@@ -194,6 +194,10 @@ void serve_explorer(const ExploreServerSettings& settings,
     page.replace(at, 9, settings.token);
   server.Get("/", [&](const httplib::Request&, httplib::Response& response) {
     response.set_header("Cache-Control", "no-store");
+    // the page runs its own script and style alone, and names no other site
+    response.set_header("Content-Security-Policy",
+                        "default-src 'self'; img-src 'self' data: blob:; object-src 'none'");
+    response.set_header("Referrer-Policy", "no-referrer");
     response.set_content(page, "text/html; charset=utf-8");
   });
   server.Get(R"(/web/([A-Za-z0-9_.-]+))", [&](const httplib::Request& request,

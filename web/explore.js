@@ -25,7 +25,13 @@ async function api(path, body) {
   const headers = {"Authorization": `token ${token}`};
   const response = await fetch(path, body === undefined ? {headers} : {
     method: "POST", headers: {...headers, "Content-Type": "application/json"}, body: JSON.stringify(body)});
-  const json = await response.json();
+  const text = await response.text();
+  let json;
+  try {
+    json = JSON.parse(text);
+  } catch (error) {  // a refusal of the HTTP layer itself (413: too large) has no JSON
+    json = {error: {key: "", value: "", message: `${response.status} ${response.statusText} ${text}`.trim()}};
+  }
   if (!response.ok) throw Object.assign(new Error(json.error ? json.error.message : response.statusText),
                                         {detail: json.error || {}, status: response.status});
   return json;

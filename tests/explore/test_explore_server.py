@@ -20,6 +20,7 @@ def test_it_listens_on_loopback_and_prints_a_token(explorer):
     # the page names its own files with the token; no cookie is set
     assert "web/explore.js?token=" + explorer.token in page
     assert "Set-Cookie" not in headers
+    assert "default-src 'self'" in headers["Content-Security-Policy"]
 
 
 def test_a_request_without_the_token_is_refused(explorer):
