@@ -156,12 +156,17 @@ def test_many_requests_at_once_stay_bounded_and_the_server_responsive(explorer):
 
 
 def test_a_newer_job_of_a_kind_cancels_the_older(explorer):
-    options = {"key": "V0", "from": 1.0, "to": 2.0, "columns": 400, "points": 8,
-               "transient": 100}
+    # a diagram of some seconds, superseded once its first columns are in
+    options = {"key": "V0", "from": 1.0, "to": 2.0, "columns": 1000, "points": 100,
+               "transient": 400}
     status, first, _ = explorer.request("POST", "/api/jobs", {"kind": "diagram", "options": options})
     assert status == 202
-    time.sleep(0.3)
-    second = explorer.job("diagram", options={**options, "columns": 3})
+    while True:
+        status, state, _ = explorer.request("GET", "/api/jobs/{}?wait=1000".format(first["id"]))
+        if state["item_count"] > 0 or state["state"] != "running":
+            break
+    assert state["state"] == "running"
+    second = explorer.job("diagram", options={**options, "columns": 3, "transient": 10})
     assert second["state"] == "done" and len(second["all_items"]) == 3
     deadline = time.monotonic() + 30
     while True:
@@ -169,7 +174,7 @@ def test_a_newer_job_of_a_kind_cancels_the_older(explorer):
         if state["state"] != "running" or time.monotonic() > deadline:
             break
     assert state["state"] == "cancelled"
-    assert state["item_count"] < 400
+    assert state["item_count"] < 1000
 
 
 def read_csv_columns(path):
