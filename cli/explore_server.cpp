@@ -140,6 +140,13 @@ void serve_explorer(const ExploreServerSettings& settings,
   server.set_keep_alive_timeout(1);
   // a response's header and body leave at once, not after the client's delayed ACK
   server.set_tcp_nodelay(true);
+  // SO_REUSEADDR alone: cpp-httplib's default adds SO_REUSEPORT, with which a
+  // second server (any program of the same user) could bind the same port
+  // and take some of the page's requests
+  server.set_socket_options([](int socket) {
+    const int yes = 1;
+    ::setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
 
   int port = settings.port;
   if (port == 0) {

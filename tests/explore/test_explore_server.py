@@ -23,6 +23,14 @@ def test_it_listens_on_loopback_and_prints_a_token(explorer):
     assert "default-src 'self'" in headers["Content-Security-Policy"]
 
 
+def test_a_port_in_use_is_refused_with_one_line(explorer):
+    completed = subprocess.run([cli_binary(), "explore", "--port", str(explorer.port)],
+                               capture_output=True, text=True, timeout=30)
+    assert completed.returncode == 2
+    assert completed.stderr.strip() == \
+        "impactlab: --port = {}: cannot listen on 127.0.0.1 there".format(explorer.port)
+
+
 def test_a_request_without_the_token_is_refused(explorer):
     for path in ("/", "/api/scene", "/web/explore.js"):
         status, body, _ = explorer.request("GET", path, token=False)
