@@ -53,7 +53,7 @@ class ExploreJobs {
   // become the job's error
   using Work = std::function<nlohmann::json(ExploreJobControl&)>;
 
-  explicit ExploreJobs(int max_live, std::size_t kept_finished = 32);
+  explicit ExploreJobs(int max_live, std::size_t kept_finished = 16);
   // cancels every job and waits for their threads
   ~ExploreJobs();
   ExploreJobs(const ExploreJobs&) = delete;

@@ -14,6 +14,7 @@
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/api/sweep_job.hpp>
+#include <impactlab/core/event_sink.hpp>
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/scene_file.hpp>
 
@@ -157,6 +158,24 @@ json section_points(const std::vector<SectionPoint>& points) {
   }
   return {{"t", t}, {"q", q}, {"qdot", qdot}};
 }
+
+// The impacts of a run as it goes, at most `limit` of them (a chattering run
+// of thousands of periods has millions): the walls and the time series' marks.
+class ImpactCollector final : public EventSink {
+ public:
+  explicit ImpactCollector(std::size_t limit) : limit_(limit) {}
+  void write(const EventRecord& event) override {
+    if (event.kind != EventKind::impact || t.size() >= limit_) return;
+    t.push_back(event.t);
+    q.push_back(event.q);
+    wall.push_back(event.wall);
+  }
+  std::vector<double> t, q;
+  std::vector<int> wall;
+
+ private:
+  std::size_t limit_;
+};
 
 // the numeric parameter a diagram or an orbit view varies: a number key of the scene
 void check_numeric_key(const Scene& scene, const std::string& key, const char* option) {
@@ -305,11 +324,13 @@ json run_trajectory(const Scene& scene, const TrajectoryView& view, const Explor
   RunRequest request;
   request.periods = view.periods;
   request.sample_step = forcing_period(scene) / view.samples_per_period;
-  request.keep_events = true;
+  // the impacts alone are kept, as many as the samples at most
+  ImpactCollector impacts(static_cast<std::size_t>(view.periods * view.samples_per_period) + 1);
+  request.keep_events = false;
+  request.event_sink = &impacts;
   request.progress = report.progress;
   const RunOutput output = simulate(scene, request);
-  std::vector<double> t, q, qdot, impact_t, impact_q;
-  std::vector<int> impact_wall;
+  std::vector<double> t, q, qdot;
   for (const TrajectorySample& sample : output.samples) {
     t.push_back(sample.t);
     q.push_back(sample.q);
@@ -318,14 +339,11 @@ json run_trajectory(const Scene& scene, const TrajectoryView& view, const Explor
   // the walls where the run's impacts show them: one line per wall whose
   // impacts all happen at one q (a fixed wall)
   std::map<int, std::pair<double, double>> wall_span;
-  for (const EventRecord& event : output.events) {
-    if (event.kind != EventKind::impact) continue;
-    impact_t.push_back(event.t);
-    impact_q.push_back(event.q);
-    impact_wall.push_back(event.wall);
-    const auto span = wall_span.try_emplace(event.wall, event.q, event.q).first;
-    span->second.first = std::min(span->second.first, event.q);
-    span->second.second = std::max(span->second.second, event.q);
+  for (std::size_t k = 0; k < impacts.t.size(); ++k) {
+    const double at = impacts.q[k];
+    const auto span = wall_span.try_emplace(impacts.wall[k], at, at).first;
+    span->second.first = std::min(span->second.first, at);
+    span->second.second = std::max(span->second.second, at);
   }
   json walls = json::array();
   for (const auto& [wall, span] : wall_span)
@@ -335,7 +353,8 @@ json run_trajectory(const Scene& scene, const TrajectoryView& view, const Explor
           {"q", q},
           {"qdot", qdot},
           {"sample_step", request.sample_step},
-          {"impacts", {{"t", impact_t}, {"q", impact_q}, {"wall", impact_wall}}},
+          {"impacts", {{"t", impacts.t}, {"q", impacts.q}, {"wall", impacts.wall}}},
+          {"impact_count", output.impacts},
           {"walls", walls},
           {"termination", to_string(output.termination)},
           {"steps", output.steps}};
