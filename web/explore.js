@@ -361,7 +361,7 @@ function diagramRequestFromInputs() {
   return {key: document.getElementById("diagram-key").value,
           from: readNumber("diagram-from"), to: readNumber("diagram-to"),
           columns: readNumber("diagram-columns"), points: readNumber("diagram-points"),
-          transient: readNumber("diagram-transient")};
+          transient: readNumber("diagram-transient"), threads: readNumber("diagram-threads")};
 }
 
 // drag: a box zooms into the diagram; a click picks the nearest point
