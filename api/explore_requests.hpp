@@ -62,7 +62,9 @@ struct OrbitView {                      // impactlab periodic, poincare --lyapun
   // (t, q, qdot) the orbit search starts from; key empty: the scene's own start
   std::string key;
   double value = 0.0;
-  double t = 0.0, q = 0.0, qdot = 0.0;
+  double t = 0.0;     // time of the section point (scene time unit)
+  double q = 0.0;     // main coordinate there (θ in rad, x or y in m)
+  double qdot = 0.0;  // its rate (per scene time unit)
   double transient = 100.0;             // forcing periods before the orbit search
   std::uint64_t lyapunov_points = 200;  // section points the exponent averages over
 };
