@@ -384,14 +384,23 @@ Options spectrum_options() {
   };
 }
 
+Options explore_options() {
+  return {
+      scene_argument("built-in scene name or path to a scene file (.toml)"),
+      {.name = "port", .type = OptionType::integer,
+       .help = "port on 127.0.0.1 to serve the page on; 0: any free one", .default_value = 0.0,
+       .lower = 0, .upper = 65535},
+  };
+}
+
 struct JobTable {
   string_view job;
   Options (*make)();
 };
 
 // every job with options, in the order job_names lists them
-const std::array<JobTable, 11>& job_tables() {
-  static constexpr std::array<JobTable, 11> tables = {{
+const std::array<JobTable, 12>& job_tables() {
+  static constexpr std::array<JobTable, 12> tables = {{
       {"simulate", simulate_options},
       {"poincare", poincare_options},
       {"sweep", sweep_options},
@@ -403,6 +412,7 @@ const std::array<JobTable, 11>& job_tables() {
       {"work_precision", work_precision_options},
       {"reproduce", reproduce_options},
       {"spectrum", spectrum_options},
+      {"explore", explore_options},
   }};
   return tables;
 }

@@ -17,5 +17,6 @@ Command add_basins_command(CLI::App& app);  // in sweep_command.cpp: a sweep
 Command add_periodic_command(CLI::App& app);
 Command add_spectrum_command(CLI::App& app);
 Command add_continue_command(CLI::App& app);
+Command add_explore_command(CLI::App& app);
 
 }  // namespace impactlab::cli

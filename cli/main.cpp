@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
       add_periodic_command(app),
       add_spectrum_command(app),
       add_continue_command(app),
+      add_explore_command(app),
   };
 
   // GSL's default error handler aborts the process; with it off, a GSL

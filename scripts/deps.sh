@@ -7,12 +7,13 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libgsl-dev libboost-dev libfftw3-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
-  libginac-dev libssl-dev
+  libginac-dev libssl-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
   python3 python3-numpy python3-matplotlib python3-scipy python3-tqdm
   jupyter-nbconvert python3-nbformat python3-ipykernel
   pybind11-dev python3-dev python3-pytest python3-setuptools python3-pip
+  chromium chromium-driver python3-selenium
 )
 
 missing=()

@@ -30,7 +30,9 @@ sys.path.insert(0, str(ROOT / "scripts"))
 import plot_labels  # noqa: E402
 
 # commands that need what a first hour on one machine does not have
-SKIPPED = ("mpirun", "cmake --install")
+# not run: those that need MPI or an install prefix, and the explorer's
+# server, which serves until stopped (tests/explore runs it)
+SKIPPED = ("mpirun", "cmake --install", "impactlab explore")
 
 
 def readme_commands():

@@ -22,11 +22,12 @@ import warnings
 import numpy as np
 
 from . import _impactlab
+from .explorer import Explorer, start_explorer
 
 __all__ = [
     "Scene", "scenes", "scene", "simulate", "poincare", "sweep", "basins", "periodic", "compare",
-    "bench", "continue_", "EventArray", "Table", "Result", "RunResult", "SectionResult",
-    "SweepResult", "BasinsResult", "ComparisonResult", "WorkPrecisionResult",
+    "bench", "continue_", "explore", "Explorer", "EventArray", "Table", "Result", "RunResult",
+    "SectionResult", "SweepResult", "BasinsResult", "ComparisonResult", "WorkPrecisionResult",
     "ContinuationResult", "EVENT_KINDS",
     "PhysicalDiagnosticWarning", "UnreadKeyWarning", "__version__",
 ]
@@ -866,3 +867,13 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     if "curves" in raw:
         raw["curves"] = [Table(curve) for curve in raw["curves"]]
     return ContinuationResult(scene=loaded, **raw)
+
+
+@_documented("explore")
+def explore(scene_=None, *, port=_default("explore", "port")):
+    """The explorer's page (the CLI's `explore`) for the scene: time series,
+    phase portrait, section, orbit diagram, periodic orbits, export. Starts
+    `impactlab explore` on 127.0.0.1 and returns an Explorer: shown inline in
+    Jupyter (an IFrame), its url to open elsewhere, stop() to end it."""
+    port = _option("explore", "port", port)
+    return start_explorer(scene_ if scene_ is not None else "jin2003", port)

@@ -19,6 +19,7 @@ FUNCTIONS = {
     "continue": impactlab.continue_,
     "compare": impactlab.compare,
     "work_precision": impactlab.bench,
+    "explore": impactlab.explore,
 }
 
 #: keywords that are not options of a job: the progress callback
