@@ -7,6 +7,7 @@
     plot_sweep.py continuation branch.csv     out.png PARAM QNAME [bifurcation.csv]
     plot_sweep.py curve        curve.csv      out.png PARAM1 PARAM2 [classes.csv]
     plot_sweep.py basins       basins.csv     out.png XKEY YKEY
+    plot_sweep.py attractors   attractors.csv out.png PARAM QNAME
     plot_sweep.py lyapunov     lyapunov.csv   out.png [TIME_UNIT]
 
 bifurcation: the section's q against the parameter, up and down sweeps in two
@@ -183,6 +184,10 @@ def main(argv):
     if kind == "basins":  # scripts/plot_basins.py
         import plot_basins
         plot_basins.main([argv[0], csv, png, *names])
+        return
+    if kind == "attractors":  # scripts/plot_attractors.py
+        import plot_attractors
+        plot_attractors.main([argv[0], csv, png, *names])
         return
     if kind == "lyapunov":  # scripts/plot_lyapunov.py
         sys.path.insert(0, __import__("os").path.dirname(__file__))
