@@ -49,3 +49,10 @@ def test_attractors_equal_the_cli_files(cli):
 def test_bad_input_names_the_python_option(keywords, option):
     with pytest.raises(ValueError, match="^" + option + " = "):
         impactlab.attractors("linear_impact", **keywords)
+
+
+def test_plot_draws_the_bands_and_the_points(cli):
+    """--plot runs scripts/plot_attractors.py on the files it wrote."""
+    out = cli("attractors", "linear_impact", "--param", PARAM, "--samples", "4",
+              "--box", BOX[0], "--plot")
+    assert (out / "attractors.png").stat().st_size > 10000
