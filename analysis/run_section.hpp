@@ -238,6 +238,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
     result.periods_recorded = detail::periods_in(t - result.record_start, period);
     result.impacts = record_log.count(EventKind::impact);
     result.stick_impacts = record_log.stick_impacts();
+    if (result.impacts > 0) result.min_impact_speed = record_log.smallest_impact_speed();
     result.contact_phases =
         std::max(record_log.count(EventKind::contact_start), record_log.count(EventKind::contact_end));
     // mode 0 is every system's free flight

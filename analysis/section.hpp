@@ -218,6 +218,9 @@ struct SectionResult {
   bool rests_in_contact = false;
   std::uint64_t stick_impacts = 0;   // impacts in the record window whose impulse stuck
                                      // (EventRecord::sticks: the rigid model's friction)
+  // the smallest |q̇| just before an impact in the record window (q per time
+  // unit): how near the motion comes to grazing; NaN without impacts
+  double min_impact_speed = std::numeric_limits<double>::quiet_NaN();
   std::uint64_t steps = 0, rhs_evaluations = 0;  // over the whole run
   double lyapunov = std::numeric_limits<double>::quiet_NaN();  // largest exponent (1/time)
   std::string lyapunov_note;       // why it is NaN, where it is

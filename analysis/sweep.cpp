@@ -75,8 +75,16 @@ std::string_view to_string(SweepDirection direction) {
 Scene scene_at(const Scene& base, const SceneSchema& schema, const SweepPlan& plan,
                const std::array<int, 2>& index) {
   Scene scene = base;
-  for (std::size_t a = 0; a < plan.axes.size(); ++a)
-    scene.values[plan.axes[a].name] = plan.axes[a].value(index[a]);
+  if (plan.samples > 0) {
+    // the value, and this sample's initial state from the box
+    scene.values[plan.axes[0].name] = plan.axes[0].value(index[0]);
+    for (std::size_t k = 0; k < plan.box.size(); ++k)
+      scene.values[plan.box[k].key] =
+          box_value(plan.box[k], plan.seed, index[0], index[1], static_cast<int>(k));
+  } else {
+    for (std::size_t a = 0; a < plan.axes.size(); ++a)
+      scene.values[plan.axes[a].name] = plan.axes[a].value(index[a]);
+  }
   validate(scene, schema);
   return scene;
 }
@@ -104,6 +112,19 @@ void validate_plan(const SweepPlan& plan, const Scene& scene, const SceneSchema&
 
 std::vector<SweepTask> sweep_tasks(const SweepPlan& plan) {
   std::vector<SweepTask> tasks;
+  if (plan.samples > 0) {
+    // the samples of each value in tasks of at most samples_per_task, value
+    // by value, in sample order: threads and ranks share even one value
+    for (int i = 0; i < plan.axes[0].count; ++i)
+      for (int first = 0; first < plan.samples; first += samples_per_task) {
+        SweepTask task;
+        task.id = static_cast<int>(tasks.size());
+        for (int s = first; s < std::min(plan.samples, first + samples_per_task); ++s)
+          task.points.push_back({i, s});
+        tasks.push_back(std::move(task));
+      }
+    return tasks;
+  }
   if (plan.axes.size() == 1) {
     const int n = plan.axes[0].count;
     const int chunks = std::min(plan.chunks, n);
@@ -196,6 +217,7 @@ std::string to_json_line(const SweepRecord& record) {
       {"contact_phases", r.contact_phases},
       {"rests_in_contact", r.rests_in_contact},
       {"stick_impacts", r.stick_impacts},
+      {"min_impact_speed", fmt::format("{}", r.min_impact_speed)},
       {"steps", r.steps},
       {"rhs_evaluations", r.rhs_evaluations},
       {"lyapunov", fmt::format("{}", r.lyapunov)},
@@ -251,6 +273,8 @@ std::optional<SweepRecord> from_json_line(std::string_view text) {
     r.contact_phases = line.at("contact_phases");
     r.rests_in_contact = line.at("rests_in_contact");
     r.stick_impacts = line.at("stick_impacts");
+    // a line written before the impact speed was kept has none
+    r.min_impact_speed = number_from_text(line.value("min_impact_speed", std::string("nan")));
     r.steps = line.at("steps");
     r.rhs_evaluations = line.at("rhs_evaluations");
     r.lyapunov = number_from_text(line.at("lyapunov"));

@@ -209,6 +209,40 @@ Options basins_options() {
         stop_after()}});
 }
 
+Options attractors_options() {
+  return joined(
+      {section_options("section points recorded per sample (strobe: forcing periods; impact: "
+                       "impacts)"),
+       {{.name = "param", .type = OptionType::text,
+         .help = "NAME=FROM:TO:N: the parameter the attractors are followed along",
+         .required = true},
+        {.name = "samples", .type = OptionType::integer,
+         .help = "initial states sampled from the box at each value",
+         .default_value = 100.0, .lower = 1, .upper = 10000000, .unit = "samples"},
+        {.name = "box", .type = OptionType::text_list,
+         .help = "KEY=FROM:TO, repeatable: an initial-state key and the range its samples are "
+                 "drawn from, uniformly (default: every initial.* key the model reads, within 1 "
+                 "of the scene's value, narrowed until the oscillator accepts every corner)"},
+        {.name = "seed", .type = OptionType::count,
+         .help = "seed of the samples: the same seed draws the same initial states whatever "
+                 "the threads",
+         .default_value = 1.0, .lower = 0, .upper = 1.8e19},
+        sweep_threads(),
+        {.name = "lyapunov", .type = OptionType::flag,
+         .help = "also each attractor's largest Lyapunov exponent (the mean over its samples)",
+         .default_value = false}},
+       period_detection(),
+       {{.name = "attractor_tol", .type = OptionType::number,
+         .help = "relative distance under which two canonical section points are one attractor",
+         .default_value = 1e-4, .lower = 0.0, .lower_open = true},
+        {.name = "match_tol", .type = OptionType::number,
+         .help = "relative distance (Hausdorff, over 1 + the largest |(q, qdot)|) under which "
+                 "attractors at neighbouring values are one attractor followed",
+         .default_value = 0.05, .lower = 0.0, .lower_open = true},
+        resume("reuse the finished samples of an interrupted run of the same job in `out`"),
+        stop_after()}});
+}
+
 Options periodic_options() {
   constexpr double two_pi = 6.283185307179586;  // rad: the largest section phase
   return {
@@ -399,12 +433,13 @@ struct JobTable {
 };
 
 // every job with options, in the order job_names lists them
-const std::array<JobTable, 12>& job_tables() {
-  static constexpr std::array<JobTable, 12> tables = {{
+const std::array<JobTable, 13>& job_tables() {
+  static constexpr std::array<JobTable, 13> tables = {{
       {"simulate", simulate_options},
       {"poincare", poincare_options},
       {"sweep", sweep_options},
       {"basins", basins_options},
+      {"attractors", attractors_options},
       {"periodic", periodic_options},
       {"continue", continue_options},
       {"compare", compare_options},

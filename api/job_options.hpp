@@ -67,7 +67,7 @@ struct OptionSpec {
 };
 
 // The options of `job` in the order the CLI lists them: simulate, poincare,
-// sweep, basins, periodic, continue, compare, bench (the CLI's study),
+// sweep, basins, attractors, periodic, continue, compare, bench (the CLI's study),
 // work_precision (Python's bench of one scene), reproduce, spectrum, explore.
 // BadInput (key `job`) for another name.
 std::span<const OptionSpec> job_options(std::string_view job);

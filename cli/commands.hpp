@@ -14,6 +14,7 @@ Command add_compare_command(CLI::App& app);
 Command add_poincare_command(CLI::App& app);
 Command add_sweep_command(CLI::App& app);
 Command add_basins_command(CLI::App& app);  // in sweep_command.cpp: a sweep
+Command add_attractors_command(CLI::App& app);  // in sweep_command.cpp: a sweep
 Command add_periodic_command(CLI::App& app);
 Command add_spectrum_command(CLI::App& app);
 Command add_continue_command(CLI::App& app);

@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
       add_poincare_command(app),
       add_sweep_command(app),
       add_basins_command(app),
+      add_attractors_command(app),
       add_periodic_command(app),
       add_spectrum_command(app),
       add_continue_command(app),

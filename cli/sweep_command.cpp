@@ -1,8 +1,11 @@
 // `impactlab sweep`: 1D bifurcation sweeps (bifurcation.csv, summary.csv) and
-// 2D classification maps (classes.csv) over any numeric scene parameter, and
+// 2D classification maps (classes.csv) over any numeric scene parameter,
 // `impactlab basins`: a 2D sweep whose points each start from the scene's
 // state with the two keys set (basins.csv, attractors.csv; the attractors
-// told apart by analysis/basins.hpp), on
+// told apart by analysis/basins.hpp), and `impactlab attractors`: samples of
+// initial states at each value of one parameter, their attractors followed
+// along it (attractors.csv, attractor_points.csv, samples.csv;
+// analysis/attractor_following.hpp), on
 // threads (--threads) and, under mpirun, across MPI ranks; resumable from a
 // per-rank checkpoint (checkpoint-<rank>.jsonl, one flushed line per point,
 // first line identifying the sweep). The data files and meta.json appear only
@@ -17,11 +20,11 @@
 #include <fmt/format.h>
 
 #include <impactlab/analysis/sweep.hpp>
+#include <impactlab/api/attractors_job.hpp>
 #include <impactlab/api/basins_job.hpp>
-#include <impactlab/api/section_record.hpp>
 #include <impactlab/api/scene_jobs.hpp>
-#include <impactlab/api/sweep_checkpoints.hpp>
 #include <impactlab/api/section_record.hpp>
+#include <impactlab/api/sweep_checkpoints.hpp>
 #include <impactlab/api/sweep_job.hpp>
 #include "command.hpp"
 #include "interrupted_runs.hpp"
@@ -37,8 +40,8 @@ namespace impactlab::cli {
 
 namespace {
 
-// The values as given; their defaults come from the "sweep" or "basins"
-// option table.
+// The values as given; their defaults come from the "sweep", "basins" or
+// "attractors" option table.
 struct SweepOptions {
   SectionOptions section;
   std::vector<std::string> params;
@@ -55,6 +58,11 @@ struct SweepOptions {
   bool basins = false;                 // `impactlab basins`: params are --x, --y
   double attractor_tolerance = 0.0;    // basins: relative distance of canonical points
   int entropy_box = 0;  // basins: box side of the basin entropies (grid points); 0: not given
+  bool attractors = false;        // `impactlab attractors`: params holds --param alone
+  int samples = 0;                // attractors: initial states per value
+  std::vector<std::string> box;   // attractors: KEY=FROM:TO each
+  std::uint64_t seed = 0;         // attractors: seed of the samples
+  double match_tolerance = 0.0;   // attractors: relative distance of point sets
 };
 
 std::string number(double value) { return fmt::format("{}", value); }
@@ -106,6 +114,55 @@ BasinMeasures write_basins(RunFiles& run_files, const SweepPlan& plan,
                         << rows.basin_points[k] << '\n';
   files = {"basins.csv", "attractors.csv"};
   return table.measures;
+}
+
+// attractors.csv (each attractor at each value: features, basin fraction and
+// its error), attractor_points.csv (each attractor's section points) and
+// samples.csv (each sample's initial state and attractor); returns the table
+// for meta.json's events and the summary line
+AttractorsTable write_attractors(RunFiles& run_files, const SweepPlan& plan,
+                                 const std::vector<SweepTask>& tasks,
+                                 const std::map<RecordKey, SweepRecord>& records,
+                                 std::vector<std::string>& files) {
+  AttractorsTable table = attractors_table(plan, tasks, records);
+  const std::string& name = plan.axes[0].name;
+  const auto& rows = table.attractors;
+  AtomicFile& attractors = run_files.add("attractors.csv");
+  attractors.stream() << name
+                      << ",attractor,period,impacts_per_cycle,impacts_per_period,contact,"
+                         "contact_phases_per_period,min_impact_speed,q,qdot,lyapunov,samples,"
+                         "fraction,fraction_error\n";
+  for (std::size_t k = 0; k < rows.id.size(); ++k)
+    attractors.stream() << number(rows.value[k]) << ',' << rows.id[k] << ',' << rows.period[k]
+                        << ',' << rows.impacts_per_cycle[k] << ','
+                        << number(rows.impacts_per_period[k]) << ',' << rows.contact[k] << ','
+                        << number(rows.contact_phases_per_period[k]) << ','
+                        << number(rows.min_impact_speed[k]) << ',' << number(rows.q[k]) << ','
+                        << number(rows.qdot[k]) << ',' << number(rows.lyapunov[k]) << ','
+                        << rows.samples[k] << ',' << number(rows.fraction[k]) << ','
+                        << number(rows.fraction_error[k]) << '\n';
+  const auto& points = table.points;
+  AtomicFile& point_file = run_files.add("attractor_points.csv");
+  point_file.stream() << name << ",attractor,k,q,qdot\n";
+  for (std::size_t k = 0; k < points.id.size(); ++k)
+    point_file.stream() << number(points.value[k]) << ',' << points.id[k] << ',' << points.k[k]
+                        << ',' << number(points.q[k]) << ',' << number(points.qdot[k]) << '\n';
+  const auto& samples = table.samples;
+  AtomicFile& sample_file = run_files.add("samples.csv");
+  sample_file.stream() << name << ",sample";
+  for (const BoxRange& range : plan.box) sample_file.stream() << ',' << range.key;
+  sample_file.stream() << ",attractor,period,impacts_per_period,contact,termination,"
+                          "transient_end\n";
+  for (std::size_t k = 0; k < samples.value.size(); ++k) {
+    sample_file.stream() << number(samples.value[k]) << ',' << samples.sample[k];
+    for (const auto& column : samples.box) sample_file.stream() << ',' << number(column[k]);
+    sample_file.stream() << ',' << samples.attractor[k] << ',' << samples.period[k] << ','
+                         << number(samples.impacts_per_period[k]) << ',' << samples.contact[k]
+                         << ',' << to_string(samples.termination[k]) << ','
+                         << to_string(samples.transient_end[k]) << '\n';
+  }
+  files = {"attractors.csv", "attractor_points.csv", "samples.csv"};
+  return table;
 }
 
 // bifurcation.csv and summary.csv (1D) or classes.csv (2D). `table` holds the
@@ -197,6 +254,22 @@ BasinsSpec basins_spec(const SweepOptions& options) {
   return spec;
 }
 
+// The attractors job the options describe (api/attractors_job.hpp).
+AttractorsSpec attractors_spec(const SweepOptions& options) {
+  AttractorsSpec spec;
+  spec.param = options.params.at(0);
+  spec.samples = options.samples;
+  spec.box = options.box;
+  spec.seed = options.seed;
+  spec.section = options.section.request();
+  spec.lyapunov = options.lyapunov;  // off unless asked for
+  spec.period_tolerance = options.period_tolerance;
+  spec.max_period = options.max_period;
+  spec.attractor_tolerance = options.attractor_tolerance;
+  spec.match_tolerance = options.match_tolerance;
+  return spec;
+}
+
 // This rank's checkpoint, opened for appending; one that is not this
 // sweep's (or any, without --resume) is started afresh with the header.
 std::ofstream open_checkpoint(const std::filesystem::path& path, const std::string& header,
@@ -246,7 +319,8 @@ void write_meta(RunFiles& run_files, const nlohmann::json& definition,
                 const Scene& scene, const SceneSchema& schema,
                 const std::map<RecordKey, SweepRecord>& all, nlohmann::json run,
                 const std::vector<std::string>& command_line, std::vector<std::string> files,
-                const std::optional<BasinMeasures>& basin_measures) {
+                const std::optional<BasinMeasures>& basin_measures,
+                const std::optional<nlohmann::json>& attractor_events) {
   files.push_back("meta.json");
   const std::string q_name(schema.main_coordinate);
   nlohmann::json meta = {
@@ -285,10 +359,23 @@ void write_meta(RunFiles& run_files, const nlohmann::json& definition,
          "not_settled (still converging at max_transient: the period may be a transient's), "
          "fixed (an explicit transient)"},
         {"attractor", "basins: the attractor the point settles on (attractors.csv; 0: none found)"},
-        {"basin_points", "basins: grid points that settle on the attractor"}}},
+        {"basin_points", "basins: grid points that settle on the attractor"},
+        {"sample", "attractors: the sample's index at this value (its initial state drawn "
+                   "from the box with the seed, meta.json's sweep)"},
+        {"impacts_per_cycle", "attractors: n of the (m, n) label, impacts in the period m "
+                              "forcing periods of the cycle"},
+        {"contact_phases_per_period", "attractors: contact phases begun or ended per forcing "
+                                      "period"},
+        {"min_impact_speed", "attractors: smallest |qdot| just before an impact over the "
+                             "attractor's samples (" + q_name + " per time unit): the distance "
+                             "to grazing; nan without impacts"},
+        {"samples", "attractors: samples that settle on the attractor at this value"},
+        {"fraction", "attractors: its basin fraction, samples / K"},
+        {"fraction_error", "attractors: the binomial standard error sqrt(f (1 - f) / K)"}}},
       {"files", files},
   };
   if (basin_measures) meta["basin_measures"] = basin_measures_record(*basin_measures);
+  if (attractor_events) meta["attractor_events"] = *attractor_events;
   write_json(run_files.add("meta.json"), meta);
 }
 
@@ -296,8 +383,10 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   const Scene scene = options.section.scene.load();
   const SweepTarget target = sweep_target(scene);
   const SceneSchema& schema = *target.schema;
-  const SweepPlan plan = options.basins ? make_basins_plan(basins_spec(options), scene, schema)
-                                        : make_sweep_plan(sweep_spec(options), scene, schema);
+  const SweepPlan plan =
+      options.attractors ? make_attractors_plan(attractors_spec(options), scene, schema)
+      : options.basins   ? make_basins_plan(basins_spec(options), scene, schema)
+                         : make_sweep_plan(sweep_spec(options), scene, schema);
   const auto directory = options.section.scene.output_directory();
   // the sweep's data files and meta.json, committed together by rank 0
   // rank 0 owns the directory (its lock, its commit); the other ranks of one
@@ -307,16 +396,17 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   // status 2 on every rank alike, before any rank waits for another
   MpiSession mpi;
 
+  const nlohmann::json section_record =
+      section_request_record(options.section.section, plan.section);
   const nlohmann::json definition =
-      options.basins
-          ? basins_definition(plan, scene, schema,
-                              section_request_record(options.section.section, plan.section))
-          : sweep_definition(plan, scene, schema,
-                             section_request_record(options.section.section, plan.section));
+      options.attractors ? attractors_definition(plan, scene, schema, section_record)
+      : options.basins   ? basins_definition(plan, scene, schema, section_record)
+                         : sweep_definition(plan, scene, schema, section_record);
   const std::string header = nlohmann::json{{"impactlab_sweep_checkpoint", definition}}.dump();
-  // basins tell attractors apart by their section points: their records keep
-  // them; a sweep's records shed them once they are in the checkpoint
-  const bool keep_points = options.basins;
+  // basins and attractors tell attractors apart by their section points:
+  // their records keep them; a sweep's records shed them once they are in the
+  // checkpoint
+  const bool keep_points = options.basins || options.attractors;
   std::map<RecordKey, SweepRecord> done;
   if (options.resume) done = SweepCheckpoints(directory, header, keep_points).records();
   const std::filesystem::path checkpoint_path = directory / sweep_checkpoint_name(mpi.rank());
@@ -366,7 +456,13 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
 
   std::vector<std::string> files;
   std::optional<BasinMeasures> basin_measures;
-  if (options.basins)
+  std::optional<nlohmann::json> attractor_events;
+  std::string attractors_summary;
+  if (options.attractors) {
+    const AttractorsTable table = write_attractors(run_files, plan, tasks, all, files);
+    attractor_events = attractor_events_record(table, plan);
+    attractors_summary = attractors_line(table);
+  } else if (options.basins)
     basin_measures = write_basins(run_files, plan, tasks, all, files);
   else
     write_outputs(run_files, plan, tasks, sweep_table(plan, tasks, all),
@@ -377,7 +473,7 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
               {"tasks", tasks.size()},
               {"points_reused_from_checkpoint", done.size()},
               {"wall_time_s", wall_time}},
-             command_line, files, basin_measures);
+             command_line, files, basin_measures, attractor_events);
   run_files.commit();
   // the sweep is complete: its checkpoints (of any rank count) are spent
   for (const auto& file : std::filesystem::directory_iterator(directory)) {
@@ -388,7 +484,10 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
 
   const std::string q_name(target.schema->main_coordinate);
   if (options.section.plot) {
-    if (options.basins)
+    if (options.attractors)
+      plot_with_python("attractors", directory / "attractors.csv",
+                       directory / "attractors.png", {plan.axes[0].name, q_name});
+    else if (options.basins)
       plot_with_python("basins", directory / "basins.csv", directory / "basins.png",
                        {plan.axes[0].name, plan.axes[1].name});
     else if (plan.axes.size() == 1)
@@ -405,15 +504,20 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
                              wall_time, (directory / files.front()).string());
   if (basin_measures && !options.section.scene.quiet)
     std::cout << basin_measures_line(*basin_measures) << '\n';
+  if (!attractors_summary.empty() && !options.section.scene.quiet)
+    std::cout << attractors_summary << '\n';
+  // the file whose termination and transient_end columns say which points
+  const std::string row_file = options.attractors ? "samples.csv"
+                               : options.basins   ? "basins.csv"
+                               : plan.axes.size() == 1 ? "summary.csv"
+                                                       : "classes.csv";
   // said even when quiet: a stopped point is a gap in the diagram otherwise
   if (const std::string stopped = stopped_points_note(all); !stopped.empty())
     std::cerr << "impactlab: warning: " << stopped << "; the termination column of "
-              << (options.basins ? "basins.csv" : plan.axes.size() == 1 ? "summary.csv" : "classes.csv")
-              << " says which\n";
+              << row_file << " says which\n";
   if (const std::string unsettled = unsettled_points_note(all, plan); !unsettled.empty())
     std::cerr << "impactlab: warning: " << unsettled << " (the transient_end column of "
-              << (options.basins ? "basins.csv" : plan.axes.size() == 1 ? "summary.csv" : "classes.csv")
-              << ")\n";
+              << row_file << ")\n";
   return exit_done;
 }
 
@@ -472,6 +576,36 @@ Command add_basins_command(CLI::App& app) {
             return run_sweep_command(*options, command_line);
           },
           "basins"};
+}
+
+Command add_attractors_command(CLI::App& app) {
+  auto* command = add_subcommand(
+      app, "attractors",
+      "attractors found and followed across a parameter: at each value, initial states sampled "
+      "from a box, each run to its attractor (attractors.csv with basin fractions, "
+      "attractor_points.csv, samples.csv; appear/vanish/merge events in meta.json)");
+  auto options = std::make_shared<SweepOptions>();
+  options->attractors = true;
+  options->params.resize(1);
+  TableOptions table(*command, "attractors");
+  options->section.add_to(table);
+  table.add("param", options->params[0]);
+  table.add("samples", options->samples);
+  table.add("box", options->box);
+  table.add("seed", options->seed);
+  table.add("threads", options->threads);
+  table.add("lyapunov", options->lyapunov);
+  table.add("period_tol", options->period_tolerance);
+  table.add("max_period", options->max_period);
+  table.add("attractor_tol", options->attractor_tolerance);
+  table.add("match_tol", options->match_tolerance);
+  table.add("resume", options->resume);
+  table.add("stop_after", options->stop_after);
+  return {command,
+          [options](const std::vector<std::string>& command_line) {
+            return run_sweep_command(*options, command_line);
+          },
+          "attractors"};
 }
 
 }  // namespace impactlab::cli

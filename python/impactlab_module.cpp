@@ -31,6 +31,7 @@
 
 #include <impactlab/analysis/continuation.hpp>
 #include <impactlab/analysis/section.hpp>
+#include <impactlab/api/attractors_job.hpp>
 #include <impactlab/api/basins_job.hpp>
 #include <impactlab/api/compare.hpp>
 #include <impactlab/api/continuation_job.hpp>
@@ -487,6 +488,104 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
   out["attractor_qdot"] = owning_array(std::move(attractors.qdot));
   out["attractor_basin_points"] = owning_array(std::move(attractors.basin_points));
   out["wall_time_s"] = wall_time;
+  out["stopped"] = stopped_points_note(run.records);
+  out["unsettled"] = unsettled_points_note(run.records, plan);
+  return out;
+}
+
+// The attractors job's options in one struct (the binding's arguments, in
+// the order Python passes them).
+struct AttractorsArguments {
+  std::string param;
+  int samples = 0;
+  std::vector<std::string> box;
+  std::uint64_t seed = 0;
+  std::string section;
+  std::optional<double> transient;
+  double max_transient = 0.0;
+  std::uint64_t transient_impacts = 0, points = 0;
+  bool lyapunov = false;
+  double period_tolerance = 0.0;
+  int max_period = 0;
+  double attractor_tolerance = 0.0, match_tolerance = 0.0;
+  int threads = 1;
+};
+
+py::dict attractors_binding(const Scene& scene, const AttractorsArguments& arguments,
+                            py::object progress) {
+  AttractorsSpec spec;
+  spec.param = arguments.param;
+  spec.samples = arguments.samples;
+  spec.box = arguments.box;
+  spec.seed = arguments.seed;
+  spec.section = section_request(arguments.section, arguments.transient, arguments.max_transient,
+                                 arguments.transient_impacts, arguments.points, false, false);
+  spec.lyapunov = arguments.lyapunov;
+  spec.period_tolerance = arguments.period_tolerance;
+  spec.max_period = arguments.max_period;
+  spec.attractor_tolerance = arguments.attractor_tolerance;
+  spec.match_tolerance = arguments.match_tolerance;
+  const SweepTarget target = sweep_target(scene);
+  const SweepPlan plan = make_attractors_plan(spec, scene, *target.schema);
+  const PlanRun run = run_plan(scene, target, plan, arguments.threads, std::move(progress));
+  AttractorsTable table = attractors_table(plan, run.tasks, run.records);
+
+  const nlohmann::json section_record = section_request_record(arguments.section, plan.section);
+  const nlohmann::json meta = {
+      {"impactlab_version", IMPACTLAB_VERSION},
+      {"sweep", attractors_definition(plan, scene, *target.schema, section_record)},
+      {"scene", scene_record(scene)},
+      {"run",
+       {{"threads", arguments.threads}, {"tasks", run.tasks.size()},
+        {"wall_time_s", run.wall_time}}},
+      {"counts", sweep_counts(run.records)},
+      {"attractor_events", attractor_events_record(table, plan)}};
+  py::dict out;
+  out["meta"] = json_to_python(meta);
+  out["param"] = plan.axes[0].name;
+  auto& rows = table.attractors;
+  py::dict attractors;
+  attractors["value"] = owning_array(std::move(rows.value));
+  attractors["attractor"] = owning_array(std::move(rows.id));
+  attractors["period"] = owning_array(std::move(rows.period));
+  attractors["impacts_per_cycle"] = owning_array(std::move(rows.impacts_per_cycle));
+  attractors["impacts_per_period"] = owning_array(std::move(rows.impacts_per_period));
+  attractors["contact"] = owning_array(std::move(rows.contact));
+  attractors["contact_phases_per_period"] = owning_array(std::move(rows.contact_phases_per_period));
+  attractors["min_impact_speed"] = owning_array(std::move(rows.min_impact_speed));
+  attractors["q"] = owning_array(std::move(rows.q));
+  attractors["qdot"] = owning_array(std::move(rows.qdot));
+  attractors["lyapunov"] = owning_array(std::move(rows.lyapunov));
+  attractors["samples"] = owning_array(std::move(rows.samples));
+  attractors["fraction"] = owning_array(std::move(rows.fraction));
+  attractors["fraction_error"] = owning_array(std::move(rows.fraction_error));
+  out["attractors"] = attractors;
+  auto& points = table.points;
+  py::dict point_columns;
+  point_columns["value"] = owning_array(std::move(points.value));
+  point_columns["attractor"] = owning_array(std::move(points.id));
+  point_columns["k"] = owning_array(std::move(points.k));
+  point_columns["q"] = owning_array(std::move(points.q));
+  point_columns["qdot"] = owning_array(std::move(points.qdot));
+  out["points"] = point_columns;
+  auto& samples = table.samples;
+  py::dict sample_columns;
+  sample_columns["value"] = owning_array(std::move(samples.value));
+  sample_columns["sample"] = owning_array(std::move(samples.sample));
+  py::list box_columns;
+  for (auto& column : samples.box) box_columns.append(owning_array(std::move(column)));
+  sample_columns["box"] = box_columns;
+  std::vector<std::string> box_keys;
+  for (const BoxRange& range : plan.box) box_keys.push_back(range.key);
+  sample_columns["box_keys"] = py::cast(box_keys);
+  sample_columns["attractor"] = owning_array(std::move(samples.attractor));
+  sample_columns["period"] = owning_array(std::move(samples.period));
+  sample_columns["impacts_per_period"] = owning_array(std::move(samples.impacts_per_period));
+  sample_columns["contact"] = owning_array(std::move(samples.contact));
+  sample_columns["termination"] = outcome_names(samples.termination);
+  sample_columns["transient_end"] = outcome_names(samples.transient_end);
+  out["samples"] = sample_columns;
+  out["wall_time_s"] = run.wall_time;
   out["stopped"] = stopped_points_note(run.records);
   out["unsettled"] = unsettled_points_note(run.records, plan);
   return out;
@@ -949,6 +1048,20 @@ PYBIND11_MODULE(_impactlab, m) {
   m.def("poincare", &poincare_binding);
   m.def("sweep", &sweep_binding);
   m.def("basins", &basins_binding);
+  m.def("attractors",
+        [](const Scene& scene, const std::string& param, int samples,
+           const std::vector<std::string>& box, std::uint64_t seed, const std::string& section,
+           std::optional<double> transient, double max_transient,
+           std::uint64_t transient_impacts, std::uint64_t points, bool lyapunov,
+           double period_tolerance, int max_period, double attractor_tolerance,
+           double match_tolerance, int threads, py::object progress) {
+          return attractors_binding(
+              scene,
+              AttractorsArguments{param, samples, box, seed, section, transient, max_transient,
+                                  transient_impacts, points, lyapunov, period_tolerance,
+                                  max_period, attractor_tolerance, match_tolerance, threads},
+              std::move(progress));
+        });
   m.def("periodic", &periodic_binding);
   m.def("compare", &compare_binding);
   m.def("bench", &bench_binding);

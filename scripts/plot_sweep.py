@@ -7,6 +7,7 @@
     plot_sweep.py continuation branch.csv     out.png PARAM QNAME [bifurcation.csv]
     plot_sweep.py curve        curve.csv      out.png PARAM1 PARAM2 [classes.csv]
     plot_sweep.py basins       basins.csv     out.png XKEY YKEY
+    plot_sweep.py attractors   attractors.csv out.png PARAM QNAME
     plot_sweep.py lyapunov     lyapunov.csv   out.png [TIME_UNIT]
 
 bifurcation: the section's q against the parameter, up and down sweeps in two
@@ -207,7 +208,8 @@ def main(argv):
     kind, csv, png, *names = argv[1:]
     # the other figures' own scripts, beside this one
     others = {"continuation": "plot_continuation", "basins": "plot_basins",
-              "lyapunov": "plot_lyapunov", "curve": "plot_curve"}
+              "attractors": "plot_attractors", "lyapunov": "plot_lyapunov",
+              "curve": "plot_curve"}
     if kind in others:
         __import__(others[kind]).main([argv[0], csv, png, *names])
         return

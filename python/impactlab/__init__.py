@@ -25,10 +25,10 @@ from . import _impactlab
 from .explorer import Explorer, start_explorer
 
 __all__ = [
-    "Scene", "scenes", "scene", "simulate", "poincare", "sweep", "basins", "periodic", "compare",
-    "bench", "continue_", "explore", "Explorer", "EventArray", "Table", "Result", "RunResult",
-    "SectionResult", "SweepResult", "BasinsResult", "ComparisonResult", "WorkPrecisionResult",
-    "ContinuationResult", "EVENT_KINDS",
+    "Scene", "scenes", "scene", "simulate", "poincare", "sweep", "basins", "attractors",
+    "periodic", "compare", "bench", "continue_", "explore", "Explorer", "EventArray", "Table",
+    "Result", "RunResult", "SectionResult", "SweepResult", "BasinsResult", "AttractorsResult",
+    "ComparisonResult", "WorkPrecisionResult", "ContinuationResult", "EVENT_KINDS",
     "PhysicalDiagnosticWarning", "UnreadKeyWarning", "__version__",
 ]
 
@@ -217,6 +217,20 @@ class BasinsResult(Result):
         from .figures import plot_basins
 
         return plot_basins.draw_basins(self.grid, self.attractors, self._run_record(), *self.axes)
+
+
+class AttractorsResult(Result):
+    """attractors' result. plot(): the basin fractions stacked against the
+    parameter, beside the attractors' section points coloured by id, with the
+    appear, vanish, merge and split events marked."""
+
+    FIGURES = ("attractors",)
+
+    def _draw(self, which):
+        from .figures import plot_attractors
+
+        return plot_attractors.draw_attractors(self.attractors, self.points, self.meta,
+                                               self.param, self.scene.main_coordinate)
 
 
 class ComparisonResult(Result):
@@ -734,6 +748,72 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
                           attractors=attractors, basin_measures=raw["meta"]["basin_measures"],
                           meta=raw["meta"], wall_time_s=raw["wall_time_s"])
     _warn_of_unfinished_points("basins", raw, "grid")
+    return result
+
+
+@_documented("attractors")
+def attractors(scene_, *, param, samples=_default("attractors", "samples"),
+               box=_default("attractors", "box"), seed=_default("attractors", "seed"),
+               threads=_default("attractors", "threads"),
+               section=_default("attractors", "section"),
+               transient=_default("attractors", "transient"),
+               max_transient=_default("attractors", "max_transient"),
+               transient_impacts=_default("attractors", "transient_impacts"),
+               points=_default("attractors", "points"),
+               lyapunov=_default("attractors", "lyapunov"),
+               period_tol=_default("attractors", "period_tol"),
+               max_period=_default("attractors", "max_period"),
+               attractor_tol=_default("attractors", "attractor_tol"),
+               match_tol=_default("attractors", "match_tol"), progress=None, **keys):
+    """Attractors found and followed across a parameter (the CLI's
+    `attractors`): at each value of param="NAME=FROM:TO:N", `samples` initial
+    states drawn from the box (box="initial.theta=-0.05:0.05" or a list of
+    such; None: the default box), each run to its attractor; the attractors
+    are told apart by their section points and keep their ids along the
+    parameter. Returns attractors (the rows of attractors.csv: features,
+    basin fraction and its standard error), points (attractor_points.csv),
+    samples (samples.csv), attractor_events (appear, vanish, merge, split:
+    meta.json's "attractor_events") and meta."""
+    loaded = scene(scene_, **keys)
+    if box is None:
+        boxes = []
+    elif isinstance(box, str):
+        boxes = [box]
+    elif isinstance(box, (list, tuple)) and all(isinstance(b, str) for b in box):
+        boxes = list(box)
+    else:
+        raise ValueError("box = {!r}: expected KEY=FROM:TO or a list of them".format(box))
+    for key, value in (("param", param), ("section", section), ("lyapunov", lyapunov)):
+        _option("attractors", key, value)
+    checked = {key: _option("attractors", key, value) for key, value in (
+        ("samples", samples), ("seed", seed), ("threads", threads), ("transient", transient),
+        ("max_transient", max_transient), ("transient_impacts", transient_impacts),
+        ("points", points), ("period_tol", period_tol), ("max_period", max_period),
+        ("attractor_tol", attractor_tol), ("match_tol", match_tol))}
+    _refuse_excluded("attractors", checked)
+    raw = _run(lambda callback: _impactlab.attractors(
+        loaded, param, checked["samples"], boxes, checked["seed"], section,
+        checked["transient"], checked["max_transient"], checked["transient_impacts"],
+        checked["points"], lyapunov, checked["period_tol"], checked["max_period"],
+        checked["attractor_tol"], checked["match_tol"], checked["threads"], callback),
+        progress, "attractors")
+    name = raw["param"]
+    rows = dict(raw["attractors"])
+    rows = {name: rows.pop("value"), **rows}
+    points_raw = dict(raw["points"])
+    point_rows = {name: points_raw.pop("value"), **points_raw}
+    samples_raw = dict(raw["samples"])
+    sample_rows = {name: samples_raw["value"], "sample": samples_raw["sample"]}
+    for key, column in zip(samples_raw["box_keys"], samples_raw["box"]):
+        sample_rows[key] = column
+    for column in ("attractor", "period", "impacts_per_period", "contact", "termination",
+                   "transient_end"):
+        sample_rows[column] = samples_raw[column]
+    result = AttractorsResult(scene=loaded, param=name, attractors=Table(rows),
+                              points=Table(point_rows), samples=Table(sample_rows),
+                              attractor_events=raw["meta"]["attractor_events"]["events"],
+                              meta=raw["meta"], wall_time_s=raw["wall_time_s"])
+    _warn_of_unfinished_points("attractors", raw, "samples")
     return result
 
 

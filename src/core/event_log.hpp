@@ -5,6 +5,7 @@
 // mechanics where a model computes them and are NaN where it does not.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string_view>
@@ -78,6 +79,8 @@ class EventLog {
   void record(const EventRecord& event) {
     ++counts_[static_cast<std::size_t>(event.kind)];
     if (event.kind == EventKind::impact && event.sticks) ++stick_impacts_;
+    if (event.kind == EventKind::impact && std::fabs(event.qdot_before) < smallest_impact_speed_)
+      smallest_impact_speed_ = std::fabs(event.qdot_before);
     if (event.kind == EventKind::accumulation && event.accumulation_error > largest_accumulation_error_)
       largest_accumulation_error_ = event.accumulation_error;
     if (keep_records_) records_.push_back(event);
@@ -99,6 +102,9 @@ class EventLog {
   // the last event recorded, if any
   [[nodiscard]] const EventRecord* last() const { return total() > 0 ? &last_ : nullptr; }
   [[nodiscard]] double largest_accumulation_error() const { return largest_accumulation_error_; }
+  // the smallest |q̇| just before an impact (q per time unit; how near the
+  // motion comes to grazing); +∞ before the first impact
+  [[nodiscard]] double smallest_impact_speed() const { return smallest_impact_speed_; }
 
  private:
   static constexpr std::size_t kind_count = 7;
@@ -109,6 +115,7 @@ class EventLog {
   std::uint64_t stick_impacts_ = 0;
   EventRecord last_{};
   double largest_accumulation_error_ = 0.0;
+  double smallest_impact_speed_ = std::numeric_limits<double>::infinity();
 };
 
 }  // namespace impactlab

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <impactlab/api/attractors_job.hpp>
 #include <impactlab/api/basins_job.hpp>
 #include <impactlab/api/continuation_job.hpp>
 #include <impactlab/api/jin2003_reproduction.hpp>
@@ -86,7 +87,7 @@ TEST(JobOptions, FlagsAndMentionsAreSpelledPerFrontEnd) {
 // The request structs of the scene API start from the tables' defaults.
 TEST(JobOptions, RequestStructDefaultsAgreeWithTheTables) {
   const impactlab::SectionRequest section;
-  for (std::string_view job : {"poincare", "sweep", "basins"}) {
+  for (std::string_view job : {"poincare", "sweep", "basins", "attractors"}) {
     SCOPED_TRACE(std::string(job));
     // no transient given: the settling transient, the library's default
     EXPECT_TRUE(is_unset(job, "transient"));
@@ -117,6 +118,18 @@ TEST(JobOptions, RequestStructDefaultsAgreeWithTheTables) {
   EXPECT_EQ(basins.attractor_tolerance, number_default("basins", "attractor_tol"));
   EXPECT_FALSE(basins.entropy_box.has_value());
   EXPECT_TRUE(is_unset("basins", "entropy_box"));
+
+  const impactlab::AttractorsSpec attractors;
+  EXPECT_EQ(attractors.samples, number_default("attractors", "samples"));
+  EXPECT_EQ(static_cast<double>(attractors.seed), number_default("attractors", "seed"));
+  EXPECT_TRUE(attractors.box.empty());
+  EXPECT_TRUE(is_unset("attractors", "box"));
+  EXPECT_EQ(attractors.lyapunov, flag_default("attractors", "lyapunov"));
+  EXPECT_EQ(attractors.period_tolerance, number_default("attractors", "period_tol"));
+  EXPECT_EQ(attractors.max_period, number_default("attractors", "max_period"));
+  EXPECT_EQ(attractors.attractor_tolerance, number_default("attractors", "attractor_tol"));
+  EXPECT_EQ(attractors.match_tolerance, number_default("attractors", "match_tol"));
+  EXPECT_EQ(impactlab::SweepPlan{}.match_tolerance, number_default("attractors", "match_tol"));
 
   const impactlab::PeriodicJob periodic;
   EXPECT_EQ(periodic.period, text_default("periodic", "period"));

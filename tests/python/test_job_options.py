@@ -15,6 +15,7 @@ FUNCTIONS = {
     "poincare": impactlab.poincare,
     "sweep": impactlab.sweep,
     "basins": impactlab.basins,
+    "attractors": impactlab.attractors,
     "periodic": impactlab.periodic,
     "continue": impactlab.continue_,
     "compare": impactlab.compare,

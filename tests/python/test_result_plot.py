@@ -86,6 +86,15 @@ def test_basins(cli, tmp_path):
     assert cli_png == ours
 
 
+def test_attractors(cli, tmp_path):
+    out = cli("attractors", "jin2003", "--param", "omega=3.9:4.1:3", "--samples", "24",
+              "--box", "initial.theta=-0.06:0.06", "--box", "initial.theta_dot=-1:1", "--plot")
+    result = impactlab.attractors("jin2003", param="omega=3.9:4.1:3", samples=24,
+                                  box=["initial.theta=-0.06:0.06", "initial.theta_dot=-1:1"])
+    cli_png, ours = drawn_as_by_the_cli(result, out / "attractors.png", tmp_path)
+    assert cli_png == ours
+
+
 def test_compare(cli, tmp_path):
     out = cli("compare", "jin2003", "--models", "newton,rigid", "--periods", "10")
     comparison = impactlab.compare("jin2003", models=["newton", "rigid"], periods=10)
