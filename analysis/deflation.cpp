@@ -7,11 +7,12 @@ namespace impactlab {
 
 namespace {
 
-// |x − r|² over the tangent space
-double squared_distance(std::span<const double> x, const std::vector<double>& root) {
+// |x − r|² / ρ² over the tangent space
+double squared_distance(const Deflation& deflation, std::span<const double> x,
+                        const std::vector<double>& root) {
   double sum = 0.0;
   for (std::size_t i = 0; i < x.size(); ++i) sum += (x[i] - root[i]) * (x[i] - root[i]);
-  return sum;
+  return sum / (deflation.radius * deflation.radius);
 }
 
 }  // namespace
@@ -19,7 +20,7 @@ double squared_distance(std::span<const double> x, const std::vector<double>& ro
 double deflation_factor(const Deflation& deflation, std::span<const double> x) {
   double factor = 1.0;
   for (const auto& root : deflation.roots) {
-    const double distance = std::sqrt(squared_distance(x, root));
+    const double distance = std::sqrt(squared_distance(deflation, x, root));
     factor *= std::pow(distance, -deflation.power) + deflation.shift;
   }
   return factor;
@@ -30,11 +31,12 @@ void deflation_log_gradient(const Deflation& deflation, std::span<const double> 
   for (double& g : gradient) g = 0.0;
   const double p = deflation.power;
   for (const auto& root : deflation.roots) {
-    const double distance = std::sqrt(squared_distance(x, root));
+    const double distance = std::sqrt(squared_distance(deflation, x, root));
     // −p |x − r|^(−p−2) / (|x − r|^(−p) + σ), times (x − r)
     const double scale = -p * std::pow(distance, -p - 2.0) /
                          (std::pow(distance, -p) + deflation.shift);
-    for (std::size_t i = 0; i < x.size(); ++i) gradient[i] += scale * (x[i] - root[i]);
+        for (std::size_t i = 0; i < x.size(); ++i)
+      gradient[i] += scale * (x[i] - root[i]) / (deflation.radius * deflation.radius);
   }
 }
 

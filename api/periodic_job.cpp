@@ -112,6 +112,12 @@ PeriodicOrbitsJobResult find_periodic_orbits(const Scene& scene, const PeriodicJ
     throw BadInput("starts", std::to_string(job.starts), "must be a whole number >= 1");
   const SceneSchema& schema = scene_schema(scene);
   request.box = box_of_options(job.box, scene, schema);
+  // the orbits of one system: its parameters stay as the scene has them
+  for (const BoxRange& range : request.box)
+    if (!range.key.starts_with("initial."))
+      throw BadInput("box", range.key + "=" + fmt::format("{}:{}", range.from, range.to),
+                     fmt::format("periodic {} draws initial states: {} is not an initial.* key",
+                                 mention("all"), range.key));
   refuse_box_corners(scene, schema, request.box, "");
   request.phase = job.phase;
   request.starts = job.starts;
@@ -214,9 +220,10 @@ nlohmann::json periodic_orbits_record(const Scene& scene, const PeriodicOrbitsJo
          {{"enabled", request.deflate},
           {"power", Deflation{}.power},
           {"shift", Deflation{}.shift},
+          {"radius", Deflation{}.radius},
           {"method", "deflated Newton shooting (Farrell, Birkisson & Funke 2015): "
-                     "G(x) = M(x) (P^n(x) - x), M(x) = prod_i (1/|x - r_i|^power + shift) "
-                     "over every section point r_i of the orbits found before"}}}}},
+                     "G(x) = M(x) (P^n(x) - x), M(x) = prod_i ((radius/|x - r_i|)^power + "
+                     "shift) over every section point r_i of the orbits found before"}}}}},
       {"units", units},
       {"t_section", result.t_section},
       {"forcing_period", result.forcing_period},

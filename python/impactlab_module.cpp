@@ -610,6 +610,39 @@ py::dict periodic_binding(const Scene& scene, const std::string& period, double 
   return out;
 }
 
+// periodic(all=True): the orbits' columns (orbits.csv's) and periodic.json's record
+py::dict periodic_orbits_binding(const Scene& scene, const std::string& period, double phase,
+                                 int max_iterations, double tolerance, int starts,
+                                 const std::vector<std::string>& box, std::uint64_t seed,
+                                 py::object progress) {
+  PeriodicJob job;
+  job.period = period;
+  job.phase = phase;
+  job.max_iterations = max_iterations;
+  job.tolerance = tolerance;
+  job.all = true;
+  job.starts = starts;
+  job.box = box;
+  job.seed = seed;
+  ProgressRelay relay(std::move(progress));
+  const PeriodicOrbitsJobResult found =
+      relay.run([&] { return find_periodic_orbits(scene, job); });
+  relay(1.0);
+  py::dict columns;
+  for (OrbitsColumn& column : periodic_orbits_table(found)) {
+    if (column.whole) {
+      std::vector<std::int64_t> whole(column.values.begin(), column.values.end());
+      columns[py::str(column.name)] = owning_array(std::move(whole));
+    } else {
+      columns[py::str(column.name)] = owning_array(std::move(column.values));
+    }
+  }
+  py::dict out;
+  out["orbits"] = columns;
+  out["meta"] = json_to_python(periodic_orbits_record(scene, found));
+  return out;
+}
+
 py::dict compare_binding(const Scene& scene, const std::string& models, double periods,
                          double t_end, py::object progress) {
   RunRequest request;
@@ -1058,6 +1091,7 @@ PYBIND11_MODULE(_impactlab, m) {
               std::move(progress));
         });
   m.def("periodic", &periodic_binding);
+  m.def("periodic_orbits", &periodic_orbits_binding);
   m.def("compare", &compare_binding);
   m.def("bench", &bench_binding);
   m.def("continue_", [](const Scene& scene, const std::string& param, const std::string& param2,

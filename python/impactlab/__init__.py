@@ -634,12 +634,26 @@ def attractors(scene_, *, param, samples=_default("attractors", "samples"),
 def periodic(scene_=None, *, period=_default("periodic", "period"),
              phase=_default("periodic", "phase"), transient=_default("periodic", "transient"),
              max_iterations=_default("periodic", "max_iterations"),
-             tolerance=_default("periodic", "tolerance"), progress=None, **keys):
+             tolerance=_default("periodic", "tolerance"), all=_default("periodic", "all"),
+             starts=_default("periodic", "starts"), box=_default("periodic", "box"),
+             seed=_default("periodic", "seed"), progress=None, **keys):
     """A period-n orbit by Newton shooting and its Floquet multipliers (the
-    CLI's `periodic`). meta holds periodic.json's content."""
+    CLI's `periodic`). meta holds periodic.json's content.
+
+    With all=True, every orbit of the period that Newton shooting finds from
+    `starts` initial states drawn from the box (box="initial.y=0:0.1" or a
+    list of such; None: the default box), each start deflated by the orbits
+    found before: orbits (orbits.csv's columns as a Table: id,
+    minimal_period, the state by name, impacts, contact_phases, stable,
+    multiplier1_re, multiplier1_im, ..., residual), multipliers (one complex
+    array per orbit) and meta."""
     loaded = scene(scene_ if scene_ is not None else "jin2003", **keys)
     if isinstance(period, bool) or not isinstance(period, (str, numbers.Integral)):
         raise ValueError("period = {!r}: expected auto or a whole number from 1 to 1000".format(period))
+    _option("periodic", "all", all)
+    if all:
+        return _periodic_orbits(loaded, period, phase, max_iterations, tolerance, starts, box,
+                                seed, progress)
     checked = {key: _option("periodic", key, value) for key, value in (
         ("phase", phase), ("transient", transient), ("max_iterations", max_iterations),
         ("tolerance", tolerance))}
@@ -660,6 +674,34 @@ def periodic(scene_=None, *, period=_default("periodic", "period"),
                               meta["request"]["period_source"]),
                       PhysicalDiagnosticWarning, stacklevel=2)
     return result
+
+
+def _periodic_orbits(loaded, period, phase, max_iterations, tolerance, starts, box, seed,
+                     progress):
+    """periodic(all=True): every orbit of the period (see periodic)."""
+    if box is None:
+        boxes = []
+    elif isinstance(box, str):
+        boxes = [box]
+    elif isinstance(box, (list, tuple)) and all(isinstance(b, str) for b in box):
+        boxes = list(box)
+    else:
+        raise ValueError("box = {!r}: expected KEY=FROM:TO or a list of them".format(box))
+    checked = {key: _option("periodic", key, value) for key, value in (
+        ("phase", phase), ("max_iterations", max_iterations), ("tolerance", tolerance),
+        ("starts", starts), ("seed", seed))}
+    raw = _run(lambda callback: _impactlab.periodic_orbits(
+        loaded, str(period), checked["phase"], checked["max_iterations"], checked["tolerance"],
+        checked["starts"], boxes, checked["seed"], callback), progress, "periodic")
+    orbits = Table(raw["orbits"])
+    dimension = sum(1 for name in orbits if name.startswith("multiplier") and name.endswith("_re"))
+    multipliers = [np.array([complex(orbits["multiplier{}_re".format(k + 1)][row],
+                                     orbits["multiplier{}_im".format(k + 1)][row])
+                             for k in range(dimension)])
+                   for row in range(len(orbits["id"]))]
+    meta = raw["meta"]
+    return Result(scene=loaded, meta=meta, orbits=orbits, multipliers=multipliers,
+                  state_names=list(meta["state_names"]))
 
 
 @_documented("compare")
