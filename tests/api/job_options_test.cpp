@@ -137,6 +137,14 @@ TEST(JobOptions, RequestStructDefaultsAgreeWithTheTables) {
   EXPECT_EQ(periodic.transient, number_default("periodic", "transient"));
   EXPECT_EQ(periodic.max_iterations, number_default("periodic", "max_iterations"));
   EXPECT_EQ(periodic.tolerance, number_default("periodic", "tolerance"));
+  EXPECT_EQ(periodic.all, flag_default("periodic", "all"));
+  EXPECT_EQ(periodic.starts, number_default("periodic", "starts"));
+  EXPECT_TRUE(periodic.box.empty());
+  EXPECT_TRUE(is_unset("periodic", "box"));
+  EXPECT_EQ(static_cast<double>(periodic.seed), number_default("periodic", "seed"));
+  EXPECT_EQ(impactlab::PeriodicOrbitsRequest{}.starts, number_default("periodic", "starts"));
+  EXPECT_EQ(static_cast<double>(impactlab::PeriodicOrbitsRequest{}.seed),
+            number_default("periodic", "seed"));
 
   impactlab::ContinueOptions options;
   EXPECT_TRUE(options.param2.empty() && is_unset("continue", "param2"));
