@@ -15,9 +15,9 @@
 // ρ = 1 is about the size of the whole box of starts of the oscillators here
 // (the ball's heights are centimetres, its speeds about 1 m/s), and there M
 // distorts |G| everywhere: on the bouncing ball at its default amplitude,
-// 100 starts, ρ = 1 found 3 of the 6 period-1 orbits that plain Newton finds
-// (97 starts stopped at a spurious minimum of M|F| along Newton's direction);
-// ρ = 0.1 found all 6, none twice.
+// 100 starts from y ∈ [0.02, 0.08] m, ẏ ∈ [−1, 1] m/s, ρ = 1 found 3 of the 6
+// period-1 orbits that plain Newton finds (97 starts stopped at a spurious
+// minimum of M|F| along Newton's direction); ρ = 0.1 found all 6, none twice.
 //
 // The deflated Newton step is the undeflated one scaled (Sherman–Morrison on
 // J_G = M (J_F + F ∇(log M)ᵀ)):
