@@ -103,7 +103,11 @@ TEST(AttractorFollowing, AnOrbitAndItsMirrorImageAreFarApart) {
   const SectionPointSet mirror{{-0.04, -0.3}, {-0.06, 0.1}};
   const SectionPointSet moved{{0.041, 0.301}, {0.061, -0.099}};
   EXPECT_EQ(impactlab::point_set_distance(orbit, orbit), 0.0);
-  EXPECT_GT(impactlab::point_set_distance(orbit, mirror), 0.3);
+  // each point's nearest mirror point is the other point's image, (0.1, 0.2)
+  // away, over 1 + the largest |x| = |(0.04, 0.3)|: well above the match
+  // tolerance
+  EXPECT_DOUBLE_EQ(impactlab::point_set_distance(orbit, mirror),
+                   std::hypot(0.1, 0.2) / (1.0 + std::hypot(0.04, 0.3)));
   EXPECT_LT(impactlab::point_set_distance(orbit, moved), 2e-3);
   // symmetric, and a doubled point near a single one is near it
   EXPECT_EQ(impactlab::point_set_distance(orbit, mirror),

@@ -97,6 +97,33 @@ TEST(AttractorsCli, AnAsymmetricOrbitAndItsMirrorImageAreTwoAttractorsOfEqualBas
   EXPECT_EQ(meta["sweep"]["box"][0]["unit"], "rad");
 }
 
+TEST(AttractorsCli, WithLyapunovEachAttractorHasItsExponent) {
+  // the mirror pair's exponents are equal and negative (stable orbits); the
+  // hanging rest's pair of Floquet multipliers is complex, so both exponents
+  // are half their sum, the trace's -d/(m l^2): -d/(2 m l^2)
+  const ScratchFolder scratch;
+  const fs::path out = scratch / "lyapunov";
+  ASSERT_EQ(run_command_line("attractors jin2003 --param omega=4:4:1 --samples 20 --lyapunov" +
+                             mirror_box + " --quiet --out " + out.string())
+                .status,
+            0);
+  std::vector<double> pair;
+  int rests = 0;
+  for (const auto& row : rows_of(out / "attractors.csv")) {
+    if (row.at("impacts_per_cycle") == "1") pair.push_back(number(row, "lyapunov"));
+    if (row.at("attractor") != "0" && row.at("impacts_per_cycle") == "0") {
+      ++rests;
+      const double d = 0.01, m = 0.5, l = 0.7;  // jin2003's damping, mass, length
+      EXPECT_NEAR(number(row, "lyapunov"), -d / (2.0 * m * l * l), 0.1 * d / (2.0 * m * l * l));
+      EXPECT_EQ(row.at("min_impact_speed"), "nan");  // no impact
+    }
+  }
+  EXPECT_EQ(rests, 1);
+  ASSERT_EQ(pair.size(), 2u);
+  EXPECT_LT(pair[0], 0.0);
+  EXPECT_NEAR(pair[0], pair[1], 1e-9);
+}
+
 TEST(AttractorsCli, IdsPersistAlongTheRangeAndBirthsAndDeathsAreReportedWhereTheyHappen) {
   // omega from 3.75 to 4.25 rad/s: the mirror pair exists from the start and
   // is gone by 4.2 (the basins scan of docs/analysis.md); the hanging rest is
@@ -225,6 +252,8 @@ TEST(AttractorsCli, BadInputExitsWithTwoAndOneLineNamingTheOption) {
       {"attractors jin2003 --param omega=4:4.2 --samples 4", "--param"},  // malformed
       {"attractors jin2003 --param nope=4:4.2:3 --samples 4", "--param"},
       {base + " --match-tol 0", "--match-tol"},
+      // 1000 values x 10^7 samples: sized against limits.max_rows before any run
+      {"attractors jin2003 --param omega=4:4.2:1000 --samples 10000000", "--samples"},
   };
   for (const auto& [command_line, option] : bad) {
     const ScratchFolder scratch;
