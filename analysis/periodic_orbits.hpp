@@ -8,6 +8,7 @@
 #pragma once
 
 #include <complex>
+#include <functional>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -32,6 +33,8 @@ struct PeriodicOrbitsRequest {
   // converged point that is one of a known orbit's
   double distinct_tolerance = 1e-6;
   bool deflate = true;        // false: plain Newton from every start (for comparison)
+  // called after each start with the fraction of starts done (may throw to cancel)
+  std::function<void(double)> progress;
 };
 
 // One orbit: a fixed point of Pⁿ, with what its minimal period k (k divides

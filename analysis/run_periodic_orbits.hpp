@@ -66,6 +66,7 @@ PeriodicOrbitsResult run_periodic_orbits(const System& system,
     const Tangent tangent{DecoratedSystem<System>(system)};
     with_flow<Tangent>(setup.method, stepper_settings(tangent, setup), [&](auto& stepper) {
       for (int s = 0; s < static_cast<int>(starts.size()); ++s) {
+        if (request.progress && s > 0) request.progress(static_cast<double>(s) / starts.size());
         State x = starts[s];
         typename System::Mode mode = mode0;
         if (t_section > t0) {

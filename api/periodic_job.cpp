@@ -104,7 +104,8 @@ nlohmann::json periodic_record(const Scene& scene, const PeriodicJobResult& job)
   };
 }
 
-PeriodicOrbitsJobResult find_periodic_orbits(const Scene& scene, const PeriodicJob& job) {
+PeriodicOrbitsJobResult find_periodic_orbits(const Scene& scene, const PeriodicJob& job,
+                                             const std::function<void(double)>& progress) {
   PeriodicOrbitsJobResult out;
   PeriodicOrbitsRequest& request = out.request;
   request.period = job.period == "auto" ? 1 : period_of(job.period);
@@ -124,8 +125,10 @@ PeriodicOrbitsJobResult find_periodic_orbits(const Scene& scene, const PeriodicJ
   request.seed = job.seed;
   request.max_iterations = job.max_iterations;
   request.tolerance = job.tolerance;
+  request.progress = progress;
   const auto start = std::chrono::steady_clock::now();
   out.result = periodic_orbits_of_scene(scene, request);
+  request.progress = nullptr;  // the caller's, not the result's
   out.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!out.result.available) throw BadInput("oscillator", scene.oscillator, out.result.note);
   if (out.result.orbits.empty())

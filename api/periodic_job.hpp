@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -55,7 +56,9 @@ struct PeriodicOrbitsJobResult {
 // point of P², and listed once. Throws BadInput: a malformed period, K < 1,
 // a bad box (key `box`), an oscillator without Jacobians, and no orbit found
 // (key `starts`).
-PeriodicOrbitsJobResult find_periodic_orbits(const Scene& scene, const PeriodicJob& job);
+// `progress`, where given, is called after each start with the fraction done.
+PeriodicOrbitsJobResult find_periodic_orbits(const Scene& scene, const PeriodicJob& job,
+                                             const std::function<void(double)>& progress = {});
 
 // One column of orbits.csv: its name, whether it holds whole numbers, its values.
 struct OrbitsColumn {

@@ -626,7 +626,7 @@ py::dict periodic_orbits_binding(const Scene& scene, const std::string& period, 
   job.seed = seed;
   ProgressRelay relay(std::move(progress));
   const PeriodicOrbitsJobResult found =
-      relay.run([&] { return find_periodic_orbits(scene, job); });
+      relay.run([&] { return find_periodic_orbits(scene, job, std::ref(relay)); });
   relay(1.0);
   py::dict columns;
   for (OrbitsColumn& column : periodic_orbits_table(found)) {
