@@ -156,6 +156,10 @@ TEST(JobOptions, RequestStructDefaultsAgreeWithTheTables) {
   EXPECT_EQ(options.transient, number_default("continue", "transient"));
   EXPECT_EQ(options.max_points, number_default("continue", "max_points"));
   EXPECT_EQ(options.tolerance, number_default("continue", "tolerance"));
+  EXPECT_EQ(options.all, flag_default("continue", "all"));
+  EXPECT_EQ(options.starts, number_default("continue", "starts"));
+  EXPECT_TRUE(options.box.empty() && is_unset("continue", "box"));
+  EXPECT_EQ(static_cast<double>(options.seed), number_default("continue", "seed"));
   EXPECT_EQ(options.max_step, number_default("continue", "max_step"));
   // the job built from the default options carries the table's tolerance
   options.param = "omega=2:2.5";

@@ -67,3 +67,22 @@ def test_bad_input_names_the_python_option(keywords, option):
 def test_no_orbit_says_so():
     with pytest.raises(ValueError, match="periodic all: no orbit of period 1 from 3 starts"):
         impactlab.periodic("bouncing_ball", all=True, starts=3, max_iterations=1)
+
+
+def test_continue_all_continues_every_orbit_once():
+    """continue_(all=True): each branch names the orbit it continues; the
+    fold's pair, both found, gives one branch (the other orbit is on it)."""
+    result = impactlab.continue_("linear_impact", param="omega=1.86:1.95", all=True, starts=100,
+                                 box=["initial.x=-4:0.5", "initial.x_dot=-4:4"], sigma=0.5)
+    orbit_ids = [branch["orbit"] for branch in result.branches]
+    assert len(set(orbit_ids)) == len(orbit_ids)
+    assert len(orbit_ids) + len(result.not_continued) == len(result.orbits) >= 3
+    assert list(result.points["type"]).count("fold") == 1
+
+
+def test_continue_all_bad_input_names_the_python_option():
+    with pytest.raises(ValueError, match="^starts = "):
+        impactlab.continue_("linear_impact", param="omega=1.86:1.95", all=True, starts=0)
+    with pytest.raises(ValueError, match="^param2 = "):
+        impactlab.continue_("linear_impact", param="omega=1.86:1.95", all=True,
+                            param2="sigma=0.2:0.3")
