@@ -68,6 +68,17 @@ TEST(PeriodicAll, OrbitsCsvAndPeriodicJsonDescribeTheSameOrbits) {
   EXPECT_EQ(slurp(out / "orbits.csv"), slurp(again / "orbits.csv"));
 }
 
+TEST(PeriodicAll, APlainRunInTheSameFolderLeavesNoStaleOrbits) {
+  const ScratchFolder scratch;
+  const auto out = scratch / "shared";
+  ASSERT_EQ(run_command_line("periodic linear_impact --all --quiet --out " + out.string()).status,
+            0);
+  ASSERT_TRUE(std::filesystem::exists(out / "orbits.csv"));
+  ASSERT_EQ(run_command_line("periodic linear_impact --quiet --out " + out.string()).status, 0);
+  EXPECT_FALSE(std::filesystem::exists(out / "orbits.csv"));
+  EXPECT_TRUE(std::filesystem::exists(out / "periodic.json"));
+}
+
 TEST(PeriodicAll, TheBallsRecordGivesItsStateUnits) {
   const ScratchFolder scratch;
   const auto out = scratch / "ball";
