@@ -48,8 +48,8 @@ PeriodicOrbitsResult run_periodic_orbits(const System& system,
     result.forcing_period = period;
     const double t0 = scene.number("t0");
     // the first section time at or after t0
-    const double k = std::ceil((omega * t0 - request.phase) / (2.0 * std::numbers::pi) - 1e-9);
-    const double t_section = (request.phase + 2.0 * std::numbers::pi * k) / omega;
+    const double turns = std::ceil((omega * t0 - request.phase) / (2.0 * std::numbers::pi) - 1e-9);
+    const double t_section = (request.phase + 2.0 * std::numbers::pi * turns) / omega;
     result.t_section = t_section;
     const double span = request.period * period;
 
@@ -60,7 +60,8 @@ PeriodicOrbitsResult run_periodic_orbits(const System& system,
       return tangent_norm<n>(d) <= request.distinct_tolerance * (1.0 + tangent_norm<n>(y));
     };
     Deflation deflation;
-    std::vector<std::pair<TangentVectorOf<n>, int>> known;  // every point found, with its orbit's id
+    // every section point found, with its orbit's id
+    std::vector<std::pair<TangentVectorOf<n>, int>> known;
 
     using Tangent = TangentOf<System>;
     const Tangent tangent{DecoratedSystem<System>(system)};
@@ -93,8 +94,9 @@ PeriodicOrbitsResult run_periodic_orbits(const System& system,
           continue;
         }
         const TangentVectorOf<n> point = tangent_part<n>(orbit.state);
-        const auto match = std::find_if(known.begin(), known.end(),
-                                        [&](const auto& k) { return same_point(point, k.first); });
+        const auto match =
+            std::find_if(known.begin(), known.end(),
+                         [&](const auto& entry) { return same_point(point, entry.first); });
         if (match != known.end()) {
           result.start_outcomes.push_back(StartOutcome::known_orbit);
           result.start_orbit.push_back(match->second);

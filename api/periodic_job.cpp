@@ -190,7 +190,8 @@ nlohmann::json periodic_orbits_record(const Scene& scene, const PeriodicOrbitsJo
   nlohmann::json orbits = nlohmann::json::array();
   for (const FoundPeriodicOrbit& orbit : result.orbits) {
     nlohmann::json multipliers = nlohmann::json::array();
-    for (const auto& multiplier : orbit.multipliers) multipliers.push_back(complex_record(multiplier));
+    for (const auto& multiplier : orbit.multipliers)
+      multipliers.push_back(complex_record(multiplier));
     orbits.push_back({{"id", orbit.id},
                       {"minimal_period", orbit.minimal_period},
                       {"state", orbit.state},

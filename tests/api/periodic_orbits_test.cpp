@@ -69,7 +69,8 @@ struct BallParameters {
 std::vector<std::vector<double>> closed_form_period_one(const BallParameters& p) {
   const double T = 2.0 * std::numbers::pi / p.omega;
   const double v = p.g * T / 2.0;
-  const double cosine = (1.0 - p.r) * p.g * std::numbers::pi / ((1.0 + p.r) * p.A * p.omega * p.omega);
+  const double cosine =
+      (1.0 - p.r) * p.g * std::numbers::pi / ((1.0 + p.r) * p.A * p.omega * p.omega);
   std::vector<std::vector<double>> points;
   if (!(std::abs(cosine) < 1.0)) return points;
   for (const double phase :
@@ -153,12 +154,13 @@ TEST(PeriodicOrbits, LinearImpactPairOnOneSideOfAFoldAndNoneOnTheOther) {
     return p.type == BifurcationType::fold && p.located;
   });
   ASSERT_NE(fold, points.end()) << "no fold on the period-1 branch";
-  // the side of the fold its branch lies on: that of the branch's points nearest it
+  // the side of the fold its branch lies on: that of the branch's point nearest it
   const auto& curve = branch.branches[0].result.branch;
-  const auto nearest = std::min_element(curve.begin(), curve.end(), [&](const auto& a, const auto& b) {
-    return distance(a.state, fold->state) < distance(b.state, fold->state) &&
-           a.parameter != fold->parameter;
-  });
+  const auto nearest =
+      std::min_element(curve.begin(), curve.end(), [&](const auto& a, const auto& b) {
+        return distance(a.state, fold->state) < distance(b.state, fold->state);
+      });
+  ASSERT_NE(nearest->parameter, fold->parameter);
   const double side = nearest->parameter < fold->parameter ? -1.0 : 1.0;
   const double offset = 0.003 * fold->parameter;
 

@@ -124,8 +124,9 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(PeriodicAll, NoOrbitSaysSoInOneLine) {
   const ScratchFolder scratch;
-  const ProgramRun run = run_command_line("periodic linear_impact --all --starts 3 "
-                                          "--max-iterations 1 --out " + (scratch / "none").string());
+  const ProgramRun run =
+      run_command_line("periodic linear_impact --all --starts 3 --max-iterations 1 --out " +
+                       (scratch / "none").string());
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.err.find("periodic --all: no orbit of period 1 from 3 starts"), std::string::npos)
       << run.err;
