@@ -113,13 +113,16 @@ void validate_plan(const SweepPlan& plan, const Scene& scene, const SceneSchema&
 std::vector<SweepTask> sweep_tasks(const SweepPlan& plan) {
   std::vector<SweepTask> tasks;
   if (plan.samples > 0) {
-    // one task per value: its samples, each from its own initial state
-    for (int i = 0; i < plan.axes[0].count; ++i) {
-      SweepTask task;
-      task.id = i;
-      for (int s = 0; s < plan.samples; ++s) task.points.push_back({i, s});
-      tasks.push_back(std::move(task));
-    }
+    // the samples of each value in tasks of at most samples_per_task, value
+    // by value, in sample order: threads and ranks share even one value
+    for (int i = 0; i < plan.axes[0].count; ++i)
+      for (int first = 0; first < plan.samples; first += samples_per_task) {
+        SweepTask task;
+        task.id = static_cast<int>(tasks.size());
+        for (int s = first; s < std::min(plan.samples, first + samples_per_task); ++s)
+          task.points.push_back({i, s});
+        tasks.push_back(std::move(task));
+      }
     return tasks;
   }
   if (plan.axes.size() == 1) {

@@ -59,7 +59,7 @@ struct SweepPlan {
   int entropy_box = 5;  // basins: box side of the basin entropies (grid points; analysis/basin_measures.hpp)
   // attractors (samples > 0): at each value of the one axis, `samples`
   // initial states drawn from `box` (analysis/initial_box.hpp, with `seed`);
-  // grid index [0] is the value's, [1] the sample's; one task per value
+  // grid index [0] is the value's, [1] the sample's (sweep_tasks)
   int samples = 0;
   std::vector<BoxRange> box;
   std::uint64_t seed = 0;
@@ -85,8 +85,13 @@ struct SweepTarget {
 void validate_plan(const SweepPlan& plan, const Scene& scene, const SceneSchema& schema);
 
 // One continuation run: grid points (i along axis 1, j along axis 2) in order;
-// for a sampled plan (samples > 0) the samples of one value (i the value's
-// index, j the sample's).
+// for a sampled plan (samples > 0) up to samples_per_task consecutive samples
+// of one value (i the value's index, j the sample's), the tasks value by
+// value, each value's in sample order.
+// A sampled plan's samples per task: enough to keep a task's overhead small,
+// few enough that threads and MPI ranks share the samples of a single value.
+constexpr int samples_per_task = 25;
+
 struct SweepTask {
   int id = 0;
   int direction = 1;  // +1 up, −1 down (1D); +1 in 2D

@@ -231,7 +231,7 @@ AttractorsTable attractors_table(const SweepPlan& plan, const std::vector<SweepT
                                  const std::map<SweepRecordKey, SweepRecord>& records) {
   AttractorsTable table;
   const SweepAxis& axis = plan.axes[0];
-  // one task per value, its samples in order
+  // each value's samples in sample order (its tasks come in that order)
   std::vector<std::vector<const SweepRecord*>> by_value(axis.count);
   for (const auto& task : tasks)
     for (std::size_t p = 0; p < task.points.size(); ++p)

@@ -3,9 +3,10 @@
 // attractors): the plan (one parameter axis, K initial states per value drawn
 // reproducibly from a box, analysis/initial_box.hpp), a sweep whose points
 // each start from their own sampled state (SweepPlan::follow_attractor false,
-// run by api/sweep_job.hpp's run_sweep, one task per value), and its records
-// told apart and followed (analysis/attractor_following.hpp) and laid out as
-// the rows of attractors.csv, attractor_points.csv and samples.csv.
+// run by api/sweep_job.hpp's run_sweep, up to samples_per_task samples of one
+// value per task), and its records told apart and followed
+// (analysis/attractor_following.hpp) and laid out as the rows of
+// attractors.csv, attractor_points.csv and samples.csv.
 #pragma once
 
 #include <cstdint>

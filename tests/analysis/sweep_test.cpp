@@ -64,6 +64,26 @@ TEST(SweepTasks, TwoDimensionalRowsFollowTheFirstParameterUp) {
   }
 }
 
+TEST(SweepTasks, ASampledPlansSamplesComeInTasksOfOneValueInSampleOrder) {
+  SweepPlan plan;
+  plan.axes = {impactlab::parse_axis("omega=5:9:2", "--param")};
+  plan.samples = 2 * impactlab::samples_per_task + 10;
+  const auto tasks = impactlab::sweep_tasks(plan);
+  ASSERT_EQ(tasks.size(), 6u);  // per value: two full tasks and one of 10
+  int id = 0;
+  for (int i = 0; i < 2; ++i) {
+    int sample = 0;
+    for (int t = 0; t < 3; ++t, ++id) {
+      EXPECT_EQ(tasks[id].id, id);
+      EXPECT_EQ(tasks[id].points.size(),
+                static_cast<std::size_t>(t < 2 ? impactlab::samples_per_task : 10));
+      for (const auto& point : tasks[id].points)
+        EXPECT_EQ(point, (std::array<int, 2>{i, sample++}));
+    }
+    EXPECT_EQ(sample, plan.samples);
+  }
+}
+
 impactlab::SectionResult points_of(const std::vector<std::array<double, 2>>& states) {
   impactlab::SectionResult result;
   for (const auto& s : states) result.points.push_back({0.0, s[0], s[1], 0});
@@ -128,6 +148,7 @@ TEST(Checkpoint, LinesGiveBackEveryBit) {
   EXPECT_EQ(back->result.final_state->mode, 2);
   EXPECT_EQ(back->result.lyapunov, -std::numeric_limits<double>::infinity());
   EXPECT_EQ(back->classification.impacts_per_period, 2.46);
+  EXPECT_TRUE(std::isnan(back->result.min_impact_speed));  // no impact speed: NaN kept
 
   record.result.lyapunov = std::numeric_limits<double>::quiet_NaN();
   record.result.final_state.reset();
