@@ -21,6 +21,7 @@
 #include <optional>
 
 #include <impactlab/analysis/decorated_system.hpp>
+#include <impactlab/analysis/deflation.hpp>
 #include <impactlab/analysis/floquet_algebra.hpp>
 #include <impactlab/analysis/flow_setup.hpp>
 #include <impactlab/analysis/variational.hpp>
@@ -36,6 +37,7 @@ struct FlowWithJacobian {
   TangentMatrixOf<N> jacobian{};  // ∂x(t)/∂x(t0) on the tangent space
   Termination termination = Termination::completed;
   std::uint64_t impacts = 0;
+  std::uint64_t contact_phases = 0;  // sustained contacts begun (after an accumulation of impacts)
   bool one_sided = false;  // an event's tangent map on the way is one side's (Transition::one_sided)
 };
 
@@ -54,7 +56,8 @@ flow_with_jacobian(const Variational<System>& tangent, Stepper& stepper, const F
   const auto run =
       simulate(tangent, stepper, tangent.start(x0, mode), mode, t0, t1, loop_options(setup), log);
   return {Tangent::base_state(run.state), run.mode, Tangent::fundamental_matrix(run.state),
-          run.termination, log.count(EventKind::impact), run.counters.one_sided_events > 0};
+          run.termination, log.count(EventKind::impact), log.count(EventKind::contact_start),
+          run.counters.one_sided_events > 0};
 }
 
 // The tangent dynamics the analyses run for a system: the variational
@@ -119,13 +122,16 @@ struct PeriodicOrbit {
 // after max_iterations. An orbit whose map crosses an event with a one-sided
 // tangent map (an impulse on the friction cone's edge) ends no_tangent_map,
 // its monodromy and multipliers NaN.
+// With `deflation` (analysis/deflation.hpp) and its known roots, the step is
+// the deflated one and the halving accepts a step that lowers M(x)|Pⁿ(x) − x|
+// (the deflated residual); convergence is still judged on |Pⁿ(x) − x|.
 // All its flows with the caller's stepper (see flow_with_jacobian above).
 template <HasJacobian System, class Stepper>
 PeriodicOrbit<typename System::State, typename System::Mode, tangent_dimension_of<System>>
 locate_periodic_orbit(const Variational<System>& tangent, Stepper& stepper,
                       const FlowSetup& setup, typename System::State guess,
                       typename System::Mode mode, double t0, double span, int max_iterations,
-                      double tolerance) {
+                      double tolerance, const Deflation* deflation = nullptr) {
   using State = typename System::State;
   constexpr std::size_t n = tangent_dimension_of<System>;
   PeriodicOrbit<State, typename System::Mode, n> orbit;
@@ -138,6 +144,12 @@ locate_periodic_orbit(const Variational<System>& tangent, Stepper& stepper,
   };
   auto residual_of = [&](const State& x, const State& image) {
     return tangent_norm<n>(difference(x, image));
+  };
+  // what a step must lower: |F|, or M |F| where deflating
+  auto merit_of = [&](const State& x, double residual) {
+    if (deflation == nullptr) return residual;
+    const auto point = tangent_part<n>(x);
+    return deflation_factor(*deflation, point) * residual;
   };
   auto flow = [&](const State& x) {
     return flow_with_jacobian(tangent, stepper, setup, x, orbit.mode, t0, t0 + span);
@@ -160,18 +172,26 @@ locate_periodic_orbit(const Variational<System>& tangent, Stepper& stepper,
       orbit.failure = "max_iterations reached";
       break;
     }
-    const auto step = newton_step<n>(orbit.monodromy, difference(orbit.state, image.state));
+    auto step = newton_step<n>(orbit.monodromy, difference(orbit.state, image.state));
     if (!step) {
       orbit.failure = "M - I is singular at the iterate (a multiplier at 1): no Newton step";
       break;
     }
+    if (deflation != nullptr) {
+      const auto point = tangent_part<n>(orbit.state);
+      if (!deflate_step(*deflation, point, *step)) {
+        orbit.failure = "the deflated Newton step is undefined at the iterate (on a known orbit)";
+        break;
+      }
+    }
+    const double merit = merit_of(orbit.state, orbit.residual);
     bool accepted = false;
     for (double fraction = 1.0; fraction > 1e-6 && !accepted; fraction *= 0.5) {
       State trial = orbit.state;
       for (std::size_t i = 0; i < n; ++i) trial[i] += fraction * (*step)[i];
       auto trial_image = flow(trial);
       if (trial_image.termination == Termination::completed &&
-          residual_of(trial, trial_image.state) < orbit.residual) {
+          merit_of(trial, residual_of(trial, trial_image.state)) < merit) {
         orbit.state = trial;
         image = trial_image;
         accepted = true;
@@ -201,12 +221,13 @@ template <HasJacobian System>
 PeriodicOrbit<typename System::State, typename System::Mode, tangent_dimension_of<System>>
 locate_periodic_orbit(const System& system, const FlowSetup& setup, typename System::State guess,
                       typename System::Mode mode, double t0, double span,
-                      int max_iterations = 30, double tolerance = 1e-11) {
+                      int max_iterations = 30, double tolerance = 1e-11,
+                      const Deflation* deflation = nullptr) {
   using Tangent = TangentOf<System>;
   const Tangent tangent{DecoratedSystem<System>(system)};
   return with_flow<Tangent>(setup.method, stepper_settings(tangent, setup), [&](auto& stepper) {
     return locate_periodic_orbit(tangent, stepper, setup, guess, mode, t0, span, max_iterations,
-                                 tolerance);
+                                 tolerance, deflation);
   });
 }
 

@@ -129,6 +129,36 @@ std::vector<BoxRange> default_box(const Scene& scene, const SceneSchema& schema)
                                         schema.oscillator, mention("box")));
 }
 
+std::vector<BoxRange> box_of_options(const std::vector<std::string>& options,
+                                     const Scene& scene, const SceneSchema& schema) {
+  std::vector<BoxRange> box;
+  std::set<std::string> keys;
+  for (const std::string& text : options) {
+    BoxRange range = parse_box(text);
+    if (numeric_key(schema, range.key) == nullptr)
+      throw BadInput("box", text,
+                     fmt::format("{} is not a numeric key of oscillator {}", range.key,
+                                 schema.oscillator));
+    refuse_unread_key(scene, schema, range.key, "box");
+    if (!keys.insert(range.key).second)
+      throw BadInput("box", text, fmt::format("{} is given twice", range.key));
+    box.push_back(std::move(range));
+  }
+  if (box.empty()) return default_box(scene, schema);
+  return box;
+}
+
+void refuse_box_corners(const Scene& scene, const SceneSchema& schema,
+                        const std::vector<BoxRange>& box, const std::string& where) {
+  if (const auto bad = corner_refusal(scene, schema, box)) {
+    const auto refused = std::find_if(box.begin(), box.end(),
+                                      [&](const BoxRange& r) { return r.key == bad->key(); });
+    throw BadInput("box", refused == box.end() ? bad->key() : box_text(*refused),
+                   fmt::format("the box leaves the states the oscillator accepts{} ({})",
+                               where.empty() ? "" : " at " + where, bad->what()));
+  }
+}
+
 SweepPlan make_attractors_plan(const AttractorsSpec& spec, const Scene& scene,
                                const SceneSchema& schema) {
   if (spec.samples < 1)
@@ -154,34 +184,15 @@ SweepPlan make_attractors_plan(const AttractorsSpec& spec, const Scene& scene,
                                axis.count, spec.samples, rows));
 
   // the box: each key a numeric key the model reads, once, not the parameter
-  std::vector<BoxRange> box;
-  std::set<std::string> keys;
-  for (const std::string& text : spec.box) {
-    BoxRange range = parse_box(text);
-    if (numeric_key(schema, range.key) == nullptr)
-      throw BadInput("box", text,
-                     fmt::format("{} is not a numeric key of oscillator {}", range.key,
-                                 schema.oscillator));
-    refuse_unread_key(scene, schema, range.key, "box");
-    if (range.key == axis.name)
-      throw BadInput("box", text, "the key is the swept " + mention("param"));
-    if (!keys.insert(range.key).second)
-      throw BadInput("box", text, fmt::format("{} is given twice", range.key));
-    box.push_back(std::move(range));
-  }
-  if (box.empty()) box = default_box(scene, schema);
+  std::vector<BoxRange> box = box_of_options(spec.box, scene, schema);
+  for (std::size_t k = 0; k < box.size() && k < spec.box.size(); ++k)
+    if (box[k].key == axis.name)
+      throw BadInput("box", spec.box[k], "the key is the swept " + mention("param"));
   // every corner of the box accepted at both ends of the parameter
   for (const double value : {axis.from, axis.to}) {
     Scene end = scene;
     end.values[axis.name] = value;
-    if (const auto bad = corner_refusal(end, schema, box)) {
-      const auto refused = std::find_if(box.begin(), box.end(),
-                                        [&](const BoxRange& r) { return r.key == bad->key(); });
-      const std::string where = fmt::format("{} = {}", axis.name, value);
-      throw BadInput("box", refused == box.end() ? bad->key() : box_text(*refused),
-                     fmt::format("the box leaves the states the oscillator accepts at {} ({})",
-                                 where, bad->what()));
-    }
+    refuse_box_corners(end, schema, box, fmt::format("{} = {}", axis.name, value));
   }
 
   plan.follow_attractor = false;  // every sample from its own initial state

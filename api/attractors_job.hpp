@@ -47,6 +47,18 @@ struct AttractorsSpec {
 // BadInput (key `box`) where none is accepted.
 std::vector<BoxRange> default_box(const Scene& scene, const SceneSchema& schema);
 
+// The box the `box` option gives: each KEY=FROM:TO parsed, its key a numeric
+// key the model reads, given once; the default box where none is given.
+// Throws BadInput (key `box`).
+std::vector<BoxRange> box_of_options(const std::vector<std::string>& options,
+                                     const Scene& scene, const SceneSchema& schema);
+
+// BadInput (key `box`) where a corner of the box is a state the oscillator
+// refuses in `scene`; `where` (such as "omega = 2") says which scene, empty
+// for the scene as given.
+void refuse_box_corners(const Scene& scene, const SceneSchema& schema,
+                        const std::vector<BoxRange>& box, const std::string& where);
+
 // The validated plan: the parameter a numeric key its model reads, K ≥ 1, each
 // box key a numeric key read by the model, given once, not the parameter, and
 // every corner of the box at both ends of the parameter a state the

@@ -4,6 +4,7 @@
 // continue_orbit (api/scene_jobs.hpp) runs.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,11 @@ struct ContinueOptions {
   int max_points = ContinuationRequest{}.max_points;       // points per branch
   double tolerance = ContinuationRequest{}.tolerance;      // |P^n(x) - x| / (1 + |x|)
   double max_step = ContinuationRequest{}.max_step;        // largest arclength step; 0: 1/50 of the range
+  // `all`: every orbit of the period at FROM (periodic --all's), each continued
+  bool all = false;
+  int starts = 20;               // starts drawn from the box
+  std::vector<std::string> box;  // KEY=FROM:TO each; empty: the default box
+  std::uint64_t seed = 1;        // of the starts
 };
 
 // A scene key and its range, NAME=FROM:TO.

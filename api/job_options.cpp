@@ -262,6 +262,22 @@ Options periodic_options() {
        .default_value = 30.0, .lower = 1, .upper = 1000},
       {.name = "tolerance", .type = OptionType::number, .help = "relative residual",
        .default_value = 1e-11, .lower = 0.0, .lower_open = true},
+      {.name = "all", .type = OptionType::flag,
+       .help = "every orbit of the period: Newton shooting from `starts` states drawn from "
+               "`box`, each deflated by the orbits found before; writes orbits.csv (`period` "
+               "auto means 1; `transient` is not used)",
+       .default_value = false},
+      {.name = "starts", .type = OptionType::integer,
+       .help = "with `all`: initial states drawn from the box, one Newton run each",
+       .default_value = 20.0, .lower = 1, .upper = 1000000, .unit = "starts"},
+      {.name = "box", .type = OptionType::text_list,
+       .help = "with `all`: KEY=FROM:TO, repeatable: an initial-state key and the range its "
+               "starts are drawn from, uniformly (default: every initial.* key the model reads, "
+               "within 1 of the scene's value, narrowed until the oscillator accepts every "
+               "corner)"},
+      {.name = "seed", .type = OptionType::count,
+       .help = "with `all`: seed of the starts: the same seed draws the same states",
+       .default_value = 1.0, .lower = 0, .upper = 1.8e19},
   };
 }
 
@@ -308,6 +324,20 @@ Options continue_options() {
       {.name = "max_step", .type = OptionType::number,
        .help = "largest arclength step in (q, qdot, parameter) (default: 1/50 of the range)",
        .default_value = ContinuationRequest{}.max_step, .lower = 0.0},
+      {.name = "all", .type = OptionType::flag,
+       .help = "continue every orbit of the period that periodic `all` finds at FROM (from "
+               "`starts` states drawn from `box`): branches not connected to the scene's "
+               "attractor appear too (stroboscopic section, no `param2`)",
+       .default_value = false},
+      {.name = "starts", .type = OptionType::integer,
+       .help = "with `all`: initial states drawn from the box, one Newton run each",
+       .default_value = 20.0, .lower = 1, .upper = 1000000, .unit = "starts"},
+      {.name = "box", .type = OptionType::text_list,
+       .help = "with `all`: KEY=FROM:TO, repeatable: an initial-state key and the range its "
+               "starts are drawn from (default: as periodic's)"},
+      {.name = "seed", .type = OptionType::count,
+       .help = "with `all`: seed of the starts", .default_value = 1.0, .lower = 0,
+       .upper = 1.8e19},
       {.name = "plot", .type = OptionType::flag,
        .help = "draw continuation.png (scripts/plot_continuation.py): stable solid, unstable "
                "dashed, bifurcations marked",

@@ -59,6 +59,10 @@ class SceneSystem {
   [[nodiscard]] const Scene& scene() const { return scene_; }
   [[nodiscard]] const System& system() const { return system_; }
   [[nodiscard]] State initial_state() const { return Binding::initial_state(scene_, system_); }
+  // the initial state another scene of the same system gives (its initial.* keys)
+  [[nodiscard]] State initial_state_of(const Scene& other) const {
+    return Binding::initial_state(other, system_);
+  }
   [[nodiscard]] Mode flight_mode() const { return Binding::flight_mode(system_); }
   [[nodiscard]] double forcing_frequency() const { return Binding::forcing_frequency(system_); }
   [[nodiscard]] std::string_view mode_name(Mode mode) const {

@@ -7,6 +7,7 @@
 
 #include <impactlab/analysis/continuation.hpp>
 #include <impactlab/analysis/periodic.hpp>
+#include <impactlab/analysis/periodic_orbits.hpp>
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/io/event_columns.hpp>
 #include <impactlab/io/event_extension.hpp>
@@ -31,6 +32,11 @@ SectionResult section_of_scene(const Scene& scene, const SectionRequest& request
 // Newton shooting for a period-n orbit and its Floquet multipliers
 // (analysis/run_periodic.hpp).
 PeriodicResult periodic_orbit_of_scene(const Scene& scene, const PeriodicRequest& request);
+
+// Every period-n orbit that deflated Newton shooting finds from the request's
+// starts, drawn from its box (analysis/run_periodic_orbits.hpp).
+PeriodicOrbitsResult periodic_orbits_of_scene(const Scene& scene,
+                                              const PeriodicOrbitsRequest& request);
 
 // Pseudo-arclength continuation of a period-n orbit, its bifurcations and
 // grazing points (analysis/run_continuation.hpp).

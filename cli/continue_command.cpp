@@ -7,12 +7,15 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include <impactlab/analysis/continuation.hpp>
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/api/continuation_job.hpp>
+#include <impactlab/api/every_orbit_continuation.hpp>
+#include <impactlab/api/periodic_job.hpp>
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include "command.hpp"
@@ -140,7 +143,16 @@ int run_continue(const ContinueCommandOptions& command_options,
 
   const auto directory = command_options.scene.output_directory();
   const auto started = std::chrono::steady_clock::now();
-  const ContinuationJobResult result = continue_orbit(scene, job);
+  // with --all, every orbit periodic --all finds at FROM, each continued
+  std::optional<EveryOrbitContinuation> every;
+  if (options.all) {
+    PeriodicJob search;
+    search.starts = options.starts;
+    search.box = options.box;
+    search.seed = options.seed;
+    every = continue_every_orbit(scene, job, search);
+  }
+  const ContinuationJobResult result = every ? every->continuation : continue_orbit(scene, job);
   const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
@@ -151,13 +163,16 @@ int run_continue(const ContinueCommandOptions& command_options,
   write_points_csv(run_files.add("points.csv"), range.name, result.dimension, result.branches);
 
   nlohmann::json branches = nlohmann::json::array();
-  for (const ContinuedBranch& branch : result.branches)
+  for (std::size_t b = 0; b < result.branches.size(); ++b) {
+    const ContinuedBranch& branch = result.branches[b];
     branches.push_back({{"period", branch.period},
                         {"points", branch.result.branch.size()},
                         {"bifurcations", branch.result.points.size()},
                         {"stop_reason", to_string(branch.result.stop_reason)},
                         {"stop_detail", branch.result.stop_detail},
                         {"map_evaluations", branch.result.map_evaluations}});
+    if (every) branches.back()["orbit"] = every->branch_orbit[b];
+  }
   nlohmann::json document = {
       {"impactlab_version", IMPACTLAB_VERSION},
       {"command", command_line},
@@ -208,7 +223,18 @@ int run_continue(const ContinueCommandOptions& command_options,
       {"branches", branches},
       {"wall_time_s", wall_time},
   };
-  // a component held at its start value (analysis/neutral_component.hpp)
+  // --all: the orbits found at FROM (periodic --all's record) and those not continued
+  if (every) {
+    const nlohmann::json found = periodic_orbits_record(scene, every->orbits);
+    document["all"] = {{"request", found["request"]},
+                       {"starts", found["starts"]},
+                       {"orbits", found["orbits"]},
+                       {"not_continued", every->not_continued},
+                       {"note", "each branch's `orbit` is the id of the orbit it continues, "
+                                "found at the start of the range; an orbit on a branch "
+                                "already continued is not continued again (not_continued)"}};
+  }
+    // a component held at its start value (analysis/neutral_component.hpp)
   if (result.neutral)
     document["neutral_component"] = {
         {"index", result.neutral->index + 1},
@@ -354,6 +380,10 @@ Command add_continue_command(CLI::App& app) {
   table.add("max_points", job.max_points);
   table.add("tolerance", job.tolerance);
   table.add("max_step", job.max_step);
+  table.add("all", job.all);
+  table.add("starts", job.starts);
+  table.add("box", job.box);
+  table.add("seed", job.seed);
   table.add("plot", options->plot);
   table.add("with_sweep", options->with_sweep);
   return {command,

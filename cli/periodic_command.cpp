@@ -2,6 +2,9 @@
 // stroboscopic map with the saltation-corrected monodromy matrix, and its
 // Floquet multipliers; writes periodic.json. n is given, or detected from the
 // stroboscopic points after the transient (--period auto, the default).
+// With --all, every orbit of the period that deflated Newton shooting finds
+// from --starts states drawn from --box (api/periodic_job.hpp); writes
+// orbits.csv beside periodic.json.
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -28,8 +31,48 @@ struct PeriodicOptions {
   PeriodicJob job;
 };
 
+void write_orbits_csv(AtomicFile& file, const std::vector<OrbitsColumn>& columns) {
+  auto& out = file.stream();
+  for (std::size_t c = 0; c < columns.size(); ++c) out << (c == 0 ? "" : ",") << columns[c].name;
+  out << '\n';
+  const std::size_t rows = columns.empty() ? 0 : columns.front().values.size();
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      out << (c == 0 ? "" : ",") << csv_field(columns[c].values[r]);
+    out << '\n';
+  }
+}
+
+int run_all_periodic(const PeriodicOptions& options, const Scene& scene,
+                     const std::vector<std::string>& command_line) {
+  const PeriodicOrbitsJobResult found = find_periodic_orbits(scene, options.job);
+  const auto directory = options.scene.output_directory();
+  RunFiles run_files = open_run_files(directory);
+  write_orbits_csv(run_files.add("orbits.csv"), periodic_orbits_table(found));
+  nlohmann::json document = periodic_orbits_record(scene, found);
+  document["command"] = command_line;
+  document["created_utc"] = utc_now();
+  document["wall_time_s"] = found.wall_time;
+  write_json(run_files.add("periodic.json"), document);
+  run_files.commit();
+  if (!options.scene.quiet) {
+    const PeriodicOrbitsResult& result = found.result;
+    int stable = 0;
+    for (const auto& orbit : result.orbits) stable += orbit.stable ? 1 : 0;
+    std::cout << fmt::format(
+        "{}: {} orbits of period {} ({} stable) from {} starts: {} new, {} to a known orbit, {} "
+        "not converged, {} stopped early\n",
+        scene.name, result.orbits.size(), found.request.period, stable, found.request.starts,
+        result.count(StartOutcome::new_orbit), result.count(StartOutcome::known_orbit),
+        result.count(StartOutcome::not_converged), result.count(StartOutcome::stopped));
+    std::cout << fmt::format("wrote {} and periodic.json\n", (directory / "orbits.csv").string());
+  }
+  return exit_done;
+}
+
 int run_periodic(const PeriodicOptions& options, const std::vector<std::string>& command_line) {
   const Scene scene = options.scene.load();
+  if (options.job.all) return run_all_periodic(options, scene, command_line);
   const PeriodicJobResult found = find_periodic_orbit(scene, options.job);
   const auto directory = options.scene.output_directory();
   RunFiles run_files = open_run_files(directory);
@@ -87,6 +130,10 @@ Command add_periodic_command(CLI::App& app) {
   table.add("transient", options->job.transient);
   table.add("max_iterations", options->job.max_iterations);
   table.add("tolerance", options->job.tolerance);
+  table.add("all", options->job.all);
+  table.add("starts", options->job.starts);
+  table.add("box", options->job.box);
+  table.add("seed", options->job.seed);
   return {command,
           [options](const std::vector<std::string>& command_line) {
             return run_periodic(*options, command_line);

@@ -38,6 +38,7 @@
 #include <impactlab/api/job_options.hpp>
 #include <impactlab/api/model_keys.hpp>
 #include <impactlab/api/periodic_job.hpp>
+#include <impactlab/api/every_orbit_continuation.hpp>
 #include <impactlab/api/run_record.hpp>
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
@@ -610,6 +611,39 @@ py::dict periodic_binding(const Scene& scene, const std::string& period, double 
   return out;
 }
 
+// periodic(all=True): the orbits' columns (orbits.csv's) and periodic.json's record
+py::dict periodic_orbits_binding(const Scene& scene, const std::string& period, double phase,
+                                 int max_iterations, double tolerance, int starts,
+                                 const std::vector<std::string>& box, std::uint64_t seed,
+                                 py::object progress) {
+  PeriodicJob job;
+  job.period = period;
+  job.phase = phase;
+  job.max_iterations = max_iterations;
+  job.tolerance = tolerance;
+  job.all = true;
+  job.starts = starts;
+  job.box = box;
+  job.seed = seed;
+  ProgressRelay relay(std::move(progress));
+  const PeriodicOrbitsJobResult found =
+      relay.run([&] { return find_periodic_orbits(scene, job, std::ref(relay)); });
+  relay(1.0);
+  py::dict columns;
+  for (OrbitsColumn& column : periodic_orbits_table(found)) {
+    if (column.whole) {
+      std::vector<std::int64_t> whole(column.values.begin(), column.values.end());
+      columns[py::str(column.name)] = owning_array(std::move(whole));
+    } else {
+      columns[py::str(column.name)] = owning_array(std::move(column.values));
+    }
+  }
+  py::dict out;
+  out["orbits"] = columns;
+  out["meta"] = json_to_python(periodic_orbits_record(scene, found));
+  return out;
+}
+
 py::dict compare_binding(const Scene& scene, const std::string& models, double periods,
                          double t_end, py::object progress) {
   RunRequest request;
@@ -770,8 +804,18 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
   const std::string& parameter2 = job.second_parameter;
   const int period = job.period;
   ProgressRelay relay(std::move(progress));
-  // the continuation reports no progress of its own: the check runs once after it
-  const ContinuationJobResult result = relay.run([&] { return continue_orbit(scene, job); });
+  // the continuation reports no progress of its own: the check runs once after it;
+  // with `all`, every orbit periodic --all finds at FROM, each continued
+  std::optional<EveryOrbitContinuation> every;
+  if (options.all) {
+    PeriodicJob search;
+    search.starts = options.starts;
+    search.box = options.box;
+    search.seed = options.seed;
+    every = relay.run([&] { return continue_every_orbit(scene, job, search); });
+  }
+  const ContinuationJobResult result =
+      every ? every->continuation : relay.run([&] { return continue_orbit(scene, job); });
   relay(1.0);
 
   // the columns of the states (q, qdot, state3 ... stateN) and of the N
@@ -832,6 +876,7 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
     one["min_impact_speed"] = owning_array(std::move(min_impact_speed));
     one["min_flight_gap"] = owning_array(std::move(min_flight_gap));
     one["newton_iterations"] = owning_array(std::move(newton_iterations));
+    if (every) one["orbit"] = every->branch_orbit[b];
     branches.append(one);
     for (const BifurcationPoint& p : continued.result.points) {
       type.emplace_back(type_name(p));
@@ -868,6 +913,11 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
   out["note"] = result.note;
   out["branches"] = branches;
   out["points"] = points;
+  if (every) {
+    const nlohmann::json found = periodic_orbits_record(scene, every->orbits);
+    out["orbits"] = json_to_python(found["orbits"]);
+    out["not_continued"] = py::cast(every->not_continued);
+  }
   // a component held at its start value, as continuation.json's (index from 1)
   if (result.neutral) {
     py::dict neutral;
@@ -1063,12 +1113,15 @@ PYBIND11_MODULE(_impactlab, m) {
               std::move(progress));
         });
   m.def("periodic", &periodic_binding);
+  m.def("periodic_orbits", &periodic_orbits_binding);
   m.def("compare", &compare_binding);
   m.def("bench", &bench_binding);
   m.def("continue_", [](const Scene& scene, const std::string& param, const std::string& param2,
                         const std::string& curve, int period, const std::string& section,
                         bool switch_doubling, const std::vector<double>& start, double transient,
-                        int max_points, double tolerance, double max_step, py::object progress) {
+                        int max_points, double tolerance, double max_step, bool all, int starts,
+                        const std::vector<std::string>& box, std::uint64_t seed,
+                        py::object progress) {
     ContinueOptions options;
     options.param = param;
     options.param2 = param2;
@@ -1081,6 +1134,10 @@ PYBIND11_MODULE(_impactlab, m) {
     options.max_points = max_points;
     options.tolerance = tolerance;
     options.max_step = max_step;
+    options.all = all;
+    options.starts = starts;
+    options.box = box;
+    options.seed = seed;
     return continue_binding(scene, options, std::move(progress));
   });
   m.def("job_names", [] {

@@ -12,6 +12,7 @@ checks them: bad input raises ValueError naming the key and the value, and a
 key that the scene's model does not read gives an UnreadKeyWarning.
 """
 
+import builtins
 import math
 import numbers
 import os
@@ -821,12 +822,26 @@ def attractors(scene_, *, param, samples=_default("attractors", "samples"),
 def periodic(scene_=None, *, period=_default("periodic", "period"),
              phase=_default("periodic", "phase"), transient=_default("periodic", "transient"),
              max_iterations=_default("periodic", "max_iterations"),
-             tolerance=_default("periodic", "tolerance"), progress=None, **keys):
+             tolerance=_default("periodic", "tolerance"), all=_default("periodic", "all"),
+             starts=_default("periodic", "starts"), box=_default("periodic", "box"),
+             seed=_default("periodic", "seed"), progress=None, **keys):
     """A period-n orbit by Newton shooting and its Floquet multipliers (the
-    CLI's `periodic`). meta holds periodic.json's content."""
+    CLI's `periodic`). meta holds periodic.json's content.
+
+    With all=True, every orbit of the period that Newton shooting finds from
+    `starts` initial states drawn from the box (box="initial.y=0:0.1" or a
+    list of such; None: the default box), each start deflated by the orbits
+    found before: orbits (orbits.csv's columns as a Table: id,
+    minimal_period, the state by name, impacts, contact_phases, stable,
+    multiplier1_re, multiplier1_im, ..., residual), multipliers (one complex
+    array per orbit) and meta."""
     loaded = scene(scene_ if scene_ is not None else "jin2003", **keys)
     if isinstance(period, bool) or not isinstance(period, (str, numbers.Integral)):
         raise ValueError("period = {!r}: expected auto or a whole number from 1 to 1000".format(period))
+    _option("periodic", "all", all)
+    if all:
+        return _periodic_orbits(loaded, period, phase, max_iterations, tolerance, starts, box,
+                                seed, progress)
     checked = {key: _option("periodic", key, value) for key, value in (
         ("phase", phase), ("transient", transient), ("max_iterations", max_iterations),
         ("tolerance", tolerance))}
@@ -847,6 +862,38 @@ def periodic(scene_=None, *, period=_default("periodic", "period"),
                               meta["request"]["period_source"]),
                       PhysicalDiagnosticWarning, stacklevel=2)
     return result
+
+
+def _box_list(box):
+    """The box option as a list of KEY=FROM:TO texts (None: the default box)."""
+    if box is None:
+        return []
+    if isinstance(box, str):
+        return [box]
+    if isinstance(box, (list, tuple)) and builtins.all(isinstance(b, str) for b in box):
+        return list(box)
+    raise ValueError("box = {!r}: expected KEY=FROM:TO or a list of them".format(box))
+
+
+def _periodic_orbits(loaded, period, phase, max_iterations, tolerance, starts, box, seed,
+                     progress):
+    """periodic(all=True): every orbit of the period (see periodic)."""
+    boxes = _box_list(box)
+    checked = {key: _option("periodic", key, value) for key, value in (
+        ("phase", phase), ("max_iterations", max_iterations), ("tolerance", tolerance),
+        ("starts", starts), ("seed", seed))}
+    raw = _run(lambda callback: _impactlab.periodic_orbits(
+        loaded, str(period), checked["phase"], checked["max_iterations"], checked["tolerance"],
+        checked["starts"], boxes, checked["seed"], callback), progress, "periodic")
+    orbits = Table(raw["orbits"])
+    dimension = sum(1 for name in orbits if name.startswith("multiplier") and name.endswith("_re"))
+    multipliers = [np.array([complex(orbits["multiplier{}_re".format(k + 1)][row],
+                                     orbits["multiplier{}_im".format(k + 1)][row])
+                             for k in range(dimension)])
+                   for row in range(len(orbits["id"]))]
+    meta = raw["meta"]
+    return Result(scene=loaded, meta=meta, orbits=orbits, multipliers=multipliers,
+                  state_names=list(meta["state_names"]))
 
 
 @_documented("compare")
@@ -905,7 +952,9 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
               max_points=_default("continue", "max_points"),
               tolerance=_default("continue", "tolerance"),
               max_step=_default("continue", "max_step"), param2=_default("continue", "param2"),
-              curve=_default("continue", "curve"), progress=None, **keys):
+              curve=_default("continue", "curve"), all=_default("continue", "all"),
+              starts=_default("continue", "starts"), box=_default("continue", "box"),
+              seed=_default("continue", "seed"), progress=None, **keys):
     """Pseudo-arclength continuation of a period-n orbit in one scene key (the
     CLI's `continue`): branches (per branch: the columns of branch.csv, its
     period and why it stopped) and points (the rows of points.csv: folds,
@@ -920,7 +969,12 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     plane of the two keys from the point the branch located (the CLI's
     --param2 and --curve; on either section): curves is then a list of dicts with the columns of
     curve.csv, the first branch's curve first, then each doubled branch's
-    (switch=True); curve_note says why there is none."""
+    (switch=True); curve_note says why there is none.
+    all=True continues every orbit of the period that periodic(all=True) finds
+    at FROM (from `starts` states drawn from `box`, seeded by `seed`): each
+    branch then has `orbit` (the id of the orbit it continues), and the result
+    has orbits (periodic.json's list) and not_continued (why an orbit was not:
+    on a branch already continued)."""
     loaded = scene(scene_ if scene_ is not None else "linear_impact", **keys)
     # NAME=FROM:TO is read by the scene API (continuation_job), as the CLI's
     for key, value in (("param", param), ("param2", param2), ("curve", curve),
@@ -933,13 +987,15 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
         start = [_number("start", value) for value in start]
         if not start:  # the scene API reads an empty start as none given
             raise ValueError("start = 0 numbers: expected Q,QDOT (a model file: its N states)")
+    _option("continue", "all", all)
+    boxes = _box_list(box)
     checked = {key: _option("continue", key, value) for key, value in (
         ("period", period), ("transient", transient), ("max_points", max_points),
-        ("tolerance", tolerance), ("max_step", max_step))}
+        ("tolerance", tolerance), ("max_step", max_step), ("starts", starts), ("seed", seed))}
     raw = _run(lambda callback: _impactlab.continue_(
         loaded, param, param2 or "", curve or "", checked["period"], section, switch,
         start or [], checked["transient"], checked["max_points"], checked["tolerance"],
-        checked["max_step"], callback),
+        checked["max_step"], all, checked["starts"], boxes, checked["seed"], callback),
         progress, "continue")
     # branch.csv's, points.csv's and curve.csv's columns as tables
     raw["branches"] = [Table(branch) for branch in raw["branches"]]

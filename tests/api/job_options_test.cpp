@@ -137,6 +137,14 @@ TEST(JobOptions, RequestStructDefaultsAgreeWithTheTables) {
   EXPECT_EQ(periodic.transient, number_default("periodic", "transient"));
   EXPECT_EQ(periodic.max_iterations, number_default("periodic", "max_iterations"));
   EXPECT_EQ(periodic.tolerance, number_default("periodic", "tolerance"));
+  EXPECT_EQ(periodic.all, flag_default("periodic", "all"));
+  EXPECT_EQ(periodic.starts, number_default("periodic", "starts"));
+  EXPECT_TRUE(periodic.box.empty());
+  EXPECT_TRUE(is_unset("periodic", "box"));
+  EXPECT_EQ(static_cast<double>(periodic.seed), number_default("periodic", "seed"));
+  EXPECT_EQ(impactlab::PeriodicOrbitsRequest{}.starts, number_default("periodic", "starts"));
+  EXPECT_EQ(static_cast<double>(impactlab::PeriodicOrbitsRequest{}.seed),
+            number_default("periodic", "seed"));
 
   impactlab::ContinueOptions options;
   EXPECT_TRUE(options.param2.empty() && is_unset("continue", "param2"));
@@ -148,6 +156,10 @@ TEST(JobOptions, RequestStructDefaultsAgreeWithTheTables) {
   EXPECT_EQ(options.transient, number_default("continue", "transient"));
   EXPECT_EQ(options.max_points, number_default("continue", "max_points"));
   EXPECT_EQ(options.tolerance, number_default("continue", "tolerance"));
+  EXPECT_EQ(options.all, flag_default("continue", "all"));
+  EXPECT_EQ(options.starts, number_default("continue", "starts"));
+  EXPECT_TRUE(options.box.empty() && is_unset("continue", "box"));
+  EXPECT_EQ(static_cast<double>(options.seed), number_default("continue", "seed"));
   EXPECT_EQ(options.max_step, number_default("continue", "max_step"));
   // the job built from the default options carries the table's tolerance
   options.param = "omega=2:2.5";
