@@ -243,9 +243,29 @@ Options attractors_options() {
         stop_after()}});
 }
 
+// every periodic orbit of a period, by deflated Newton shooting from starts
+// drawn from a box of initial states (periodic, continue): `all_help` says
+// what the job does with them
+Options every_orbit_options(string_view all_help) {
+  return {
+      {.name = "all", .type = OptionType::flag, .help = all_help, .default_value = false},
+      {.name = "starts", .type = OptionType::integer,
+       .help = "with `all`: initial states drawn from the box, one Newton run each",
+       .default_value = 20.0, .lower = 1, .upper = 1000000, .unit = "starts"},
+      {.name = "box", .type = OptionType::text_list,
+       .help = "with `all`: KEY=FROM:TO, repeatable: an initial-state key and the range its "
+               "starts are drawn from, uniformly (default: every initial.* key the model reads, "
+               "within 1 of the scene's value, narrowed until the oscillator accepts every "
+               "corner)"},
+      {.name = "seed", .type = OptionType::count,
+       .help = "with `all`: seed of the starts: the same seed draws the same states",
+       .default_value = 1.0, .lower = 0, .upper = 1.8e19},
+  };
+}
+
 Options periodic_options() {
   constexpr double two_pi = 6.283185307179586;  // rad: the largest section phase
-  return {
+  return joined({{
       scene_argument("built-in scene name or path"),
       scene_settings("KEY=VALUE, repeatable"),
       output_directory(),
@@ -261,28 +281,15 @@ Options periodic_options() {
       {.name = "max_iterations", .type = OptionType::integer, .help = "Newton iterations",
        .default_value = 30.0, .lower = 1, .upper = 1000},
       {.name = "tolerance", .type = OptionType::number, .help = "relative residual",
-       .default_value = 1e-11, .lower = 0.0, .lower_open = true},
-      {.name = "all", .type = OptionType::flag,
-       .help = "every orbit of the period: Newton shooting from `starts` states drawn from "
-               "`box`, each deflated by the orbits found before; writes orbits.csv (`period` "
-               "auto means 1; `transient` is not used)",
-       .default_value = false},
-      {.name = "starts", .type = OptionType::integer,
-       .help = "with `all`: initial states drawn from the box, one Newton run each",
-       .default_value = 20.0, .lower = 1, .upper = 1000000, .unit = "starts"},
-      {.name = "box", .type = OptionType::text_list,
-       .help = "with `all`: KEY=FROM:TO, repeatable: an initial-state key and the range its "
-               "starts are drawn from, uniformly (default: every initial.* key the model reads, "
-               "within 1 of the scene's value, narrowed until the oscillator accepts every "
-               "corner)"},
-      {.name = "seed", .type = OptionType::count,
-       .help = "with `all`: seed of the starts: the same seed draws the same states",
-       .default_value = 1.0, .lower = 0, .upper = 1.8e19},
-  };
+       .default_value = 1e-11, .lower = 0.0, .lower_open = true}},
+      every_orbit_options(
+          "every orbit of the period: Newton shooting from `starts` states drawn from `box`, "
+          "each deflated by the orbits found before; writes orbits.csv (`period` auto means "
+          "1; `transient` is not used)")});
 }
 
 Options continue_options() {
-  return {
+  return joined({{
       scene_argument("built-in scene name or path"),
       scene_settings("KEY=VALUE, repeatable"),
       output_directory(),
@@ -324,20 +331,6 @@ Options continue_options() {
       {.name = "max_step", .type = OptionType::number,
        .help = "largest arclength step in (q, qdot, parameter) (default: 1/50 of the range)",
        .default_value = ContinuationRequest{}.max_step, .lower = 0.0},
-      {.name = "all", .type = OptionType::flag,
-       .help = "continue every orbit of the period that periodic `all` finds at FROM (from "
-               "`starts` states drawn from `box`): branches not connected to the scene's "
-               "attractor appear too (stroboscopic section, no `param2`)",
-       .default_value = false},
-      {.name = "starts", .type = OptionType::integer,
-       .help = "with `all`: initial states drawn from the box, one Newton run each",
-       .default_value = 20.0, .lower = 1, .upper = 1000000, .unit = "starts"},
-      {.name = "box", .type = OptionType::text_list,
-       .help = "with `all`: KEY=FROM:TO, repeatable: an initial-state key and the range its "
-               "starts are drawn from (default: as periodic's)"},
-      {.name = "seed", .type = OptionType::count,
-       .help = "with `all`: seed of the starts", .default_value = 1.0, .lower = 0,
-       .upper = 1.8e19},
       {.name = "plot", .type = OptionType::flag,
        .help = "draw continuation.png (scripts/plot_continuation.py): stable solid, unstable "
                "dashed, bifurcations marked",
@@ -345,8 +338,11 @@ Options continue_options() {
       {.name = "with_sweep", .type = OptionType::text,
        .help = "a brute-force sweep's bifurcation.csv of the same parameter, drawn under the "
                "branch; with `param2` a 2D sweep's classes.csv under the curve (implies `plot`)",
-       .front_ends = FrontEnds::cli},
-  };
+       .front_ends = FrontEnds::cli}},
+      every_orbit_options(
+          "continue every orbit of the period that periodic `all` finds at FROM (from "
+          "`starts` states drawn from `box`): branches not connected to the scene's attractor "
+          "appear too (stroboscopic section, no `param2`)")});
 }
 
 Options compare_options() {
