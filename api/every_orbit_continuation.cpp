@@ -93,4 +93,13 @@ EveryOrbitContinuation continue_every_orbit(const Scene& scene, const Continuati
   return out;
 }
 
+EveryOrbitContinuation continue_every_orbit(const Scene& scene, const ContinuationJob& job,
+                                            const ContinueOptions& options) {
+  PeriodicJob search;
+  search.starts = options.starts;
+  search.box = options.box;
+  search.seed = options.seed;
+  return continue_every_orbit(scene, job, search);
+}
+
 }  // namespace impactlab

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <impactlab/analysis/continuation.hpp>
+#include <impactlab/api/continuation_job.hpp>
 #include <impactlab/api/periodic_job.hpp>
 #include <impactlab/io/scene.hpp>
 
@@ -30,5 +31,10 @@ struct EveryOrbitContinuation {
 // and periodic --all's (no orbit: key `starts`).
 EveryOrbitContinuation continue_every_orbit(const Scene& scene, const ContinuationJob& job,
                                             const PeriodicJob& search);
+
+// The same with the search of `options` (its starts, box and seed): the
+// CLI's and Python's `continue --all`.
+EveryOrbitContinuation continue_every_orbit(const Scene& scene, const ContinuationJob& job,
+                                            const ContinueOptions& options);
 
 }  // namespace impactlab

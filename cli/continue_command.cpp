@@ -145,13 +145,7 @@ int run_continue(const ContinueCommandOptions& command_options,
   const auto started = std::chrono::steady_clock::now();
   // with --all, every orbit periodic --all finds at FROM, each continued
   std::optional<EveryOrbitContinuation> every;
-  if (options.all) {
-    PeriodicJob search;
-    search.starts = options.starts;
-    search.box = options.box;
-    search.seed = options.seed;
-    every = continue_every_orbit(scene, job, search);
-  }
+  if (options.all) every = continue_every_orbit(scene, job, options);
   const ContinuationJobResult result = every ? every->continuation : continue_orbit(scene, job);
   const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -807,13 +807,7 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
   // the continuation reports no progress of its own: the check runs once after it;
   // with `all`, every orbit periodic --all finds at FROM, each continued
   std::optional<EveryOrbitContinuation> every;
-  if (options.all) {
-    PeriodicJob search;
-    search.starts = options.starts;
-    search.box = options.box;
-    search.seed = options.seed;
-    every = relay.run([&] { return continue_every_orbit(scene, job, search); });
-  }
+  if (options.all) every = relay.run([&] { return continue_every_orbit(scene, job, options); });
   const ContinuationJobResult result =
       every ? every->continuation : relay.run([&] { return continue_orbit(scene, job); });
   relay(1.0);
