@@ -97,6 +97,8 @@ async function runJob(kind, options, onItems) {
     explorer.timings.push(timing);
     // what the result was computed for: a test runs the CLI on the same
     state.result.sent = {values, options};
+    // the view sets drawn_ms, once the result is drawn
+    state.result.timing = timing;
     setStatus(`${kind}: ${timing.server_ms.toFixed(0)} ms on the server, ${timing.end_to_end_ms.toFixed(0)} ms here`);
     return state.result;
   }
@@ -175,6 +177,17 @@ function makePlot(element, width, height, xLabel, yLabel, series, {xRange, yRang
 // a plot's data, series by series: [x, y] each
 function setPlot(plot, ...columns) {
   plot.setData([null, ...columns]);
+}
+
+// once uPlot has drawn what it was given: it draws in a microtask queued by
+// setData, which runs before this one
+const drawn = () => new Promise((resolve) => queueMicrotask(resolve));
+
+// a job's time from its request to its result drawn (ms), beside
+// end_to_end_ms: that and the time since `arrived` (the result in hand)
+async function recordDrawn(timing, arrived) {
+  await drawn();
+  timing.drawn_ms = timing.end_to_end_ms + (performance.now() - arrived);
 }
 
 // ---- controls from the schema -------------------------------------------------
@@ -262,6 +275,7 @@ function drawPhase() {
 async function updateTrajectory() {
   const result = await runJob("trajectory", trajectoryOptions());
   if (!result) return;
+  const arrived = performance.now();
   explorer.data.trajectory = result;
   // each wall a dashed line over the run's time, broken between walls
   const wallT = [], wallQ = [], ends = [result.t[0], result.t[result.t.length - 1]];
@@ -269,13 +283,16 @@ async function updateTrajectory() {
   setPlot(explorer.plots.trajectory, [result.t, result.q], [result.impacts.t, result.impacts.q],
           [wallT, wallQ]);
   drawPhase();
+  await recordDrawn(result.timing, arrived);
 }
 
 async function updateSection() {
   const result = await runJob("section", sectionOptions());
   if (!result) return;
+  const arrived = performance.now();
   explorer.data.section = result;
   setPlot(explorer.plots.section, [result.q, result.qdot]);
+  await recordDrawn(result.timing, arrived);
 }
 
 function updateSeries() {
