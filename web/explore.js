@@ -114,8 +114,8 @@ function showError(error) {
 
 // ---- plots: uPlot (web/vendor/uplot/, MIT) -----------------------------------
 // Every plot is a uPlot in its "mode 2": each series has its own x and y
-// ([null, [x, y], [x, y], ...] as the plot's data), lines drawn with uPlot's
-// linear paths, points alone with no path.
+// ([null, [x, y], [x, y], ...] as the plot's data): lines drawn with uPlot's
+// linear path (or in order, below), points alone with its points path.
 
 // a range around [low, high] with 4 % to spare; [0, 1] where there is nothing
 function padded(low, high) {
