@@ -165,12 +165,15 @@ struct SectionRequest {
   SectionPointSink* point_sink = nullptr;
   // the fraction of the run done (0..1), once per forcing period of the
   // transient and the record (for a stroboscopic section: once per point),
-  // read from the dense output (the steps are those of a run without it);
-  // it may throw to stop the run (a superseded explorer job, Ctrl-C in
-  // Python), and the exception leaves run_section. The fraction is the time
-  // run over transient_periods + points periods, at most 1: exact for a
+  // at a dense-output evaluation: the steps, events and points are those of
+  // a run without it, but a stepper whose dense output evaluates the
+  // right-hand side (rkf78; not Taylor) counts those in rhs_evaluations.
+  // It may throw to stop the run (a superseded explorer job), and the
+  // exception leaves run_section. The fraction is the time run over
+  // transient_periods + points periods, at most 1: exact for a
   // stroboscopic section with a fixed transient, an estimate otherwise.
-  // None: no reports.
+  // None: no reports (the CLI's and Python's poincare pass none, so that
+  // their counters agree).
   std::function<void(double fraction)> progress{};
 };
 

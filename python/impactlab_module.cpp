@@ -320,8 +320,7 @@ py::dict poincare_binding(const Scene& scene, const std::string& section,
   LyapunovRows running;
   if (lyapunov_spectrum) request.lyapunov_spectrum_sink = &running;
   ProgressRelay relay(std::move(progress));
-  // reports once per forcing period (SectionRequest::progress), then once at the end
-  request.progress = [&relay](double fraction) { relay(fraction); };
+  // a Poincaré run reports no progress of its own: the check runs once after it
   const SectionResult result = relay.run([&] { return poincare(scene, request); });
   relay(1.0);
   py::dict out = section_arrays(result);
