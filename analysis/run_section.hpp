@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -59,6 +60,35 @@ class StrobeObserver {
   SectionPoints& points_;
 };
 
+// Reports a run's progress once per forcing period (at t0 + k·period), at
+// the dense output beside the stretch's own observer `Inner`: the steps
+// are those of a run without it. The fraction is the time run over `span`,
+// at most 1; `report` may throw to stop the run.
+template <class Inner>
+class ProgressObserver {
+ public:
+  ProgressObserver(const std::function<void(double)>& report, double t0, double period,
+                   double span, double from, Inner& inner)
+      : report_(report), t0_(t0), period_(period), span_(span), inner_(inner) {
+    // first k with t0 + k·period > from
+    next_report_ = t0 + period * (std::floor((from - t0) / period) + 1.0);
+  }
+  [[nodiscard]] double next_time() const { return std::min(inner_.next_time(), next_report_); }
+  template <class State, class Mode>
+  void observe(double t, const State& x, Mode mode) {
+    if (t >= inner_.next_time()) inner_.observe(t, x, mode);
+    if (t >= next_report_) {
+      next_report_ += period_;
+      report_(std::clamp((t - t0_) / span_, 0.0, 1.0));
+    }
+  }
+
+ private:
+  const std::function<void(double)>& report_;
+  double t0_, period_, span_, next_report_;
+  Inner& inner_;
+};
+
 // A time span in forcing periods, whole where it is one up to the round-off
 // of the time sums.
 inline double periods_in(double span, double period) {
@@ -107,8 +137,16 @@ SectionResult run_section(const System& system, const typename System::State& x0
 
   return with_flow<System>(setup.method, stepper_settings(system, setup), [&](auto& stepper) {
     // one stretch of the run, from (t, x, mode) to t_end; false when it stopped early
+    // (with the request's progress reports, once per forcing period, where it has them)
+    const double progress_span =
+        std::max(request.transient_periods + static_cast<double>(request.points), 1.0) * period;
     auto advance = [&](double t_end, EventLog& log, auto&& observer) {
-      const auto run = simulate(system, stepper, x, mode, t, t_end, options, log, observer);
+      const auto run =
+          request.progress
+              ? simulate(system, stepper, x, mode, t, t_end, options, log,
+                         detail::ProgressObserver(request.progress, t0, period, progress_span, t,
+                                                  observer))
+              : simulate(system, stepper, x, mode, t, t_end, options, log, observer);
       result.steps += run.counters.steps;
       result.rhs_evaluations += run.counters.rhs_evaluations;
       x = run.state;
@@ -217,6 +255,7 @@ SectionResult run_section(const System& system, const typename System::State& x0
           result.termination = section_termination(run.termination);
           break;
         }
+        if (request.progress) request.progress(std::min((t - t0) / progress_span, 1.0));
       }
     } else {
       const std::uint64_t chunk = std::max<std::uint64_t>(request.points, 1);

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -162,6 +163,18 @@ struct SectionRequest {
   std::optional<ContinuationState> start;  // instead of the scene's initial state
   // where the points go as they are found; none: SectionResult::points
   SectionPointSink* point_sink = nullptr;
+  // the fraction of the run done (0..1), once per forcing period of the
+  // transient and the record (for a stroboscopic section: once per point),
+  // at a dense-output evaluation: the steps, events and points are those of
+  // a run without it, but a stepper whose dense output evaluates the
+  // right-hand side (rkf78; not Taylor) counts those in rhs_evaluations.
+  // It may throw to stop the run (a superseded explorer job), and the
+  // exception leaves run_section. The fraction is the time run over
+  // transient_periods + points periods, at most 1: exact for a
+  // stroboscopic section with a fixed transient, an estimate otherwise.
+  // None: no reports (the CLI's and Python's poincare pass none, so that
+  // their counters agree).
+  std::function<void(double fraction)> progress{};
 };
 
 // How a section run ended: its event loop's Termination (the same values in

@@ -361,9 +361,10 @@ json run_trajectory(const Scene& scene, const TrajectoryView& view, const Explor
 
 json run_section(const Scene& scene, const SectionView& view, const ExploreProgress& report) {
   forcing_period(scene);
-  const SectionResult result = poincare(scene, strobe_request(view.transient, view.points));
-  // the section run reports no progress of its own: a superseded one ends here
-  if (report.progress) report.progress(1.0);
+  SectionRequest request = strobe_request(view.transient, view.points);
+  // a report per forcing period (per point of the record): a superseded run ends at the next
+  request.progress = report.progress;
+  const SectionResult result = poincare(scene, request);
   json out = section_points(result.points);
   out["termination"] = to_string(result.termination);
   out["transient_end"] = to_string(result.transient_end);

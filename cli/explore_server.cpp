@@ -22,8 +22,9 @@ namespace {
 
 using nlohmann::json;
 
-// the page's files, read once at the start: only these names are served,
-// so no request reaches another file
+// the page's files, read once at the start, those of its folders too (the
+// plotting library, web/vendor/uplot/): only these names are served, so no
+// request reaches another file
 struct WebFile {
   std::string content;
   std::string mime;
@@ -41,12 +42,14 @@ std::string mime_of(const std::filesystem::path& path) {
 std::map<std::string, WebFile> read_web_files(const std::filesystem::path& folder) {
   std::map<std::string, WebFile> files;
   std::error_code error;
-  for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(folder, error)) {
     if (!entry.is_regular_file()) continue;
     std::ifstream in(entry.path(), std::ios::binary);
     std::ostringstream text;
     text << in.rdbuf();
-    files[entry.path().filename().string()] = {text.str(), mime_of(entry.path())};
+    // named by its path under the folder: explore.js, vendor/uplot/uPlot.iife.min.js
+    files[entry.path().lexically_relative(folder).generic_string()] = {text.str(),
+                                                                       mime_of(entry.path())};
   }
   if (!files.contains("explore.html"))
     throw BadInput("explore", folder.string(),
@@ -207,8 +210,10 @@ void serve_explorer(const ExploreServerSettings& settings,
     response.set_header("Referrer-Policy", "no-referrer");
     response.set_content(page, "text/html; charset=utf-8");
   });
-  server.Get(R"(/web/([A-Za-z0-9_.-]+))", [&](const httplib::Request& request,
-                                                httplib::Response& response) {
+  // a name of one to three parts, none beginning with a dot; only the
+  // names read above are found
+  server.Get(R"(/web/([A-Za-z0-9_-][A-Za-z0-9_.-]*(?:/[A-Za-z0-9_-][A-Za-z0-9_.-]*){0,2}))",
+             [&](const httplib::Request& request, httplib::Response& response) {
     serve_file(request.matches[1], response);
   });
 

@@ -1,6 +1,7 @@
-// The explorer's page: controls from the scene's schema, the views drawn on
-// canvases from the server's JSON (api/explore_requests.hpp). It computes
-// nothing itself: every number it draws comes from the server's jobs.
+// The explorer's page: controls from the scene's schema, the views drawn
+// with uPlot (web/vendor/uplot/) from the server's JSON
+// (api/explore_requests.hpp). It computes nothing itself: every number it
+// draws comes from the server's jobs.
 "use strict";
 
 // ---- state a test can read: window.explorer -----------------------------------
@@ -13,7 +14,8 @@ const explorer = {
   timings: [],          // {kind, end_to_end_ms, server_ms} of each finished job
   tickets: {},          // the number of the page's newest request of each kind
   client: Math.random().toString(36).slice(2),  // this page's name in the order of its requests
-  plots: {},
+  plots: {},            // the uPlot of each view; plots.NAME.data[1]: its first series' [x, y]
+  diagramYRange: null,  // the diagram's vertical range, a zoom's box; null: fitted
 };
 window.explorer = explorer;
 
@@ -95,6 +97,8 @@ async function runJob(kind, options, onItems) {
     explorer.timings.push(timing);
     // what the result was computed for: a test runs the CLI on the same
     state.result.sent = {values, options};
+    // the view sets drawn_ms, once the result is drawn
+    state.result.timing = timing;
     setStatus(`${kind}: ${timing.server_ms.toFixed(0)} ms on the server, ${timing.end_to_end_ms.toFixed(0)} ms here`);
     return state.result;
   }
@@ -108,105 +112,82 @@ function showError(error) {
   if (node) node.textContent = error.message;
 }
 
-// ---- plots on canvases -------------------------------------------------------
-function niceTicks(low, high, count) {
-  const span = high - low;
-  if (!(span > 0)) return [low];
-  const raw = span / count, power = Math.pow(10, Math.floor(Math.log10(raw)));
-  const step = [1, 2, 5, 10].map((m) => m * power).find((s) => s >= raw);
-  const ticks = [];
-  for (let v = Math.ceil(low / step) * step; v <= high + 1e-9 * step; v += step) ticks.push(Number(v.toPrecision(12)));
-  return ticks;
-}
+// ---- plots: uPlot (web/vendor/uplot/, MIT) -----------------------------------
+// Every plot is a uPlot in its "mode 2": each series has its own x and y
+// ([null, [x, y], [x, y], ...] as the plot's data): lines drawn with uPlot's
+// linear path (or in order, below), points alone with its points path.
 
-function extent(arrays, fallback) {
-  let low = Infinity, high = -Infinity;
-  for (const values of arrays) for (const v of values) if (Number.isFinite(v)) { low = Math.min(low, v); high = Math.max(high, v); }
-  if (low === Infinity) return fallback || [0, 1];
+// a range around [low, high] with 4 % to spare; [0, 1] where there is nothing
+function padded(low, high) {
+  if (!Number.isFinite(low) || !Number.isFinite(high)) return [0, 1];
   if (low === high) return [low - 0.5 * Math.abs(low || 1), high + 0.5 * Math.abs(high || 1)];
   const pad = 0.04 * (high - low);
   return [low - pad, high + pad];
 }
 
-// One canvas plot: `layers` of lines or points in data coordinates, axes by
-// `x` and `y` ranges (auto when null).
-class Plot {
-  constructor(canvas, xLabel, yLabel) {
-    this.canvas = canvas;
-    this.xLabel = xLabel;
-    this.yLabel = yLabel;
-    this.layers = [];
-    this.hlines = [];
-    this.margin = {left: 58, right: 10, top: 8, bottom: 34};
-    this.xRange = null;
-    this.yRange = null;
+// a quantity and its unit as an axis shows it: "theta [rad]"
+function axisLabel(quantity, unit) {
+  return unit ? `${quantity} [${unit}]` : quantity;
+}
+
+// a line through the points in their order, broken at a null: for an x
+// that goes back and forth (a phase portrait), which uPlot's linear path,
+// thinning points by pixel column of x, would draw wrongly
+function pathInOrder(u, seriesIndex) {
+  const [x, y] = u.data[seriesIndex];
+  const stroke = new Path2D();
+  let broken = true;
+  for (let i = 0; i < x.length; ++i) {
+    if (x[i] == null || y[i] == null) { broken = true; continue; }
+    const px = u.valToPos(x[i], "x", true), py = u.valToPos(y[i], "y", true);
+    if (broken) stroke.moveTo(px, py); else stroke.lineTo(px, py);
+    broken = false;
   }
-  toPixel(x, y) {
-    const {left, right, top, bottom} = this.margin, w = this.canvas.width, h = this.canvas.height;
-    return [left + (x - this.x[0]) / (this.x[1] - this.x[0]) * (w - left - right),
-            h - bottom - (y - this.y[0]) / (this.y[1] - this.y[0]) * (h - top - bottom)];
-  }
-  toData(px, py) {
-    const {left, right, top, bottom} = this.margin, w = this.canvas.width, h = this.canvas.height;
-    return [this.x[0] + (px - left) / (w - left - right) * (this.x[1] - this.x[0]),
-            this.y[0] + (h - bottom - py) / (h - top - bottom) * (this.y[1] - this.y[0])];
-  }
-  draw() {
-    const context = this.canvas.getContext("2d"), w = this.canvas.width, h = this.canvas.height;
-    this.x = this.xRange || extent(this.layers.map((l) => l.x));
-    this.y = this.yRange || extent(this.layers.map((l) => l.y).concat([this.hlines]));
-    context.clearRect(0, 0, w, h);
-    context.fillStyle = "white";
-    context.fillRect(0, 0, w, h);
-    const {left, right, top, bottom} = this.margin;
-    context.save();
-    context.beginPath();
-    context.rect(left, top, w - left - right, h - top - bottom);
-    context.clip();
-    for (const q of this.hlines) {
-      const [, py] = this.toPixel(this.x[0], q);
-      context.strokeStyle = "#000";
-      context.setLineDash([5, 4]);
-      context.beginPath(); context.moveTo(left, py); context.lineTo(w - right, py); context.stroke();
-      context.setLineDash([]);
-    }
-    for (const layer of this.layers) {
-      context.strokeStyle = context.fillStyle = layer.color || "#1f77b4";
-      context.lineWidth = layer.width || 1;
-      if (layer.mode === "line") {
-        context.beginPath();
-        for (let i = 0; i < layer.x.length; ++i) {
-          const [px, py] = this.toPixel(layer.x[i], layer.y[i]);
-          if (i === 0) context.moveTo(px, py); else context.lineTo(px, py);
-        }
-        context.stroke();
-      } else {
-        const size = layer.size || 2;
-        for (let i = 0; i < layer.x.length; ++i) {
-          const [px, py] = this.toPixel(layer.x[i], layer.y[i]);
-          context.fillRect(px - size / 2, py - size / 2, size, size);
-        }
-      }
-    }
-    context.restore();
-    // axes and ticks
-    context.strokeStyle = "#444"; context.fillStyle = "#222"; context.font = "11px sans-serif";
-    context.strokeRect(left, top, w - left - right, h - top - bottom);
-    context.textAlign = "center";
-    for (const t of niceTicks(this.x[0], this.x[1], 6)) {
-      const [px] = this.toPixel(t, this.y[0]);
-      context.fillText(String(t), px, h - bottom + 13);
-    }
-    context.textAlign = "right";
-    for (const t of niceTicks(this.y[0], this.y[1], 5)) {
-      const [, py] = this.toPixel(this.x[0], t);
-      context.fillText(String(t), left - 4, py + 4);
-    }
-    context.textAlign = "center";
-    context.fillText(this.xLabel, left + (w - left - right) / 2, h - 4);
-    context.save(); context.translate(11, top + (h - top - bottom) / 2); context.rotate(-Math.PI / 2);
-    context.fillText(this.yLabel, 0, 0); context.restore();
-  }
+  return {stroke, fill: null, clip: null, band: null, gaps: null, flags: 0};
+}
+
+const line = (label, stroke, width, {dash, paths} = {}) =>
+  ({label, stroke, width, dash, points: {show: false}, paths: paths || uPlot.paths.linear(),
+    facets: [{scale: "x", auto: true}, {scale: "y", auto: true}]});
+// points alone, `size` px across: uPlot's points path as the series' path
+// (its point markers are for mode 1); `ring`: an outline `ring` px wide, not filled
+const dots = (label, color, size, ring = 0) =>
+  ({label, stroke: color, fill: ring ? null : color, width: ring, paths: uPlot.paths.points(),
+    points: {show: false, size, width: ring},
+    facets: [{scale: "x", auto: true}, {scale: "y", auto: true}]});
+
+// One plot in `element`: `series` (line or dots), ranges from `xRange` and
+// `yRange` (functions of the data's extent), `cursor` options and `hooks`
+// where it takes the mouse.
+function makePlot(element, width, height, xLabel, yLabel, series, {xRange, yRange, cursor, hooks} = {}) {
+  const opts = {
+    mode: 2, width, height,
+    legend: {show: false},
+    cursor: cursor || {show: false},
+    hooks: hooks || {},
+    scales: {x: {time: false, range: (u, low, high) => (xRange ? xRange(low, high) : padded(low, high))},
+             y: {range: (u, low, high) => (yRange ? yRange(low, high) : padded(low, high))}},
+    axes: [{label: xLabel, size: 40, labelSize: 16, grid: {stroke: "#eee", width: 1}},
+           {label: yLabel, size: 56, labelSize: 16, grid: {stroke: "#eee", width: 1}}],
+    series: [{}, ...series],
+  };
+  return new uPlot(opts, [null, ...series.map(() => [[], []])], element);
+}
+
+// a plot's data, series by series: [x, y] each
+function setPlot(plot, ...columns) {
+  plot.setData([null, ...columns]);
+}
+
+// once uPlot has drawn what it was given: it draws in a microtask queued by
+// setData, which runs before this one
+const drawn = () => new Promise((resolve) => queueMicrotask(resolve));
+
+// a job's time from its request to its result drawn (ms), beside
+// end_to_end_ms: that and the time since `arrived` (the result in hand)
+async function recordDrawn(timing, arrived) {
+  await drawn();
+  timing.drawn_ms = timing.end_to_end_ms + (performance.now() - arrived);
 }
 
 // ---- controls from the schema -------------------------------------------------
@@ -285,34 +266,33 @@ function sectionOptions() {
 }
 
 function drawPhase() {
-  const phase = explorer.plots.phase;
-  phase.layers = [];
   const trajectory = explorer.data.trajectory;
-  if (trajectory) phase.layers.push({mode: "line", x: trajectory.q, y: trajectory.qdot, color: "#1f77b4", width: 0.7});
   const orbit = explorer.data.orbit && explorer.data.orbit.orbit;
-  if (orbit) phase.layers.push({mode: "line", x: orbit.q, y: orbit.qdot, color: "#d62728", width: 2});
-  phase.draw();
+  setPlot(explorer.plots.phase, trajectory ? [trajectory.q, trajectory.qdot] : [[], []],
+          orbit ? [orbit.q, orbit.qdot] : [[], []]);
 }
 
 async function updateTrajectory() {
   const result = await runJob("trajectory", trajectoryOptions());
   if (!result) return;
+  const arrived = performance.now();
   explorer.data.trajectory = result;
-  const plot = explorer.plots.trajectory;
-  plot.layers = [{mode: "line", x: result.t, y: result.q, color: "#1f77b4"},
-                 {mode: "points", x: result.impacts.t, y: result.impacts.q, color: "#d62728", size: 3}];
-  plot.hlines = result.walls.map((wall) => wall.q);
-  plot.draw();
+  // each wall a dashed line over the run's time, broken between walls
+  const wallT = [], wallQ = [], ends = [result.t[0], result.t[result.t.length - 1]];
+  for (const wall of result.walls) wallT.push(...ends, null), wallQ.push(wall.q, wall.q, null);
+  setPlot(explorer.plots.trajectory, [result.t, result.q], [result.impacts.t, result.impacts.q],
+          [wallT, wallQ]);
   drawPhase();
+  await recordDrawn(result.timing, arrived);
 }
 
 async function updateSection() {
   const result = await runJob("section", sectionOptions());
   if (!result) return;
+  const arrived = performance.now();
   explorer.data.section = result;
-  const plot = explorer.plots.section;
-  plot.layers = [{mode: "points", x: result.q, y: result.qdot, color: "#2ca02c", size: 3}];
-  plot.draw();
+  setPlot(explorer.plots.section, [result.q, result.qdot]);
+  await recordDrawn(result.timing, arrived);
 }
 
 function updateSeries() {
@@ -320,31 +300,25 @@ function updateSeries() {
   updateSection();
 }
 
-// the diagram: columns drawn as they arrive
+// the diagram: columns drawn as they arrive; the clicked point marked
 function drawDiagram() {
   const plot = explorer.plots.diagram, columns = explorer.data.diagramColumns || [];
   const x = [], y = [];
   for (const column of columns) for (const q of column.q) { x.push(column.value); y.push(q); }
-  plot.layers = [{mode: "points", x, y, color: "#222", size: 1.6}];
-  const request = explorer.diagram;
-  plot.xRange = request ? [Math.min(request.from, request.to), Math.max(request.from, request.to)] : null;
-  plot.xLabel = request ? request.key : "";
-  plot.draw();
-  if (explorer.selection) {
-    const [px, py] = plot.toPixel(explorer.selection.value, explorer.selection.q);
-    const context = plot.canvas.getContext("2d");
-    context.strokeStyle = "#d62728"; context.lineWidth = 2;
-    context.strokeRect(px - 5, py - 5, 10, 10);
-  }
+  const selection = explorer.selection;
+  setPlot(plot, [x, y], selection ? [[selection.value], [selection.q]] : [[], []]);
 }
 
 async function runDiagram(request) {
   explorer.diagram = request;
   explorer.data.diagramColumns = [];
   explorer.data.diagram = null;
-  explorer.plots.diagram.yRange = request.yRange || null;
+  explorer.diagramYRange = request.yRange || null;
   document.getElementById("diagram-from").value = request.from;
   document.getElementById("diagram-to").value = request.to;
+  // the key and its unit under the horizontal axis
+  const spec = explorer.scene.keys.find((k) => k.key === request.key);
+  explorer.plots.diagram.axes[0].label = axisLabel(request.key, spec && spec.unit);
   drawDiagram();
   const {yRange, ...options} = request;
   const result = await runJob("diagram", options, (columns) => {
@@ -364,45 +338,42 @@ function diagramRequestFromInputs() {
           transient: readNumber("diagram-transient"), threads: readNumber("diagram-threads")};
 }
 
-// drag: a box zooms into the diagram; a click picks the nearest point
-function attachDiagramMouse() {
-  const plot = explorer.plots.diagram, canvas = plot.canvas;
-  let start = null;
-  const position = (event) => {
-    const box = canvas.getBoundingClientRect();
-    return [(event.clientX - box.left) * canvas.width / box.width, (event.clientY - box.top) * canvas.height / box.height];
-  };
-  canvas.addEventListener("mousedown", (event) => { start = position(event); });
-  canvas.addEventListener("mousemove", (event) => {
-    if (!start) return;
-    const [px, py] = position(event);
-    drawDiagram();
-    const context = canvas.getContext("2d");
-    context.strokeStyle = "#06c"; context.lineWidth = 1;
-    context.strokeRect(start[0], start[1], px - start[0], py - start[1]);
-  });
-  canvas.addEventListener("mouseup", (event) => {
-    if (!start) return;
-    const end = position(event), begin = start;
-    start = null;
-    if (Math.abs(end[0] - begin[0]) < 5 && Math.abs(end[1] - begin[1]) < 5) {
-      pickPoint(end);
-      return;
-    }
-    const [x0, y0] = plot.toData(begin[0], begin[1]), [x1, y1] = plot.toData(end[0], end[1]);
-    if (explorer.diagram) explorer.zoomHistory.push(explorer.diagram);
-    runDiagram({...explorer.diagram, from: Math.min(x0, x1), to: Math.max(x0, x1),
-                yRange: [Math.min(y0, y1), Math.max(y0, y1)]});
+// a box dragged (uPlot's selection, at least 5 px) zooms the diagram: recomputed
+// at full resolution over the box's range, the box's range of the coordinate kept
+function zoomDiagram(u) {
+  const {left, top, width, height} = u.select;
+  if (width < 5 && height < 5) return;
+  const from = u.posToVal(left, "x"), to = u.posToVal(left + width, "x");
+  const low = u.posToVal(top + height, "y"), high = u.posToVal(top, "y");
+  u.setSelect({left: 0, top: 0, width: 0, height: 0}, false);
+  if (!explorer.diagram) return;
+  explorer.zoomHistory.push(explorer.diagram);
+  runDiagram({...explorer.diagram, from: Math.min(from, to), to: Math.max(from, to),
+              yRange: [Math.min(low, high), Math.max(low, high)]});
+}
+
+// a click (a press and release within 5 px) picks the nearest point within 8 px
+function attachDiagramClick(u) {
+  let down = null;
+  u.over.addEventListener("mousedown", (event) => { down = [event.clientX, event.clientY]; });
+  u.over.addEventListener("mouseup", (event) => {
+    if (!down) return;
+    const moved = Math.hypot(event.clientX - down[0], event.clientY - down[1]);
+    down = null;
+    if (moved >= 5) return;
+    const box = u.over.getBoundingClientRect();
+    pickPoint(event.clientX - box.left, event.clientY - box.top);
   });
 }
 
-function pickPoint([px, py]) {
-  const plot = explorer.plots.diagram;
+// (px, py): CSS pixels in the plotting area
+function pickPoint(px, py) {
+  const u = explorer.plots.diagram;
   let best = null, bestDistance = 64;  // (8 px)²
   for (const column of explorer.data.diagramColumns || []) {
+    const cx = u.valToPos(column.value, "x");
     for (let i = 0; i < column.q.length; ++i) {
-      const [cx, cy] = plot.toPixel(column.value, column.q[i]);
-      const distance = (cx - px) ** 2 + (cy - py) ** 2;
+      const distance = (cx - px) ** 2 + (u.valToPos(column.q[i], "y") - py) ** 2;
       if (distance < bestDistance) {
         bestDistance = distance;
         best = {key: explorer.diagram.key, value: column.value, t: column.t[i], q: column.q[i], qdot: column.qdot[i]};
@@ -466,11 +437,32 @@ async function start() {
     explorer.values[spec.key] = spec.value;
     addControl(form, spec);
   }
+  // the axes: the main coordinate and its rate, in the units of the scene's
+  // initial keys for them; time in t0's
   const q = scene.main_coordinate;
-  explorer.plots.trajectory = new Plot(document.getElementById("plot-trajectory"), "t", q);
-  explorer.plots.phase = new Plot(document.getElementById("plot-phase"), q, q + "_dot");
-  explorer.plots.section = new Plot(document.getElementById("plot-section"), q, q + "_dot");
-  explorer.plots.diagram = new Plot(document.getElementById("plot-diagram"), "", q);
+  const unit = (key) => (scene.keys.find((k) => k.key === key) || {}).unit;
+  const tLabel = axisLabel("t", unit("t0")), qLabel = axisLabel(q, unit(`initial.${q}`));
+  const rateLabel = axisLabel(q + "_dot", unit(`initial.${q}_dot`));
+  const element = (id) => document.getElementById(id);
+  explorer.plots.trajectory = makePlot(element("plot-trajectory"), 720, 260, tLabel, qLabel, [
+    line(q, "#1f77b4", 1), dots("impacts", "#d62728", 5),
+    line("walls", "#000", 1, {dash: [5, 4], paths: pathInOrder})]);
+  explorer.plots.phase = makePlot(element("plot-phase"), 350, 300, qLabel, rateLabel, [
+    line("trajectory", "#1f77b4", 0.7, {paths: pathInOrder}),
+    line("periodic orbit", "#d62728", 2, {paths: pathInOrder})]);
+  explorer.plots.section = makePlot(element("plot-section"), 350, 300, qLabel, rateLabel, [
+    dots("section", "#2ca02c", 4)]);
+  explorer.plots.diagram = makePlot(element("plot-diagram"), 720, 320, "", qLabel, [
+    dots("orbit diagram", "#222", 2.5), dots("clicked point", "#d62728", 12, 2)], {
+    // the horizontal range the one asked for; the vertical one a zoom's box, or fitted
+    xRange: (low, high) => (explorer.diagram
+      ? [Math.min(explorer.diagram.from, explorer.diagram.to), Math.max(explorer.diagram.from, explorer.diagram.to)]
+      : padded(low, high)),
+    yRange: (low, high) => explorer.diagramYRange || padded(low, high),
+    cursor: {show: true, x: false, y: false, points: {show: false},
+             drag: {x: true, y: true, setScale: false, dist: 5}},
+    hooks: {setSelect: [zoomDiagram]},
+  });
   // the diagram's key: the numeric keys; V0 by default where there is one
   const keySelect = document.getElementById("diagram-key");
   for (const spec of scene.keys) if (!spec.text) keySelect.add(new Option(spec.key, spec.key));
@@ -488,7 +480,7 @@ async function start() {
     runDiagram(diagramRequestFromInputs());
   });
   document.getElementById("diagram-fit").addEventListener("click", () => {
-    explorer.plots.diagram.yRange = null;
+    explorer.diagramYRange = null;
     drawDiagram();
   });
   document.getElementById("diagram-back").addEventListener("click", () => {
@@ -499,8 +491,7 @@ async function start() {
   for (const id of ["section-transient", "section-points"]) document.getElementById(id).addEventListener("change", updateSection);
   document.querySelectorAll("[data-export]").forEach((button) =>
     button.addEventListener("click", () => exportView(button.dataset.export)));
-  attachDiagramMouse();
-  for (const plot of Object.values(explorer.plots)) plot.draw();
+  attachDiagramClick(explorer.plots.diagram);
   setStatus("ready");
   updateSeries();
 }

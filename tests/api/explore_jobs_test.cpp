@@ -2,10 +2,13 @@
 // (api/explore_requests.hpp): a newer job of a kind cancels the older at its
 // next progress report, a request overtaken by a newer one is refused, the
 // number of running jobs is bounded, partial results are read from where the
-// reader left off; a page's values go through the scene's own checks.
+// reader left off; a page's values go through the scene's own checks; a
+// superseded Poincaré section stops at its next point.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -57,6 +60,53 @@ TEST(ExploreJobs, ANewerJobOfAKindCancelsTheOlderAtItsNextProgressReport) {
   EXPECT_EQ(jobs.poll(other_kind, 0, 0ms)["state"], "running");
   release = true;
   EXPECT_EQ(ended(jobs, other_kind)["state"], "done");
+}
+
+// A section job reports once per forcing period (SectionRequest::progress):
+// a newer section cancels the older mid-run, long before its last point.
+TEST(ExploreJobs, ASupersededSectionStopsEarly) {
+  const impactlab::Scene scene = impactlab::load_scene("jin2003");
+  const impactlab::ExploreLimits limits;
+  // 100 transient periods and 5000 points: seconds of work
+  const impactlab::SectionView view =
+      impactlab::section_view(json{{"transient", 100}, {"points", 5000}}, limits);
+  std::atomic<int> reports{0};
+  std::atomic<double> last_fraction{0.0};
+  ExploreJobs jobs(4);
+  const auto older = jobs.start("section", [&](ExploreJobControl& control) {
+    return impactlab::run_section(scene, view, {[&](double fraction) {
+                                                  ++reports;
+                                                  last_fraction = fraction;
+                                                  control.progress(fraction);
+                                                },
+                                                {}});
+  });
+  // the older run has begun reporting
+  for (int wait = 0; wait < 10000 && reports < 10; ++wait) std::this_thread::sleep_for(1ms);
+  ASSERT_GE(reports, 10);
+  const auto newer = jobs.start("section", [](ExploreJobControl&) { return json{{"x", 1}}; });
+  EXPECT_EQ(ended(jobs, older)["state"], "cancelled");
+  EXPECT_EQ(ended(jobs, newer)["state"], "done");
+  // it stopped early: one report per period of 5100, fractions far below 1
+  EXPECT_LT(reports, 5100);
+  EXPECT_LT(last_fraction, 0.9);
+}
+
+// The reports read the dense output: the points are those of a run without them.
+TEST(ExploreRequests, ASectionsProgressReportsLeaveItsPointsAsTheyAre) {
+  const impactlab::Scene scene = impactlab::load_scene("jin2003");
+  const impactlab::SectionView view =
+      impactlab::section_view(json{{"transient", 20}, {"points", 30}}, impactlab::ExploreLimits{});
+  std::vector<double> fractions;
+  const json reported =
+      impactlab::run_section(scene, view, {[&](double f) { fractions.push_back(f); }, {}});
+  const json silent = impactlab::run_section(scene, view, {});
+  EXPECT_EQ(reported, silent);
+  // one report per forcing period of the 20 + 30, rising to 1
+  ASSERT_GE(fractions.size(), 49u);
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_GT(fractions.back(), 0.97);
+  EXPECT_LE(fractions.back(), 1.0);
 }
 
 TEST(ExploreJobs, ARequestOvertakenByANewerOneOfItsClientIsRefused) {

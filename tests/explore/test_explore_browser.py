@@ -104,8 +104,9 @@ def test_a_moved_slider_draws_what_simulate_gives(page, output_folder, tmp_path)
     # the drawn series are the ones computed for the slider's last value
     wait_for(driver, "const d = window.explorer.data; return d.trajectory.sent.values.e_n === {0!r}"
                      " && d.section.sent.values.e_n === {0!r}".format(value))
+    # the uPlot's own data (its first series, [x, y]): what it draws
     plotted = driver.execute_script(
-        "const p = window.explorer.plots.trajectory.layers[0]; return [p.x, p.y];")
+        "const d = window.explorer.plots.trajectory.data[1]; return [d[0], d[1]];")
     omega = driver.execute_script("return window.explorer.values.omega")
     sample = 2.0 * math.pi / omega / 64
     run_cli("simulate", "jin2003", "--set", "e_n={!r}".format(value), "--periods", "20",
@@ -125,7 +126,8 @@ def test_a_moved_slider_draws_what_simulate_gives(page, output_folder, tmp_path)
     def median(kind, field):
         values = sorted(move[kind][field] for move in moves)
         return values[len(values) // 2]
-    summary = {kind: {field: median(kind, field) for field in ("server_ms", "end_to_end_ms")}
+    # drawn_ms: end to end with the plots drawn
+    summary = {kind: {field: median(kind, field) for field in ("server_ms", "end_to_end_ms", "drawn_ms")}
                for kind in ("trajectory", "section")}
     with open(os.path.join(output_folder, "explore_timings.json"), "w") as handle:
         json.dump({"median_of_10_slider_moves": summary, "moves": moves}, handle, indent=1)
@@ -145,20 +147,25 @@ def test_a_dragged_box_zooms_the_orbit_diagram(page, output_folder):
     wait_for(driver, "return window.explorer.data.diagram")
     columns = driver.execute_script("return window.explorer.data.diagramColumns.length")
     assert columns == 60
-    canvas = driver.find_element(By.ID, "plot-diagram")
+    # the plotting area (uPlot's .u-over, CSS pixels)
+    area = driver.find_element(By.CSS_SELECTOR, "#plot-diagram .u-over")
+    width, height = area.size["width"], area.size["height"]
     # a box from x = 30 % to 60 % of the plotting area; the range it stands for, read from the plot
-    width = driver.execute_script("return arguments[0].width", canvas)
-    height = driver.execute_script("return arguments[0].height", canvas)
     start, end = (int(0.3 * width), int(0.25 * height)), (int(0.6 * width), int(0.75 * height))
     expected = driver.execute_script(
-        "const p = window.explorer.plots.diagram; return [p.toData(...arguments[0]), p.toData(...arguments[1])]",
+        "const u = window.explorer.plots.diagram;"
+        "return [arguments[0], arguments[1]].map(([x, y]) => [u.posToVal(x, 'x'), u.posToVal(y, 'y')])",
         list(start), list(end))
-    ActionChains(driver).move_to_element_with_offset(canvas, start[0] - width // 2, start[1] - height // 2) \
+    ActionChains(driver).move_to_element_with_offset(area, start[0] - width // 2, start[1] - height // 2) \
         .click_and_hold().move_by_offset(end[0] - start[0], end[1] - start[1]).release().perform()
     request = wait_for(driver, "return window.explorer.diagram.from !== 1.0 && window.explorer.diagram")
     assert math.isclose(request["from"], min(expected[0][0], expected[1][0]), rel_tol=0, abs_tol=2e-2)
     assert math.isclose(request["to"], max(expected[0][0], expected[1][0]), rel_tol=0, abs_tol=2e-2)
     assert 1.4 < request["from"] < request["to"] < 2.4
+    # the box's range of the coordinate kept
+    span = abs(expected[0][1] - expected[1][1])
+    assert math.isclose(request["yRange"][0], min(expected[0][1], expected[1][1]), abs_tol=0.02 * span)
+    assert math.isclose(request["yRange"][1], max(expected[0][1], expected[1][1]), abs_tol=0.02 * span)
     wait_for(driver, "return window.explorer.data.diagram")
     values = driver.execute_script("return window.explorer.data.diagramColumns.map(c => c.value)")
     # recomputed at full resolution over the new range
@@ -172,21 +179,19 @@ def test_a_clicked_point_shows_the_orbit_periodic_finds(page, output_folder, tmp
     wait_for(driver, "return window.explorer.data.diagram")
     # the zoomed view keeps the box's range of the coordinate: fitted to the new points
     driver.find_element(By.ID, "diagram-fit").click()
-    canvas = driver.find_element(By.ID, "plot-diagram")
-    width = driver.execute_script("return arguments[0].width", canvas)
-    height = driver.execute_script("return arguments[0].height", canvas)
-    # the first point of the first column inside the view
+    area = driver.find_element(By.CSS_SELECTOR, "#plot-diagram .u-over")
+    width, height = area.size["width"], area.size["height"]
+    # the first point of the first column inside the view (CSS pixels in the plotting area)
     pixel = driver.execute_script("""
-        const p = window.explorer.plots.diagram;
+        const u = window.explorer.plots.diagram, w = arguments[0], h = arguments[1];
         for (const c of window.explorer.data.diagramColumns.slice().sort((a, b) => a.index - b.index))
           for (const q of c.q) {
-            const [x, y] = p.toPixel(c.value, q);
-            if (x > p.margin.left + 5 && y > p.margin.top + 5 && y < p.canvas.height - p.margin.bottom - 5)
-              return [Math.round(x), Math.round(y)];
+            const x = u.valToPos(c.value, 'x'), y = u.valToPos(q, 'y');
+            if (x > 5 && x < w - 5 && y > 5 && y < h - 5) return [Math.round(x), Math.round(y)];
           }
-        return null;""")
+        return null;""", width, height)
     assert pixel is not None
-    ActionChains(driver).move_to_element_with_offset(canvas, pixel[0] - width // 2, pixel[1] - height // 2) \
+    ActionChains(driver).move_to_element_with_offset(area, pixel[0] - width // 2, pixel[1] - height // 2) \
         .click().perform()
     orbit = wait_for(driver, "return window.explorer.data.orbit")
     point = orbit["sent"]["options"]

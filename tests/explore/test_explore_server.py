@@ -16,7 +16,7 @@ def test_it_listens_on_loopback_and_prints_a_token(explorer):
     assert explorer.url.startswith("http://127.0.0.1:")
     assert len(explorer.token) == 32
     status, page, headers = explorer.request("GET", "/?token=" + explorer.token, token=False)
-    assert status == 200 and "<canvas" in page
+    assert status == 200 and 'id="plot-diagram"' in page
     # the page names its own files with the token; no cookie is set
     assert "web/explore.js?token=" + explorer.token in page
     assert "Set-Cookie" not in headers
@@ -128,12 +128,28 @@ def test_no_path_reaches_a_file_outside_the_page(explorer):
     for path in ("/../../etc/passwd", "/web/../../etc/passwd", "/web/..%2F..%2Fetc%2Fpasswd",
                  "/web/%2e%2e/%2e%2e/etc/passwd", "/%2e%2e/%2e%2e/etc/passwd",
                  "/web/%252e%252e%252fetc%252fpasswd", "/web//etc/passwd", "/etc/passwd",
-                 "/web/explore.js/../../../etc/passwd"):
+                 "/web/explore.js/../../../etc/passwd", "/web/vendor/../../../etc/passwd",
+                 "/web/vendor/uplot/../../explore.js", "/web/vendor/uplot/%2e%2e/LICENSE",
+                 "/web/vendor/uplot/.hidden", "/web/vendor/uplot"):
         status, body, _ = explorer.request("GET", path)
         assert status in (400, 403, 404), path
         assert "root:" not in str(body), path
+        assert "explorer" not in str(body), path
     status, body, _ = explorer.request("GET", "/web/explore.js")
     assert status == 200 and "explorer" in body
+
+
+def test_the_plotting_library_is_served_from_the_programs_files(explorer):
+    # uPlot (web/vendor/uplot/), as the page names it
+    status, page, _ = explorer.request("GET", "/")
+    assert "web/vendor/uplot/uPlot.iife.min.js?token=" + explorer.token in page
+    status, body, headers = explorer.request("GET", "/web/vendor/uplot/uPlot.iife.min.js")
+    assert status == 200 and "uPlot" in body
+    assert headers["Content-Type"].startswith("text/javascript")
+    status, body, headers = explorer.request("GET", "/web/vendor/uplot/uPlot.min.css")
+    assert status == 200 and headers["Content-Type"].startswith("text/css")
+    status, body, _ = explorer.request("GET", "/web/vendor/uplot/LICENSE")
+    assert status == 200 and "MIT" in body
 
 
 def test_many_requests_at_once_stay_bounded_and_the_server_responsive(explorer):
