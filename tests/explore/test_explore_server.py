@@ -164,15 +164,28 @@ def test_many_requests_at_once_stay_bounded_and_the_server_responsive(explorer):
                                             timeout=60)
         return status, time.monotonic() - started
 
-    started = time.monotonic()
-    with concurrent.futures.ThreadPoolExecutor(max_workers=200) as pool:
-        answers = list(pool.map(one, range(200)))
-    elapsed = time.monotonic() - started
-    statuses = {status for status, _ in answers}
-    # every request answered: accepted, or refused as busy (at most 8 jobs at once)
-    assert statuses <= {200, 202, 503}, statuses
-    assert elapsed < 30, elapsed
-    assert max(seconds for _, seconds in answers) < 30
+    def resident_mib():
+        with open("/proc/{}/status".format(explorer.process.pid)) as status_file:
+            for line in status_file:
+                if line.startswith("VmRSS:"):
+                    return int(line.split()[1]) / 1024.0
+        raise AssertionError("no VmRSS for the server")
+
+    resident = []
+    for burst in range(2):
+        started = time.monotonic()
+        with concurrent.futures.ThreadPoolExecutor(max_workers=200) as pool:
+            answers = list(pool.map(one, range(200)))
+        elapsed = time.monotonic() - started
+        statuses = {status for status, _ in answers}
+        # every request answered: accepted, or refused as busy (at most 8 jobs at once)
+        assert statuses <= {200, 202, 503}, statuses
+        assert elapsed < 30, elapsed
+        assert max(seconds for _, seconds in answers) < 30
+        resident.append(resident_mib())
+    # memory bounded: a second burst like the first does not grow the server
+    # by more than a tenth of what it holds (jobs and their results are let go)
+    assert resident[1] <= 1.1 * resident[0] + 16.0, resident
     # and right after it, a request is answered at once
     started = time.monotonic()
     status, _, _ = explorer.request("GET", "/api/scene")
