@@ -148,9 +148,12 @@ std::string sweep_param(const DiagramView& view) {
   return fmt::format("{}={}:{}:{}", view.key, exact(view.from), exact(view.to), view.columns);
 }
 
-json section_points(const std::vector<SectionPoint>& points) {
+// Points with t, q, qdot (section points, trajectory samples) as the page's
+// columns t, q, qdot.
+template <class Point>
+json point_columns(const std::vector<Point>& points) {
   std::vector<double> t, q, qdot;
-  for (const SectionPoint& point : points) {
+  for (const Point& point : points) {
     t.push_back(point.t);
     q.push_back(point.q);
     qdot.push_back(point.qdot);
@@ -329,12 +332,6 @@ json run_trajectory(const Scene& scene, const TrajectoryView& view, const Explor
   request.event_sink = &impacts;
   request.progress = report.progress;
   const RunOutput output = simulate(scene, request);
-  std::vector<double> t, q, qdot;
-  for (const TrajectorySample& sample : output.samples) {
-    t.push_back(sample.t);
-    q.push_back(sample.q);
-    qdot.push_back(sample.qdot);
-  }
   // the walls where the run's impacts show them: one line per wall whose
   // impacts all happen at one q (a fixed wall)
   std::map<int, std::pair<double, double>> wall_span;
@@ -348,15 +345,14 @@ json run_trajectory(const Scene& scene, const TrajectoryView& view, const Explor
   for (const auto& [wall, span] : wall_span)
     if (span.second - span.first <= 1e-9 * (1.0 + std::abs(span.first)))
       walls.push_back({{"wall", wall}, {"q", span.first}});
-  return {{"t", t},
-          {"q", q},
-          {"qdot", qdot},
-          {"sample_step", request.sample_step},
-          {"impacts", {{"t", impacts.t}, {"q", impacts.q}, {"wall", impacts.wall}}},
-          {"impact_count", output.impacts},
-          {"walls", walls},
-          {"termination", to_string(output.termination)},
-          {"steps", output.steps}};
+  json out = point_columns(output.samples);
+  out["sample_step"] = request.sample_step;
+  out["impacts"] = {{"t", impacts.t}, {"q", impacts.q}, {"wall", impacts.wall}};
+  out["impact_count"] = output.impacts;
+  out["walls"] = walls;
+  out["termination"] = to_string(output.termination);
+  out["steps"] = output.steps;
+  return out;
 }
 
 json run_section(const Scene& scene, const SectionView& view, const ExploreProgress& report) {
@@ -365,7 +361,7 @@ json run_section(const Scene& scene, const SectionView& view, const ExploreProgr
   // a report per forcing period (per point of the record): a superseded run ends at the next
   request.progress = report.progress;
   const SectionResult result = poincare(scene, request);
-  json out = section_points(result.points);
+  json out = point_columns(result.points);
   out["termination"] = to_string(result.termination);
   out["transient_end"] = to_string(result.transient_end);
   return out;
@@ -433,14 +429,7 @@ json run_orbit(const Scene& scene, const OrbitView& view, const ExploreProgress&
     request.periods = found.request.period;
     request.sample_step = forcing_period(at) / 256.0;
     request.keep_events = false;
-    const RunOutput run = simulate(start, request);
-    std::vector<double> t, q, qdot;
-    for (const TrajectorySample& sample : run.samples) {
-      t.push_back(sample.t);
-      q.push_back(sample.q);
-      qdot.push_back(sample.qdot);
-    }
-    out["orbit"] = {{"t", t}, {"q", q}, {"qdot", qdot}};
+    out["orbit"] = point_columns(simulate(start, request).samples);
   }
   checkpoint(0.6);
   SectionRequest lyapunov = strobe_request(view.transient, view.lyapunov_points);

@@ -43,17 +43,24 @@ void write_orbits_csv(AtomicFile& file, const std::vector<OrbitsColumn>& columns
   }
 }
 
+// periodic.json: the run's record with what only a file has (the command,
+// when, the wall time in s), put among the run's files
+void write_periodic_json(RunFiles& run_files, nlohmann::json document,
+                         const std::vector<std::string>& command_line, double wall_time) {
+  document["command"] = command_line;
+  document["created_utc"] = utc_now();
+  document["wall_time_s"] = wall_time;
+  write_json(run_files.add("periodic.json"), document);
+}
+
 int run_all_periodic(const PeriodicOptions& options, const Scene& scene,
                      const std::vector<std::string>& command_line) {
   const PeriodicOrbitsJobResult found = find_periodic_orbits(scene, options.job);
   const auto directory = options.scene.output_directory();
   RunFiles run_files = open_run_files(directory);
   write_orbits_csv(run_files.add("orbits.csv"), periodic_orbits_table(found));
-  nlohmann::json document = periodic_orbits_record(scene, found);
-  document["command"] = command_line;
-  document["created_utc"] = utc_now();
-  document["wall_time_s"] = found.wall_time;
-  write_json(run_files.add("periodic.json"), document);
+  write_periodic_json(run_files, periodic_orbits_record(scene, found), command_line,
+                      found.wall_time);
   run_files.commit();
   if (!options.scene.quiet) {
     const PeriodicOrbitsResult& result = found.result;
@@ -78,11 +85,7 @@ int run_periodic(const PeriodicOptions& options, const std::vector<std::string>&
   RunFiles run_files = open_run_files(directory);
   const PeriodicRequest& request = found.request;
   const PeriodicResult& result = found.result;
-  nlohmann::json document = periodic_record(scene, found);
-  document["command"] = command_line;
-  document["created_utc"] = utc_now();
-  document["wall_time_s"] = found.wall_time;
-  write_json(run_files.add("periodic.json"), document);
+  write_periodic_json(run_files, periodic_record(scene, found), command_line, found.wall_time);
   run_files.commit();
   if (!options.scene.quiet) {
     std::string multipliers;
