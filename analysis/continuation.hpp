@@ -191,9 +191,38 @@ struct CurvePoint {
   double step = 0.0;                                   // the arclength that reached it
 };
 
+// A codimension-two point on a two-parameter curve: where a second
+// condition holds on the curve as well as the curve's own.
+enum class CodimensionTwoType {
+  grazing_period_doubling,  // on a grazing curve: the virtual orbit's multiplier through −1
+  grazing_fold,             // on a grazing curve: the virtual orbit's multiplier through +1
+};
+
+constexpr std::string_view to_string(CodimensionTwoType type) {
+  switch (type) {
+    case CodimensionTwoType::grazing_period_doubling: return "grazing_period_doubling";
+    case CodimensionTwoType::grazing_fold: return "grazing_fold";
+  }
+  return "unknown";
+}
+
+struct CodimensionTwoPoint {
+  CodimensionTwoType type = CodimensionTwoType::grazing_period_doubling;
+  double p1 = 0.0, p2 = 0.0;
+  OrbitPoint state{};                                  // on the requested section
+  std::vector<std::complex<double>> multipliers;       // largest modulus first
+  double graze_time = std::numeric_limits<double>::quiet_NaN();  // s since the requested section
+  // bound on the error of p₁ and of p₂ (the larger, in each one's unit): the
+  // final arclength bracket times the tangent's component
+  double error_estimate = 0.0;
+  bool located = false;  // false: detected between two curve points only
+  std::string note;
+};
+
 struct CurveResult {
   CurveType type = CurveType::fold;
   std::vector<CurvePoint> curve;
+  std::vector<CodimensionTwoPoint> points;  // codimension-two points, in the curve's order
   StopReason stop_reason = StopReason::end_of_range;
   std::string stop_detail;
   int map_evaluations = 0;

@@ -1,11 +1,14 @@
 #include <impactlab/analysis/curve_continuation.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <stdexcept>
 
 #include <Eigen/Core>
+#include <boost/math/tools/toms748_solve.hpp>
 
 #include <impactlab/analysis/bifurcation_location.hpp>
 #include <impactlab/analysis/dense_solve.hpp>
@@ -238,29 +241,104 @@ class CurveDriver {
   }
 
   void accept(const Corrected& c, const Vector& tangent, double step) {
+    if (grazing_ && !result_.curve.empty()) detect_codimension_two(z_, tangent_, step, c);
     z_ = c.z;
     tangent_ = tangent;
+    CurvePoint point = point_of(c);
+    point.newton_iterations = c.iterations;
+    point.step = step;
+    if (grazing_) window_center_ = c.z[tg_] * time_scale_;
+    for (std::size_t k = 0; k < watched_.size(); ++k)
+      last_tests_[k] = watched_[k].function(c.at.orbit.monodromy);
+    result_.curve.push_back(point);
+  }
+
+  // The curve point of a corrected z: its parameters, multipliers, graze
+  // time and state, both on the requested section.
+  CurvePoint point_of(const Corrected& c) const {
     CurvePoint point;
     point.p1 = p1_of(c.z);
     point.p2 = p2_of(c.z);
     point.multipliers = multipliers_of(c.at.orbit.monodromy);
     point.impacts = c.at.orbit.impacts;
-    point.newton_iterations = c.iterations;
-    point.step = step;
     const double omega = c.at.orbit.omega;
     const double shift = std::remainder(phase_ - requested_phase_, 2.0 * std::numbers::pi);
     const double delay = (shift < 0.0 ? shift + 2.0 * std::numbers::pi : shift) / omega;
-    if (grazing_) {
-      point.graze_time = std::fmod(c.z[tg_] * time_scale_ + delay, c.at.orbit.span);
-      window_center_ = c.z[tg_] * time_scale_;
-    }
+    if (grazing_) point.graze_time = std::fmod(c.z[tg_] * time_scale_ + delay, c.at.orbit.span);
     point.state = state_of(c.z);
     if (phase_ != requested_phase_) {
       const auto moved = problem_.at(point.p2).transport(state_of(c.z), point.p1, phase_,
                                                           requested_phase_);
       if (moved) point.state = *moved;
     }
-    result_.curve.push_back(point);
+    return point;
+  }
+
+  // A second condition watched along a grazing curve: the virtual orbit's
+  // multiplier through −1 or +1, where the grazing curve meets a period
+  // doubling or a fold curve of the orbit it grazes.
+  struct WatchedCondition {
+    CodimensionTwoType type;
+    double (*function)(const MonodromyMatrix&);
+  };
+  static constexpr std::array<WatchedCondition, 2> watched_ = {
+      WatchedCondition{CodimensionTwoType::grazing_period_doubling, det_plus_identity},
+      WatchedCondition{CodimensionTwoType::grazing_fold, det_minus_identity}};
+
+  // Each watched condition whose sign differs between the curve point a and
+  // the new point b (reached from a by the arclength `step` along `tangent`),
+  // located on the curve.
+  void detect_codimension_two(const Vector& a, const Vector& tangent, double step,
+                              const Corrected& b) {
+    for (std::size_t k = 0; k < watched_.size(); ++k) {
+      const double fa = last_tests_[k], fb = watched_[k].function(b.at.orbit.monodromy);
+      if (fa * fb < 0.0) result_.points.push_back(locate(watched_[k], a, tangent, step, fa));
+    }
+  }
+
+  // The root of a watched condition on the arclength from a (TOMS 748), each
+  // trial point corrected onto the curve.
+  CodimensionTwoPoint locate(const WatchedCondition& condition, const Vector& a,
+                             const Vector& tangent, double step, double fa) {
+    CodimensionTwoPoint point;
+    point.type = condition.type;
+    std::optional<Corrected> last;
+    auto on_curve = [&](double s) -> double {
+      const Vector predicted = a + s * tangent;
+      Corrected c = correct(predicted, tangent, predicted);
+      if (!c.converged) throw std::runtime_error("corrector failed");
+      const double value = condition.function(c.at.orbit.monodromy);
+      last = std::move(c);
+      return value;
+    };
+    // the parameters' change per unit of arclength, in their own units
+    const double rate = std::max(std::fabs(tangent[p1_]) * scale1_, std::fabs(tangent[p2_]) * scale2_);
+    try {
+      // the end of the bracket on this parametrisation of the curve (the
+      // accepted point may have been corrected onto the range's end instead)
+      const double fb = on_curve(step);
+      if (!(fa * fb < 0.0)) throw std::runtime_error("no sign change on the chord");
+      std::uintmax_t iterations = 100;
+      const auto bracket = boost::math::tools::toms748_solve(
+          on_curve, 0.0, step, fa, fb, boost::math::tools::eps_tolerance<double>(42), iterations);
+      on_curve(0.5 * (bracket.first + bracket.second));
+      const CurvePoint at = point_of(*last);
+      point.p1 = at.p1;
+      point.p2 = at.p2;
+      point.state = at.state;
+      point.multipliers = at.multipliers;
+      point.graze_time = at.graze_time;
+      point.error_estimate = rate * (bracket.second - bracket.first);
+      point.located = true;
+    } catch (const std::exception&) {
+      const Vector middle = a + 0.5 * step * tangent;
+      point.p1 = p1_of(middle);
+      point.p2 = p2_of(middle);
+      point.state = state_of(middle);
+      point.error_estimate = rate * step;
+      point.note = "detected; the corrector failed while locating it";
+    }
+    return point;
   }
 
   // The fraction of the span between the section (moved by `shift_time`) and
@@ -331,6 +409,7 @@ class CurveDriver {
   double h_initial_ = 0.01, h_min_ = 1e-7, h_max_ = 0.02;
   double requested_phase_ = 0.0, phase_ = 0.0;  // rad: the requested and the working section
   Vector z_, tangent_;
+  std::array<double, 2> last_tests_{};    // the watched conditions at the last curve point
   CurveResult result_;
 };
 

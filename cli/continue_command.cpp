@@ -126,6 +126,23 @@ void write_curve_csv(AtomicFile& file, const std::string& name1, const std::stri
           << curve.branch << ',' << curve.period << '\n';
 }
 
+// the codimension-two points of every curve, in the curves' order
+void write_curve_points_csv(AtomicFile& file, const std::string& name1, const std::string& name2,
+                            std::size_t dimension, const std::vector<BranchCurve>& curves) {
+  auto& out = file.stream();
+  out << "type," << name1 << ',' << name2 << ',' << state_header(dimension) << ','
+      << multiplier_header(dimension, false)
+      << ",error_estimate,located,graze_time,branch,period,note\n";
+  for (const BranchCurve& curve : curves)
+    for (const CodimensionTwoPoint& p : curve.curve.points)
+      out << to_string(p.type) << ',' << csv_field(p.p1) << ',' << csv_field(p.p2) << ','
+          << state_fields(p.state, dimension) << ','
+          << multiplier_fields(p.multipliers, dimension, false) << ','
+          << csv_field(p.error_estimate) << ',' << (p.located ? 1 : 0) << ','
+          << csv_field(p.graze_time) << ',' << curve.branch << ',' << curve.period << ",\""
+          << p.note << "\"\n";
+}
+
 int run_continue(const ContinueCommandOptions& command_options,
                  const std::vector<std::string>& command_line) {
   const ContinueOptions& options = command_options.job;
@@ -251,9 +268,12 @@ int run_continue(const ContinueCommandOptions& command_options,
                             {"stop_reason", curve.has_curve ? to_string(curve.curve.stop_reason)
                                                             : "no_start_point"},
                             {"stop_detail", curve.has_curve ? curve.curve.stop_detail : curve.note},
+                            {"codimension_two_points", curve.curve.points.size()},
                             {"map_evaluations", curve.curve.map_evaluations}});
     write_curve_csv(run_files.add("curve.csv"), range.name, range2.name, result.dimension,
                     curves);
+    write_curve_points_csv(run_files.add("curve_points.csv"), range.name, range2.name,
+                           result.dimension, curves);
     const nlohmann::json curve_document = {
         {"impactlab_version", IMPACTLAB_VERSION},
         {"command", command_line},
@@ -276,6 +296,7 @@ int run_continue(const ContinueCommandOptions& command_options,
         {"stop_reason", result.has_curve ? to_string(result.curve.stop_reason) : "no_start_point"},
         {"stop_detail", result.has_curve ? result.curve.stop_detail : result.curve_note},
         {"map_evaluations", result.curve.map_evaluations},
+        {"codimension_two_points", result.curve.points.size()},
         {"doubled_curves", curve_list},
         {"method",
          "pseudo-arclength continuation in (q, qdot, p1, p2) of the orbit condition "
@@ -298,6 +319,16 @@ int run_continue(const ContinueCommandOptions& command_options,
           {"branch", "the branch the curve starts from: 0, then k for the k-th doubled one "
                      "(--switch; doubled_curves)"},
           {"period", "forcing periods of that branch's orbit"}}},
+        {"curve_points_columns",
+           {{"type", "grazing_period_doubling or grazing_fold: on a grazing curve, where the "
+                     "virtual orbit (the orbit through the graze) has a multiplier -1 or +1, "
+                     "i.e. where a period-doubling or fold curve of that orbit meets the "
+                     "grazing curve; located by TOMS 748 on the curve's arclength"},
+            {"error_estimate", "bound on the error of both parameter values (each in its "
+                               "own unit; the larger)"},
+            {"located", "1: located; 0: detected between two curve points only (note)"},
+            {"graze_time", "time after the section at which the wall is touched (s)"},
+            {"branch, period", "as in curve.csv"}}},
         {"wall_time_s", wall_time},
     };
     write_json(run_files.add("curve.json"), curve_document);
@@ -334,6 +365,10 @@ int run_continue(const ContinueCommandOptions& command_options,
                                  in_brackets(result.curve.stop_detail));
       else
         std::cout << "no curve: " << result.curve_note << '\n';
+      for (const CodimensionTwoPoint& p : result.curve.points)
+        std::cout << fmt::format("  {} at {} = {:.12g}, {} = {:.12g} (error {:.2g}){}\n",
+                                 to_string(p.type), range.name, p.p1, range2.name, p.p2,
+                                 p.error_estimate, p.note.empty() ? "" : ": " + p.note);
       for (const BranchCurve& doubled : result.doubled_curves) {
         if (doubled.has_curve)
           std::cout << fmt::format("  period-{} branch's {} curve: {} points, stopped: {}{}\n",
@@ -347,7 +382,7 @@ int run_continue(const ContinueCommandOptions& command_options,
       }
     }
     std::cout << "wrote " << (directory / "branch.csv").string() << ", points.csv, continuation.json"
-              << (two_parameter ? ", curve.csv, curve.json" : "") << '\n';
+              << (two_parameter ? ", curve.csv, curve_points.csv, curve.json" : "") << '\n';
   }
   return exit_done;
 }

@@ -797,6 +797,50 @@ py::dict curve_columns(const BranchCurve& curve, const std::string& parameter,
   return one;
 }
 
+// The codimension-two points of the curves as columns (the rows of
+// curve_points.csv, in the curves' order).
+py::dict curve_point_columns(const std::vector<BranchCurve>& curves, const std::string& parameter,
+                             const std::string& parameter2, std::size_t dimension) {
+  std::vector<std::string> type, note;
+  std::vector<double> p1, p2, error_estimate, graze_time;
+  std::vector<std::vector<double>> states(dimension);
+  std::vector<std::vector<std::complex<double>>> multipliers(dimension);
+  std::vector<int> located, branch, period;
+  for (const BranchCurve& curve : curves)
+    for (const CodimensionTwoPoint& p : curve.curve.points) {
+      type.emplace_back(to_string(p.type));
+      p1.push_back(p.p1);
+      p2.push_back(p.p2);
+      for (std::size_t k = 0; k < dimension; ++k) {
+        states[k].push_back(k < p.state.size() ? p.state[k] : NAN);
+        multipliers[k].push_back(k < p.multipliers.size() ? p.multipliers[k]
+                                                          : std::complex<double>(NAN, NAN));
+      }
+      error_estimate.push_back(p.error_estimate);
+      located.push_back(p.located ? 1 : 0);
+      graze_time.push_back(p.graze_time);
+      branch.push_back(curve.branch);
+      period.push_back(curve.period);
+      note.push_back(p.note);
+    }
+  py::dict columns;
+  columns["type"] = py::cast(type);
+  columns[py::str(parameter)] = owning_array(std::move(p1));
+  columns[py::str(parameter2)] = owning_array(std::move(p2));
+  for (std::size_t k = 0; k < dimension; ++k) {
+    const std::string state = k == 0 ? "q" : k == 1 ? "qdot" : "state" + std::to_string(k + 1);
+    columns[py::str(state)] = owning_array(std::move(states[k]));
+    columns[py::str("multiplier" + std::to_string(k + 1))] = owning_array(std::move(multipliers[k]));
+  }
+  columns["error_estimate"] = owning_array(std::move(error_estimate));
+  columns["located"] = owning_array(std::move(located));
+  columns["graze_time"] = owning_array(std::move(graze_time));
+  columns["branch"] = owning_array(std::move(branch));
+  columns["period"] = owning_array(std::move(period));
+  columns["note"] = py::cast(note);
+  return columns;
+}
+
 py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
                           py::object progress) {
   const ContinuationJob job = continuation_job(options);
@@ -924,14 +968,15 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
   if (!parameter2.empty()) {
     // the first branch's curve, then each doubled branch's (switch), as the
     // CLI's curve.csv orders them
-    py::list curves;
-    if (result.has_curve)
-      curves.append(curve_columns({0, period, true, result.curve, result.curve_note}, parameter,
-                                  parameter2, dimension));
+    std::vector<BranchCurve> followed;
+    if (result.has_curve) followed.push_back({0, period, true, result.curve, result.curve_note});
     for (const BranchCurve& doubled : result.doubled_curves)
-      if (doubled.has_curve)
-        curves.append(curve_columns(doubled, parameter, parameter2, dimension));
+      if (doubled.has_curve) followed.push_back(doubled);
+    py::list curves;
+    for (const BranchCurve& curve : followed)
+      curves.append(curve_columns(curve, parameter, parameter2, dimension));
     out["curves"] = curves;
+    out["curve_points"] = curve_point_columns(followed, parameter, parameter2, dimension);
     out["parameter2"] = parameter2;
     out["curve_note"] = result.has_curve ? std::string() : result.curve_note;
   }

@@ -38,10 +38,18 @@ def curves_of(curve_table):
             for number in np.unique(numbers)]
 
 
-def draw_curve(curves, kind, meta, param1, param2, classes=None):
+# how each codimension-two type of curve_points.csv is marked
+CODIMENSION_TWO_MARKERS = {
+    "grazing_period_doubling": ("D", "tab:purple", "grazing meets period doubling"),
+    "grazing_fold": ("s", "tab:orange", "grazing meets fold"),
+}
+
+
+def draw_curve(curves, kind, meta, param1, param2, classes=None, special_points=None):
     """The curves (tables with curve.csv's columns param1, param2, period) of
     the point of type `kind` in (param1, param2), over the period map of a
-    2D sweep (classes.csv's columns, or None)."""
+    2D sweep (classes.csv's columns, or None), with the codimension-two
+    points located on them (curve_points.csv's columns, or None)."""
     fig, ax = plt.subplots(figsize=(7, 6))
     if classes is not None:
         data = plot_files.as_columns(classes)
@@ -64,6 +72,15 @@ def draw_curve(curves, kind, meta, param1, param2, classes=None):
                 label=f"{kind.replace('_', ' ')} curve{period} (continuation)")
         ax.plot(piece[param1][:1], piece[param2][:1], "o", color=colour, markersize=6,
                 label="start (located on the branch)" if index == 0 else None)
+    if special_points is not None:
+        points = plot_files.as_columns(special_points)
+        types = np.atleast_1d(points.get("type", np.array([])))
+        for name, (marker, colour, label) in CODIMENSION_TWO_MARKERS.items():
+            chosen = types == name
+            if np.any(chosen):
+                ax.plot(np.atleast_1d(points[param1])[chosen], np.atleast_1d(points[param2])[chosen],
+                        marker, color=colour, markersize=8, linestyle="none",
+                        label=f"{label} (codimension two)")
     if drawn:
         ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), fontsize=8, ncol=2,
                   frameon=False)
@@ -86,9 +103,11 @@ def main(argv):
     if os.path.exists(curve_json):
         with open(curve_json, encoding="utf-8") as handle:
             kind = json.load(handle).get("type") or kind
+    special = os.path.join(directory, "curve_points.csv")
     figure = draw_curve(curves_of(plot_files.read_columns(curve_csv)), kind,
                         plot_labels.read_meta(directory), param1, param2,
-                        plot_files.read_columns(sweep[0]) if sweep else None)
+                        plot_files.read_columns(sweep[0]) if sweep else None,
+                        plot_files.read_columns(special) if os.path.exists(special) else None)
     plot_files.save_figure(figure, png)
 
 

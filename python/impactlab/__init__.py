@@ -299,7 +299,8 @@ class ContinuationResult(Result):
         second = self.parameter2
         kind = self.curves[0].get("type", "curve") if self.curves else "curve"
         return plot_curve.draw_curve(self.curves, kind, record, self.parameter, second,
-                                     None if sweep is None else sweep.summary)
+                                     None if sweep is None else sweep.summary,
+                                     self.__dict__.get("curve_points"))
 
 
 def _finite_float(value):
@@ -969,7 +970,9 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     plane of the two keys from the point the branch located (the CLI's
     --param2 and --curve; on either section): curves is then a list of dicts with the columns of
     curve.csv, the first branch's curve first, then each doubled branch's
-    (switch=True); curve_note says why there is none.
+    (switch=True); curve_note says why there is none; curve_points holds the
+    codimension-two points located on them (curve_points.csv's columns: on a
+    grazing curve, grazing_period_doubling and grazing_fold).
     all=True continues every orbit of the period that periodic(all=True) finds
     at FROM (from `starts` states drawn from `box`, seeded by `seed`): each
     branch then has `orbit` (the id of the orbit it continues), and the result
@@ -1002,6 +1005,7 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     raw["points"] = Table(raw["points"])
     if "curves" in raw:
         raw["curves"] = [Table(curve) for curve in raw["curves"]]
+        raw["curve_points"] = Table(raw["curve_points"])
     return ContinuationResult(scene=loaded, **raw)
 
 

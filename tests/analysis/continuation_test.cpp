@@ -68,7 +68,10 @@ struct ImpactOscillator {
 // The one-impact period-1 orbit of ẍ + 2ζẋ + x = A cos ωt, x ≤ σ, ẋ⁺ = −r ẋ⁻.
 class PeriodOneOrbit {
  public:
-  PeriodOneOrbit(const ImpactOscillator& o, double omega) : o_(o), omega_(omega) {
+  // admissible_only: a flight that reaches beyond the stop is no orbit (set
+  // false for the virtual orbit of a grazing point, whose flight touches it)
+  PeriodOneOrbit(const ImpactOscillator& o, double omega, bool admissible_only = true)
+      : o_(o), omega_(omega) {
     period_ = two_pi / omega;
     wd_ = std::sqrt(1.0 - o.zeta * o.zeta);
     const double denominator =
@@ -87,7 +90,7 @@ class PeriodOneOrbit {
       if (!(v > 0.0)) continue;
       impact_time_ = t;
       speed_ = v;
-      found_ = highest_interior() < o_.sigma;
+      found_ = !admissible_only || highest_interior() < o_.sigma;
     }
   }
 
@@ -1046,6 +1049,54 @@ TEST(CurveContinuation, BouncingBallFoldCurveOnTheImpactSection) {
     EXPECT_NEAR(std::remainder(point.state[0], two_pi), 0.0, 1e-6) << "r = " << point.p2;
     EXPECT_NEAR(point.state[1], -0.5 * g * period, 1e-9) << "r = " << point.p2;
   }
+}
+
+// A grazing–period-doubling point: on the curve in (ω, σ) where the flight's
+// interior maximum touches the stop, the virtual orbit (the one-impact
+// period-1 orbit whose flight touches) has a multiplier through −1 where the
+// period-doubling curve of that orbit meets the grazing curve. Closed form:
+// for each σ the grazing ω_g(σ) is the root of the highest interior point
+// minus σ, and the point is the root in σ of 1 + tr M + det M at (ω_g(σ), σ).
+TEST(CurveContinuation, LinearImpactGrazingPeriodDoublingPointAtItsClosedForm) {
+  ImpactOscillator o;  // ζ = 0.05, r = 0.8, A = 1; σ from 0 downwards
+  auto grazing_omega = [&](double sigma) {
+    ImpactOscillator at = o;
+    at.sigma = sigma;
+    return solve([&](double w) { return PeriodOneOrbit(at, w, false).highest_interior() - sigma; },
+                 1.0, 1.1);
+  };
+  auto doubling_test = [&](double sigma) {
+    ImpactOscillator at = o;
+    at.sigma = sigma;
+    return PeriodOneOrbit(at, grazing_omega(sigma), false).test_functions()[0];
+  };
+  const double sigma_expected = solve(doubling_test, -0.03, -0.02);
+  const double omega_expected = grazing_omega(sigma_expected);
+
+  Scene scene = linear_impact_scene(o);
+  scene.values["initial.x"] = -0.5;  // inside the stop down to σ = −0.04
+  ContinuationJob job = curve_job("omega", 1.5, 0.8, "sigma", 0.0, -0.04, CurveType::grazing);
+  job.has_start = true;
+  const auto start = PeriodOneOrbit(o, 1.5).section_state();
+  job.start.assign(start.begin(), start.end());
+  const auto result = impactlab::continue_orbit(scene, job);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  EXPECT_EQ(result.curve.stop_reason, StopReason::end_of_range) << result.curve.stop_detail;
+  ASSERT_EQ(result.curve.points.size(), 1u);
+  const auto& point = result.curve.points[0];
+  EXPECT_EQ(point.type, impactlab::CodimensionTwoType::grazing_period_doubling);
+  EXPECT_TRUE(point.located) << point.note;
+  EXPECT_NEAR(point.p1, omega_expected, 1e-8);
+  EXPECT_NEAR(point.p2, sigma_expected, 1e-8);
+  EXPECT_LT(point.error_estimate, 1e-8);
+  EXPECT_NEAR(point.multipliers[0].real(), -1.0, 1e-7);
+  // its state is the closed form's virtual orbit there, and it touches
+  ImpactOscillator at = o;
+  at.sigma = sigma_expected;
+  const PeriodOneOrbit virtual_orbit(at, omega_expected, false);
+  EXPECT_NEAR(point.state[0], virtual_orbit.section_state()[0], 1e-8);
+  EXPECT_NEAR(point.state[1], virtual_orbit.section_state()[1], 1e-8);
+  EXPECT_TRUE(std::isfinite(point.graze_time));
 }
 
 TEST(CurveContinuation, NoPointOfTheTypeOnTheBranchGivesNoCurve) {

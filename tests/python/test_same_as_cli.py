@@ -397,3 +397,21 @@ def test_continue_on_the_impact_section_with_a_curve_equals_cli(cli):
     for k in (1, 2):
         same_numbers(table["multiplier{}_re".format(k)], curve["multiplier{}".format(k)].real)
         same_numbers(table["multiplier{}_im".format(k)], curve["multiplier{}".format(k)].imag)
+
+
+def test_codimension_two_points_equal_cli(cli):
+    # the grazing curve in (omega, sigma) of the one-impact orbit at sigma = 0
+    # meets the period doubling of the orbit it grazes: curve_points.csv's row
+    # and Python's curve_points, bit for bit
+    out = cli("continue", "linear_impact", "--set", "sigma=0", "--set", "initial.x=-0.5",
+              "--param", "omega=1.5:0.8", "--param2", "sigma=0:-0.04", "--curve", "grazing")
+    result = impactlab.continue_("linear_impact", sigma=0, initial__x=-0.5,
+                                 param="omega=1.5:0.8", param2="sigma=0:-0.04", curve="grazing")
+    table = read_csv(out / "curve_points.csv")
+    assert table["type"] == list(result.curve_points["type"]) == ["grazing_period_doubling"]
+    for column in ("omega", "sigma", "q", "qdot", "error_estimate", "located", "graze_time",
+                   "branch", "period"):
+        same_numbers(table[column], result.curve_points[column])
+    for k in (1, 2):
+        same_numbers(table["multiplier{}_re".format(k)],
+                     result.curve_points["multiplier{}".format(k)].real)
