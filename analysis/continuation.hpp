@@ -272,7 +272,16 @@ struct BranchCurve {
   bool has_curve = false;  // the branch has a located point of the type to start from
   CurveResult curve;
   std::string note;      // why there is no curve
+  // a curve through a codimension-two point (switch): that point's type;
+  // none for a curve started from a point located on the branch
+  std::optional<CodimensionTwoType> started_at;
 };
+
+// Where a curve starts, as curve.csv and Python name it: "branch", or the
+// type of the codimension-two point it runs through.
+constexpr std::string_view start_name(const BranchCurve& curve) {
+  return curve.started_at ? to_string(*curve.started_at) : std::string_view("branch");
+}
 
 struct ContinuationJobResult {
   bool available = false;  // false: the oscillator/model has no Jacobians (see note)
@@ -286,6 +295,10 @@ struct ContinuationJobResult {
   // doubled branch's first located point of it, doubled_curves[k] from
   // branches[k + 1] (the cascade's boundaries in the plane)
   std::vector<BranchCurve> doubled_curves;
+  // with `switch`: the curve through each located codimension-two point of
+  // the first curve (a grazing–period-doubling point: the period-doubling
+  // curve through it)
+  std::vector<BranchCurve> switched_curves;
   // a component of the state along which the map was neutral, held at its
   // start value (analysis/neutral_component.hpp); every state and multiplier
   // list above has it back

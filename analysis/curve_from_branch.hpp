@@ -123,4 +123,40 @@ bool continue_curve_of(const ContinuationJobResult& result, std::size_t index, C
   return true;
 }
 
+// The curve through a codimension-two point of a curve (`switch`): at a
+// grazing–period-doubling point the period-doubling curve of the orbit it
+// grazes, at a grazing–fold point its fold curve, followed from the point
+// towards job.second_from (the side the grazing curve came from) on the
+// stroboscopic section; false, with why in `note`, where it cannot start.
+template <class MapAt>
+bool continue_curve_from_point(const CodimensionTwoPoint& point, int period, CurveResult& curve,
+                               std::string& note, MapAt map_at, const Scene& scene,
+                               const ContinuationJob& job) {
+  if (job.impact_wall != 0) {
+    note = "a curve through a codimension-two point is followed on the stroboscopic section only";
+    return false;
+  }
+  CurveRequest request;
+  request.type = point.type == CodimensionTwoType::grazing_period_doubling
+                     ? CurveType::period_doubling
+                     : CurveType::fold;
+  request.from1 = job.from;
+  request.to1 = job.to;
+  request.from2 = point.p2;
+  request.to2 = job.second_from;
+  request.p1 = point.p1;
+  request.state = point.state;
+  request.max_points = job.numerics.max_points;
+  request.tolerance = job.numerics.tolerance;
+  if (job.numerics.max_step > 0.0) request.max_step = job.numerics.max_step / std::fabs(job.to - job.from);
+  TwoParameterProblem problem;
+  problem.at = [scene, job, map_at, period](double p2) {
+    Scene at = scene;
+    at.values[job.second_parameter] = p2;
+    return map_at(at, period);
+  };
+  curve = continue_curve(problem, request);
+  return true;
+}
+
 }  // namespace impactlab

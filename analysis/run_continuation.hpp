@@ -250,6 +250,15 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
         for (CurvePoint& point : doubled.curve.curve) reduce(point.state);
         result.doubled_curves.push_back(std::move(doubled));
       }
+      if (job.doublings > 0 && result.has_curve)
+        for (const CodimensionTwoPoint& point : result.curve.points) {
+          if (!point.located) continue;
+          BranchCurve switched{0, job.period};
+          switched.started_at = point.type;
+          switched.has_curve = continue_curve_from_point(point, job.period, switched.curve,
+                                                         switched.note, map_at, scene, job);
+          result.switched_curves.push_back(std::move(switched));
+        }
     }
     if (held) restore_held_component(result, *held);
     return result;

@@ -313,7 +313,8 @@ Options continue_options() {
        .default_value = string_view("strobe")},
       {.name = "switch", .type = OptionType::flag,
        .help = "at a period doubling, continue the doubled orbit (the cascade, up to 3 "
-               "doublings)",
+               "doublings); with `param2`, also follow the curve through each codimension-two "
+               "point of the curve",
        .default_value = false},
       {.name = "start", .type = OptionType::number_list,
        .help = "Q,QDOT (a model file: its N states): the start on the section (else the "

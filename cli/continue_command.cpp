@@ -117,13 +117,14 @@ void write_curve_csv(AtomicFile& file, const std::string& name1, const std::stri
   auto& out = file.stream();
   out << name1 << ',' << name2 << ',' << state_header(dimension) << ','
       << multiplier_header(dimension, true)
-      << ",graze_time,impacts,newton_iterations,branch,period\n";
+      << ",graze_time,impacts,newton_iterations,branch,period,type,start\n";
   for (const BranchCurve& curve : curves)
     for (const CurvePoint& p : curve.curve.curve)
       out << csv_field(p.p1) << ',' << csv_field(p.p2) << ',' << state_fields(p.state, dimension)
           << ',' << multiplier_fields(p.multipliers, dimension, true) << ','
           << csv_field(p.graze_time) << ',' << p.impacts << ',' << p.newton_iterations << ','
-          << curve.branch << ',' << curve.period << '\n';
+          << curve.branch << ',' << curve.period << ',' << to_string(curve.curve.type) << ','
+          << start_name(curve) << '\n';
 }
 
 // the codimension-two points of every curve, in the curves' order
@@ -259,6 +260,8 @@ int run_continue(const ContinueCommandOptions& command_options,
         {0, options.period, result.has_curve, result.curve, result.curve_note}};
     for (const BranchCurve& doubled : result.doubled_curves)
       if (doubled.has_curve) curves.push_back(doubled);
+    for (const BranchCurve& switched : result.switched_curves)
+      if (switched.has_curve) curves.push_back(switched);
     nlohmann::json curve_list = nlohmann::json::array();
     for (const BranchCurve& curve : result.doubled_curves)
       curve_list.push_back({{"branch", curve.branch},
@@ -270,6 +273,17 @@ int run_continue(const ContinueCommandOptions& command_options,
                             {"stop_detail", curve.has_curve ? curve.curve.stop_detail : curve.note},
                             {"codimension_two_points", curve.curve.points.size()},
                             {"map_evaluations", curve.curve.map_evaluations}});
+    nlohmann::json switched_list = nlohmann::json::array();
+    for (const BranchCurve& curve : result.switched_curves)
+      switched_list.push_back({{"start", start_name(curve)},
+                               {"type", curve.has_curve ? to_string(curve.curve.type) : ""},
+                               {"points", curve.curve.curve.size()},
+                               {"stop_reason", curve.has_curve
+                                                   ? to_string(curve.curve.stop_reason)
+                                                   : "no_start_point"},
+                               {"stop_detail", curve.has_curve ? curve.curve.stop_detail
+                                                               : curve.note},
+                               {"map_evaluations", curve.curve.map_evaluations}});
     write_curve_csv(run_files.add("curve.csv"), range.name, range2.name, result.dimension,
                     curves);
     write_curve_points_csv(run_files.add("curve_points.csv"), range.name, range2.name,
@@ -298,6 +312,7 @@ int run_continue(const ContinueCommandOptions& command_options,
         {"map_evaluations", result.curve.map_evaluations},
         {"codimension_two_points", result.curve.points.size()},
         {"doubled_curves", curve_list},
+        {"switched_curves", switched_list},
         {"method",
          "pseudo-arclength continuation in (q, qdot, p1, p2) of the orbit condition "
          "P^n(x) = x with det(M - I) = 0 (fold), det(M + I) = 0 (period doubling), or zero gap "
@@ -318,7 +333,12 @@ int run_continue(const ContinueCommandOptions& command_options,
           {"impacts", "impacts per orbit period (a grazing point's touch not counted)"},
           {"branch", "the branch the curve starts from: 0, then k for the k-th doubled one "
                      "(--switch; doubled_curves)"},
-          {"period", "forcing periods of that branch's orbit"}}},
+          {"period", "forcing periods of that branch's orbit"},
+          {"type", "the curve's type: fold, period_doubling or grazing"},
+          {"start", "branch: the curve starts at a point located on the branch; "
+                    "grazing_period_doubling or grazing_fold: it runs through that "
+                    "codimension-two point of the first curve (--switch; switched_curves), "
+                    "from the point towards the second parameter's FROM"}}},
         {"curve_points_columns",
            {{"type", "grazing_period_doubling or grazing_fold: on a grazing curve, where the "
                      "virtual orbit (the orbit through the graze) has a multiplier -1 or +1, "
@@ -369,6 +389,17 @@ int run_continue(const ContinueCommandOptions& command_options,
         std::cout << fmt::format("  {} at {} = {:.12g}, {} = {:.12g} (error {:.2g}){}\n",
                                  to_string(p.type), range.name, p.p1, range2.name, p.p2,
                                  p.error_estimate, p.note.empty() ? "" : ": " + p.note);
+      for (const BranchCurve& switched : result.switched_curves) {
+        if (switched.has_curve)
+          std::cout << fmt::format("  {} curve through the {} point: {} points, stopped: {}{}\n",
+                                   to_string(switched.curve.type), start_name(switched),
+                                   switched.curve.curve.size(),
+                                   to_string(switched.curve.stop_reason),
+                                   in_brackets(switched.curve.stop_detail));
+        else
+          std::cout << fmt::format("  no curve through the {} point: {}\n",
+                                   start_name(switched), switched.note);
+      }
       for (const BranchCurve& doubled : result.doubled_curves) {
         if (doubled.has_curve)
           std::cout << fmt::format("  period-{} branch's {} curve: {} points, stopped: {}{}\n",

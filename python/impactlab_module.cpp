@@ -781,6 +781,7 @@ py::dict curve_columns(const BranchCurve& curve, const std::string& parameter,
   one["branch"] = curve.branch;
   one["period"] = curve.period;
   one["type"] = to_string(curve.curve.type);
+  one["start"] = start_name(curve);
   one["stop_reason"] = to_string(curve.curve.stop_reason);
   one["stop_detail"] = curve.curve.stop_detail;
   one["map_evaluations"] = curve.curve.map_evaluations;
@@ -972,6 +973,8 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
     if (result.has_curve) followed.push_back({0, period, true, result.curve, result.curve_note});
     for (const BranchCurve& doubled : result.doubled_curves)
       if (doubled.has_curve) followed.push_back(doubled);
+    for (const BranchCurve& switched : result.switched_curves)
+      if (switched.has_curve) followed.push_back(switched);
     py::list curves;
     for (const BranchCurve& curve : followed)
       curves.append(curve_columns(curve, parameter, parameter2, dimension));

@@ -29,13 +29,18 @@ except ImportError:  # run as a script beside its modules
 
 
 def curves_of(curve_table):
-    """curve.csv's columns split into one table per branch's curve (its
-    `branch` column; one curve where there is none)."""
+    """curve.csv's columns split into one table per curve: per branch (its
+    `branch` column), and per start where a curve runs through a
+    codimension-two point (its `start` column); one curve where there are
+    neither."""
     if "branch" not in curve_table:
         return [curve_table]
-    numbers = curve_table["branch"]
-    return [plot_files.rows_where(curve_table, numbers == number)
-            for number in np.unique(numbers)]
+    count = len(curve_table["branch"])
+    starts = curve_table.get("start", np.array(["branch"] * count))
+    keys = [(number, start) for number, start in zip(curve_table["branch"], starts)]
+    order = list(dict.fromkeys(keys))  # each curve once, in the file's order
+    return [plot_files.rows_where(curve_table, np.array([key == one for key in keys]))
+            for one in order]
 
 
 # how each codimension-two type of curve_points.csv is marked
@@ -68,10 +73,14 @@ def draw_curve(curves, kind, meta, param1, param2, classes=None, special_points=
         # one curve per branch (--switch: the doubled branches' curves too)
         period = f", period {int(np.ravel(piece['period'])[0])}" if "period" in piece else ""
         colour = colours[index % len(colours)]
+        own_kind = str(np.ravel(piece["type"])[0]) if "type" in piece else kind
+        start = str(np.ravel(piece["start"])[0]) if "start" in piece else "branch"
+        origin = "continuation" if start == "branch" else "from the codimension-two point"
         ax.plot(piece[param1], piece[param2], "-", color=colour, linewidth=1.8,
-                label=f"{kind.replace('_', ' ')} curve{period} (continuation)")
-        ax.plot(piece[param1][:1], piece[param2][:1], "o", color=colour, markersize=6,
-                label="start (located on the branch)" if index == 0 else None)
+                label=f"{own_kind.replace('_', ' ')} curve{period} ({origin})")
+        if start == "branch":
+            ax.plot(piece[param1][:1], piece[param2][:1], "o", color=colour, markersize=6,
+                    label="start (located on the branch)" if index == 0 else None)
     if special_points is not None:
         points = plot_files.as_columns(special_points)
         types = np.atleast_1d(points.get("type", np.array([])))

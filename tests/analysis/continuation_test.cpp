@@ -1099,6 +1099,42 @@ TEST(CurveContinuation, LinearImpactGrazingPeriodDoublingPointAtItsClosedForm) {
   EXPECT_TRUE(std::isfinite(point.graze_time));
 }
 
+// With switch, the period-doubling curve through that point: followed from
+// it back to σ = 0, every point on the closed form's period doubling (the
+// root in ω of 1 + tr M + det M at its σ) and admissible (its flight stays
+// below the stop), ending at σ = 0 on the branch's lower period doubling.
+TEST(CurveContinuation, SwitchAtAGrazingPeriodDoublingPointFollowsThePeriodDoublingCurve) {
+  const ImpactOscillator o;
+  Scene scene = linear_impact_scene(o);
+  scene.values["initial.x"] = -0.5;
+  ContinuationJob job = curve_job("omega", 1.5, 0.8, "sigma", 0.0, -0.04, CurveType::grazing);
+  job.has_start = true;
+  const auto start = PeriodOneOrbit(o, 1.5).section_state();
+  job.start.assign(start.begin(), start.end());
+  job.doublings = 1;
+  const auto result = impactlab::continue_orbit(scene, job);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  ASSERT_EQ(result.curve.points.size(), 1u);
+  ASSERT_EQ(result.switched_curves.size(), 1u);
+  const auto& switched = result.switched_curves[0];
+  ASSERT_TRUE(switched.has_curve) << switched.note;
+  EXPECT_EQ(switched.started_at, impactlab::CodimensionTwoType::grazing_period_doubling);
+  EXPECT_EQ(switched.curve.type, CurveType::period_doubling);
+  EXPECT_EQ(switched.curve.stop_reason, StopReason::end_of_range) << switched.curve.stop_detail;
+  ASSERT_GE(switched.curve.curve.size(), 5u);
+  EXPECT_NEAR(switched.curve.curve.front().p2, result.curve.points[0].p2, 1e-9);
+  EXPECT_EQ(switched.curve.curve.back().p2, 0.0);
+  for (std::size_t k = 1; k < switched.curve.curve.size(); ++k) {
+    const auto& point = switched.curve.curve[k];
+    ImpactOscillator at = o;
+    at.sigma = point.p2;
+    const double expected = period_doubling(at, point.p1 - 0.005, point.p1 + 0.005);
+    EXPECT_NEAR(point.p1, expected, 1e-9 * expected) << "sigma = " << point.p2;
+    EXPECT_TRUE(PeriodOneOrbit(at, point.p1).found()) << "sigma = " << point.p2;
+  }
+  EXPECT_NEAR(switched.curve.curve.back().p1, period_doubling(o, 1.02, 1.05), 1e-9);
+}
+
 TEST(CurveContinuation, NoPointOfTheTypeOnTheBranchGivesNoCurve) {
   const ImpactOscillator o;
   const Scene scene = linear_impact_scene(o);

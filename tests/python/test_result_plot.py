@@ -160,12 +160,14 @@ def test_a_job_the_cli_draws_nothing_for_says_so():
 
 
 def test_curve_with_a_codimension_two_point(cli, tmp_path):
-    # the grazing curve with its grazing-period-doubling point marked
+    # the grazing curve with its grazing-period-doubling point marked, and
+    # (switch) the period-doubling curve from it
     out = cli("continue", "linear_impact", "--set", "sigma=0", "--set", "initial.x=-0.5",
               "--param", "omega=1.5:0.8", "--param2", "sigma=0:-0.04", "--curve", "grazing",
-              "--plot")
+              "--switch", "--plot")
     result = impactlab.continue_("linear_impact", sigma=0, initial__x=-0.5,
-                                 param="omega=1.5:0.8", param2="sigma=0:-0.04", curve="grazing")
+                                 param="omega=1.5:0.8", param2="sigma=0:-0.04", curve="grazing",
+                                 switch=True)
     assert len(result.curve_points["type"]) == 1
     cli_png, ours = drawn_as_by_the_cli(result, out / "curve.png", tmp_path, which="curve")
     assert cli_png == ours

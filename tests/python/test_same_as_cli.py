@@ -403,10 +403,22 @@ def test_codimension_two_points_equal_cli(cli):
     # the grazing curve in (omega, sigma) of the one-impact orbit at sigma = 0
     # meets the period doubling of the orbit it grazes: curve_points.csv's row
     # and Python's curve_points, bit for bit
+    # with switch, the period-doubling curve through it too: curve.csv's rows
+    # of that curve (start grazing_period_doubling) and Python's curve
     out = cli("continue", "linear_impact", "--set", "sigma=0", "--set", "initial.x=-0.5",
-              "--param", "omega=1.5:0.8", "--param2", "sigma=0:-0.04", "--curve", "grazing")
+              "--param", "omega=1.5:0.8", "--param2", "sigma=0:-0.04", "--curve", "grazing",
+              "--switch")
     result = impactlab.continue_("linear_impact", sigma=0, initial__x=-0.5,
-                                 param="omega=1.5:0.8", param2="sigma=0:-0.04", curve="grazing")
+                                 param="omega=1.5:0.8", param2="sigma=0:-0.04", curve="grazing",
+                                 switch=True)
+    curves = read_csv(out / "curve.csv")
+    (through,) = [one for one in result.curves if one["start"] == "grazing_period_doubling"]
+    assert through["type"] == "period_doubling"
+    rows = [i for i, start in enumerate(curves["start"]) if start == "grazing_period_doubling"]
+    assert len(rows) == len(through["omega"]) > 5
+    assert {curves["type"][i] for i in rows} == {"period_doubling"}
+    for column in ("omega", "sigma", "q", "qdot", "newton_iterations"):
+        same_numbers([curves[column][i] for i in rows], through[column])
     table = read_csv(out / "curve_points.csv")
     assert table["type"] == list(result.curve_points["type"]) == ["grazing_period_doubling"]
     for column in ("omega", "sigma", "q", "qdot", "error_estimate", "located", "graze_time",
