@@ -107,8 +107,10 @@ TEST(ContinueCommand, SwitchWithACurveWritesTheDoubledBranchsCurveToo) {
       out.string());
   ASSERT_EQ(outcome.status, 0) << outcome.err;
   const std::string curve = slurp(out / "curve.csv");
-  EXPECT_NE(curve.find("newton_iterations,branch,period\n"), std::string::npos) << curve;
-  EXPECT_NE(curve.find(",1,2\n"), std::string::npos) << curve;  // rows of branch 1, period 2
+  EXPECT_NE(curve.find("newton_iterations,branch,period,type,start\n"), std::string::npos)
+      << curve;
+  // rows of branch 1, period 2, started on that branch
+  EXPECT_NE(curve.find(",1,2,period_doubling,branch\n"), std::string::npos) << curve;
   const auto meta = nlohmann::json::parse(slurp(out / "curve.json"));
   EXPECT_EQ(meta["request"]["switch"], true);
   ASSERT_GE(meta["doubled_curves"].size(), 1u);
