@@ -38,6 +38,7 @@ class CurveDriver {
   CurveDriver(const TwoParameterProblem& problem, const CurveRequest& request)
       : problem_(problem), request_(request) {
     grazing_ = request.type == CurveType::grazing;
+    contact_ = request.type == CurveType::contact_onset || request.type == CurveType::contact_end;
     at_start_ = problem.at(request.from2);
     n_ = static_cast<int>(at_start_.dimension);
     p1_ = n_;
@@ -158,6 +159,9 @@ class CurveDriver {
       if (!gap.completed) return e;
       e.residual[n_] = gap.value;
       e.residual[n_ + 1] = gap.rate;
+    } else if (contact_) {
+      // the push on the mass at rest at its landing (contact_landing.hpp)
+      e.residual[n_] = e.orbit.landing_push;
     } else if (request_.type == CurveType::period_doubling) {
       e.residual[n_] = det_plus_identity(e.orbit.monodromy);
     } else {
@@ -321,6 +325,7 @@ class CurveDriver {
   const CurveRequest& request_;
   ContinuationProblem at_start_;
   bool grazing_ = false;
+  bool contact_ = false;                  // a contact onset or end: the landing push's zero
   int n_ = 2;                             // N: the state's components on the section
   int p1_ = 2, p2_ = 3, tg_ = 4;          // the indices of p₁, p₂ and t_g in z
   int size_ = 4;                          // unknowns: (x, p₁, p₂ [, t_g])

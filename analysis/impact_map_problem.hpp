@@ -16,6 +16,7 @@
 #include <optional>
 #include <utility>
 
+#include <impactlab/analysis/contact_landing.hpp>
 #include <impactlab/analysis/continuation_problem.hpp>
 #include <impactlab/analysis/decorated_system.hpp>
 #include <impactlab/analysis/flow_setup.hpp>
@@ -219,6 +220,9 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
     note_events(records.begin() + static_cast<std::ptrdiff_t>(impacts.first_record) + 1,
                 records.begin() + static_cast<std::ptrdiff_t>(impacts.stop_record) + 1, t0,
                 result);
+    note_landing_push(system, records.begin() + static_cast<std::ptrdiff_t>(impacts.first_record),
+                      records.begin() + static_cast<std::ptrdiff_t>(impacts.stop_record) + 1, t0,
+                      result);
     // the slowest impact. With the section's own wall, only the target
     // impact (the section's own, one orbit on) is a grazing candidate: the
     // driver solves it on the stroboscopic map (problem.strobe); another
