@@ -79,6 +79,10 @@ class CurveDriver {
     Vector fixed_p2 = Vector::Zero(size_);
     fixed_p2[p2_] = 1.0;
     Corrected start = correct(z, fixed_p2, z);
+    if (contact_ && start.at.orbit.completed && !std::isfinite(start.at.orbit.landing_push))
+      return stop(StopReason::start_not_converged,
+                  "the orbit has no landing with a push on the mass at rest (a contact curve "
+                  "needs a system with a stuck mode)");
     if (!start.converged)
       return stop(StopReason::start_not_converged, "Newton at the located point did not converge");
     const double direction2 = request_.to2 >= request_.from2 ? 1.0 : -1.0;
