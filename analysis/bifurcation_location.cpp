@@ -155,7 +155,10 @@ BifurcationPoint BifurcationLocator<Size>::locate_count_change(int OrbitEvaluati
       point.parameter = last->y[n] * scale;
       point.state = corrector_.reported_state(last->y);
       point.multipliers = multipliers_of(last->orbit);
-      point.error_estimate = std::fabs(tau[n]) * (bracket.second - bracket.first) * scale;
+      // the bracket, and the corrector's tolerance: the orbit is converged
+      // only to it, and its landing time with it
+      point.error_estimate = std::fabs(tau[n]) * (bracket.second - bracket.first) * scale +
+                             corrector_.request().tolerance * (1.0 + std::fabs(point.parameter));
       point.located = true;
       point.note = count_change_note(count, a.orbit.*count, b.orbit.*count) +
                    ", at the root of the push on the mass at rest at its landing";

@@ -106,14 +106,14 @@ ContinuationJob contact_end_job(double sigma_to) {
 }
 
 TEST(ContactBoundaryCurve, ContactEndOfThePlasticStopInOmegaAndSigmaAtItsClosedForm) {
-  const auto result = impactlab::continue_orbit(plastic_stop_scene(), contact_end_job(0.4));
+  const auto result = impactlab::continue_orbit(plastic_stop_scene(), contact_end_job(0.35));
   ASSERT_TRUE(result.has_curve) << result.curve_note;
   const auto& curve = result.curve;
   EXPECT_EQ(curve.type, CurveType::contact_end);
   EXPECT_EQ(curve.stop_reason, StopReason::end_of_range) << curve.stop_detail;
   ASSERT_GE(curve.curve.size(), 10u);
   EXPECT_DOUBLE_EQ(curve.curve.front().p2, 0.2);
-  EXPECT_DOUBLE_EQ(curve.curve.back().p2, 0.4);
+  EXPECT_DOUBLE_EQ(curve.curve.back().p2, 0.35);
   for (const auto& point : curve.curve) {
     const double expected = contact_end_omega(point.p2, point.p1);
     ASSERT_TRUE(std::isfinite(expected)) << "sigma = " << point.p2;

@@ -108,7 +108,7 @@ TEST(ContinueCommand, ContactEndCurveWritesTheCurveAndItsSidecar) {
       "--curve contact_end --quiet --out " +
       out.string());
   ASSERT_EQ(outcome.status, 0) << outcome.err;
-  EXPECT_NE(slurp(out / "points.csv").find("contact_end,1.66"), std::string::npos)
+  EXPECT_NE(slurp(out / "points.csv").find("contact_end,1.670310638"), std::string::npos)
       << slurp(out / "points.csv");
   const std::string curve = slurp(out / "curve.csv");
   EXPECT_EQ(curve.rfind("omega,sigma,q,qdot,multiplier1_re,", 0), 0u) << curve;
