@@ -965,13 +965,13 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     are N wide: N = 2 (q, qdot), or a model file's N states (q, qdot, state3,
     ...; multiplier1 ... multiplierN).
     param2="NAME=FROM:TO" (with curve= fold, period_doubling, grazing,
-    contact_onset or contact_end; else the first located fold, period
+    contact_onset or contact_end, a type the branch has no located point of
+    raising ValueError naming curve; else the first located fold, period
     doubling or grazing) follows that bifurcation's curve in the
     plane of the two keys from the point the branch located (the CLI's
     --param2 and --curve; on either section): curves is then a list of dicts with the columns of
     curve.csv, the first branch's curve first, then each doubled branch's
-    (switch=True); curve_note says why there is none. A curve type the
-    branch has no located point of raises ValueError naming curve.
+    (switch=True); curve_note says why there is none.
     all=True continues every orbit of the period that periodic(all=True) finds
     at FROM (from `starts` states drawn from `box`, seeded by `seed`): each
     branch then has `orbit` (the id of the orbit it continues), and the result
