@@ -220,8 +220,11 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
     note_events(records.begin() + static_cast<std::ptrdiff_t>(impacts.first_record) + 1,
                 records.begin() + static_cast<std::ptrdiff_t>(impacts.stop_record) + 1, t0,
                 result);
+    // the landings from the start impact on, the target impact left out: at
+    // the fixed point it is the start impact one orbit on, with the same
+    // push, and the two would tie
     note_landing_push(system, records.begin() + static_cast<std::ptrdiff_t>(impacts.first_record),
-                      records.begin() + static_cast<std::ptrdiff_t>(impacts.stop_record) + 1, t0,
+                      records.begin() + static_cast<std::ptrdiff_t>(impacts.stop_record), t0,
                       result);
     // the slowest impact. With the section's own wall, only the target
     // impact (the section's own, one orbit on) is a grazing candidate: the

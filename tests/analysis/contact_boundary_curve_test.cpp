@@ -11,7 +11,8 @@
 // the contact phase ends where the return comes exactly at t_r + T: at each
 // σ, the root in ω of σ − x(t_r + T) on the free flight from (σ, 0) at t_r
 // (TOMS 748), the flight below the stop before it. Every point of the curve
-// must lie on it to 1e-9 in ω, with the closed form's state on the section.
+// must lie on it to 1e-9 in ω, with the closed form's state on the section
+// (the stroboscopic one, and the impact section of the stop).
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -131,6 +132,28 @@ TEST(ContactBoundaryCurve, ContactEndOfThePlasticStopInOmegaAndSigmaAtItsClosedF
     EXPECT_NEAR(point.state[1], x[1], 1e-8) << "sigma = " << point.p2;
     // the monodromy vanishes on the curve (the release forgets the state)
     EXPECT_LT(std::abs(point.multipliers[0]), 1e-6) << "sigma = " << point.p2;
+  }
+}
+
+// The same curve on the impact section (impact:1): the state is the landing
+// itself, the phase ω t_r (mod 2π) = arccos(σ/A) and the rate just before it,
+// ẋ(t_r + T) of the flight from (σ, 0) at t_r.
+TEST(ContactBoundaryCurve, ContactEndOnTheImpactSectionAtItsClosedForm) {
+  ContinuationJob job = contact_end_job(0.35);
+  job.impact_wall = 1;
+  const auto result = impactlab::continue_orbit(plastic_stop_scene(), job);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  EXPECT_EQ(curve.stop_reason, StopReason::end_of_range) << curve.stop_detail;
+  ASSERT_GE(curve.curve.size(), 10u);
+  for (const auto& point : curve.curve) {
+    const double expected = contact_end_omega(point.p2, point.p1);
+    ASSERT_TRUE(std::isfinite(expected)) << "sigma = " << point.p2;
+    EXPECT_NEAR(point.p1, expected, 1e-9 * expected) << "sigma = " << point.p2;
+    const double release = release_time(expected, point.p2);
+    EXPECT_NEAR(point.state[0], std::acos(point.p2 / amplitude), 1e-9) << "sigma = " << point.p2;
+    const auto before = free_flight(expected, release, point.p2, 0.0, release + two_pi / expected);
+    EXPECT_NEAR(point.state[1], before[1], 1e-8) << "sigma = " << point.p2;
   }
 }
 
