@@ -105,7 +105,10 @@ void BifurcationLocator<Size>::detect(const Node& a, const Node& b, double step,
 // τ, as the step itself), the side decided by the trial orbit's count, down
 // to a bracket of 1e-10 of the range in p (or 1e-13 in s where the branch
 // is nearly normal to p). The point is the corrected orbit at the middle of
-// the last bracket; its error estimate is the bracket in p.
+// the last bracket; its error estimate is the bracket in p. A contact
+// phase's onset or end is located instead at the root of the landing push
+// (TOMS 748 on the arclength, each trial point corrected onto the branch)
+// where both nodes land with pushes of opposite signs.
 template <int Size>
 BifurcationPoint BifurcationLocator<Size>::locate_count_change(int OrbitEvaluation::*count,
                                                                const Node& a, const Node& b,
@@ -129,6 +132,41 @@ BifurcationPoint BifurcationLocator<Size>::locate_count_change(int OrbitEvaluati
     const Vec predicted = a.y + s * tau;
     return corrector_.correct(predicted, tau, predicted, {}, nullptr);
   };
+  // a contact phase's onset or end where both ends land on the wall with
+  // pushes of opposite signs: the root of the landing push, the contact
+  // boundary's own defining condition (contact_landing.hpp)
+  const double push_a = a.orbit.landing_push, push_b = b.orbit.landing_push;
+  if (count == &OrbitEvaluation::contact_phases && push_a * push_b < 0.0) {
+    std::optional<Correction> last;
+    auto push_on_branch = [&](double s) -> double {
+      Correction c = corrected_at(s);
+      if (!c.converged || !std::isfinite(c.orbit.landing_push))
+        throw std::runtime_error("corrector failed");
+      const double value = c.orbit.landing_push;
+      last = std::move(c);
+      return value;
+    };
+    try {
+      std::uintmax_t iterations = 100;
+      const auto bracket = boost::math::tools::toms748_solve(
+          push_on_branch, 0.0, step, push_a, push_b, boost::math::tools::eps_tolerance<double>(42),
+          iterations);
+      push_on_branch(0.5 * (bracket.first + bracket.second));
+      point.parameter = last->y[n] * scale;
+      point.state = corrector_.reported_state(last->y);
+      point.multipliers = multipliers_of(last->orbit);
+      // the bracket, and the corrector's tolerance: the orbit is converged
+      // only to it, and its landing time with it
+      point.error_estimate = std::fabs(tau[n]) * (bracket.second - bracket.first) * scale +
+                             corrector_.request().tolerance * (1.0 + std::fabs(point.parameter));
+      point.located = true;
+      point.note = count_change_note(count, a.orbit.*count, b.orbit.*count) +
+                   ", at the root of the push on the mass at rest at its landing";
+      return point;
+    } catch (const std::exception&) {
+      // the bisection on the count below
+    }
+  }
   double low = 0.0, high = step;         // a's count at low, another at high
   double p_low = a.y[n], p_high = b.y[n];  // the corrected ends' p (range units)
   bool failed = false;

@@ -8,8 +8,10 @@
 // points, each trial point corrected onto the branch; a parameter boundary
 // (ParameterBoundary) crossed, located at the root of its own function and
 // the orbit corrected there; a change of the number of contact phases,
-// located by bisection on the arclength down to a bracket of 1e-10 of the
-// range in p.
+// located at the root of the landing push (contact_landing.hpp) where both
+// points land with pushes of opposite signs, otherwise (and a change of the
+// stick impacts) by bisection on the arclength down to a bracket of 1e-10
+// of the range in p.
 #pragma once
 
 #include <vector>

@@ -63,6 +63,8 @@ enum class CurveType {
   fold,             // det(M − I) = 0 (a branch point's curve too)
   period_doubling,  // det(M + I) = 0
   grazing,          // zero gap and zero gap rate at t_g
+  contact_onset,    // the push on the mass at rest at its landing is zero (contact_landing.hpp)
+  contact_end,      // the same condition, from a located contact_end point
 };
 
 // The names points.csv, continuation.json and Python use.
@@ -101,13 +103,16 @@ constexpr std::string_view to_string(CurveType type) {
     case CurveType::fold: return "fold";
     case CurveType::period_doubling: return "period_doubling";
     case CurveType::grazing: return "grazing";
+    case CurveType::contact_onset: return "contact_onset";
+    case CurveType::contact_end: return "contact_end";
   }
   return "unknown";
 }
 
 // The curve type named `text` (the option `curve`); none for another word.
 constexpr std::optional<CurveType> parse_curve_type(std::string_view text) {
-  for (const CurveType type : {CurveType::fold, CurveType::period_doubling, CurveType::grazing})
+  for (const CurveType type : {CurveType::fold, CurveType::period_doubling, CurveType::grazing,
+                               CurveType::contact_onset, CurveType::contact_end})
     if (to_string(type) == text) return type;
   return std::nullopt;
 }
@@ -120,6 +125,8 @@ constexpr std::optional<CurveType> curve_type_of(BifurcationType type) {
     case BifurcationType::branch_point: return CurveType::fold;
     case BifurcationType::period_doubling: return CurveType::period_doubling;
     case BifurcationType::grazing: return CurveType::grazing;
+    case BifurcationType::contact_onset: return CurveType::contact_onset;
+    case BifurcationType::contact_end: return CurveType::contact_end;
     default: return std::nullopt;
   }
 }
@@ -179,8 +186,8 @@ struct ContinuationResult {
   int map_evaluations = 0;
 };
 
-// A point of a two-parameter curve of a fold, period doubling or grazing
-// point (analysis/curve_continuation.hpp).
+// A point of a two-parameter curve of a fold, period doubling, grazing or
+// contact onset/end point (analysis/curve_continuation.hpp).
 struct CurvePoint {
   double p1 = 0.0, p2 = 0.0;
   OrbitPoint state{};                                  // on the requested section

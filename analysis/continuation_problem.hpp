@@ -51,6 +51,12 @@ struct OrbitEvaluation {
   double slowest_impact_time = std::numeric_limits<double>::quiet_NaN();
   int slowest_impact_witness = -1;
   std::vector<double> event_times;  // every event, time since the section (s)
+  // the landing of a contact phase whose push into the wall on the mass at
+  // rest is nearest zero (contact_landing.hpp): that push (force per unit
+  // mass; > 0: the contact phase holds) and its time since the section (s);
+  // NaN where the orbit lands nowhere or the system has no stuck mode
+  double landing_push = std::numeric_limits<double>::quiet_NaN();
+  double landing_time = std::numeric_limits<double>::quiet_NaN();
   double span = 0.0;                // nT (s)
   double omega = 0.0;               // forcing frequency (rad/s)
 };

@@ -41,6 +41,7 @@ class CurveDriver {
   CurveDriver(const TwoParameterProblem& problem, const CurveRequest& request)
       : problem_(problem), request_(request) {
     grazing_ = request.type == CurveType::grazing;
+    contact_ = request.type == CurveType::contact_onset || request.type == CurveType::contact_end;
     at_start_ = problem.at(request.from2);
     n_ = static_cast<int>(at_start_.dimension);
     p1_ = n_;
@@ -81,6 +82,10 @@ class CurveDriver {
     Vector fixed_p2 = Vector::Zero(size_);
     fixed_p2[p2_] = 1.0;
     Corrected start = correct(z, fixed_p2, z);
+    if (contact_ && start.at.orbit.completed && !std::isfinite(start.at.orbit.landing_push))
+      return stop(StopReason::start_not_converged,
+                  "the orbit has no landing with a push on the mass at rest (a contact curve "
+                  "needs a system with a stuck mode)");
     if (!start.converged)
       return stop(StopReason::start_not_converged, "Newton at the located point did not converge");
     const double direction2 = request_.to2 >= request_.from2 ? 1.0 : -1.0;
@@ -161,6 +166,9 @@ class CurveDriver {
       if (!gap.completed) return e;
       e.residual[n_] = gap.value;
       e.residual[n_ + 1] = gap.rate;
+    } else if (contact_) {
+      // the push on the mass at rest at its landing (contact_landing.hpp)
+      e.residual[n_] = e.orbit.landing_push;
     } else if (request_.type == CurveType::period_doubling) {
       e.residual[n_] = det_plus_identity(e.orbit.monodromy);
     } else {
@@ -399,6 +407,7 @@ class CurveDriver {
   const CurveRequest& request_;
   ContinuationProblem at_start_;
   bool grazing_ = false;
+  bool contact_ = false;                  // a contact onset or end: the landing push's zero
   int n_ = 2;                             // N: the state's components on the section
   int p1_ = 2, p2_ = 3, tg_ = 4;          // the indices of p₁, p₂ and t_g in z
   int size_ = 4;                          // unknowns: (x, p₁, p₂ [, t_g])

@@ -1,6 +1,7 @@
-// Two-parameter continuation: the curve of a fold, period doubling or grazing
-// point in the plane of two parameters (p₁, p₂), followed by pseudo-arclength
-// from a point located on a one-parameter branch (branch_continuation.hpp).
+// Two-parameter continuation: the curve of a fold, period doubling, grazing,
+// contact onset or contact end point in the plane of two parameters
+// (p₁, p₂), followed by pseudo-arclength from a point located on a
+// one-parameter branch (branch_continuation.hpp).
 //
 // Defining systems, each with the orbit condition F = Pⁿ(x; p₁, p₂) − x = 0:
 //  * fold:             det(M − I) = 0       unknowns (q, q̇, p₁, p₂)
@@ -9,6 +10,11 @@
 //                      wall's contacts suppressed near t_g (the virtual orbit
 //                      through the graze, as the one-parameter driver solves
 //                      it)                   unknowns (q, q̇, p₁, p₂, t_g)
+//  * contact onset / end: the push into the wall on the mass at rest at the
+//                      landing of the contact phase (contact_landing.hpp) is
+//                      zero: the mass returns to the wall exactly where the
+//                      push falls through zero, so the contact phase has
+//                      zero length           unknowns (q, q̇, p₁, p₂)
 // (q, q̇) stands for the N components of the state on the section (a model
 // file's N states). M is the saltation-corrected monodromy; the other
 // derivatives are central

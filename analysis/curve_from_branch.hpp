@@ -22,8 +22,8 @@
 
 namespace impactlab {
 
-// The curve of the first located fold, period doubling or grazing point (of
-// job.curve_type where given) of branch `index`, in (job.parameter,
+// The curve of the first located point of job.curve_type (without one: the
+// first fold, period doubling or grazing point) of branch `index`, in (job.parameter,
 // job.second_parameter), into `curve`; false, with why in `note`, where the
 // branch has none. map_at(scene, period) is the branch's section map of the
 // system `scene` describes, continued in job.parameter (stroboscopic or
@@ -39,9 +39,13 @@ bool continue_curve_of(const ContinuationJobResult& result, std::size_t index, C
                        const ContinuationJob& job, const FlowSetup& setup, double omega) {
   const ContinuationResult& branch = result.branches.at(index).result;
   const int period = result.branches[index].period;
+  // the type asked for; without one, the first fold, period doubling or grazing
   const auto wanted = [&](const BifurcationPoint& p) {
     const std::optional<CurveType> type = curve_type_of(p.type);
-    return p.located && type && (!job.curve_type || *type == *job.curve_type);
+    if (!p.located || !type) return false;
+    if (job.curve_type) return *type == *job.curve_type;
+    return *type == CurveType::fold || *type == CurveType::period_doubling ||
+           *type == CurveType::grazing;
   };
   const auto found = std::find_if(branch.points.begin(), branch.points.end(), wanted);
   if (found == branch.points.end()) {

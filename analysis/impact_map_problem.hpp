@@ -16,6 +16,7 @@
 #include <optional>
 #include <utility>
 
+#include <impactlab/analysis/contact_landing.hpp>
 #include <impactlab/analysis/continuation_problem.hpp>
 #include <impactlab/analysis/decorated_system.hpp>
 #include <impactlab/analysis/flow_setup.hpp>
@@ -219,6 +220,12 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
     note_events(records.begin() + static_cast<std::ptrdiff_t>(impacts.first_record) + 1,
                 records.begin() + static_cast<std::ptrdiff_t>(impacts.stop_record) + 1, t0,
                 result);
+    // the landings from the start impact on, the target impact left out: at
+    // the fixed point it is the start impact one orbit on, with the same
+    // push, and the two would tie
+    note_landing_push(system, records.begin() + static_cast<std::ptrdiff_t>(impacts.first_record),
+                      records.begin() + static_cast<std::ptrdiff_t>(impacts.stop_record), t0,
+                      result);
     // the slowest impact. With the section's own wall, only the target
     // impact (the section's own, one orbit on) is a grazing candidate: the
     // driver solves it on the stroboscopic map (problem.strobe); another

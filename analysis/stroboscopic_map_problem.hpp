@@ -14,6 +14,7 @@
 #include <numbers>
 #include <optional>
 
+#include <impactlab/analysis/contact_landing.hpp>
 #include <impactlab/analysis/continuation_problem.hpp>
 #include <impactlab/analysis/decorated_system.hpp>
 #include <impactlab/analysis/flow_setup.hpp>
@@ -95,6 +96,7 @@ ContinuationProblem stroboscopic_map_problem(MakeSystem make_system,
     result.span = span;
     result.omega = omega;
     note_events(log.records().begin(), log.records().end(), t0, result);
+    note_landing_push(system, log.records().begin(), log.records().end(), t0, result);
     for (const auto& crossing : trace.crossings) {
       if (crossing.speed < result.min_impact_speed) {
         result.min_impact_speed = crossing.speed;

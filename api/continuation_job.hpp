@@ -18,7 +18,7 @@ constexpr int doublings_followed = 3;
 struct ContinueOptions {
   std::string param;                  // NAME=FROM:TO: the scene key continued
   std::string param2;                 // NAME=FROM:TO: a two-parameter curve; empty: none
-  std::string curve;                  // fold | period_doubling | grazing; empty: the first located
+  std::string curve;  // fold | period_doubling | grazing | contact_onset | contact_end; empty: the first located
   int period = 1;                     // n: forcing periods of the orbit
   std::string section = "strobe";     // strobe[:PHASE] | impact:WALL
   bool switch_doubling = false;       // follow the doubling cascade (`switch`)

@@ -64,6 +64,23 @@ ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& 
                                    ? ": " + result.branches[0].result.stop_detail
                                    : "",
                                mention("period"), mention("start"), mention("transient")));
+  // a curve type asked for that the branch has no located point of
+  if (job.curve_type && !result.has_curve) {
+    const auto& points = result.branches[0].result.points;
+    const bool has_point = std::any_of(points.begin(), points.end(), [&](const BifurcationPoint& p) {
+      return p.located && curve_type_of(p.type) == job.curve_type;
+    });
+    if (!has_point) {
+      std::string located;
+      for (const BifurcationPoint& p : points)
+        if (p.located) located += (located.empty() ? "" : ", ") + std::string(type_name(p));
+      throw BadInput("curve", std::string(to_string(*job.curve_type)),
+                     fmt::format("the branch ({} from {} to {} at {} = {}) has no located point of "
+                                 "this type (located: {})",
+                                 job.parameter, job.from, job.to, job.second_parameter,
+                                 job.second_from, located.empty() ? "none" : located));
+    }
+  }
   return result;
 }
 

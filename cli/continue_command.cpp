@@ -315,10 +315,11 @@ int run_continue(const ContinueCommandOptions& command_options,
         {"switched_curves", switched_list},
         {"method",
          "pseudo-arclength continuation in (q, qdot, p1, p2) of the orbit condition "
-         "P^n(x) = x with det(M - I) = 0 (fold), det(M + I) = 0 (period doubling), or zero gap "
+         "P^n(x) = x with det(M - I) = 0 (fold), det(M + I) = 0 (period doubling), zero gap "
          "and zero gap rate at t_g with the wall's contacts suppressed near t_g (grazing; t_g is "
-         "an unknown too); the branch is run first at p2 = from2 and the curve starts at its "
-         "first located point of the type"},
+         "an unknown too), or a zero push into the wall on the mass at rest where its contact "
+         "phase lands (contact onset and end); the branch is run first at p2 = from2 and the "
+         "curve starts at its first located point of the type"},
         {"columns",
          {{range.name, "the first scene key (its unit in scene.units)"},
           {range2.name, "the second scene key (its unit in scene.units)"},

@@ -3,8 +3,8 @@
 
     plot_curve.py curve.csv out.png PARAM1 PARAM2 [classes.csv]
 
-The curve of the fold, period-doubling or grazing point in (PARAM1, PARAM2),
-its type read from curve.json beside curve.csv, drawn over the period map of a
+The curve of the fold, period-doubling, grazing or contact onset/end point in
+(PARAM1, PARAM2), its type read from curve.json beside curve.csv, drawn over the period map of a
 2D sweep's classes.csv (the same two keys) when given. Axes carry their
 quantities and units, and the title the scene and the parameters held fixed
 (continuation.json beside curve.csv, scripts/plot_labels.py).

@@ -965,8 +965,10 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     just before it; start is then (phase, qdot)). The states and multipliers
     are N wide: N = 2 (q, qdot), or a model file's N states (q, qdot, state3,
     ...; multiplier1 ... multiplierN).
-    param2="NAME=FROM:TO" (with curve= fold, period_doubling or grazing; else
-    the first located point's type) follows that bifurcation's curve in the
+    param2="NAME=FROM:TO" (with curve= fold, period_doubling, grazing,
+    contact_onset or contact_end, a type the branch has no located point of
+    raising ValueError naming curve; else the first located fold, period
+    doubling or grazing) follows that bifurcation's curve in the
     plane of the two keys from the point the branch located (the CLI's
     --param2 and --curve; on either section): curves is then a list of dicts with the columns of
     curve.csv, the first branch's curve first, then each doubled branch's

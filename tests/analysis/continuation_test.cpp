@@ -40,6 +40,7 @@
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
+#include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/scene.hpp>
 
 namespace {
@@ -1135,17 +1136,22 @@ TEST(CurveContinuation, SwitchAtAGrazingPeriodDoublingPointFollowsThePeriodDoubl
   EXPECT_NEAR(switched.curve.curve.back().p1, period_doubling(o, 1.02, 1.05), 1e-9);
 }
 
-TEST(CurveContinuation, NoPointOfTheTypeOnTheBranchGivesNoCurve) {
+// A curve type asked for that the branch has no located point of is bad
+// input naming `curve` and the type (the run writes nothing).
+TEST(CurveContinuation, NoPointOfTheTypeOnTheBranchIsBadInputNamingCurve) {
   const ImpactOscillator o;
   const Scene scene = linear_impact_scene(o);
   ContinuationJob job = curve_job("omega", 3.0, 4.0, "r", 0.8, 0.6, CurveType::fold);  // no fold up to 7
   job.has_start = true;
   const auto start = PeriodOneOrbit(o, 3.0).section_state();
   job.start.assign(start.begin(), start.end());
-  const auto result = impactlab::continue_orbit(scene, job);
-  ASSERT_EQ(result.branches.at(0).result.stop_reason, StopReason::end_of_range);
-  EXPECT_FALSE(result.has_curve);
-  EXPECT_NE(result.curve_note.find("fold"), std::string::npos);
+  try {
+    impactlab::continue_orbit(scene, job);
+    FAIL() << "no BadInput";
+  } catch (const impactlab::BadInput& error) {
+    EXPECT_EQ(error.key(), "curve");
+    EXPECT_EQ(error.value(), "fold");
+  }
 }
 
 }  // namespace

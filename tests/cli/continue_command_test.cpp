@@ -97,6 +97,28 @@ TEST(ContinueCommand, TwoParameterCurveWritesTheCurveAndItsSidecar) {
   EXPECT_TRUE(fs::exists(out / "branch.csv"));
 }
 
+// The plastic stop (r = 0): the branch's located contact end, then its curve
+// in (omega, sigma) from its own defining condition (the push on the mass at
+// rest at its landing is zero), in curve.csv and curve.json.
+TEST(ContinueCommand, ContactEndCurveWritesTheCurveAndItsSidecar) {
+  const ScratchFolder scratch;
+  const auto out = scratch / "out";
+  const ProgramRun outcome = run_command_line(
+      "continue linear_impact --set r=0 --param omega=1.5:1.8 --param2 sigma=0.2:0.3 "
+      "--curve contact_end --quiet --out " +
+      out.string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_NE(slurp(out / "points.csv").find("contact_end,1.670310638"), std::string::npos)
+      << slurp(out / "points.csv");
+  const std::string curve = slurp(out / "curve.csv");
+  EXPECT_EQ(curve.rfind("omega,sigma,q,qdot,multiplier1_re,", 0), 0u) << curve;
+  EXPECT_GT(count_lines(curve), 5);
+  const auto meta = nlohmann::json::parse(slurp(out / "curve.json"));
+  EXPECT_EQ(meta["type"], "contact_end");
+  EXPECT_EQ(meta["stop_reason"], "end_of_range");
+  EXPECT_EQ(meta["request"]["curve"], "contact_end");
+}
+
 TEST(ContinueCommand, SwitchWithACurveWritesTheDoubledBranchsCurveToo) {
   const ScratchFolder scratch;
   const auto out = scratch / "out";
@@ -145,6 +167,9 @@ TEST(ContinueCommand, BadInputExitsWithTwoAndOneLineNamingTheKey) {
       // --curve without --param2; an unknown curve; one start number
       {"continue linear_impact --param omega=2:2.5 --curve fold", "--curve"},
       {"continue linear_impact --param omega=2:2.5 --param2 r=0.8:0.6 --curve torus", "--curve"},
+      // a curve type the branch has no located point of (no contact phase at r = 0.8)
+      {"continue linear_impact --param omega=2:2.5 --param2 sigma=0.2:0.3 --curve contact_end",
+       "--curve"},
       {"continue linear_impact --param omega=2:2.5 --start 0.1", "--start"},
   };
   for (const auto& [arguments, key] : bad) {

@@ -94,6 +94,9 @@ def test_unknown_scene_raises_value_error():
     (lambda: impactlab.continue_("linear_impact", param="omega=2:3", curve="fold"), "curve"),
     (lambda: impactlab.continue_("linear_impact", param="omega=2:3", param2="r=0.8:0.6",
                                  curve="torus"), "curve"),
+    # a curve type the branch has no located point of (no contact phase at r = 0.8)
+    (lambda: impactlab.continue_("linear_impact", param="omega=2:2.5", param2="sigma=0.2:0.3",
+                                 curve="contact_end"), "curve"),
 ])
 def test_bad_option_raises_value_error_naming_it(call, named):
     """The message begins with the key it names: "KEY = VALUE: reason"."""

@@ -359,6 +359,26 @@ def test_two_parameter_curves_equal_cli(cli):
     assert rows == len(table["A"]) > 10
 
 
+def test_contact_end_curve_equals_cli(cli):
+    # the plastic stop's contact end, located on the branch, and its curve in
+    # (omega, sigma) from its own defining condition: curve.csv bit for bit
+    out = cli("continue", "linear_impact", "--set", "r=0", "--param", "omega=1.5:1.8",
+              "--param2", "sigma=0.2:0.3", "--curve", "contact_end")
+    result = impactlab.continue_("linear_impact", r=0, param="omega=1.5:1.8",
+                                 param2="sigma=0.2:0.3", curve="contact_end")
+    points = read_csv(out / "points.csv")
+    assert points["type"] == result.points["type"] and "contact_end" in points["type"]
+    assert result.curve_note == ""
+    table = read_csv(out / "curve.csv")
+    (curve,) = result.curves
+    assert curve["type"] == "contact_end" and len(table["omega"]) > 5
+    for column in ("omega", "sigma", "q", "qdot", "impacts", "newton_iterations"):
+        same_numbers(table[column], curve[column])
+    for k in (1, 2):
+        same_numbers(table["multiplier{}_re".format(k)], curve["multiplier{}".format(k)].real)
+        same_numbers(table["multiplier{}_im".format(k)], curve["multiplier{}".format(k)].imag)
+
+
 def test_continue_on_the_impact_section_equals_cli(cli):
     out = cli("continue", "linear_impact", "--set", "sigma=0.2", "--param", "omega=2:2.4",
               "--section", "impact:+1")

@@ -1,0 +1,175 @@
+// The curve of a contact phase's end in two parameters (--param2 with
+// --curve contact_end; analysis/curve_continuation.hpp with the landing push
+// of analysis/contact_landing.hpp) against its closed form, written here
+// independently of the toolkit.
+//
+// The linear impact oscillator ẍ + 2ζẋ + x = A cos ωt with a plastic stop
+// (r = 0) at x = σ: the mass that reaches the stop stays on it while the push
+// A cos ωt − σ is positive and is released where the push falls through zero,
+// ω t_r = arccos(σ/A). Its period-1 orbit with a contact phase is released at
+// t_r, flies freely from (σ, 0) and returns to the stop before t_r + T, and
+// the contact phase ends where the return comes exactly at t_r + T: at each
+// σ, the root in ω of σ − x(t_r + T) on the free flight from (σ, 0) at t_r
+// (TOMS 748), the flight below the stop before it. Every point of the curve
+// must lie on it to 1e-9 in ω, with the closed form's state on the section
+// (the stroboscopic one, and the impact section of the stop).
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <string>
+
+#include <boost/math/tools/roots.hpp>
+#include <gtest/gtest.h>
+
+#include <impactlab/analysis/continuation.hpp>
+#include <impactlab/api/scene_jobs.hpp>
+#include <impactlab/api/scene_loading.hpp>
+#include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/scene.hpp>
+
+namespace {
+
+using impactlab::BifurcationType;
+using impactlab::ContinuationJob;
+using impactlab::CurveType;
+using impactlab::Scene;
+using impactlab::StopReason;
+
+constexpr double two_pi = 2.0 * std::numbers::pi;
+constexpr double zeta = 0.05, amplitude = 1.0;
+
+// The flight of ẍ + 2ζẋ + x = A cos ωt from (x0, v0) at t0, at t (closed form:
+// the damped homogeneous solution plus the harmonic response).
+std::array<double, 2> free_flight(double omega, double t0, double x0, double v0, double t) {
+  const double detuning = 1.0 - omega * omega;
+  const double denominator = detuning * detuning + 4.0 * zeta * zeta * omega * omega;
+  const double P = amplitude * detuning / denominator;
+  const double Q = 2.0 * zeta * omega * amplitude / denominator;
+  auto particular = [&](double s) {
+    return std::array<double, 2>{P * std::cos(omega * s) + Q * std::sin(omega * s),
+                                 omega * (Q * std::cos(omega * s) - P * std::sin(omega * s))};
+  };
+  const double wd = std::sqrt(1.0 - zeta * zeta);
+  const auto p0 = particular(t0), p = particular(t);
+  const double c1 = x0 - p0[0], c2 = (v0 - p0[1] + zeta * c1) / wd;
+  const double tau = t - t0, decay = std::exp(-zeta * tau);
+  const double c = std::cos(wd * tau), s = std::sin(wd * tau);
+  return {decay * (c1 * c + c2 * s) + p[0],
+          decay * ((wd * c2 - zeta * c1) * c - (wd * c1 + zeta * c2) * s) + p[1]};
+}
+
+double release_time(double omega, double sigma) { return std::acos(sigma / amplitude) / omega; }
+
+// σ − x(t_r + T): the gap one forcing period after the release
+double return_gap(double omega, double sigma) {
+  const double release = release_time(omega, sigma);
+  return sigma - free_flight(omega, release, sigma, 0.0, release + two_pi / omega)[0];
+}
+
+// The contact end at σ nearest `near` in ω: the sign change of the return
+// gap on a grid of 1e-3 around it, then TOMS 748 to the last bits.
+double contact_end_omega(double sigma, double near) {
+  const double step = 1e-3;
+  for (int k = 0; k < 100; ++k) {
+    for (const double a : {near + k * step, near - (k + 1) * step}) {
+      const double b = a + step;
+      if (return_gap(a, sigma) * return_gap(b, sigma) > 0.0) continue;
+      std::uintmax_t iterations = 300;
+      const auto bracket = boost::math::tools::toms748_solve(
+          [&](double omega) { return return_gap(omega, sigma); }, a, b,
+          boost::math::tools::eps_tolerance<double>(50), iterations);
+      return 0.5 * (bracket.first + bracket.second);
+    }
+  }
+  return NAN;
+}
+
+Scene plastic_stop_scene() {
+  Scene scene = impactlab::load_scene("linear_impact");
+  scene.values["zeta"] = zeta;
+  scene.values["A"] = amplitude;
+  scene.values["r"] = 0.0;
+  scene.values["sigma"] = 0.2;
+  return scene;
+}
+
+ContinuationJob contact_end_job(double sigma_to) {
+  ContinuationJob job;
+  job.parameter = "omega";
+  job.from = 1.5;
+  job.to = 1.8;
+  job.second_parameter = "sigma";
+  job.second_from = 0.2;
+  job.second_to = sigma_to;
+  job.curve_type = CurveType::contact_end;
+  return job;
+}
+
+TEST(ContactBoundaryCurve, ContactEndOfThePlasticStopInOmegaAndSigmaAtItsClosedForm) {
+  const auto result = impactlab::continue_orbit(plastic_stop_scene(), contact_end_job(0.35));
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  EXPECT_EQ(curve.type, CurveType::contact_end);
+  EXPECT_EQ(curve.stop_reason, StopReason::end_of_range) << curve.stop_detail;
+  ASSERT_GE(curve.curve.size(), 10u);
+  EXPECT_DOUBLE_EQ(curve.curve.front().p2, 0.2);
+  EXPECT_DOUBLE_EQ(curve.curve.back().p2, 0.35);
+  for (const auto& point : curve.curve) {
+    const double expected = contact_end_omega(point.p2, point.p1);
+    ASSERT_TRUE(std::isfinite(expected)) << "sigma = " << point.p2;
+    EXPECT_NEAR(point.p1, expected, 1e-9 * expected) << "sigma = " << point.p2;
+    // the flight from the release stays below the stop until t_r + T: the
+    // root is the orbit's first return
+    const double release = release_time(expected, point.p2), period = two_pi / expected;
+    for (int k = 1; k < 200; ++k)
+      ASSERT_LT(free_flight(expected, release, point.p2, 0.0, release + period * k / 200.0)[0],
+                point.p2)
+          << "sigma = " << point.p2;
+    // the state on the section ωt ≡ 0: the flight from (σ, 0) at t_r, at T
+    const auto x = free_flight(expected, release, point.p2, 0.0, period);
+    EXPECT_NEAR(point.state[0], x[0], 1e-8) << "sigma = " << point.p2;
+    EXPECT_NEAR(point.state[1], x[1], 1e-8) << "sigma = " << point.p2;
+    // the monodromy vanishes on the curve (the release forgets the state)
+    EXPECT_LT(std::abs(point.multipliers[0]), 1e-6) << "sigma = " << point.p2;
+  }
+}
+
+// The same curve on the impact section (impact:1): the state is the landing
+// itself, the phase ω t_r (mod 2π) = arccos(σ/A) and the rate just before it,
+// ẋ(t_r + T) of the flight from (σ, 0) at t_r.
+TEST(ContactBoundaryCurve, ContactEndOnTheImpactSectionAtItsClosedForm) {
+  ContinuationJob job = contact_end_job(0.35);
+  job.impact_wall = 1;
+  const auto result = impactlab::continue_orbit(plastic_stop_scene(), job);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  EXPECT_EQ(curve.stop_reason, StopReason::end_of_range) << curve.stop_detail;
+  ASSERT_GE(curve.curve.size(), 10u);
+  for (const auto& point : curve.curve) {
+    const double expected = contact_end_omega(point.p2, point.p1);
+    ASSERT_TRUE(std::isfinite(expected)) << "sigma = " << point.p2;
+    EXPECT_NEAR(point.p1, expected, 1e-9 * expected) << "sigma = " << point.p2;
+    const double release = release_time(expected, point.p2);
+    EXPECT_NEAR(point.state[0], std::acos(point.p2 / amplitude), 1e-9) << "sigma = " << point.p2;
+    const auto before = free_flight(expected, release, point.p2, 0.0, release + two_pi / expected);
+    EXPECT_NEAR(point.state[1], before[1], 1e-8) << "sigma = " << point.p2;
+  }
+}
+
+TEST(ContactBoundaryCurve, ATypeTheBranchHasNoPointOfIsBadInputNamingCurve) {
+  // the branch of the plastic stop from ω = 1.5 to 1.8 has a contact end and
+  // no contact onset
+  ContinuationJob job = contact_end_job(0.3);
+  job.curve_type = CurveType::contact_onset;
+  try {
+    impactlab::continue_orbit(plastic_stop_scene(), job);
+    FAIL() << "no BadInput";
+  } catch (const impactlab::BadInput& error) {
+    EXPECT_EQ(error.key(), "curve");
+    EXPECT_EQ(error.value(), "contact_onset");
+    EXPECT_NE(std::string(error.what()).find("contact_end"), std::string::npos) << error.what();
+  }
+}
+
+}  // namespace
