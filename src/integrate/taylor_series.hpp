@@ -27,10 +27,12 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <stdexcept>
 #include <type_traits>
 
 #include <impactlab/core/fast_trig.hpp>
+#include <impactlab/integrate/series_lane.hpp>
 
 namespace impactlab {
 
@@ -468,38 +470,91 @@ class TaylorSeries {
     evaluate_orders(x0, t0, order, rhs, signs_from_slope);
   }
 
-  template <class Rhs>
-  void evaluate_orders(const Real* x0, const Real& t0, int order, Rhs& rhs, bool signs_from_slope) {
-    static_assert(2 * N + 1 < Evaluation::max_rows);
-    Evaluation evaluation(rows_, 2 * N + 1, t0, signs_from_slope);
-    for (std::size_t i = 0; i < N; ++i) state_row(i)[0] = x0[i];
-    Real* time = row(2 * N);
+  // One evaluation in progress: its rows' bookkeeping and the variables of
+  // the order being computed.
+  struct Pass {
+    Pass(TaylorSeries& series, const Real* x0, const Real& t0, bool signs_from_slope)
+        : evaluation(series.rows_, 2 * N + 1, t0, signs_from_slope) {
+      for (std::size_t i = 0; i < N; ++i) series.state_row(i)[0] = x0[i];
+    }
+    Evaluation evaluation;
     Variables x, dxdt;
     Outputs outputs;
-    for (int k = 0; k <= order; ++k) {
-      evaluation.start_order(k);
-      for (std::size_t i = 0; i < N; ++i)
-        x[i] = TaylorVariable<Real>(&evaluation, state_row(i), state_row(i)[k],
-                                    TaylorVariable<Real>::unbounded, rate_row(i));
-      time[k] = k == 0 ? t0 : k == 1 ? Real(1) : Real(0);
-      const TaylorVariable<Real> t(&evaluation, time, time[k], 1);
-      output_count_ = rhs(x, t, dxdt, outputs);
-      for (std::size_t i = 0; i < N; ++i) {
-        const Real f = dxdt[i].coefficient(k);
-        rate_row(i)[k] = f;
-        if (k < order) state_row(i)[k + 1] = f * taylor_reciprocal<Real>(k + 1);
-      }
-      for (int j = 0; j < output_count_; ++j) {
-        // an output that is a constant or the time gets a row of its own
-        const TaylorVariable<Real>& out = outputs[j];
-        Real* out_row = out.is_constant() ? evaluation.take_row() : out.row();
-        out_row[k] = out.coefficient(k);
-        output_rows_[j] = out_row;
-      }
-    }
-    needs_slope_ = signs_need_slope(evaluation);
+  };
+
+  template <class Rhs>
+  void evaluate_orders(const Real* x0, const Real& t0, int order, Rhs& rhs, bool signs_from_slope) {
+    Pass pass(*this, x0, t0, signs_from_slope);
+    for (int k = 0; k <= order; ++k) evaluate_order(pass, k, order, rhs);
+    needs_slope_ = signs_need_slope(pass.evaluation);
   }
 
+  // coefficient k of every operation, and the state's coefficient k + 1
+  template <class Rhs>
+  void evaluate_order(Pass& pass, int k, int order, Rhs& rhs) {
+    static_assert(2 * N + 1 < Evaluation::max_rows);
+    Evaluation& evaluation = pass.evaluation;
+    Real* time = row(2 * N);
+    evaluation.start_order(k);
+    for (std::size_t i = 0; i < N; ++i)
+      pass.x[i] = TaylorVariable<Real>(&evaluation, state_row(i), state_row(i)[k],
+                                       TaylorVariable<Real>::unbounded, rate_row(i));
+    time[k] = k == 0 ? evaluation.start_time() : k == 1 ? Real(1) : Real(0);
+    const TaylorVariable<Real> t(&evaluation, time, time[k], 1);
+    output_count_ = rhs(pass.x, t, pass.dxdt, pass.outputs);
+    for (std::size_t i = 0; i < N; ++i) {
+      const Real f = pass.dxdt[i].coefficient(k);
+      rate_row(i)[k] = f;
+      if (k < order) state_row(i)[k + 1] = f * taylor_reciprocal<Real>(k + 1);
+    }
+    for (int j = 0; j < output_count_; ++j) {
+      // an output that is a constant or the time gets a row of its own
+      const TaylorVariable<Real>& out = pass.outputs[j];
+      Real* out_row = out.is_constant() ? evaluation.take_row() : out.row();
+      out_row[k] = out.coefficient(k);
+      output_rows_[j] = out_row;
+    }
+  }
+
+ public:
+  // One series of a batch (integrate/series_lane.hpp): where its
+  // coefficients go, the expansion point, the order, and the right-hand
+  // side (of the same type in every lane, its system and mode its own).
+  template <class Rhs>
+  struct Lane {
+    TaylorSeries* series;
+    const Real* x0;
+    Real t0;
+    int order;
+    Rhs rhs;
+  };
+
+  // The series of several lanes together, order by order: at each order
+  // every lane's right-hand side runs before any lane's next order, so that
+  // the lanes' independent chains of recurrences (each order waits for the
+  // one before it: docs/performance.md) overlap in the processor's
+  // out-of-order window instead of running one after the other. Each lane
+  // runs exactly evaluate()'s operations in evaluate()'s order, without the
+  // slope of the signs (a lane whose signs need it evaluates again alone, as
+  // evaluate() would): its coefficients are evaluate()'s to the last bit.
+  template <class Rhs>
+  [[gnu::flatten]] static void evaluate_lanes(Lane<Rhs>* lanes, int count) {
+    static_assert(std::is_same_v<Real, double>, "a batch runs in double");
+    std::array<std::optional<Pass>, max_series_lanes> passes;
+    int highest_order = 0;
+    for (int i = 0; i < count; ++i) {
+      passes[i].emplace(*lanes[i].series, lanes[i].x0, lanes[i].t0, false);
+      highest_order = std::max(highest_order, lanes[i].order);
+    }
+    for (int k = 0; k <= highest_order; ++k)
+      for (int i = 0; i < count; ++i)
+        if (k <= lanes[i].order)
+          lanes[i].series->evaluate_order(*passes[i], k, lanes[i].order, lanes[i].rhs);
+    for (int i = 0; i < count; ++i)
+      lanes[i].series->needs_slope_ = signs_need_slope(passes[i]->evaluation);
+  }
+
+ private:
   Real* row(std::size_t r) { return &rows_[r * Evaluation::stride]; }
   Real* state_row(std::size_t i) { return row(i); }
   Real* rate_row(std::size_t i) { return row(N + i); }

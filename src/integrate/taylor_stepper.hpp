@@ -40,11 +40,13 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <type_traits>
 
 #include <impactlab/core/error_scale_groups.hpp>
 #include <impactlab/core/hybrid_system.hpp>
 #include <impactlab/integrate/event_location.hpp>
 #include <impactlab/integrate/polynomial_roots.hpp>
+#include <impactlab/integrate/series_lane.hpp>
 #include <impactlab/integrate/stepper_settings.hpp>
 #include <impactlab/integrate/taylor_series.hpp>
 
@@ -255,22 +257,61 @@ class TaylorStepper {
     return witness_at_zero(v, r, t_old_, tolerance);
   }
 
+  // The right-hand side and the mode's witnesses over the series type, as
+  // TaylorSeries runs them (the same for a lone stepper and a batch lane).
+  struct SeriesRhs {
+    const System* system;
+    Mode mode;
+    int operator()(const SeriesState<System, Real>& x, const TaylorVariable<Real>& t,
+                   SeriesState<System, Real>& dxdt, typename TaylorSeries<Real, dimension>::Outputs&
+                                                        witnesses) const {
+      system->rhs(mode, x, dxdt, t);
+      const auto count = static_cast<int>(system->witness_count(mode));
+      if (count > TaylorSeries<Real, dimension>::max_outputs)
+        throw std::length_error("taylor: more witnesses than the series holds");
+      for (int k = 0; k < count; ++k)
+        witnesses[k] = system->witness(mode, static_cast<std::size_t>(k), x, t).value;
+      return count;
+    }
+  };
+
+  // A batch lane's request for this stepper's series (integrate/series_lane.hpp)
+  struct LaneRequest : SeriesRequest {
+    TaylorStepper* stepper = nullptr;
+    const System* system = nullptr;
+    Mode mode{};
+  };
+
+  // the series of `count` requests of steppers of this type, together
+  static void evaluate_requests(SeriesRequest* const* requests, int count) {
+    using Lane = typename TaylorSeries<Real, dimension>::template Lane<SeriesRhs>;
+    std::array<Lane, max_series_lanes> lanes;
+    for (int i = 0; i < count; ++i) {
+      const auto& request = *static_cast<const LaneRequest*>(requests[i]);
+      TaylorStepper& stepper = *request.stepper;
+      lanes[i] = Lane{&stepper.series_, stepper.x_old_.data(), stepper.t_old_, stepper.order_,
+                      SeriesRhs{request.system, request.mode}};
+    }
+    TaylorSeries<Real, dimension>::evaluate_lanes(lanes.data(), count);
+  }
+
   // the coefficients of the state and of the mode's witnesses at the step's
-  // start
+  // start: from the batch lane where the stepper runs in one (without the
+  // signs' slope, as a batch evaluates), here otherwise
   void evaluate(const System& system, Mode mode, bool signs_from_slope) {
-    series_.evaluate(
-        x_old_.data(), t_old_, order_,
-        [&](const SeriesState<System, Real>& x, const TaylorVariable<Real>& t,
-            SeriesState<System, Real>& dxdt, typename Series::Outputs& witnesses) {
-          system.rhs(mode, x, dxdt, t);
-          const auto count = static_cast<int>(system.witness_count(mode));
-          if (count > Series::max_outputs)
-            throw std::length_error("taylor: more witnesses than the series holds");
-          for (int k = 0; k < count; ++k)
-            witnesses[k] = system.witness(mode, static_cast<std::size_t>(k), x, t).value;
-          return count;
-        },
-        signs_from_slope);
+    if constexpr (std::is_same_v<Real, double>) {
+      if (settings_.series_lane != nullptr && !signs_from_slope) {
+        LaneRequest request;
+        request.evaluate = &evaluate_requests;
+        request.stepper = this;
+        request.system = &system;
+        request.mode = mode;
+        settings_.series_lane->compute(request);
+        return;
+      }
+    }
+    SeriesRhs rhs{&system, mode};
+    series_.evaluate(x_old_.data(), t_old_, order_, rhs, signs_from_slope);
   }
 
   // the polynomial at h (s past the step's start)
