@@ -230,6 +230,31 @@ TEST(SeriesBatch, LanesOfDifferentSystemsEqualTheScalarRuns) {
             3 * (swing_alone.result.counters.steps + bounce_alone.result.counters.steps));
 }
 
+// Lanes of one system (a basin grid's initial states) are evaluated in
+// passes over LaneNumber, all four lanes at once; each still equals its
+// scalar run to the last bit, through chattering, contact phases with slip
+// reversals (a sign whose slope decides it) and releases.
+TEST(SeriesBatch, LanesOfOneSystemInOnePassEqualTheScalarRunsLaneForLane) {
+  std::vector<Trajectory<PendulumWalls>> jobs;
+  for (int i = 0; i < 9; ++i)
+    jobs.push_back({pendulum(4.163), {-0.06 + 0.015 * i, 0.3 - 0.07 * i, 0.0},
+                    PendulumWalls::Mode::free, forcing_periods(i == 2 ? 4 : 25)});
+  expect_lanes_equal_alone(jobs, 4);
+  std::vector<Trajectory<PaperPendulumWalls>> paper;
+  PendulumWallsParameters p;
+  p.V0 = 4.163;
+  for (int i = 0; i < 5; ++i)
+    paper.push_back({PaperPendulumWalls(p), {0.01 * i, 0.1 + 0.2 * i, 0.0, 0.0},
+                     PaperPendulumWalls::Mode::free, forcing_periods(20)});
+  expect_lanes_equal_alone(paper, 4);
+  std::vector<Trajectory<BouncingBall>> balls;
+  BouncingBallParameters q;
+  q.r = 0.05;
+  for (int i = 0; i < 6; ++i)
+    balls.push_back({BouncingBall(q), {0.02 + 0.01 * i, 0.1 * i}, BouncingBall::Mode{}, 3.0});
+  expect_lanes_equal_alone(balls, 4);
+}
+
 // A job that throws stops its lane; the other lanes finish their jobs, and
 // the exception comes out of run_in_lanes.
 TEST(SeriesBatch, AJobsExceptionComesOutAfterTheOtherLanesFinish) {
