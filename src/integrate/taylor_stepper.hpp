@@ -112,6 +112,10 @@ class TaylorStepper {
         scale_floor_(settings.atol / settings.rtol) {
     if (!(settings.rtol > 0.0) || !(settings.atol > 0.0))
       throw std::invalid_argument("taylor: rtol and atol must be positive");
+    // a stepper in a batch lane may lead a pass over lanes: its scratch made
+    // here, not while stepping
+    if constexpr (SeriesLanesAllowed<System> && std::is_same_v<Real, double>)
+      if (settings.series_lane != nullptr) lane_scratch_.series = std::make_unique<LaneSeries>();
   }
 
   [[nodiscard]] int order() const { return order_; }
@@ -321,6 +325,7 @@ class TaylorStepper {
   static void evaluate_pass(const std::array<const LaneRequest*, series_lane_width>& members,
                             int count) {
     TaylorStepper& leader = *members[0]->stepper;
+    // made with the stepper; here only for a copy of one (which starts without)
     if (!leader.lane_scratch_.series) leader.lane_scratch_.series = std::make_unique<LaneSeries>();
     std::array<LaneNumber<series_lane_width>, dimension> x0;
     LaneNumber<series_lane_width> t0;
