@@ -20,6 +20,9 @@ struct FlowSetup {
   double rtol = 1e-10;            // integrator.rtol
   double atol = 1e-12;            // integrator.atol (state units)
   std::uint64_t step_budget = default_step_budget;  // limits.max_steps, per event-loop run
+  // the batch lane whose Taylor steppers' series are computed together with
+  // other lanes' (simulate/series_batch.hpp); none: each stepper its own
+  SeriesLane* series_lane = nullptr;
 };
 
 // The scene's integrator keys and step budget.
@@ -40,6 +43,7 @@ StepperSettings stepper_settings(const System& system, const FlowSetup& setup) {
   settings.rtol = setup.rtol;
   settings.atol = setup.atol;
   settings.max_step = system.max_step();
+  settings.series_lane = setup.series_lane;
   return settings;
 }
 

@@ -119,7 +119,8 @@ SectionResult run_section(const System& system, const typename System::State& x0
   const double period = result.forcing_period;
   // the transient and record at the request's stepper where it names one;
   // the Lyapunov run always at the scene's integrator
-  const FlowSetup lyapunov_setup = flow_setup(scene);
+  FlowSetup lyapunov_setup = flow_setup(scene);
+  lyapunov_setup.series_lane = request.series_lane;
   const FlowSetup setup =
       request.integrator ? with_integrator(lyapunov_setup, *request.integrator) : lyapunov_setup;
   check_section_size(request, omega, system.max_step(), setup.step_budget);

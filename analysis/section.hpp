@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include <impactlab/integrate/series_lane.hpp>
 #include <impactlab/simulate/termination.hpp>
 
 namespace impactlab {
@@ -175,6 +176,10 @@ struct SectionRequest {
   // None: no reports (the CLI's and Python's poincare pass none, so that
   // their counters agree).
   std::function<void(double fraction)> progress{};
+  // the batch lane the run's Taylor steppers get their series from
+  // (simulate/series_batch.hpp): the same run, computed together with other
+  // lanes' runs; none: alone
+  SeriesLane* series_lane = nullptr;
 };
 
 // How a section run ended: its event loop's Termination (the same values in

@@ -307,7 +307,7 @@ std::vector<SweepRecord> run_sweep_task(
     const Scene& base, const SweepTarget& target, const SweepPlan& plan, const SweepTask& task,
     const std::function<const SweepRecord*(int position)>& done,
     const std::function<void(const SweepRecord&)>& on_record,
-    const std::function<bool()>& keep_going, bool keep_points) {
+    const std::function<bool()>& keep_going, bool keep_points, SeriesLane* series_lane) {
   std::vector<SweepRecord> records;
   std::optional<ContinuationState> previous;
   for (std::size_t position = 0; position < task.points.size(); ++position) {
@@ -322,6 +322,7 @@ std::vector<SweepRecord> run_sweep_task(
     const Scene scene = scene_at(base, *target.schema, plan, task.points[position]);
     SectionRequest request = plan.section;
     request.integrator = plan.classification_integrator;
+    request.series_lane = series_lane;
     if (plan.follow_attractor) request.start = previous;
     SweepRecord record;
     record.task = task.id;

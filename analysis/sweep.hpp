@@ -22,6 +22,7 @@
 
 #include <impactlab/analysis/initial_box.hpp>
 #include <impactlab/analysis/section.hpp>
+#include <impactlab/integrate/series_lane.hpp>
 #include <impactlab/io/scene.hpp>
 
 namespace impactlab {
@@ -135,11 +136,14 @@ Scene scene_at(const Scene& base, const SceneSchema& schema, const SweepPlan& pl
 // with `keep_points` false they carry no section points (their count stays in
 // result.point_count): a front end that wrote the points out in `on_record`
 // then holds one point's worth of them at a time, not the whole sweep's.
+// `series_lane`: the batch lane the task runs in (simulate/series_batch.hpp),
+// or none; the records are the same either way.
 std::vector<SweepRecord> run_sweep_task(
     const Scene& base, const SweepTarget& target, const SweepPlan& plan, const SweepTask& task,
     const std::function<const SweepRecord*(int position)>& done,
     const std::function<void(const SweepRecord&)>& on_record,
-    const std::function<bool()>& keep_going, bool keep_points = true);
+    const std::function<bool()>& keep_going, bool keep_points = true,
+    SeriesLane* series_lane = nullptr);
 
 // The record without its section points (their count kept).
 void drop_points(SweepRecord& record);

@@ -118,6 +118,14 @@ OptionSpec sweep_threads() {
           .default_value = 1.0, .lower = 1, .upper = 1024};
 }
 
+OptionSpec batch() {
+  return {.name = "batch", .type = OptionType::text,
+          .help = "on: where the stepper is taylor, each thread runs its trajectories in the lanes "
+                  "of a batch whose Taylor series are computed together; off: one at a time. The "
+                  "files are the same",
+          .default_value = string_view("on"), .choices = {"on", "off"}};
+}
+
 OptionSpec resume(string_view help) {
   return {.name = "resume", .type = OptionType::flag, .help = help, .default_value = false,
           .front_ends = FrontEnds::cli};
@@ -165,6 +173,7 @@ Options sweep_options() {
          .help = "1D: follow the attractor up, down or both ways",
          .default_value = string_view("up"), .choices = {"up", "down", "both"}},
         sweep_threads(),
+        batch(),
         {.name = "chunks", .type = OptionType::integer,
          .help = "1D: split each direction into this many continuation runs, each from the "
                  "scene's initial state (lets threads share a 1D sweep)",
@@ -193,6 +202,7 @@ Options basins_options() {
         {.name = "y", .type = OptionType::text, .help = "KEY=FROM:TO:N: the second grid key",
          .required = true},
         sweep_threads(),
+        batch(),
         {.name = "lyapunov", .type = OptionType::flag,
          .help = "also compute the largest Lyapunov exponent", .default_value = false},
         lyapunov_spectrum(
@@ -228,6 +238,7 @@ Options attractors_options() {
                  "the threads",
          .default_value = 1.0, .lower = 0, .upper = 1.8e19},
         sweep_threads(),
+        batch(),
         {.name = "lyapunov", .type = OptionType::flag,
          .help = "also each attractor's largest Lyapunov exponent (the mean over its samples)",
          .default_value = false}},

@@ -15,6 +15,7 @@
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/api/scene_record.hpp>
 #include <impactlab/io/bad_input.hpp>
+#include <impactlab/simulate/series_batch.hpp>
 
 namespace impactlab {
 
@@ -158,6 +159,14 @@ nlohmann::json sweep_definition(const SweepPlan& plan, const Scene& scene,
   return definition;
 }
 
+int sweep_batch_width(const Scene& scene, const SweepPlan& plan, const std::string& batch) {
+  if (batch != "on" && batch != "off") throw BadInput("batch", batch, "expected on or off");
+  const std::string own = flow_setup(scene).method;
+  const bool taylor = own == "taylor" || (plan.classification_integrator &&
+                                          plan.classification_integrator->method == "taylor");
+  return batch == "on" && taylor ? default_batch_width : 1;
+}
+
 SweepOutput run_sweep(const Scene& scene, const SweepTarget& target, const SweepPlan& plan,
                       const std::vector<const SweepTask*>& tasks, const SweepJobOptions& options) {
   std::size_t points = 0;
@@ -169,15 +178,15 @@ SweepOutput run_sweep(const Scene& scene, const SweepTarget& target, const Sweep
   std::exception_ptr failure;
   SweepOutput output;
   output.records.resize(tasks.size());
+  output.batch_width = sweep_batch_width(scene, plan, options.batch);
   // called under the lock
   auto advance_progress = [&] {
     ++finished;
     if (options.progress)
       options.progress(static_cast<double>(finished) / static_cast<double>(points));
   };
-
-#pragma omp parallel for schedule(dynamic, 1) num_threads(options.threads)
-  for (std::size_t m = 0; m < tasks.size(); ++m) {
+  // task m, in a batch's lane or alone (nullptr)
+  auto run_task = [&](std::size_t m, SeriesLane* lane) {
     try {
       const SweepTask& task = *tasks[m];
       output.records[m] = run_sweep_task(
@@ -203,12 +212,35 @@ SweepOutput run_sweep(const Scene& scene, const SweepTarget& target, const Sweep
             }
             return true;
           },
-          options.keep_points);
+          options.keep_points, lane);
     } catch (...) {
       std::lock_guard lock(mutex);
       if (!failure) failure = std::current_exception();
       stopped = true;
     }
+  };
+
+  if (output.batch_width > 1) {
+    // each thread's lanes take the next task as they finish one
+    std::atomic<std::size_t> next_task{0};
+#pragma omp parallel num_threads(options.threads)
+    {
+      try {
+        run_in_lanes(output.batch_width, [&](SeriesLane& lane) {
+          const std::size_t m = next_task.fetch_add(1);
+          if (m >= tasks.size()) return false;
+          run_task(m, &lane);
+          return true;
+        });
+      } catch (...) {
+        std::lock_guard lock(mutex);
+        if (!failure) failure = std::current_exception();
+        stopped = true;
+      }
+    }
+  } else {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(options.threads)
+    for (std::size_t m = 0; m < tasks.size(); ++m) run_task(m, nullptr);
   }
   if (failure) std::rethrow_exception(failure);
   output.stopped = stopped;

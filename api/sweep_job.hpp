@@ -62,12 +62,24 @@ struct SweepJobOptions {
   // false: the records kept (SweepOutput) carry no section points, only their
   // count; for a front end that streams the points out in on_record
   bool keep_points = true;
+  // on: where the sweep's stepper is taylor, its tasks run in the lanes of a
+  // batch on each thread, their series computed together
+  // (simulate/series_batch.hpp); off: one task at a time on each thread.
+  // The records are the same either way.
+  std::string batch = "on";
 };
 
 struct SweepOutput {
   std::vector<std::vector<SweepRecord>> records;  // per task given, in order
   bool stopped = false;                           // stop_after ended it early
+  int batch_width = 1;  // lanes per thread (sweep_batch_width; meta.json)
 };
+
+// The lanes a sweep's batch runs per thread: default_batch_width where
+// `batch` is on and the transient and record, or the Lyapunov run, step
+// with taylor; 1 otherwise (no batch). BadInput (`batch`) for a value other
+// than on or off.
+int sweep_batch_width(const Scene& scene, const SweepPlan& plan, const std::string& batch);
 
 // Runs `tasks` (all of the plan's, or one MPI rank's share) on threads.
 SweepOutput run_sweep(const Scene& scene, const SweepTarget& target, const SweepPlan& plan,

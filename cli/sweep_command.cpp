@@ -47,6 +47,7 @@ struct SweepOptions {
   std::vector<std::string> params;
   std::string direction;
   int threads = 0;
+  std::string batch;  // on | off (api/sweep_job.hpp)
   int chunks = 0;
   bool lyapunov = false, no_lyapunov = false;
   bool lyapunov_spectrum = false;  // also all N exponents (columns lyapunov1..N)
@@ -424,6 +425,7 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   ProgressBar progress(!options.section.scene.quiet && mpi.rank() == 0);
   SweepJobOptions job;
   job.threads = options.threads;
+  job.batch = options.batch;
   job.done = &done;
   job.on_record = [&checkpoint, &checkpoint_path](const SweepRecord& record) {
     checkpoint << sweep_checkpoint_line(record) << '\n' << std::flush;
@@ -469,6 +471,7 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
                   SweepCheckpoints(directory, header, false), files);
   write_meta(run_files, definition, scene, *target.schema, all,
              {{"threads", options.threads},
+              {"batch_width", work.batch_width},
               {"mpi_ranks", mpi.size()},
               {"tasks", tasks.size()},
               {"points_reused_from_checkpoint", done.size()},
@@ -534,6 +537,7 @@ Command add_sweep_command(CLI::App& app) {
   table.add("param", options->params);
   table.add("direction", options->direction);
   table.add("threads", options->threads);
+  table.add("batch", options->batch);
   table.add("chunks", options->chunks);
   table.add("lyapunov", options->lyapunov);
   table.add("no_lyapunov", options->no_lyapunov);
@@ -563,6 +567,7 @@ Command add_basins_command(CLI::App& app) {
   table.add("x", options->params[0]);
   table.add("y", options->params[1]);
   table.add("threads", options->threads);
+  table.add("batch", options->batch);
   table.add("lyapunov", options->lyapunov);
   table.add("lyapunov_spectrum", options->lyapunov_spectrum);
   table.add("period_tol", options->period_tolerance);
@@ -594,6 +599,7 @@ Command add_attractors_command(CLI::App& app) {
   table.add("box", options->box);
   table.add("seed", options->seed);
   table.add("threads", options->threads);
+  table.add("batch", options->batch);
   table.add("lyapunov", options->lyapunov);
   table.add("period_tol", options->period_tolerance);
   table.add("max_period", options->max_period);

@@ -356,10 +356,11 @@ struct PlanRun {
   std::vector<SweepTask> tasks;
   std::map<SweepRecordKey, SweepRecord> records;
   double wall_time = 0.0;  // s
+  int batch_width = 1;     // lanes per thread (api/sweep_job.hpp)
 };
 
 PlanRun run_plan(const Scene& scene, const SweepTarget& target, const SweepPlan& plan,
-                 int threads, py::object progress) {
+                 int threads, const std::string& batch, py::object progress) {
   PlanRun run;
   run.tasks = sweep_tasks(plan);
   std::vector<const SweepTask*> all_tasks;
@@ -367,10 +368,12 @@ PlanRun run_plan(const Scene& scene, const SweepTarget& target, const SweepPlan&
   ProgressRelay relay(std::move(progress));
   SweepJobOptions job;
   job.threads = threads;
+  job.batch = batch;
   job.progress = [&relay](double fraction) { relay(fraction); };
   const auto start = std::chrono::steady_clock::now();
   SweepOutput output = relay.run([&] { return run_sweep(scene, target, plan, all_tasks, job); });
   run.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.batch_width = output.batch_width;
   for (auto& task_records : output.records)
     for (auto& record : task_records)
       run.records.emplace(SweepRecordKey{record.task, record.position}, std::move(record));
@@ -384,7 +387,7 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
                        std::optional<bool> lyapunov, bool lyapunov_spectrum,
                        double period_tolerance, int max_period,
                        const std::string& classification_tolerance, int threads,
-                       py::object progress) {
+                       const std::string& batch, py::object progress) {
   SweepSpec spec;
   spec.params = params;
   spec.direction = direction;
@@ -398,7 +401,7 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
   spec.classification_tolerance = classification_tolerance;
   const SweepTarget target = sweep_target(scene);
   const SweepPlan plan = make_sweep_plan(spec, scene, *target.schema);
-  const PlanRun run = run_plan(scene, target, plan, threads, std::move(progress));
+  const PlanRun run = run_plan(scene, target, plan, threads, batch, std::move(progress));
   const double wall_time = run.wall_time;
   SweepTable table = sweep_table(plan, run.tasks, run.records);
 
@@ -432,6 +435,7 @@ py::dict sweep_binding(const Scene& scene, const std::vector<std::string>& param
   out["stopped"] = stopped_points_note(run.records);
   out["unsettled"] = unsettled_points_note(run.records, plan);
   out["threads"] = threads;
+  out["batch_width"] = run.batch_width;
   return out;
 }
 
@@ -440,7 +444,8 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
                         double max_transient, std::uint64_t transient_impacts,
                         std::uint64_t points, bool lyapunov, bool lyapunov_spectrum,
                         double period_tolerance, int max_period, double attractor_tolerance,
-                        std::optional<int> entropy_box, int threads, py::object progress) {
+                        std::optional<int> entropy_box, int threads, const std::string& batch,
+                        py::object progress) {
   BasinsSpec spec;
   spec.x = x;
   spec.y = y;
@@ -454,7 +459,7 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
   spec.entropy_box = entropy_box;
   const SweepTarget target = sweep_target(scene);
   const SweepPlan plan = make_basins_plan(spec, scene, *target.schema);
-  const PlanRun run = run_plan(scene, target, plan, threads, std::move(progress));
+  const PlanRun run = run_plan(scene, target, plan, threads, batch, std::move(progress));
   const double wall_time = run.wall_time;
   BasinsTable table = basins_table(plan, run.tasks, run.records);
   AttractorRows attractors = attractor_rows(table.map);
@@ -464,7 +469,11 @@ py::dict basins_binding(const Scene& scene, const std::string& x, const std::str
       {"impactlab_version", IMPACTLAB_VERSION},
       {"sweep", basins_definition(plan, scene, *target.schema, section_record)},
       {"scene", scene_record(scene)},
-      {"run", {{"threads", threads}, {"tasks", run.tasks.size()}, {"wall_time_s", wall_time}}},
+      {"run",
+       {{"threads", threads},
+        {"batch_width", run.batch_width},
+        {"tasks", run.tasks.size()},
+        {"wall_time_s", wall_time}}},
       {"counts", sweep_counts(run.records)},
       {"basin_measures", basin_measures_record(table.measures)}};
   py::dict out;
@@ -510,6 +519,7 @@ struct AttractorsArguments {
   int max_period = 0;
   double attractor_tolerance = 0.0, match_tolerance = 0.0;
   int threads = 1;
+  std::string batch;
 };
 
 py::dict attractors_binding(const Scene& scene, const AttractorsArguments& arguments,
@@ -528,7 +538,8 @@ py::dict attractors_binding(const Scene& scene, const AttractorsArguments& argum
   spec.match_tolerance = arguments.match_tolerance;
   const SweepTarget target = sweep_target(scene);
   const SweepPlan plan = make_attractors_plan(spec, scene, *target.schema);
-  const PlanRun run = run_plan(scene, target, plan, arguments.threads, std::move(progress));
+  const PlanRun run =
+      run_plan(scene, target, plan, arguments.threads, arguments.batch, std::move(progress));
   AttractorsTable table = attractors_table(plan, run.tasks, run.records);
 
   const nlohmann::json section_record = section_request_record(arguments.section, plan.section);
@@ -537,7 +548,7 @@ py::dict attractors_binding(const Scene& scene, const AttractorsArguments& argum
       {"sweep", attractors_definition(plan, scene, *target.schema, section_record)},
       {"scene", scene_record(scene)},
       {"run",
-       {{"threads", arguments.threads}, {"tasks", run.tasks.size()},
+       {{"threads", arguments.threads}, {"batch_width", run.batch_width}, {"tasks", run.tasks.size()},
         {"wall_time_s", run.wall_time}}},
       {"counts", sweep_counts(run.records)},
       {"attractor_events", attractor_events_record(table, plan)}};
@@ -1146,12 +1157,13 @@ PYBIND11_MODULE(_impactlab, m) {
            std::optional<double> transient, double max_transient,
            std::uint64_t transient_impacts, std::uint64_t points, bool lyapunov,
            double period_tolerance, int max_period, double attractor_tolerance,
-           double match_tolerance, int threads, py::object progress) {
+           double match_tolerance, int threads, const std::string& batch, py::object progress) {
           return attractors_binding(
               scene,
               AttractorsArguments{param, samples, box, seed, section, transient, max_transient,
                                   transient_impacts, points, lyapunov, period_tolerance,
-                                  max_period, attractor_tolerance, match_tolerance, threads},
+                                  max_period, attractor_tolerance, match_tolerance, threads,
+                                  batch},
               std::move(progress));
         });
   m.def("periodic", &periodic_binding);

@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
-  libeigen3-dev libgsl-dev libboost-dev libfftw3-dev
+  libeigen3-dev libgsl-dev libboost-dev libboost-context-dev libfftw3-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
   libginac-dev libssl-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev

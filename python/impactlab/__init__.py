@@ -459,6 +459,16 @@ def _option(job, name, value):
     return value
 
 
+def _batch(job, value):
+    """The option `batch` of `job` as the library takes it: True or "on",
+    False or "off"; ValueError naming it otherwise."""
+    if isinstance(value, bool):
+        return "on" if value else "off"
+    if value not in _OPTIONS[job]["batch"]["choices"]:
+        raise ValueError("batch = {!r}: expected True, False, \"on\" or \"off\"".format(value))
+    return value
+
+
 def _refuse_excluded(job, given):
     """ValueError where two options of `given` (name -> value) that exclude
     each other are both away from their defaults, as the CLI refuses them."""
@@ -622,7 +632,8 @@ def _spectrum_columns(raw):
 
 @_documented("sweep")
 def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
-          threads=_default("sweep", "threads"), chunks=_default("sweep", "chunks"),
+          threads=_default("sweep", "threads"), batch=_default("sweep", "batch"),
+          chunks=_default("sweep", "chunks"),
           section=_default("sweep", "section"), transient=_default("sweep", "transient"),
           max_transient=_default("sweep", "max_transient"),
           transient_impacts=_default("sweep", "transient_impacts"),
@@ -659,7 +670,7 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
         loaded, params, direction, checked["chunks"], section, checked["transient"],
         checked["max_transient"], checked["transient_impacts"], checked["points"], lyapunov,
         lyapunov_spectrum, checked["period_tol"], checked["max_period"], classification_tol,
-        checked["threads"], callback),
+        checked["threads"], _batch("sweep", batch), callback),
         progress, "sweep")
     axes = raw["axes"]
     names = ["up" if d > 0 else "down" for d in raw["direction"]]
@@ -697,6 +708,7 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
 
 @_documented("basins")
 def basins(scene_, *, x, y, threads=_default("basins", "threads"),
+           batch=_default("basins", "batch"),
            section=_default("basins", "section"), transient=_default("basins", "transient"),
            max_transient=_default("basins", "max_transient"),
            transient_impacts=_default("basins", "transient_impacts"),
@@ -727,7 +739,8 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
         loaded, x, y, section, checked["transient"], checked["max_transient"],
         checked["transient_impacts"], checked["points"], lyapunov, lyapunov_spectrum,
         checked["period_tol"], checked["max_period"], checked["attractor_tol"],
-        checked["entropy_box"], checked["threads"], callback), progress, "basins")
+        checked["entropy_box"], checked["threads"], _batch("basins", batch), callback),
+        progress, "basins")
     axes = raw["axes"]
     nx, ny = raw["counts"]
     grid = Table({axes[0]: raw["x"], axes[1]: raw["y"], "attractor": raw["attractor"],
@@ -757,6 +770,7 @@ def basins(scene_, *, x, y, threads=_default("basins", "threads"),
 def attractors(scene_, *, param, samples=_default("attractors", "samples"),
                box=_default("attractors", "box"), seed=_default("attractors", "seed"),
                threads=_default("attractors", "threads"),
+               batch=_default("attractors", "batch"),
                section=_default("attractors", "section"),
                transient=_default("attractors", "transient"),
                max_transient=_default("attractors", "max_transient"),
@@ -797,7 +811,8 @@ def attractors(scene_, *, param, samples=_default("attractors", "samples"),
         loaded, param, checked["samples"], boxes, checked["seed"], section,
         checked["transient"], checked["max_transient"], checked["transient_impacts"],
         checked["points"], lyapunov, checked["period_tol"], checked["max_period"],
-        checked["attractor_tol"], checked["match_tol"], checked["threads"], callback),
+        checked["attractor_tol"], checked["match_tol"], checked["threads"],
+        _batch("attractors", batch), callback),
         progress, "attractors")
     name = raw["param"]
     rows = dict(raw["attractors"])

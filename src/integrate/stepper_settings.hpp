@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <string>
 
+#include <impactlab/integrate/series_lane.hpp>
+
 namespace impactlab {
 
 struct StepperSettings {
@@ -12,6 +14,10 @@ struct StepperSettings {
   double atol = 1e-12;      // absolute error per step (state units)
   double max_step = 0.1;    // largest step (s); set from the system
   double initial_step = 1e-3;  // first trial step (s)
+  // the batch lane a Taylor stepper gets its series from
+  // (integrate/series_lane.hpp); none: it computes them itself. The other
+  // steppers ignore it.
+  SeriesLane* series_lane = nullptr;
 };
 
 // The vector field of one mode of a hybrid system, with an evaluation

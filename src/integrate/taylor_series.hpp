@@ -27,10 +27,13 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <stdexcept>
 #include <type_traits>
 
 #include <impactlab/core/fast_trig.hpp>
+#include <impactlab/integrate/lane_number.hpp>
+#include <impactlab/integrate/series_lane.hpp>
 
 namespace impactlab {
 
@@ -42,13 +45,13 @@ inline constexpr int taylor_max_order = 32;
 // extended-precision types, whose 1/k a table of doubles would round
 template <class Real>
 Real taylor_reciprocal(int k) {
-  if constexpr (std::is_same_v<Real, double>) {
+  if constexpr (std::is_same_v<Real, double> || is_lane_number<Real>) {
     static constexpr auto table = [] {
       std::array<double, taylor_max_order + 2> r{};
       for (int j = 1; j <= taylor_max_order + 1; ++j) r[j] = 1.0 / j;
       return r;
     }();
-    return table[k];
+    return Real(table[k]);
   } else {
     return Real(1) / k;
   }
@@ -89,6 +92,8 @@ class TaylorEvaluation {
     if (order_ == 0 && sign_count_ < max_signs) sign_arguments_[sign_count_++] = argument;
   }
   [[nodiscard]] int sign_count() const { return sign_count_; }
+  // the rows the evaluation has taken so far (all of them, once it is done)
+  [[nodiscard]] int rows_taken() const { return next_row_; }
   [[nodiscard]] const Real* sign_argument(int i) const { return sign_arguments_[i]; }
 
  private:
@@ -126,7 +131,7 @@ class TaylorVariable {
 
   [[nodiscard]] bool is_constant() const { return evaluation_ == nullptr; }
   // the constant's value (a constant only)
-  [[nodiscard]] double constant() const { return static_cast<double>(value_); }
+  [[nodiscard]] double constant() const { return constant_value(value_); }
   [[nodiscard]] TaylorEvaluation<Real>* evaluation() const { return evaluation_; }
   [[nodiscard]] Real* row() const { return row_; }
   // a state component's derivative coefficients: j · a_j = rate[j − 1]
@@ -177,7 +182,22 @@ bool near_zero(const Real& a0, const Real& a1) {
 
 template <class Real>
 Real sign_of(const Real& v) {
-  return v > 0 ? Real(1) : v < 0 ? Real(-1) : Real(0);
+  if constexpr (is_lane_number<Real>)
+    return lane_signs(v);
+  else
+    return v > 0 ? Real(1) : v < 0 ? Real(-1) : Real(0);
+}
+
+// sin and cos of a constant, as doubles (the extended-precision types in
+// their own precision first)
+template <class Real>
+std::array<double, 2> constant_sin_cos(const Real& v) {
+  using std::cos;
+  using std::sin;
+  if constexpr (is_lane_number<Real>)
+    return {sin(v.lane[0]), cos(v.lane[0])};
+  else
+    return {static_cast<double>(sin(v)), static_cast<double>(cos(v))};
 }
 
 // sin v and cos v in one call: for double, core/fast_trig.hpp's
@@ -190,6 +210,8 @@ void sin_and_cos(const Real& v, Real& s, Real& c) {
   using std::sin;
   if constexpr (std::is_same_v<Real, double>) {
     sin_cos_phase(v, s, c);
+  } else if constexpr (is_lane_number<Real>) {
+    lane_sin_cos(v, s, c);
   } else {
     s = sin(v);
     c = cos(v);
@@ -259,6 +281,7 @@ std::array<TaylorVariable<Real>, 2> sin_cos(const TaylorVariable<Real>& a) {
 // definition a step uses, the step ending at each switch.
 template <class Real>
 double start_value(const TaylorVariable<Real>& v) {
+  static_assert(!is_lane_number<Real>, "a series in lanes has no single start value");
   return static_cast<double>(v.coefficient(0));
 }
 
@@ -266,23 +289,23 @@ double start_value(const TaylorVariable<Real>& v) {
 
 template <class Real>
 TaylorVariable<Real> operator+(const TaylorVariable<Real>& a, const TaylorVariable<Real>& b) {
-  if (a.is_constant() && b.is_constant()) return static_cast<double>(a.value() + b.value());
-  if (b.is_constant()) return detail::shifted(a, static_cast<double>(b.value()));
-  if (a.is_constant()) return detail::shifted(b, static_cast<double>(a.value()));
+  if (a.is_constant() && b.is_constant()) return constant_value(a.value() + b.value());
+  if (b.is_constant()) return detail::shifted(a, constant_value(b.value()));
+  if (a.is_constant()) return detail::shifted(b, constant_value(a.value()));
   return TaylorVariable<Real>::result(a.evaluation(), a.value() + b.value(),
                                       std::max(a.degree(), b.degree()));
 }
 
 template <class Real>
 TaylorVariable<Real> operator-(const TaylorVariable<Real>& a) {
-  if (a.is_constant()) return static_cast<double>(-a.value());
+  if (a.is_constant()) return constant_value(-a.value());
   return TaylorVariable<Real>::result(a.evaluation(), -a.value(), a.degree());
 }
 
 template <class Real>
 TaylorVariable<Real> operator-(const TaylorVariable<Real>& a, const TaylorVariable<Real>& b) {
-  if (a.is_constant() && b.is_constant()) return static_cast<double>(a.value() - b.value());
-  if (b.is_constant()) return detail::shifted(a, static_cast<double>(-b.value()));
+  if (a.is_constant() && b.is_constant()) return constant_value(a.value() - b.value());
+  if (b.is_constant()) return detail::shifted(a, constant_value(-b.value()));
   if (a.is_constant()) {
     const int k = b.evaluation()->order();
     return TaylorVariable<Real>::result(b.evaluation(),
@@ -297,9 +320,9 @@ TaylorVariable<Real> operator-(const TaylorVariable<Real>& a, const TaylorVariab
 // newest (a_k b_0 and a_0 b_k) last, the sums stopping at the degrees
 template <class Real>
 TaylorVariable<Real> operator*(const TaylorVariable<Real>& a, const TaylorVariable<Real>& b) {
-  if (a.is_constant() && b.is_constant()) return static_cast<double>(a.value() * b.value());
-  if (a.is_constant()) return detail::scaled(b, static_cast<double>(a.value()));
-  if (b.is_constant()) return detail::scaled(a, static_cast<double>(b.value()));
+  if (a.is_constant() && b.is_constant()) return constant_value(a.value() * b.value());
+  if (a.is_constant()) return detail::scaled(b, constant_value(a.value()));
+  if (b.is_constant()) return detail::scaled(a, constant_value(b.value()));
   TaylorEvaluation<Real>* evaluation = a.evaluation();
   const int k = evaluation->order();
   const int degree = std::min(TaylorVariable<Real>::unbounded, a.degree() + b.degree());
@@ -317,7 +340,7 @@ TaylorVariable<Real> operator*(const TaylorVariable<Real>& a, const TaylorVariab
 // q = a / b: b_0 q_k = a_k − Σ_{j=1..k} b_j q_{k−j}
 template <class Real>
 TaylorVariable<Real> operator/(const TaylorVariable<Real>& a, const TaylorVariable<Real>& b) {
-  if (b.is_constant()) return a * TaylorVariable<Real>(1.0 / static_cast<double>(b.value()));
+  if (b.is_constant()) return a * TaylorVariable<Real>(1.0 / constant_value(b.value()));
   TaylorEvaluation<Real>* evaluation = b.evaluation();
   const int k = evaluation->order();
   Real* q = evaluation->take_row();
@@ -363,14 +386,14 @@ TaylorVariable<Real>& operator/=(TaylorVariable<Real>& a, const Other& b) { retu
 template <class Real>
 TaylorVariable<Real> sin(const TaylorVariable<Real>& a) {
   using std::sin;
-  if (a.is_constant()) return static_cast<double>(sin(a.value()));
+  if (a.is_constant()) return detail::constant_sin_cos(a.value())[0];
   return detail::sin_cos(a)[0];
 }
 
 template <class Real>
 TaylorVariable<Real> cos(const TaylorVariable<Real>& a) {
   using std::cos;
-  if (a.is_constant()) return static_cast<double>(cos(a.value()));
+  if (a.is_constant()) return detail::constant_sin_cos(a.value())[1];
   return detail::sin_cos(a)[1];
 }
 
@@ -382,7 +405,7 @@ SineAndCosine<TaylorVariable<Real>> sin_and_cos_of(const TaylorVariable<Real>& a
   using std::cos;
   using std::sin;
   if (a.is_constant())
-    return {static_cast<double>(sin(a.value())), static_cast<double>(cos(a.value()))};
+    return {detail::constant_sin_cos(a.value())[0], detail::constant_sin_cos(a.value())[1]};
   const std::array<TaylorVariable<Real>, 2> pair = detail::sin_cos(a);
   return {pair[0], pair[1]};
 }
@@ -401,15 +424,19 @@ TaylorVariable<Real> cos_phase(const TaylorVariable<Real>& a) { return cos(a); }
 // holds a1 while order 0 is computed; see signs_need_slope).
 template <class Real>
 TaylorVariable<Real> sign(const TaylorVariable<Real>& a) {
-  if (a.is_constant()) return static_cast<double>(detail::sign_of(a.value()));
+  if (a.is_constant()) return constant_value(detail::sign_of(a.value()));
   TaylorEvaluation<Real>* evaluation = a.evaluation();
   const int k = evaluation->order();
   evaluation->note_sign_argument(a.row());
   Real s = 0;
-  if (k == 0)
+  if constexpr (is_lane_number<Real>) {
+    // a batch evaluates without the slope (TaylorSeries::evaluate_lanes)
+    if (k == 0) s = detail::sign_of(a.value());
+  } else if (k == 0) {
     s = evaluation->signs_from_slope() && detail::near_zero(a.value(), a.row()[1])
             ? detail::sign_of(a.row()[1])
             : detail::sign_of(a.value());
+  }
   return TaylorVariable<Real>::result(evaluation, s, 0);
 }
 
@@ -444,10 +471,19 @@ class TaylorSeries {
 
   template <class Rhs>
   void evaluate(const Real* x0, const Real& t0, int order, Rhs&& rhs, bool signs_from_slope = false) {
-    if constexpr (std::is_same_v<Real, double>)
+    if constexpr (is_lane_number<Real>) {
+#if defined(__x86_64__) && defined(__GNUC__)
+      // four lanes in one AVX2 register where the processor has it (chosen
+      // at run time: the build runs on any x86-64); in two SSE2 registers,
+      // at little gain over double, otherwise
+      if (__builtin_cpu_supports("avx2")) return evaluate_avx2(x0, t0, order, rhs);
+#endif
       evaluate_inlined(x0, t0, order, rhs, signs_from_slope);
-    else
+    } else if constexpr (std::is_same_v<Real, double>) {
+      evaluate_inlined(x0, t0, order, rhs, signs_from_slope);
+    } else {
       evaluate_orders(x0, t0, order, rhs, signs_from_slope);
+    }
   }
 
   [[nodiscard]] const Real* state(std::size_t i) const { return &rows_[i * Evaluation::stride]; }
@@ -468,38 +504,150 @@ class TaylorSeries {
     evaluate_orders(x0, t0, order, rhs, signs_from_slope);
   }
 
-  template <class Rhs>
-  void evaluate_orders(const Real* x0, const Real& t0, int order, Rhs& rhs, bool signs_from_slope) {
-    static_assert(2 * N + 1 < Evaluation::max_rows);
-    Evaluation evaluation(rows_, 2 * N + 1, t0, signs_from_slope);
-    for (std::size_t i = 0; i < N; ++i) state_row(i)[0] = x0[i];
-    Real* time = row(2 * N);
+  // One evaluation in progress: its rows' bookkeeping and the variables of
+  // the order being computed.
+  struct Pass {
+    Pass(TaylorSeries& series, const Real* x0, const Real& t0, bool signs_from_slope)
+        : evaluation(series.rows_, 2 * N + 1, t0, signs_from_slope) {
+      for (std::size_t i = 0; i < N; ++i) series.state_row(i)[0] = x0[i];
+    }
+    Evaluation evaluation;
     Variables x, dxdt;
     Outputs outputs;
-    for (int k = 0; k <= order; ++k) {
-      evaluation.start_order(k);
-      for (std::size_t i = 0; i < N; ++i)
-        x[i] = TaylorVariable<Real>(&evaluation, state_row(i), state_row(i)[k],
-                                    TaylorVariable<Real>::unbounded, rate_row(i));
-      time[k] = k == 0 ? t0 : k == 1 ? Real(1) : Real(0);
-      const TaylorVariable<Real> t(&evaluation, time, time[k], 1);
-      output_count_ = rhs(x, t, dxdt, outputs);
-      for (std::size_t i = 0; i < N; ++i) {
-        const Real f = dxdt[i].coefficient(k);
-        rate_row(i)[k] = f;
-        if (k < order) state_row(i)[k + 1] = f * taylor_reciprocal<Real>(k + 1);
-      }
-      for (int j = 0; j < output_count_; ++j) {
-        // an output that is a constant or the time gets a row of its own
-        const TaylorVariable<Real>& out = outputs[j];
-        Real* out_row = out.is_constant() ? evaluation.take_row() : out.row();
-        out_row[k] = out.coefficient(k);
-        output_rows_[j] = out_row;
-      }
+  };
+
+#if defined(__x86_64__) && defined(__GNUC__)
+  // evaluate_inlined compiled for AVX2 (not FMA: the products and sums stay
+  // separate IEEE operations, as in double)
+  template <class Rhs>
+  [[gnu::flatten, gnu::target("avx2")]] void evaluate_avx2(const Real* x0, const Real& t0,
+                                                           int order, Rhs& rhs) {
+    evaluate_orders(x0, t0, order, rhs, false);
+  }
+#endif
+
+  template <class Rhs>
+  void evaluate_orders(const Real* x0, const Real& t0, int order, Rhs& rhs, bool signs_from_slope) {
+    Pass pass(*this, x0, t0, signs_from_slope);
+    for (int k = 0; k <= order; ++k) evaluate_order(pass, k, order, rhs);
+    if constexpr (is_lane_number<Real>) {
+      // each lane's need of the slope is its own (take_lane)
+      rows_taken_ = pass.evaluation.rows_taken();
+      sign_count_ = pass.evaluation.sign_count();
+      for (int i = 0; i < sign_count_; ++i)
+        sign_rows_[i] = static_cast<int>((pass.evaluation.sign_argument(i) - rows_.data()) /
+                                         Evaluation::stride);
+    } else {
+      needs_slope_ = signs_need_slope(pass.evaluation);
     }
-    needs_slope_ = signs_need_slope(evaluation);
   }
 
+  // coefficient k of every operation, and the state's coefficient k + 1
+  template <class Rhs>
+  void evaluate_order(Pass& pass, int k, int order, Rhs& rhs) {
+    static_assert(2 * N + 1 < Evaluation::max_rows);
+    Evaluation& evaluation = pass.evaluation;
+    Real* time = row(2 * N);
+    evaluation.start_order(k);
+    for (std::size_t i = 0; i < N; ++i)
+      pass.x[i] = TaylorVariable<Real>(&evaluation, state_row(i), state_row(i)[k],
+                                       TaylorVariable<Real>::unbounded, rate_row(i));
+    time[k] = k == 0 ? evaluation.start_time() : k == 1 ? Real(1) : Real(0);
+    const TaylorVariable<Real> t(&evaluation, time, time[k], 1);
+    output_count_ = rhs(pass.x, t, pass.dxdt, pass.outputs);
+    for (std::size_t i = 0; i < N; ++i) {
+      const Real f = pass.dxdt[i].coefficient(k);
+      rate_row(i)[k] = f;
+      if (k < order) state_row(i)[k + 1] = f * taylor_reciprocal<Real>(k + 1);
+    }
+    for (int j = 0; j < output_count_; ++j) {
+      // an output that is a constant or the time gets a row of its own
+      const TaylorVariable<Real>& out = pass.outputs[j];
+      Real* out_row = out.is_constant() ? evaluation.take_row() : out.row();
+      out_row[k] = out.coefficient(k);
+      output_rows_[j] = out_row;
+    }
+  }
+
+ public:
+  // One series of a batch (integrate/series_lane.hpp): where its
+  // coefficients go, the expansion point, the order, and the right-hand
+  // side (of the same type in every lane, its system and mode its own).
+  template <class Rhs>
+  struct Lane {
+    TaylorSeries* series;
+    const Real* x0;
+    Real t0;
+    int order;
+    Rhs rhs;
+  };
+
+  // The series of several lanes together, order by order: at each order
+  // every lane's right-hand side runs before any lane's next order, so that
+  // the lanes' independent chains of recurrences (each order waits for the
+  // one before it: docs/performance.md) overlap in the processor's
+  // out-of-order window instead of running one after the other. Each lane
+  // runs exactly evaluate()'s operations in evaluate()'s order, without the
+  // slope of the signs (a lane whose signs need it evaluates again alone, as
+  // evaluate() would): its coefficients are evaluate()'s to the last bit.
+  template <class Rhs>
+  [[gnu::flatten]] static void evaluate_lanes(Lane<Rhs>* lanes, int count) {
+    static_assert(std::is_same_v<Real, double>, "a batch runs in double");
+    std::array<std::optional<Pass>, max_series_lanes> passes;
+    int highest_order = 0;
+    for (int i = 0; i < count; ++i) {
+      passes[i].emplace(*lanes[i].series, lanes[i].x0, lanes[i].t0, false);
+      highest_order = std::max(highest_order, lanes[i].order);
+    }
+    for (int k = 0; k <= highest_order; ++k)
+      for (int i = 0; i < count; ++i)
+        if (k <= lanes[i].order)
+          lanes[i].series->evaluate_order(*passes[i], k, lanes[i].order, lanes[i].rhs);
+    for (int i = 0; i < count; ++i)
+      lanes[i].series->needs_slope_ = signs_need_slope(passes[i]->evaluation);
+  }
+
+ public:
+  // This series' coefficients from lane `lane` of a series of lanes
+  // (LaneNumber), evaluated at this series' expansion point by the same
+  // right-hand side: its state's and outputs' rows, and whether its signs
+  // need their slope, as evaluate() would have left them; and where they do,
+  // every row (evaluating again with the slope reads the previous
+  // evaluation's rows).
+  template <class Lanes>
+  void take_lane(const TaylorSeries<Lanes, N>& lanes, int lane, int order) {
+    static_assert(std::is_same_v<Real, double> && is_lane_number<Lanes>);
+    needs_slope_ = false;
+    for (int i = 0; i < lanes.sign_count_; ++i) {
+      const Lanes* a = lanes.row_at(lanes.sign_rows_[i]);
+      const double a0 = a[0].lane[lane], a1 = a[1].lane[lane];
+      if (detail::near_zero(a0, a1) && detail::sign_of(a1) != detail::sign_of(a0))
+        needs_slope_ = true;
+    }
+    auto copy_row = [&](int r) {
+      const Lanes* from = lanes.row_at(r);
+      Real* to = row(static_cast<std::size_t>(r));
+      for (int k = 0; k <= order; ++k) to[k] = from[k].lane[lane];
+    };
+    if (needs_slope_) {
+      for (int r = 0; r < lanes.rows_taken_; ++r) copy_row(r);
+    } else {
+      for (std::size_t i = 0; i < N; ++i) copy_row(static_cast<int>(i));
+    }
+    output_count_ = lanes.output_count_;
+    for (int j = 0; j < output_count_; ++j) {
+      const int r = static_cast<int>((lanes.output_rows_[j] - lanes.rows_.data()) /
+                                     Evaluation::stride);
+      if (!needs_slope_) copy_row(r);
+      output_rows_[j] = row(static_cast<std::size_t>(r));
+    }
+  }
+
+ private:
+  template <class, std::size_t>
+  friend class TaylorSeries;
+
+  [[nodiscard]] const Real* row_at(int r) const { return &rows_[r * Evaluation::stride]; }
   Real* row(std::size_t r) { return &rows_[r * Evaluation::stride]; }
   Real* state_row(std::size_t i) { return row(i); }
   Real* rate_row(std::size_t i) { return row(N + i); }
@@ -508,6 +656,10 @@ class TaylorSeries {
   std::array<const Real*, max_outputs> output_rows_{};
   int output_count_ = 0;
   bool needs_slope_ = false;
+  // a series of lanes: the rows its evaluation took, and its signs' arguments' rows
+  int rows_taken_ = 0;
+  std::array<int, Evaluation::max_signs> sign_rows_{};
+  int sign_count_ = 0;
 };
 
 }  // namespace impactlab

@@ -36,15 +36,19 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
+#include <memory>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <type_traits>
 
 #include <impactlab/core/error_scale_groups.hpp>
 #include <impactlab/core/hybrid_system.hpp>
 #include <impactlab/integrate/event_location.hpp>
 #include <impactlab/integrate/polynomial_roots.hpp>
+#include <impactlab/integrate/series_lane.hpp>
 #include <impactlab/integrate/stepper_settings.hpp>
 #include <impactlab/integrate/taylor_series.hpp>
 
@@ -62,6 +66,20 @@ concept HasSeriesRhs = HybridSystem<S> && requires(const S& system, typename S::
   { system.rhs(mode, x, dxdt, t) };
   { system.witness(mode, k, x, t).value } -> std::convertible_to<TaylorVariable<>>;
 };
+
+// Whether a batch may evaluate several lanes' series of System in one pass
+// over LaneNumber (integrate/lane_number.hpp): the system says that its
+// right-hand side's and witnesses' operations depend on the mode alone (no
+// branch on a value, no start_value), and it is plain data, so that two
+// lanes of equal bytes are one system. Other systems' lanes are evaluated
+// side by side, each in double (TaylorSeries::evaluate_lanes).
+template <class S>
+concept SeriesLanesAllowed = std::is_trivially_copyable_v<S> && requires {
+  requires S::series_operations_by_mode_alone;
+};
+
+// the lanes of one pass over LaneNumber
+inline constexpr int series_lane_width = 4;
 
 // the fraction of the radius of convergence a step takes: e^{−step_exponent}
 inline constexpr double taylor_step_exponent = 1.3;
@@ -94,6 +112,10 @@ class TaylorStepper {
         scale_floor_(settings.atol / settings.rtol) {
     if (!(settings.rtol > 0.0) || !(settings.atol > 0.0))
       throw std::invalid_argument("taylor: rtol and atol must be positive");
+    // a stepper in a batch lane may lead a pass over lanes: its scratch made
+    // here, not while stepping
+    if constexpr (SeriesLanesAllowed<System> && std::is_same_v<Real, double>)
+      if (settings.series_lane != nullptr) lane_scratch_.series = std::make_unique<LaneSeries>();
   }
 
   [[nodiscard]] int order() const { return order_; }
@@ -255,22 +277,125 @@ class TaylorStepper {
     return witness_at_zero(v, r, t_old_, tolerance);
   }
 
+  // The right-hand side and the mode's witnesses over a series type, as
+  // TaylorSeries runs them (the same for a lone stepper, a batch lane and a
+  // pass over lanes).
+  struct SeriesRhs {
+    const System* system;
+    Mode mode;
+    template <class Variables, class Time, class Outputs>
+    int operator()(const Variables& x, const Time& t, Variables& dxdt, Outputs& witnesses) const {
+      system->rhs(mode, x, dxdt, t);
+      const auto count = static_cast<int>(system->witness_count(mode));
+      if (count > TaylorSeries<Real, dimension>::max_outputs)
+        throw std::length_error("taylor: more witnesses than the series holds");
+      for (int k = 0; k < count; ++k)
+        witnesses[k] = system->witness(mode, static_cast<std::size_t>(k), x, t).value;
+      return count;
+    }
+  };
+
+  // A batch lane's request for this stepper's series (integrate/series_lane.hpp)
+  struct LaneRequest : SeriesRequest {
+    TaylorStepper* stepper = nullptr;
+    const System* system = nullptr;
+    Mode mode{};
+  };
+
+  using LaneSeries = TaylorSeries<LaneNumber<series_lane_width>, dimension>;
+
+  // Scratch for a pass over lanes that this stepper leads: made on the
+  // first such pass, never copied (a copy of the stepper starts without).
+  struct LaneScratch {
+    LaneScratch() = default;
+    LaneScratch(const LaneScratch&) {}
+    LaneScratch& operator=(const LaneScratch&) { return *this; }
+    std::unique_ptr<LaneSeries> series;
+  };
+
+  // Whether two requests' series are one pass over lanes: the same mode and
+  // order, and equal systems (parameters)
+  static bool one_pass(const LaneRequest& a, const LaneRequest& b) {
+    return a.mode == b.mode && a.stepper->order_ == b.stepper->order_ &&
+           (a.system == b.system || std::memcmp(a.system, b.system, sizeof(System)) == 0);
+  }
+
+  // the series of `count` (2..series_lane_width) requests in one pass over
+  // LaneNumber, spare lanes repeating the first; then each stepper's own
+  static void evaluate_pass(const std::array<const LaneRequest*, series_lane_width>& members,
+                            int count) {
+    TaylorStepper& leader = *members[0]->stepper;
+    // made with the stepper; here only for a copy of one (which starts without)
+    if (!leader.lane_scratch_.series) leader.lane_scratch_.series = std::make_unique<LaneSeries>();
+    std::array<LaneNumber<series_lane_width>, dimension> x0;
+    LaneNumber<series_lane_width> t0;
+    for (int lane = 0; lane < series_lane_width; ++lane) {
+      const TaylorStepper& stepper = *members[lane < count ? lane : 0]->stepper;
+      for (std::size_t i = 0; i < dimension; ++i) x0[i].lane[lane] = stepper.x_old_[i];
+      t0.lane[lane] = stepper.t_old_;
+    }
+    LaneSeries& pass = *leader.lane_scratch_.series;
+    pass.evaluate(x0.data(), t0, leader.order_, SeriesRhs{members[0]->system, members[0]->mode});
+    for (int lane = 0; lane < count; ++lane) {
+      TaylorStepper& stepper = *members[lane]->stepper;
+      stepper.series_.take_lane(pass, lane, stepper.order_);
+    }
+  }
+
+  // The series of `count` requests of steppers of this type: those of one
+  // system and mode in passes over lanes where the system allows it, the
+  // others side by side in double.
+  static void evaluate_requests(SeriesRequest* const* requests, int count) {
+    using Lane = typename TaylorSeries<Real, dimension>::template Lane<SeriesRhs>;
+    std::array<Lane, max_series_lanes> lanes;
+    int alone = 0;
+    auto add_alone = [&](const LaneRequest& request) {
+      TaylorStepper& stepper = *request.stepper;
+      lanes[alone++] = Lane{&stepper.series_, stepper.x_old_.data(), stepper.t_old_,
+                            stepper.order_, SeriesRhs{request.system, request.mode}};
+    };
+    if constexpr (SeriesLanesAllowed<System> && std::is_same_v<Real, double>) {
+      std::array<bool, max_series_lanes> taken{};
+      for (int i = 0; i < count; ++i) {
+        if (taken[i]) continue;
+        const auto& first = *static_cast<const LaneRequest*>(requests[i]);
+        std::array<const LaneRequest*, series_lane_width> members{};
+        int n = 0;
+        for (int j = i; j < count && n < series_lane_width; ++j) {
+          const auto& other = *static_cast<const LaneRequest*>(requests[j]);
+          if (!taken[j] && one_pass(first, other)) {
+            members[n++] = &other;
+            taken[j] = true;
+          }
+        }
+        if (n > 1)
+          evaluate_pass(members, n);
+        else
+          add_alone(first);
+      }
+    } else {
+      for (int i = 0; i < count; ++i) add_alone(*static_cast<const LaneRequest*>(requests[i]));
+    }
+    if (alone > 0) TaylorSeries<Real, dimension>::evaluate_lanes(lanes.data(), alone);
+  }
+
   // the coefficients of the state and of the mode's witnesses at the step's
-  // start
+  // start: from the batch lane where the stepper runs in one (without the
+  // signs' slope, as a batch evaluates), here otherwise
   void evaluate(const System& system, Mode mode, bool signs_from_slope) {
-    series_.evaluate(
-        x_old_.data(), t_old_, order_,
-        [&](const SeriesState<System, Real>& x, const TaylorVariable<Real>& t,
-            SeriesState<System, Real>& dxdt, typename Series::Outputs& witnesses) {
-          system.rhs(mode, x, dxdt, t);
-          const auto count = static_cast<int>(system.witness_count(mode));
-          if (count > Series::max_outputs)
-            throw std::length_error("taylor: more witnesses than the series holds");
-          for (int k = 0; k < count; ++k)
-            witnesses[k] = system.witness(mode, static_cast<std::size_t>(k), x, t).value;
-          return count;
-        },
-        signs_from_slope);
+    if constexpr (std::is_same_v<Real, double>) {
+      if (settings_.series_lane != nullptr && !signs_from_slope) {
+        LaneRequest request;
+        request.evaluate = &evaluate_requests;
+        request.stepper = this;
+        request.system = &system;
+        request.mode = mode;
+        settings_.series_lane->compute(request);
+        return;
+      }
+    }
+    SeriesRhs rhs{&system, mode};
+    series_.evaluate(x_old_.data(), t_old_, order_, rhs, signs_from_slope);
   }
 
   // the polynomial at h (s past the step's start)
@@ -342,6 +467,7 @@ class TaylorStepper {
   double scale_floor_;  // atol / rtol (state units)
   using Series = TaylorSeries<Real, dimension>;
   Series series_;
+  LaneScratch lane_scratch_;
   RealState x_{}, x_old_{};             // the step's end and start
   Real t_ = 0, t_old_ = 0, step_ = 0;   // s
   State x_double_{}, x_old_double_{};   // the same, rounded, as the loop sees them

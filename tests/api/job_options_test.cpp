@@ -110,6 +110,8 @@ TEST(JobOptions, RequestStructDefaultsAgreeWithTheTables) {
   EXPECT_EQ(sweep.max_period, number_default("sweep", "max_period"));
   EXPECT_EQ(sweep.classification_tolerance, text_default("sweep", "classification_tol"));
   EXPECT_EQ(impactlab::SweepJobOptions{}.threads, number_default("sweep", "threads"));
+  for (std::string_view job : {"sweep", "basins", "attractors"})
+    EXPECT_EQ(impactlab::SweepJobOptions{}.batch, text_default(job, "batch")) << job;
 
   const impactlab::BasinsSpec basins;
   EXPECT_EQ(basins.lyapunov, flag_default("basins", "lyapunov"));

@@ -361,6 +361,51 @@ TEST(Sweep, SerialAndThreadedRunsWriteIdenticalFiles) {
   EXPECT_EQ(classes, slurp(threaded_2d / "classes.csv"));
 }
 
+// Trajectories in the lanes of a batch (--batch on, the default with the
+// Taylor stepper) are the scalar runs to the last bit
+// (simulate/series_batch.hpp): a 1D sweep in chunks, a 2D map with its
+// Lyapunov exponents and a basins grid write the same files either way, and
+// meta.json says how many lanes ran.
+TEST(Sweep, BatchOnAndOffWriteIdenticalFiles) {
+  const ScratchFolder scratch;
+  const auto batch_width = [](const fs::path& dir) {
+    return nlohmann::json::parse(slurp(dir / "meta.json"))["run"]["batch_width"].get<int>();
+  };
+  const auto on_1d = scratch / "on1d", off_1d = scratch / "off1d";
+  ASSERT_EQ(run_command_line(sweep_1d + " --chunks 6 --out " + on_1d.string()).status, 0);
+  ASSERT_EQ(
+      run_command_line(sweep_1d + " --chunks 6 --batch off --out " + off_1d.string()).status, 0);
+  EXPECT_EQ(slurp(on_1d / "bifurcation.csv"), slurp(off_1d / "bifurcation.csv"));
+  EXPECT_EQ(slurp(on_1d / "summary.csv"), slurp(off_1d / "summary.csv"));
+  EXPECT_EQ(batch_width(on_1d), 4);
+  EXPECT_EQ(batch_width(off_1d), 1);
+
+  const auto on_2d = scratch / "on2d", off_2d = scratch / "off2d";
+  ASSERT_EQ(run_command_line(sweep_2d + " --threads 2 --out " + on_2d.string()).status, 0);
+  ASSERT_EQ(run_command_line(sweep_2d + " --batch off --out " + off_2d.string()).status, 0);
+  EXPECT_EQ(slurp(on_2d / "classes.csv"), slurp(off_2d / "classes.csv"));
+  EXPECT_EQ(batch_width(on_2d), 4);
+
+  const std::string basins =
+      "basins jin2003 --set V0=4.163 --x initial.theta=-0.04:0.04:5 "
+      "--y initial.theta_dot=-0.5:0.5:4 --transient 20 --points 8 --quiet";
+  const auto on_basins = scratch / "on_basins", off_basins = scratch / "off_basins";
+  ASSERT_EQ(run_command_line(basins + " --out " + on_basins.string()).status, 0);
+  ASSERT_EQ(run_command_line(basins + " --batch off --out " + off_basins.string()).status, 0);
+  EXPECT_EQ(slurp(on_basins / "basins.csv"), slurp(off_basins / "basins.csv"));
+  EXPECT_EQ(slurp(on_basins / "attractors.csv"), slurp(off_basins / "attractors.csv"));
+  EXPECT_EQ(batch_width(on_basins), 4);
+
+  // another stepper runs no batch
+  const auto rk = scratch / "rk";
+  ASSERT_EQ(run_command_line("sweep jin2003 --param omega=6:8:3 --transient 5 --points 4 --quiet "
+                             "--set integrator.method=dopri5 --out " +
+                             rk.string())
+                .status,
+            0);
+  EXPECT_EQ(batch_width(rk), 1);
+}
+
 TEST(Sweep, MetaRecordsTheClassificationAndLyapunovIntegrators) {
   const ScratchFolder scratch;
   // a 2D map classifies at the scene's classification integrator (the
@@ -395,11 +440,12 @@ TEST(Sweep, MetaRecordsTheClassificationAndLyapunovIntegrators) {
   EXPECT_TRUE(o["lyapunov_integrator"].is_null());
 }
 
+// (the ranks run their tasks in batches; the serial run runs none)
 TEST(Sweep, MpiRunWritesTheSameFileAsTheSerialRun) {
   if (!mpirun_found()) GTEST_SKIP() << "no mpirun";
   const ScratchFolder scratch;
   const auto serial = scratch / "mpi_serial", parallel = scratch / "mpi_parallel";
-  ASSERT_EQ(run_command_line(sweep_2d + " --out " + serial.string()).status, 0);
+  ASSERT_EQ(run_command_line(sweep_2d + " --batch off --out " + serial.string()).status, 0);
   const ProgramRun o = run_command_line(sweep_2d + " --out " + parallel.string(), {.mpi_ranks = 2});
   if (o.err.find("built without MPI") != std::string::npos) GTEST_SKIP() << "built without MPI";
   ASSERT_EQ(o.status, 0) << o.err;
@@ -604,6 +650,8 @@ INSTANTIATE_TEST_SUITE_P(
                               "--direction", "sideways"},
                       BadCase{"sweep jin2003 --param omega=5:9:4 --section moon", "--section",
                               "moon"},
+                      BadCase{"sweep jin2003 --param omega=5:9:4 --batch maybe", "--batch",
+                              "maybe"},
                       BadCase{"sweep jin2003 --param omega=5:9:4 --param V0=1:2:2 "
                               "--classification-tol sometimes",
                               "--classification-tol", "sometimes"},

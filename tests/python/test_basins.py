@@ -97,3 +97,27 @@ def test_basins_are_cancelled_by_their_progress_callback():
                          progress=interrupt)
     assert impactlab.basins("bouncing_ball", x="initial.y=0:0.1:2", y="initial.y_dot=0:1:2",
                             points=5, transient=5).labels.shape == (2, 2)
+
+
+def test_batch_off_gives_the_batch_grid_and_says_its_width():
+    """batch=False runs the trajectories one at a time: the same grid as the
+    batch's lanes (the Taylor stepper on the pendulum), bit for bit; meta
+    records the lanes per thread."""
+    grid = dict(x="initial.theta=-0.04:0.04:4", y="initial.theta_dot=-0.5:0.5:3", transient=20,
+                points=8, V0=4.163)
+    lanes = impactlab.basins("jin2003", **grid)
+    alone = impactlab.basins("jin2003", batch=False, **grid)
+    assert lanes.meta["run"]["batch_width"] == 4
+    assert alone.meta["run"]["batch_width"] == 1
+    for column in ("attractor", "period", "impacts_per_period", "contact"):
+        same_numbers(lanes.grid[column], alone.grid[column])
+    for column in lanes.attractors.dtype.names:
+        same_numbers(lanes.attractors[column], alone.attractors[column])
+    assert impactlab.basins("jin2003", batch="off", **grid).meta["run"]["batch_width"] == 1
+
+
+@pytest.mark.parametrize("value", ["maybe", 1, None])
+def test_a_bad_batch_raises_naming_it(value):
+    with pytest.raises(ValueError, match="batch"):
+        impactlab.basins("jin2003", x="initial.theta=-0.04:0.04:2",
+                         y="initial.theta_dot=-0.5:0.5:2", batch=value)

@@ -7,15 +7,19 @@
 // bounds the count by those.
 #include <numbers>
 #include <string_view>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include <impactlab/simulate/flow.hpp>
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/integrate/taylor_stepper.hpp>
 #include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
 #include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
+
+#include <impactlab/simulate/series_batch.hpp>
 
 #include "support/allocation_counter.hpp"
 
@@ -78,6 +82,45 @@ TEST_P(HotLoop, BouncingBallWithStickingAllocatesNothing) {
   const RunCount run = count_run(BouncingBall(BouncingBallParameters{}), {0.05, 0.0}, GetParam(), 5.0);
   EXPECT_GT(run.impacts, 20u);
   expect_no_allocation_of_ours(run, GetParam());
+}
+
+// The batch loop allocates nothing either: lanes of the pendulum (one
+// system, so that its lanes' series are evaluated in passes over lanes, and
+// several, evaluated side by side) chattering into contact, each lane's
+// stepper built before it steps. The allocations are counted over each
+// lane's run (the other lanes step in between: the sum counts them all).
+TEST(HotLoop, BatchLanesAllocateNothingWhileStepping) {
+  std::vector<PendulumWalls> systems;
+  for (int i = 0; i < 6; ++i) {
+    PendulumWallsParameters p;
+    p.V0 = i < 4 ? 4.163 : 3.9 + 0.1 * i;
+    systems.emplace_back(p);
+  }
+  long allocations = 0;
+  std::uint64_t impacts = 0;
+  std::size_t next = 0;
+  const BatchStatistics statistics = run_in_lanes(4, [&](SeriesLane& lane) {
+    if (next == systems.size()) return false;
+    const PendulumWalls& system = systems[next];
+    const PendulumWalls::State x0{-0.01 * static_cast<double>(next++), 0.1, 0.0};
+    StepperSettings settings;
+    settings.rtol = 1e-10;
+    settings.atol = 1e-12;
+    settings.max_step = system.max_step();
+    settings.series_lane = &lane;
+    EventLog log(false);
+    LoopOptions options;
+    TaylorStepper<PendulumWalls> stepper(settings);
+    const long before = impactlab::testing::allocations_so_far();
+    simulate(system, stepper, x0, PendulumWalls::Mode::free, 0.0,
+             50 * 2 * std::numbers::pi / system.parameters().omega, options, log);
+    allocations += impactlab::testing::allocations_so_far() - before;
+    impacts += log.count(EventKind::impact);
+    return true;
+  });
+  EXPECT_GT(impacts, 300u);
+  EXPECT_GT(statistics.lane_series, 2 * statistics.evaluations);
+  EXPECT_EQ(allocations, 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Steppers, HotLoop,

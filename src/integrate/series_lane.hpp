@@ -1,0 +1,44 @@
+// Where a Taylor stepper gets its series computed when it runs in a lane of a
+// batch (simulate/series_batch.hpp): instead of evaluating its recurrences
+// itself, the stepper posts a request and waits; the batch gathers the
+// requests of all its lanes and evaluates them together, order by order
+// (integrate/taylor_series.hpp, TaylorSeries::evaluate_lanes), then hands
+// each lane its coefficients back. Everything else a step does (its size,
+// the exclusion test and root isolation on the witness polynomials, the
+// events) stays in the lane, in the scalar stepper's own code.
+#pragma once
+
+#include <exception>
+
+namespace impactlab {
+
+// the most lanes one batch evaluates together
+inline constexpr int max_series_lanes = 16;
+
+// One stepper's request for the series at the start of its step. `evaluate`
+// computes `count` requests that share it (they come from steppers of one
+// type) together, and writes each one's coefficients into its stepper.
+struct SeriesRequest {
+  using Evaluate = void (*)(SeriesRequest* const* requests, int count);
+  Evaluate evaluate = nullptr;
+  // what evaluating this request alone threw (the batch evaluates a group
+  // that throws one request at a time): rethrown in the requesting lane
+  std::exception_ptr failure;
+};
+
+// A lane of a batch, as its steppers see it.
+class SeriesLane {
+ public:
+  // Returns once the request's series are computed (the lane is suspended
+  // meanwhile, while the other lanes run up to their own requests); rethrows
+  // what computing this request threw.
+  virtual void compute(SeriesRequest& request) = 0;
+
+ protected:
+  SeriesLane() = default;
+  SeriesLane(const SeriesLane&) = default;
+  SeriesLane& operator=(const SeriesLane&) = default;
+  ~SeriesLane() = default;
+};
+
+}  // namespace impactlab

@@ -1,0 +1,48 @@
+// Many trajectories on one thread, their Taylor series computed together.
+//
+// run_in_lanes runs jobs in `width` lanes, each lane a fiber (a stack of its
+// own, switched on this thread: no threads, no locks). A job is ordinary
+// simulation code whose steppers carry the lane in their settings
+// (StepperSettings::series_lane): each Taylor step suspends its lane where it
+// needs its series (integrate/series_lane.hpp). When every lane waits, the
+// batch evaluates the waiting requests together, order by order
+// (TaylorSeries::evaluate_lanes), and resumes each lane with its own
+// coefficients; the lane then finishes its step alone, in the scalar
+// stepper's own code: step size, exclusion test, root isolation, events.
+// A lane whose job ends takes the next job at once, so no lane waits for
+// the slowest. Each lane's run is the scalar run of its job, to the last bit.
+//
+// A stepper other than Taylor never suspends: its lane runs its job through
+// without batching (correct, no faster).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include <impactlab/integrate/series_lane.hpp>
+#include <impactlab/platform/function_ref.hpp>
+
+namespace impactlab {
+
+// the lanes a batch runs by default: enough independent chains of
+// recurrences to fill the out-of-order window of a current x86-64 or ARM core
+inline constexpr int default_batch_width = 4;
+
+// How full the batch ran: how many series it evaluated, in how many
+// evaluations together (lane_series / evaluations: the mean lanes per
+// evaluation, at most the width).
+struct BatchStatistics {
+  std::uint64_t evaluations = 0;
+  std::uint64_t lane_series = 0;
+};
+
+// Calls run_next_job(lane) in each of `width` lanes (1 <= width <=
+// max_series_lanes) until it returns false in every lane: it takes the next
+// job, runs it with the lane in its steppers' settings, and returns true, or
+// returns false when no job is left. Returns when every lane has finished;
+// rethrows the first exception a lane's run_next_job threw (that lane stops
+// taking jobs; the others finish theirs). The fibers' stacks are made once
+// per call: nothing is allocated while the lanes step.
+BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_next_job);
+
+}  // namespace impactlab
