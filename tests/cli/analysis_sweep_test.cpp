@@ -361,8 +361,8 @@ TEST(Sweep, SerialAndThreadedRunsWriteIdenticalFiles) {
   EXPECT_EQ(classes, slurp(threaded_2d / "classes.csv"));
 }
 
-// Trajectories in the lanes of a batch (--batch on, the default with the
-// Taylor stepper) are the scalar runs to the last bit
+// Trajectories in the lanes of a batch (--batch on, with the Taylor
+// stepper; off by default) are the scalar runs to the last bit
 // (simulate/series_batch.hpp): a 1D sweep in chunks, a 2D map with its
 // Lyapunov exponents and a basins grid write the same files either way, and
 // meta.json says how many lanes ran.
@@ -372,7 +372,7 @@ TEST(Sweep, BatchOnAndOffWriteIdenticalFiles) {
     return nlohmann::json::parse(slurp(dir / "meta.json"))["run"]["batch_width"].get<int>();
   };
   const auto on_1d = scratch / "on1d", off_1d = scratch / "off1d";
-  ASSERT_EQ(run_command_line(sweep_1d + " --chunks 6 --out " + on_1d.string()).status, 0);
+  ASSERT_EQ(run_command_line(sweep_1d + " --chunks 6 --batch on --out " + on_1d.string()).status, 0);
   ASSERT_EQ(
       run_command_line(sweep_1d + " --chunks 6 --batch off --out " + off_1d.string()).status, 0);
   EXPECT_EQ(slurp(on_1d / "bifurcation.csv"), slurp(off_1d / "bifurcation.csv"));
@@ -381,7 +381,7 @@ TEST(Sweep, BatchOnAndOffWriteIdenticalFiles) {
   EXPECT_EQ(batch_width(off_1d), 1);
 
   const auto on_2d = scratch / "on2d", off_2d = scratch / "off2d";
-  ASSERT_EQ(run_command_line(sweep_2d + " --threads 2 --out " + on_2d.string()).status, 0);
+  ASSERT_EQ(run_command_line(sweep_2d + " --threads 2 --batch on --out " + on_2d.string()).status, 0);
   ASSERT_EQ(run_command_line(sweep_2d + " --batch off --out " + off_2d.string()).status, 0);
   EXPECT_EQ(slurp(on_2d / "classes.csv"), slurp(off_2d / "classes.csv"));
   EXPECT_EQ(batch_width(on_2d), 4);
@@ -390,7 +390,7 @@ TEST(Sweep, BatchOnAndOffWriteIdenticalFiles) {
       "basins jin2003 --set V0=4.163 --x initial.theta=-0.04:0.04:5 "
       "--y initial.theta_dot=-0.5:0.5:4 --transient 20 --points 8 --quiet";
   const auto on_basins = scratch / "on_basins", off_basins = scratch / "off_basins";
-  ASSERT_EQ(run_command_line(basins + " --out " + on_basins.string()).status, 0);
+  ASSERT_EQ(run_command_line(basins + " --batch on --out " + on_basins.string()).status, 0);
   ASSERT_EQ(run_command_line(basins + " --batch off --out " + off_basins.string()).status, 0);
   EXPECT_EQ(slurp(on_basins / "basins.csv"), slurp(off_basins / "basins.csv"));
   EXPECT_EQ(slurp(on_basins / "attractors.csv"), slurp(off_basins / "attractors.csv"));
@@ -446,7 +446,8 @@ TEST(Sweep, MpiRunWritesTheSameFileAsTheSerialRun) {
   const ScratchFolder scratch;
   const auto serial = scratch / "mpi_serial", parallel = scratch / "mpi_parallel";
   ASSERT_EQ(run_command_line(sweep_2d + " --batch off --out " + serial.string()).status, 0);
-  const ProgramRun o = run_command_line(sweep_2d + " --out " + parallel.string(), {.mpi_ranks = 2});
+  const ProgramRun o =
+      run_command_line(sweep_2d + " --batch on --out " + parallel.string(), {.mpi_ranks = 2});
   if (o.err.find("built without MPI") != std::string::npos) GTEST_SKIP() << "built without MPI";
   ASSERT_EQ(o.status, 0) << o.err;
   EXPECT_EQ(slurp(serial / "classes.csv"), slurp(parallel / "classes.csv"));
