@@ -30,14 +30,13 @@ std::vector<double> values(const Eigen::VectorXd& v) { return {v.data(), v.data(
 
 }  // namespace
 
-DiscontinuityMap discontinuity_map(const GrazingLocalFlow& local) {
+DiscontinuityMap discontinuity_map(const GrazingTouch& local) {
   DiscontinuityMap map;
   const std::size_t n = local.state.size();
   const auto fail = [&](const std::string& why) {
     map.failure = why;
     return map;
   };
-  if (!local.completed) return fail(local.failure.empty() ? "no local flow" : local.failure);
   if (n == 0 || local.gap_gradient.size() != n || local.rate_gradient.size() != n ||
       local.reset_jacobian.size() != n || local.field_jacobian.size() != n)
     return fail("the local data do not match the state's dimension");

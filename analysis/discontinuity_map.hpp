@@ -31,37 +31,44 @@
 
 namespace impactlab {
 
-// What the system gives at a located grazing point (ContinuationProblem::
-// grazing_flow): the touch, the local geometry of the gap, the reset, the
-// virtual orbit's flow split at the touch, and the parameter derivatives. N
-// is the tangent dimension; times are seconds since the section the orbit
-// was solved on (phase `section_phase`).
-struct GrazingLocalFlow {
-  bool completed = false;
-  std::string failure;        // why not completed
-  std::vector<double> state;  // x_g: the N tangent components at the touch
-  double time = 0.0;          // t_g since the section (s)
-  double section_phase = 0.0; // rad: the section ωt ≡ section_phase the orbit was solved on
-  double phase = 0.0;         // rad: ωt_g, the forcing phase of the touch (unreduced)
-  double omega = 0.0;         // forcing frequency (rad/s)
-  double period = 0.0;        // nT (s)
+// One touch of the virtual orbit (the touched wall's contacts suppressed
+// near it): where a wall gap has a zero minimum, its local geometry and the
+// reset of an impact there. N is the tangent dimension.
+struct GrazingTouch {
   int witness = -1;           // the touched wall's witness
+  double time = 0.0;          // since the section the orbit was solved on (s)
+  double phase = 0.0;         // rad: ωt of the touch (unreduced)
+  std::vector<double> state;  // x_g: the N tangent components at the touch
   double gap = 0.0, gap_rate = 0.0;  // h and ḣ at the touch (zero to the solver's tolerance)
   double gap_acceleration = 0.0;     // a = ḧ (gap unit / s²), > 0 where the flight curves away
   double gap_jerk = 0.0;             // b = h⃛ (gap unit / s³)
   std::vector<double> gap_gradient;  // ∇h (N)
   std::vector<double> rate_gradient; // ∇ḣ (N)
-  std::vector<double> field;         // f(x_g, t_g) (N)
   MonodromyMatrix field_jacobian;    // J = ∂f/∂x at the touch (N × N)
   MonodromyMatrix reset_jacobian;    // G = ∂g/∂x of an impact at the touch (N × N)
-  MonodromyMatrix to_touch;          // Φ₁: ∂x(t_g)/∂x(section), the virtual flow
-  MonodromyMatrix from_touch;        // Φ₂: ∂x(section + nT)/∂x(t_g), the virtual flow
-  // ∂/∂p at a fixed state and fixed forcing phases (the parameter step and
-  // stencil in docs/analysis.md):
-  std::vector<double> touch_parameter_derivative;  // B₁ = ∂x(t_g)/∂p from the section state
-  std::vector<double> image_parameter_derivative;  // M_p = ∂Pⁿ/∂p of the section map
-  double gap_parameter_derivative = 0.0;            // h_p = ∂h/∂p at x_g, phase ωt_g
-  double parameter_step = 0.0;                      // the stencil's step in p
+  double gap_parameter_derivative = 0.0;  // h_p = ∂h/∂p at x_g and the touch's phase
+};
+
+// The virtual flow from one touch to the next.
+struct GrazingSegment {
+  MonodromyMatrix flow;                      // ∂x(end)/∂x(start)
+  std::vector<double> parameter_derivative;  // ∂x(end)/∂p at a fixed start state and fixed phases
+};
+
+// What the system gives at a located grazing point (ContinuationProblem::
+// grazing_flow): the touches of the virtual orbit through it, the located
+// one first and the others (another wall touched at once: a symmetric orbit
+// between two walls) in their order along the orbit, and the flow from each
+// touch to the next (the last segment back to the first touch, one orbit on).
+struct GrazingLocalFlow {
+  bool completed = false;
+  std::string failure;         // why not completed
+  double section_phase = 0.0;  // rad: the section ωt ≡ section_phase the orbit was solved on
+  double omega = 0.0;          // forcing frequency (rad/s)
+  double period = 0.0;         // nT (s)
+  double parameter_step = 0.0; // the parameter stencil's step
+  std::vector<GrazingTouch> touches;
+  std::vector<GrazingSegment> segments;  // segments[j]: touches[j] to the next touch
 };
 
 struct DiscontinuityMap {
@@ -76,9 +83,9 @@ struct DiscontinuityMap {
   std::vector<double> next;           // Q = 2 J W − (2b/3a) W (state units per gap)
 };
 
-// The ZDM's coefficients from the local data (available false, with the
-// reason, where a ≤ 0 or the reset or the gap's gradients are degenerate).
-DiscontinuityMap discontinuity_map(const GrazingLocalFlow& local);
+// The ZDM's coefficients at a touch (available false, with the reason, where
+// a ≤ 0 or the reset or the gap's gradients are degenerate).
+DiscontinuityMap discontinuity_map(const GrazingTouch& touch);
 
 // D(y) − y for the deviation y − x_g (and the gap h(y) = ∇h·(y − x_g) +
 // gap_offset, the parameter's direct share): the leading order alone, or

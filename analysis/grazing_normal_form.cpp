@@ -37,28 +37,66 @@ VectorXd vector(const std::vector<double>& v) {
 
 std::vector<double> values(const VectorXd& v) { return {v.data(), v.data() + v.size()}; }
 
-bool finite(const std::vector<double>& v) {
-  return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
-}
-
 // x with A x = b (full pivoting; non-finite where A is singular)
 VectorXd solve(const MatrixXd& a, const VectorXd& b) { return full_pivot_lu_solve(a, b); }
+
+// One touch of the composite map: its gap (C, d) and ZDM leading vector L.
+struct TouchPieces {
+  VectorXd c, leading;
+  double d = 0.0;
+};
 
 // The normal form's pieces as Eigen objects, once per call.
 struct Pieces {
   MatrixXd n;
   VectorXd m, c, e;
   double d = 0.0, a = 0.0;
+  // with further touches: each touch's gap and ZDM, and the flow on to the next
+  std::vector<TouchPieces> touches;
+  std::vector<MatrixXd> flows;
+  std::vector<VectorXd> shifts;
   explicit Pieces(const GrazingNormalForm& form)
       : n(matrix(form.linear)),
         m(vector(form.parameter_vector)),
         c(vector(form.gap_gradient)),
         e(vector(form.root_vector)),
         d(form.gap_parameter),
-        a(form.map.gap_acceleration) {}
+        a(form.map.gap_acceleration) {
+    if (form.further_touches.empty()) return;
+    touches.push_back({c, vector(form.map.leading), d});
+    for (const FurtherTouch& touch : form.further_touches)
+      touches.push_back({vector(touch.map.gap_gradient), vector(touch.map.leading),
+                         touch.gap_parameter});
+    for (std::size_t j = 0; j < form.segment_flows.size(); ++j) {
+      flows.push_back(matrix(form.segment_flows[j]));
+      shifts.push_back(vector(form.segment_parameter_vectors[j]));
+    }
+  }
   [[nodiscard]] Eigen::Index size() const { return n.rows(); }
+  [[nodiscard]] bool composite() const { return !touches.empty(); }
   [[nodiscard]] VectorXd virtual_fixed_point(double mu) const {
     return solve(MatrixXd::Identity(size(), size()) - n, m * mu);
+  }
+  // the composite map's image of ξ (deviation from the first touch) and its
+  // tangent map applied to `tangent`; the touches' √(−h) where they impact
+  // (gap rate units once times √(2a)) into `roots`
+  VectorXd composite_image(const VectorXd& xi, double mu, VectorXd& tangent,
+                           std::vector<double>& roots, double* largest_gap = nullptr) const {
+    VectorXd x = xi;
+    for (std::size_t j = 0; j < touches.size(); ++j) {
+      const TouchPieces& touch = touches[j];
+      const double h = touch.c.dot(x) + touch.d * mu;
+      if (largest_gap) *largest_gap = std::max(*largest_gap, std::fabs(h));
+      if (h < 0.0) {
+        const double s = std::sqrt(-h);
+        x += touch.leading * s;
+        tangent -= touch.leading * (touch.c.dot(tangent) / (2.0 * s));
+        roots.push_back(s);
+      }
+      x = flows[j] * x + shifts[j] * mu;
+      tangent = flows[j] * tangent;
+    }
+    return x;
   }
 };
 
@@ -99,6 +137,11 @@ std::vector<double> normal_form_image(const GrazingNormalForm& form, const std::
                                       double mu) {
   const Pieces p(form);
   const VectorXd x = vector(xi);
+  if (p.composite()) {
+    VectorXd tangent = VectorXd::Zero(p.size());
+    std::vector<double> roots;
+    return values(p.composite_image(x, mu, tangent, roots));
+  }
   const double h = p.c.dot(x) + p.d * mu;
   VectorXd image = p.n * x + p.m * mu;
   if (h < 0.0) image += p.e * std::sqrt(-h);
@@ -108,7 +151,7 @@ std::vector<double> normal_form_image(const GrazingNormalForm& form, const std::
 MaximalOrbit maximal_orbit(const GrazingNormalForm& form, int n, double mu) {
   MaximalOrbit orbit;
   orbit.n = n;
-  if (!form.available || n < 1) return orbit;
+  if (!form.available || n < 1 || !form.further_touches.empty()) return orbit;
   const Pieces p(form);
   const Eigen::Index size = p.size();
   const MatrixXd identity = MatrixXd::Identity(size, size);
@@ -164,20 +207,35 @@ NormalFormAttractor normal_form_attractor(const GrazingNormalForm& form, double 
   kept.reserve(kept_count);
   std::vector<double> speeds;
   double log_growth = 0.0;
+  std::vector<double> roots;
   for (int i = 0; i < dropped + kept_count; ++i) {
     const double h = p.c.dot(x) + p.d * mu;
     if (!std::isfinite(h) || std::fabs(h) > bound) {
       attractor.kind = "escapes";
       return attractor;
     }
-    image.noalias() = p.n * x;
-    image += p.m * mu;
-    VectorXd next_tangent = p.n * tangent;
-    if (h < 0.0) {
-      const double s = std::sqrt(-h);
-      image += p.e * s;
-      next_tangent -= p.e * (p.c.dot(tangent) / (2.0 * s));
-      if (i >= dropped) speeds.push_back(root_scale * s);
+    VectorXd next_tangent = tangent;
+    if (p.composite()) {
+      // every touch's gap is held to the same bound
+      roots.clear();
+      double largest = 0.0;
+      image = p.composite_image(x, mu, next_tangent, roots, &largest);
+      if (!(largest <= bound)) {
+        attractor.kind = "escapes";
+        return attractor;
+      }
+      if (i >= dropped)
+        for (double s : roots) speeds.push_back(root_scale * s);
+    } else {
+      image.noalias() = p.n * x;
+      image += p.m * mu;
+      next_tangent = p.n * tangent;
+      if (h < 0.0) {
+        const double s = std::sqrt(-h);
+        image += p.e * s;
+        next_tangent -= p.e * (p.c.dot(tangent) / (2.0 * s));
+        if (i >= dropped) speeds.push_back(root_scale * s);
+      }
     }
     const double norm = next_tangent.norm();
     if (norm > 0.0 && std::isfinite(norm)) {
@@ -195,6 +253,13 @@ NormalFormAttractor normal_form_attractor(const GrazingNormalForm& form, double 
     attractor.period = period;
     // the impacts of the last period
     for (int i = kept_count - period; i < kept_count; ++i) {
+      if (p.composite()) {
+        VectorXd unused = VectorXd::Zero(size);
+        std::vector<double> found;
+        p.composite_image(kept[i - 1], mu, unused, found);
+        for (double s : found) attractor.impact_speeds.push_back(root_scale * s);
+        continue;
+      }
       const double h = p.c.dot(kept[i - 1]) + p.d * mu;
       if (h < 0.0) attractor.impact_speeds.push_back(root_scale * std::sqrt(-h));
     }
@@ -212,31 +277,56 @@ NormalFormAttractor normal_form_attractor(const GrazingNormalForm& form, double 
 GrazingNormalForm grazing_normal_form(const GrazingLocalFlow& local, double parameter) {
   GrazingNormalForm form;
   form.parameter = parameter;
-  form.map = discontinuity_map(local);
   const auto fail = [&](const std::string& why) {
     form.available = false;
     form.note = why;
     return form;
   };
+  if (!local.completed) return fail(local.failure.empty() ? "no local flow" : local.failure);
+  if (local.touches.empty() || local.segments.size() != local.touches.size())
+    return fail("the local flow has no touch, or not one segment per touch");
+  const auto reduced = [](double phase) {
+    const double r = std::fmod(phase, 2.0 * std::numbers::pi);
+    return r < 0.0 ? r + 2.0 * std::numbers::pi : r;
+  };
+  const GrazingTouch& first = local.touches.front();
+  form.map = discontinuity_map(first);
   if (!form.map.available) return fail(form.map.failure);
-  const std::size_t n = local.state.size();
-  if (local.to_touch.size() != n || local.from_touch.size() != n ||
-      local.touch_parameter_derivative.size() != n || local.image_parameter_derivative.size() != n)
-    return fail("the local flow's pieces do not match the state's dimension");
-  form.state = local.state;
-  form.phase = std::fmod(local.phase, 2.0 * std::numbers::pi);
-  if (form.phase < 0.0) form.phase += 2.0 * std::numbers::pi;
+  const std::size_t n = first.state.size();
+  for (const GrazingSegment& segment : local.segments)
+    if (segment.flow.size() != n || segment.parameter_derivative.size() != n)
+      return fail("the local flow's pieces do not match the state's dimension");
+  form.state = first.state;
+  form.phase = reduced(first.phase);
+  for (std::size_t j = 1; j < local.touches.size(); ++j) {
+    const GrazingTouch& touch = local.touches[j];
+    FurtherTouch further;
+    further.phase = reduced(touch.phase);
+    further.after = std::fmod(touch.time - first.time + local.period, local.period);
+    further.witness = touch.witness;
+    further.map = discontinuity_map(touch);
+    further.gap_parameter = touch.gap_parameter_derivative;
+    if (!further.map.available) return fail("a further touch: " + further.map.failure);
+    form.further_touches.push_back(further);
+  }
 
-  // the section through the touch: N = Φ₁Φ₂, M = Φ₁(M_p − Φ₂B₁) + B₁
-  const MatrixXd to_touch = matrix(local.to_touch), from_touch = matrix(local.from_touch);
-  const VectorXd b1 = vector(local.touch_parameter_derivative);
-  const MatrixXd linear = to_touch * from_touch;
-  const VectorXd m = to_touch * (vector(local.image_parameter_derivative) - from_touch * b1) + b1;
+  // the section through the first touch: N = A_K ⋯ A_1, M = Σ_j A_K ⋯ A_{j+1} B_j
+  MatrixXd linear = MatrixXd::Identity(n, n);
+  VectorXd m = VectorXd::Zero(n);
+  for (const GrazingSegment& segment : local.segments) {
+    const MatrixXd flow = matrix(segment.flow);
+    linear = flow * linear;
+    m = flow * m + vector(segment.parameter_derivative);
+    if (local.touches.size() > 1) {
+      form.segment_flows.push_back(segment.flow);
+      form.segment_parameter_vectors.push_back(segment.parameter_derivative);
+    }
+  }
   const VectorXd e = linear * vector(form.map.leading);
   form.linear = rows_of(linear);
   form.parameter_vector = values(m);
-  form.gap_gradient = local.gap_gradient;
-  form.gap_parameter = local.gap_parameter_derivative;
+  form.gap_gradient = first.gap_gradient;
+  form.gap_parameter = first.gap_parameter_derivative;
   form.root_vector = values(e);
   if (!linear.allFinite() || !m.allFinite() || !e.allFinite() ||
       !std::isfinite(form.gap_parameter))
@@ -270,7 +360,8 @@ GrazingNormalForm grazing_normal_form(const GrazingLocalFlow& local, double para
   // the local period-1 impacting orbit: c₁ = C (I − N)⁻¹ E; it exists where
   // −g_μ μ / c₁ > 0
   const double c1 = c.dot(solve(identity - linear, e));
-  if (std::isfinite(c1) && c1 != 0.0 && form.gap_per_parameter != 0.0) {
+  if (std::isfinite(c1) && c1 != 0.0 && form.gap_per_parameter != 0.0 &&
+      form.further_touches.empty()) {
     form.period_one_slope = std::sqrt(2.0 * a) * std::fabs(form.gap_per_parameter / c1);
     form.period_one_side = c1 > 0.0 ? form.impacting_side : -form.impacting_side;
   }
@@ -278,7 +369,7 @@ GrazingNormalForm grazing_normal_form(const GrazingLocalFlow& local, double para
   const bool orbit_stable = std::all_of(form.eigenvalues.begin(), form.eigenvalues.end(),
                                         [](const std::complex<double>& l) { return std::abs(l) < 1.0; });
   form.other_side = orbit_stable ? "non_impacting_orbit" : "unstable_non_impacting_orbit";
-  form.rule = eigenvalue_rule(form);
+  form.rule = form.further_touches.empty() ? eigenvalue_rule(form) : GrazingScenario::not_applicable;
   if (form.impacting_side == 0) {
     form.note = "degenerate: the virtual orbit's gap does not change with the parameter (g_mu = 0)";
     form.scenario = GrazingScenario::not_applicable;

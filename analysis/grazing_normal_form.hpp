@@ -83,6 +83,16 @@ struct MaximalOrbit {
   std::vector<std::complex<double>> multipliers;  // of Nⁿ⁻¹ (N − E C / 2s)
 };
 
+// A further wall touched by the same virtual orbit (a symmetric orbit
+// between two walls touches both at once): its ZDM and where it lies.
+struct FurtherTouch {
+  double phase = 0.0;            // rad, in [0, 2π): ωt of the touch
+  double after = 0.0;            // s after the first touch
+  int witness = -1;
+  DiscontinuityMap map;          // the ZDM there (its h = ∇h·(y − x_j) + d_j μ)
+  double gap_parameter = 0.0;    // d_j = ∂h/∂p there
+};
+
 struct GrazingNormalForm {
   bool available = false;
   std::string note;             // why not, where not available
@@ -116,6 +126,15 @@ struct GrazingNormalForm {
   std::string other_side;           // the side without impacts: what remains there
   std::vector<int> period_sequence;  // periods of the periodic attractors, distance falling
   std::vector<NormalFormAttractor> attractors;  // 25 distances, |μ| falling
+  // further touches (none for a single touch): the map is then the
+  // composition, over the orbit, of each touch's ZDM and the virtual flow to
+  // the next touch (segments[j]: flow and parameter vector from touch j, the
+  // first being this form's own), iterated as such; the linear part N, M and
+  // the first touch's E above are its own still, but the eigenvalue rule and
+  // the maximal orbits (one touch) do not apply
+  std::vector<FurtherTouch> further_touches;
+  std::vector<MonodromyMatrix> segment_flows;
+  std::vector<std::vector<double>> segment_parameter_vectors;
 };
 
 // The normal form at p_g from the system's local data; available false (with

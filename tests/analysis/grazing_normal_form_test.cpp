@@ -67,12 +67,6 @@ double solve(auto&& f, double a, double b) {
 Vector times(const Matrix& m, const Vector& v) {
   return {m[0][0] * v[0] + m[0][1] * v[1], m[1][0] * v[0] + m[1][1] * v[1]};
 }
-Matrix times(const Matrix& a, const Matrix& b) {
-  Matrix c{};
-  for (int i = 0; i < 2; ++i)
-    for (int j = 0; j < 2; ++j) c[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j];
-  return c;
-}
 // (I − N)⁻¹ v
 Vector resolvent(const Matrix& n, const Vector& v) {
   const double a = 1.0 - n[0][0], b = -n[0][1], c = -n[1][0], d = 1.0 - n[1][1];
@@ -459,8 +453,7 @@ TEST(DiscontinuityMap, MatchesTheExactMapToItsOrder) {
   const double xddot = o.A * std::cos(w * tg) - stop.sigma;  // ẋ = 0 there
   const double xdddot = -o.A * w * std::sin(w * tg) - 2.0 * o.zeta * xddot;
 
-  impactlab::GrazingLocalFlow local;
-  local.completed = true;
+  impactlab::GrazingTouch local;
   local.state = {stop.sigma, 0.0};
   local.gap_gradient = {-1.0, 0.0};
   local.rate_gradient = {0.0, -1.0};
@@ -654,6 +647,64 @@ TEST(GrazingNormalForm, ChaoticWindowsAgreeWithBruteForceRuns) {
   EXPECT_GE(compared, 15);
   EXPECT_GE(agreed, 0.75 * compared);
   EXPECT_GT(seen_irregular, 0);
+}
+
+// jin2003 at ω = 8.5 rad/s: the hanging pendulum doubles its period at V0 =
+// 0.6501 m/s into a symmetric oscillation that grows until it grazes both
+// walls at once, θ = +θ₀ and −θ₀ half its orbit apart (V0 = 0.652035). The
+// normal form has the second touch (the mirror of the first) and predicts a
+// jump: an impact drives the next swing deeper into the walls (e₁ < 0).
+// Brute-force runs from the grazing orbit's state 1e-4 … 1e-8 m/s past the
+// graze settle on an impacting period-2 orbit whose impact speed (0.151
+// rad/s) does not shrink with the distance, while the first impact's c√|μ|
+// falls a hundredfold: the motion has left the graze's neighbourhood.
+TEST(GrazingNormalForm, Jin2003SymmetricGrazeJumpsAsBruteForceRunsDo) {
+  Scene scene = impactlab::load_scene("jin2003");
+  scene.values["omega"] = 8.5;
+  ContinuationJob job;
+  job.parameter = "V0";
+  job.from = 0.05;
+  job.to = 1.5;
+  job.has_start = true;
+  job.start = {0.0, 0.0};
+  job.doublings = 1;
+  const auto points = grazings(impactlab::continue_orbit(scene, job));
+  ASSERT_EQ(points.size(), 1u);
+  const BifurcationPoint& graze = points[0];
+  EXPECT_NEAR(graze.parameter, 0.652034919561, 1e-9);
+  ASSERT_TRUE(graze.normal_form && graze.normal_form->available) << graze.normal_form->note;
+  const GrazingNormalForm& form = *graze.normal_form;
+  ASSERT_EQ(form.further_touches.size(), 1u);
+  const auto& mirror = form.further_touches[0];
+  EXPECT_NE(mirror.witness, graze.graze_witness);
+  EXPECT_NEAR(mirror.after, two_pi / 8.5, 1e-6);  // half the period-2 orbit later
+  EXPECT_NEAR(mirror.map.state[0], -form.state[0], 1e-8);
+  EXPECT_NEAR(mirror.map.gap_acceleration, form.map.gap_acceleration, 1e-6);
+  EXPECT_EQ(form.impacting_side, 1);
+  EXPECT_LT(form.kick_gaps[0], 0.0);
+  EXPECT_EQ(form.rule, GrazingScenario::not_applicable);  // two touches
+  EXPECT_EQ(form.scenario, GrazingScenario::jump);
+
+  const double gap_per_rate = 0.7 * std::cos(std::asin(0.05 / 0.7));  // |∂h/∂θ| = l cos θ₀
+  std::vector<double> speeds;
+  for (int k = 4; k <= 8; ++k) {
+    const double mu = std::pow(10.0, -k);
+    Scene past = scene;
+    past.values["V0"] = graze.parameter + mu;
+    past.values["initial.theta"] = graze.state[0];
+    past.values["initial.theta_dot"] = graze.state[1];
+    impactlab::RunRequest request;
+    request.periods = 800;
+    const impactlab::RunOutput run = impactlab::simulate(past, request);
+    double fastest = 0.0;
+    for (const auto& event : run.events)
+      if (event.kind == impactlab::EventKind::impact && event.t > 600.0 * two_pi / 8.5)
+        fastest = std::max(fastest, std::fabs(event.qdot_before) * gap_per_rate);
+    speeds.push_back(fastest);
+    if (k >= 6) EXPECT_GT(fastest, 5.0 * form.root_coefficient * std::sqrt(mu)) << k;
+  }
+  EXPECT_GT(*std::min_element(speeds.begin(), speeds.end()),
+            0.9 * *std::max_element(speeds.begin(), speeds.end()));
 }
 
 }  // namespace
