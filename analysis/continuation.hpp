@@ -25,6 +25,8 @@
 #include <string_view>
 #include <vector>
 
+#include <impactlab/analysis/grazing_normal_form.hpp>
+
 namespace impactlab {
 
 // The state on the section: its N tangent components ((q, q̇), or a model
@@ -142,6 +144,7 @@ struct ContinuationRequest {
   double tolerance = 1e-10;          // |F| ≤ tolerance (1 + |x|): continue's default (api/job_options)
   double parameter_difference = 0.0; // h of ∂F/∂p ≈ (P(p+h) − P(p−h)) / 2h (0: 1e-6 (1 + |p|))
   bool locate = true;                // locate the bifurcations detected
+  bool normal_forms = true;          // a located grazing point's discontinuity map and normal form
 };
 
 struct BranchPoint {
@@ -170,6 +173,9 @@ struct BifurcationPoint {
   int graze_witness = -1;
   bool located = false;    // false: detected between two points only
   std::string note;
+  // grazing (request.normal_forms): the discontinuity map and the local
+  // normal form at the touch, its scenario and scalings (grazing_normal_form.hpp)
+  std::optional<GrazingNormalForm> normal_form;
 };
 
 // The point's type as points.csv and Python name it: a boundary by its own name.

@@ -101,6 +101,12 @@ struct ContinuationProblem {
   std::function<GapSample(const OrbitPoint& x, double p, double phase,
                           const ContactWindow& suppressed, double t)>
       gap_at;
+  // the local data at a grazing point (analysis/discontinuity_map.hpp): the
+  // orbit from x at p on section `phase`, `suppressed` the touched wall's
+  // window, touched at t since the section; empty on a problem without it
+  std::function<GrazingLocalFlow(const OrbitPoint& x, double p, double phase,
+                                 const ContactWindow& suppressed, double t)>
+      grazing_flow;
   // the state reached from x on section `from` at the next section `to`
   std::function<std::optional<OrbitPoint>(const OrbitPoint& x, double p, double from, double to)>
       transport;

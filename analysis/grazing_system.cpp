@@ -146,6 +146,23 @@ BifurcationPoint GrazingSystem<Size>::grazing_point(const Solution& solved, int 
   return point;
 }
 
+// The discontinuity map and normal form at a solution of the grazing system
+// on the map `on` at section `phase` (none where the request skips them or
+// the map gives no local flow).
+template <int Size>
+std::optional<GrazingNormalForm> GrazingSystem<Size>::normal_form_of(const ContinuationProblem& on,
+                                                                     double phase,
+                                                                     const Solution& solved,
+                                                                     int witness) const {
+  if (!corrector_.request().normal_forms || !on.grazing_flow) return std::nullopt;
+  const int n = corrector_.dimension();
+  ContactWindow window = solved.window;
+  window.witness = witness;
+  const double p = solved.z[n] * corrector_.scale();
+  return grazing_normal_form(
+      on.grazing_flow(corrector_.state_of(solved.z), p, phase, window, solved.z[n + 1]), p);
+}
+
 // The grazing system on the branch's own map, from the last point moved
 // half the failed step along the branch, t_g from `time`.
 template <int Size>
@@ -158,6 +175,7 @@ std::optional<typename GrazingSystem<Size>::Located> GrazingSystem<Size>::solve(
   const auto solved = newton(corrector_.problem(), corrector_.phase(), z, witness);
   if (!solved) return std::nullopt;
   BifurcationPoint point = grazing_point(*solved, witness);
+  point.normal_form = normal_form_of(corrector_.problem(), corrector_.phase(), *solved, witness);
   point.state = corrector_.reported_state(solved->z.head(n + 1));
   point.graze_time = corrector_.time_since_requested_section(solved->z[n + 1], solved->orbit);
   return Located{point, solved->z.head(n + 1)};
@@ -194,6 +212,7 @@ std::optional<typename GrazingSystem<Size>::Located> GrazingSystem<Size>::solve_
                                      solved->z[n] * corrector_.scale(), phase, solved->window, t_g);
   if (!at.completed || at.state.size() < 2) return std::nullopt;
   BifurcationPoint located = grazing_point(*solved, witness);
+  located.normal_form = normal_form_of(strobe, phase, *solved, witness);
   located.state = {phase + solved->orbit.omega * (t_g - solved->orbit.span), at.state[1]};
   located.graze_time = 0.0;
   return Located{located, corrector_.point(located.state, solved->z[n])};

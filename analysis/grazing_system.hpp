@@ -60,6 +60,8 @@ class GrazingSystem {
   std::optional<Solution> newton(const ContinuationProblem& on, double phase, Extended z,
                                  int witness);
   BifurcationPoint grazing_point(const Solution& solved, int witness) const;
+  std::optional<GrazingNormalForm> normal_form_of(const ContinuationProblem& on, double phase,
+                                                  const Solution& solved, int witness) const;
   std::optional<Located> solve(const Node& last, int witness, double time, double h);
   std::optional<Located> solve_section_wall(const Node& last);
 

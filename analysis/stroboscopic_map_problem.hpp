@@ -18,6 +18,7 @@
 #include <impactlab/analysis/continuation_problem.hpp>
 #include <impactlab/analysis/decorated_system.hpp>
 #include <impactlab/analysis/flow_setup.hpp>
+#include <impactlab/analysis/grazing_local_flow.hpp>
 #include <impactlab/analysis/map_evaluation.hpp>
 #include <impactlab/analysis/variational.hpp>
 #include <impactlab/simulate/flow.hpp>
@@ -135,6 +136,9 @@ ContinuationProblem stroboscopic_map_problem(MakeSystem make_system,
     sample.state.assign(run.state.begin(), run.state.begin() + n);
     return sample;
   };
+  problem.grazing_flow = grazing_local_flow_function<System>(
+      make_system, [](const System& system) { return forcing_omega_of(system); }, flight_mode,
+      setup, period);
   problem.transport = [shared](const OrbitPoint& x, double p, double from,
                                double to) -> std::optional<OrbitPoint> {
     const System system = shared->make_system(p);

@@ -84,6 +84,7 @@ ContinuationJob continuation_job(const ContinueOptions& options) {
   job.numerics.max_points = options.max_points;
   job.numerics.tolerance = options.tolerance;
   job.numerics.max_step = options.max_step;
+  job.numerics.normal_forms = !options.no_normal_forms;
   if (options.max_step > 0.0) job.numerics.initial_step = options.max_step;
   return job;
 }

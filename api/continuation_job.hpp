@@ -28,6 +28,7 @@ struct ContinueOptions {
   int max_points = ContinuationRequest{}.max_points;       // points per branch
   double tolerance = ContinuationRequest{}.tolerance;      // |P^n(x) - x| / (1 + |x|)
   double max_step = ContinuationRequest{}.max_step;        // largest arclength step; 0: 1/50 of the range
+  bool no_normal_forms = false;  // skip the normal form at each located grazing point
   // `all`: every orbit of the period at FROM (periodic --all's), each continued
   bool all = false;
   int starts = 20;               // starts drawn from the box

@@ -344,9 +344,14 @@ Options continue_options() {
       {.name = "max_step", .type = OptionType::number,
        .help = "largest arclength step in (q, qdot, parameter) (default: 1/50 of the range)",
        .default_value = ContinuationRequest{}.max_step, .lower = 0.0},
+      {.name = "no_normal_forms", .type = OptionType::flag,
+       .help = "skip the discontinuity map and normal form at each located grazing point "
+               "(grazing.json; docs/analysis.md)",
+       .default_value = false},
       {.name = "plot", .type = OptionType::flag,
        .help = "draw continuation.png (scripts/plot_continuation.py): stable solid, unstable "
-               "dashed, bifurcations marked",
+               "dashed, bifurcations marked; with a located grazing point grazing.png "
+               "(scripts/plot_grazing.py): its predicted scenario beside the sweep's impacts",
        .default_value = false, .front_ends = FrontEnds::cli},
       {.name = "with_sweep", .type = OptionType::text,
        .help = "a brute-force sweep's bifurcation.csv of the same parameter, drawn under the "

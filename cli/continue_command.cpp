@@ -15,6 +15,7 @@
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/api/continuation_job.hpp>
 #include <impactlab/api/every_orbit_continuation.hpp>
+#include <impactlab/api/grazing_record.hpp>
 #include <impactlab/api/periodic_job.hpp>
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
@@ -99,7 +100,7 @@ void write_points_csv(AtomicFile& file, const std::string& name, std::size_t dim
   auto& out = file.stream();
   out << "type," << name << ',' << state_header(dimension) << ",period,branch,"
       << multiplier_header(dimension, false)
-      << ",error_estimate,located,graze_time,graze_witness,note\n";
+      << ",error_estimate,located,graze_time,graze_witness,note," << grazing_csv_header << '\n';
   for (std::size_t b = 0; b < branches.size(); ++b)
     for (const BifurcationPoint& p : branches[b].result.points)
       out << type_name(p) << ',' << csv_field(p.parameter) << ','
@@ -107,7 +108,8 @@ void write_points_csv(AtomicFile& file, const std::string& name, std::size_t dim
           << ',' << branches[b].period << ',' << b << ','
           << multiplier_fields(p.multipliers, dimension, false) << ','
           << csv_field(p.error_estimate) << ',' << (p.located ? 1 : 0) << ','
-          << csv_field(p.graze_time) << ',' << p.graze_witness << ",\"" << p.note << "\"\n";
+          << csv_field(p.graze_time) << ',' << p.graze_witness << ",\"" << p.note << "\","
+          << grazing_csv_fields(p) << '\n';
 }
 
 // every curve, one row per point: the first branch's, then (--switch) each
@@ -231,7 +233,14 @@ int run_continue(const ContinueCommandOptions& command_options,
                   "rigid pendulum's friction cone), contact_boundary (the pendulum's V0*omega = g)"},
           {"error_estimate", "bound on the error of the parameter value"},
           {"graze_time", "grazing: time after the section at which the wall is touched (0 "
-                         "where the impact section's own impact grazes)"}}}}},
+                         "where the impact section's own impact grazes)"},
+          {"scenario", "grazing: what its normal form predicts past the graze (grazing.json's "
+                       "scenario; unavailable where it could not be computed)"},
+          {"impacting_side", "grazing: +1 or -1, the sign of p - p_g where the orbit impacts"},
+          {"impact_speed_coefficient", "grazing: c, the first impact past the graze at normal "
+                                       "speed c sqrt|p - p_g| (the gap's rate unit)"},
+          {"period_one_speed_slope", "grazing: the period-1 impacting orbit born there, "
+                                     "impact speed slope |p - p_g|, on period_one_side"}}}}},
       {"branches", branches},
       {"wall_time_s", wall_time},
   };
@@ -254,6 +263,38 @@ int run_continue(const ContinueCommandOptions& command_options,
         {"note", "the map is neutral along this state component (multiplier 1, a family of "
                  "orbits): held at its start value, its multiplier listed with the others"}};
   write_json(run_files.add("continuation.json"), document);
+  // grazing.json: an entry per grazing point, in points.csv's order
+  nlohmann::json grazing_points = nlohmann::json::array();
+  int row = 0;
+  for (std::size_t b = 0; b < result.branches.size(); ++b)
+    for (const BifurcationPoint& p : result.branches[b].result.points) {
+      if (p.type == BifurcationType::grazing)
+        grazing_points.push_back(grazing_record(p, range.name, row, static_cast<int>(b),
+                                                result.branches[b].period));
+      ++row;
+    }
+  const bool grazing = !grazing_points.empty();
+  if (grazing)
+    write_json(run_files.add("grazing.json"),
+               {{"impactlab_version", IMPACTLAB_VERSION},
+                {"command", command_line},
+                {"created_utc", utc_now()},
+                {"scene", scene_record(scene)},
+                {"parameter", range.name},
+                {"method",
+                 "Nordmark's zero-time discontinuity map at the touch (leading and next order), "
+                 "composed with the virtual orbit's flow into the normal form of the "
+                 "stroboscopic map on the section through the touch; its scenario from "
+                 "iterating it at 25 distances past the graze and from the eigenvalue rule "
+                 "(docs/analysis.md, \"Discontinuity map and normal form at a grazing point\")"},
+                {"units",
+                 {{"parameter", "the scene key's (scene.units)"},
+                  {"state", "the tangent state's (q, qdot, ...)"},
+                  {"gap", "the touched witness's (length, or rad for the pendulum)"},
+                  {"speeds", "the gap's rate (gap unit / s)"},
+                  {"time", "s"}}},
+                {"fields", grazing_fields()},
+                {"points", grazing_points}});
   if (two_parameter) {
     // the curves: the first branch's, then each doubled branch's (--switch)
     std::vector<BranchCurve> curves = {
@@ -362,6 +403,12 @@ int run_continue(const ContinueCommandOptions& command_options,
     if (!with_sweep.empty() && !two_parameter) names.push_back(with_sweep);
     plot_with_python("continuation", directory / "branch.csv", directory / "continuation.png",
                      names);
+    if (grazing && !two_parameter) {
+      std::vector<std::string> grazing_names = {range.name};
+      if (!with_sweep.empty()) grazing_names.push_back(with_sweep);
+      plot_with_python("grazing", directory / "grazing.json", directory / "grazing.png",
+                       grazing_names);
+    }
     if (two_parameter) {
       std::vector<std::string> curve_names = {range.name, range2.name};
       if (!with_sweep.empty()) curve_names.push_back(with_sweep);
@@ -374,9 +421,17 @@ int run_continue(const ContinueCommandOptions& command_options,
                                branch.result.branch.size(), to_string(branch.result.stop_reason),
                                in_brackets(branch.result.stop_detail));
       for (const BifurcationPoint& p : branch.result.points)
+      {
         std::cout << fmt::format("  {} at {} = {:.12g} (error {:.2g}){}\n", type_name(p),
                                  range.name,
                                  p.parameter, p.error_estimate, p.note.empty() ? "" : ": " + p.note);
+        if (p.normal_form && p.normal_form->available)
+          std::cout << fmt::format(
+              "    normal form: {} for {} {} {:.12g} (impact speed {:.4g} sqrt|{} - {:.12g}|)\n",
+              to_string(p.normal_form->scenario), range.name,
+              p.normal_form->impacting_side > 0 ? ">" : "<", p.parameter,
+              p.normal_form->root_coefficient, range.name, p.parameter);
+      }
     }
     if (two_parameter) {
       if (result.has_curve)
@@ -414,6 +469,7 @@ int run_continue(const ContinueCommandOptions& command_options,
       }
     }
     std::cout << "wrote " << (directory / "branch.csv").string() << ", points.csv, continuation.json"
+              << (grazing ? ", grazing.json" : "")
               << (two_parameter ? ", curve.csv, curve_points.csv, curve.json" : "") << '\n';
   }
   return exit_done;
@@ -445,6 +501,7 @@ Command add_continue_command(CLI::App& app) {
   table.add("starts", job.starts);
   table.add("box", job.box);
   table.add("seed", job.seed);
+  table.add("no_normal_forms", job.no_normal_forms);
   table.add("plot", options->plot);
   table.add("with_sweep", options->with_sweep);
   return {command,

@@ -34,6 +34,7 @@
 #include <impactlab/api/attractors_job.hpp>
 #include <impactlab/api/basins_job.hpp>
 #include <impactlab/api/compare.hpp>
+#include <impactlab/api/grazing_record.hpp>
 #include <impactlab/api/continuation_job.hpp>
 #include <impactlab/api/job_options.hpp>
 #include <impactlab/api/model_keys.hpp>
@@ -892,6 +893,12 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
   Columns point_states(dimension);
   ComplexColumns point_multipliers(dimension);
   std::vector<int> point_period, point_branch, located, graze_witness;
+  // the grazing points' normal forms: points.csv's columns and grazing.json's entries
+  std::vector<std::string> scenario;
+  std::vector<int> impacting_side, period_one_side;
+  std::vector<double> impact_speed_coefficient, period_one_speed_slope;
+  py::list grazing;
+  int row = 0;
   for (std::size_t b = 0; b < result.branches.size(); ++b) {
     const ContinuedBranch& continued = result.branches[b];
     std::vector<double> value, min_impact_speed, min_flight_gap;
@@ -940,6 +947,18 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
       graze_time.push_back(p.graze_time);
       graze_witness.push_back(p.graze_witness);
       note.push_back(p.note);
+      const bool formed = p.normal_form && p.normal_form->available;
+      scenario.push_back(p.type != BifurcationType::grazing ? ""
+                         : formed ? std::string(to_string(p.normal_form->scenario))
+                                  : "unavailable");
+      impacting_side.push_back(formed ? p.normal_form->impacting_side : 0);
+      period_one_side.push_back(formed ? p.normal_form->period_one_side : 0);
+      impact_speed_coefficient.push_back(formed ? p.normal_form->root_coefficient : NAN);
+      period_one_speed_slope.push_back(formed ? p.normal_form->period_one_slope : NAN);
+      if (p.type == BifurcationType::grazing)
+        grazing.append(json_to_python(
+            grazing_record(p, parameter, row, static_cast<int>(b), continued.period)));
+      ++row;
     }
   }
   py::dict points;
@@ -957,12 +976,18 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
   points["graze_time"] = owning_array(std::move(graze_time));
   points["graze_witness"] = owning_array(std::move(graze_witness));
   points["note"] = py::cast(note);
+  points["scenario"] = py::cast(scenario);
+  points["impacting_side"] = owning_array(std::move(impacting_side));
+  points["impact_speed_coefficient"] = owning_array(std::move(impact_speed_coefficient));
+  points["period_one_speed_slope"] = owning_array(std::move(period_one_speed_slope));
+  points["period_one_side"] = owning_array(std::move(period_one_side));
   py::dict out;
   out["parameter"] = parameter;
   out["available"] = result.available;
   out["note"] = result.note;
   out["branches"] = branches;
   out["points"] = points;
+  out["grazing"] = grazing;
   if (every) {
     const nlohmann::json found = periodic_orbits_record(scene, every->orbits);
     out["orbits"] = json_to_python(found["orbits"]);
@@ -1175,8 +1200,9 @@ PYBIND11_MODULE(_impactlab, m) {
                         bool switch_doubling, const std::vector<double>& start, double transient,
                         int max_points, double tolerance, double max_step, bool all, int starts,
                         const std::vector<std::string>& box, std::uint64_t seed,
-                        py::object progress) {
+                        bool no_normal_forms, py::object progress) {
     ContinueOptions options;
+    options.no_normal_forms = no_normal_forms;
     options.param = param;
     options.param2 = param2;
     options.curve = curve;

@@ -6,6 +6,7 @@
     plot_sweep.py poincare    poincare.csv    out.png QNAME
     plot_sweep.py continuation branch.csv     out.png PARAM QNAME [bifurcation.csv]
     plot_sweep.py curve        curve.csv      out.png PARAM1 PARAM2 [classes.csv]
+    plot_sweep.py grazing      grazing.json   out.png PARAM [bifurcation.csv]
     plot_sweep.py basins       basins.csv     out.png XKEY YKEY
     plot_sweep.py attractors   attractors.csv out.png PARAM QNAME
     plot_sweep.py lyapunov     lyapunov.csv   out.png [TIME_UNIT]
@@ -209,7 +210,7 @@ def main(argv):
     # the other figures' own scripts, beside this one
     others = {"continuation": "plot_continuation", "basins": "plot_basins",
               "attractors": "plot_attractors", "lyapunov": "plot_lyapunov",
-              "curve": "plot_curve"}
+              "curve": "plot_curve", "grazing": "plot_grazing"}
     if kind in others:
         __import__(others[kind]).main([argv[0], csv, png, *names])
         return

@@ -270,14 +270,16 @@ class WorkPrecisionResult(Result):
 class ContinuationResult(Result):
     """continue_'s result. plot(): the branches, stable solid and unstable
     dashed, with the located points (which="branches"; sweep=a 1D sweep's
-    result draws its points underneath), or the two-parameter curves
+    result draws its points underneath), the two-parameter curves
     (which="curve", with param2; sweep=a 2D sweep's result draws its period
-    map underneath)."""
+    map underneath), or each grazing point's predicted scenario beside a 1D
+    sweep through it (which="grazing"; an impact-section sweep's impact
+    speeds are drawn under the prediction too)."""
 
-    FIGURES = ("branches", "curve")
+    FIGURES = ("branches", "curve", "grazing")
 
     def _draw(self, which, sweep=None):
-        from .figures import plot_continuation, plot_curve
+        from .figures import plot_continuation, plot_curve, plot_grazing
 
         if sweep is not None and not isinstance(sweep, SweepResult):
             raise ValueError("sweep = {!r}: expected a result of impactlab.sweep".format(sweep))
@@ -291,6 +293,14 @@ class ContinuationResult(Result):
             return plot_continuation.draw_continuation(
                 self.branches, self.points, record, self.parameter, self.scene.main_coordinate,
                 underneath)
+        if which == "grazing":
+            if not self.grazing:
+                raise ValueError("which = 'grazing': the run located no grazing point")
+            if sweep is not None and sweep.bifurcation is None:
+                raise ValueError("sweep: a 2D map; the grazing is drawn beside a 1D sweep")
+            return plot_grazing.draw_grazing(
+                self.grazing, record, self.parameter,
+                None if sweep is None else plot_files_columns(sweep.bifurcation))
         if "curves" not in self.__dict__:
             raise ValueError("which = 'curve': the run followed no curve; continue_(..., "
                              "param2=...) follows one")
@@ -301,6 +311,13 @@ class ContinuationResult(Result):
         return plot_curve.draw_curve(self.curves, kind, record, self.parameter, second,
                                      None if sweep is None else sweep.summary,
                                      self.__dict__.get("curve_points"))
+
+
+def plot_files_columns(table):
+    """A result's table as the plot scripts' columns (impactlab.figures.plot_files)."""
+    from .figures import plot_files
+
+    return plot_files.as_columns(table)
 
 
 def _finite_float(value):
@@ -970,7 +987,8 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
               max_step=_default("continue", "max_step"), param2=_default("continue", "param2"),
               curve=_default("continue", "curve"), all=_default("continue", "all"),
               starts=_default("continue", "starts"), box=_default("continue", "box"),
-              seed=_default("continue", "seed"), progress=None, **keys):
+              seed=_default("continue", "seed"),
+              no_normal_forms=_default("continue", "no_normal_forms"), progress=None, **keys):
     """Pseudo-arclength continuation of a period-n orbit in one scene key (the
     CLI's `continue`): branches (per branch: the columns of branch.csv, its
     period and why it stopped) and points (the rows of points.csv: folds,
@@ -994,7 +1012,14 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     at FROM (from `starts` states drawn from `box`, seeded by `seed`): each
     branch then has `orbit` (the id of the orbit it continues), and the result
     has orbits (periodic.json's list) and not_continued (why an orbit was not:
-    on a branch already continued)."""
+    on a branch already continued).
+    Each located grazing point carries its discontinuity map and normal form
+    (docs/analysis.md): points has points.csv's columns scenario,
+    impacting_side, impact_speed_coefficient (the first impact past the graze
+    at speed c sqrt|p - p_g|), period_one_speed_slope and period_one_side, and
+    grazing is the list of grazing.json's entries (the map's and the normal
+    form's coefficients, the scenario, the normal form's attractor at 25
+    distances); no_normal_forms=True skips them."""
     loaded = scene(scene_ if scene_ is not None else "linear_impact", **keys)
     # NAME=FROM:TO is read by the scene API (continuation_job), as the CLI's
     for key, value in (("param", param), ("param2", param2), ("curve", curve),
@@ -1008,6 +1033,7 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
         if not start:  # the scene API reads an empty start as none given
             raise ValueError("start = 0 numbers: expected Q,QDOT (a model file: its N states)")
     _option("continue", "all", all)
+    _option("continue", "no_normal_forms", no_normal_forms)
     boxes = _box_list(box)
     checked = {key: _option("continue", key, value) for key, value in (
         ("period", period), ("transient", transient), ("max_points", max_points),
@@ -1015,7 +1041,8 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     raw = _run(lambda callback: _impactlab.continue_(
         loaded, param, param2 or "", curve or "", checked["period"], section, switch,
         start or [], checked["transient"], checked["max_points"], checked["tolerance"],
-        checked["max_step"], all, checked["starts"], boxes, checked["seed"], callback),
+        checked["max_step"], all, checked["starts"], boxes, checked["seed"],
+        bool(no_normal_forms), callback),
         progress, "continue")
     # branch.csv's, points.csv's and curve.csv's columns as tables
     raw["branches"] = [Table(branch) for branch in raw["branches"]]

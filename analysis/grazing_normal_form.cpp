@@ -1,0 +1,423 @@
+#include <impactlab/analysis/grazing_normal_form.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+
+#include <Eigen/Core>
+
+#include <impactlab/analysis/dense_solve.hpp>
+
+namespace impactlab {
+
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+MatrixXd matrix(const MonodromyMatrix& m) {
+  const auto n = static_cast<Eigen::Index>(m.size());
+  MatrixXd a(n, n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j) a(i, j) = m[i][j];
+  return a;
+}
+
+MonodromyMatrix rows_of(const MatrixXd& a) {
+  MonodromyMatrix m(a.rows(), std::vector<double>(a.cols()));
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    for (Eigen::Index j = 0; j < a.cols(); ++j) m[i][j] = a(i, j);
+  return m;
+}
+
+VectorXd vector(const std::vector<double>& v) {
+  return Eigen::Map<const VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+std::vector<double> values(const VectorXd& v) { return {v.data(), v.data() + v.size()}; }
+
+// x with A x = b (full pivoting; non-finite where A is singular)
+VectorXd solve(const MatrixXd& a, const VectorXd& b) { return full_pivot_lu_solve(a, b); }
+
+// One touch of the composite map: its gap (C, d) and ZDM leading vector L.
+struct TouchPieces {
+  VectorXd c, leading;
+  double d = 0.0;
+};
+
+// The normal form's pieces as Eigen objects, once per call.
+struct Pieces {
+  MatrixXd n;
+  VectorXd m, c, e;
+  double d = 0.0, a = 0.0;
+  // with further touches: each touch's gap and ZDM, and the flow on to the next
+  std::vector<TouchPieces> touches;
+  std::vector<MatrixXd> flows;
+  std::vector<VectorXd> shifts;
+  explicit Pieces(const GrazingNormalForm& form)
+      : n(matrix(form.linear)),
+        m(vector(form.parameter_vector)),
+        c(vector(form.gap_gradient)),
+        e(vector(form.root_vector)),
+        d(form.gap_parameter),
+        a(form.map.gap_acceleration) {
+    if (form.further_touches.empty()) return;
+    touches.push_back({c, vector(form.map.leading), d});
+    for (const FurtherTouch& touch : form.further_touches)
+      touches.push_back({vector(touch.map.gap_gradient), vector(touch.map.leading),
+                         touch.gap_parameter});
+    for (std::size_t j = 0; j < form.segment_flows.size(); ++j) {
+      flows.push_back(matrix(form.segment_flows[j]));
+      shifts.push_back(vector(form.segment_parameter_vectors[j]));
+    }
+  }
+  [[nodiscard]] Eigen::Index size() const { return n.rows(); }
+  [[nodiscard]] bool composite() const { return !touches.empty(); }
+  [[nodiscard]] VectorXd virtual_fixed_point(double mu) const {
+    return solve(MatrixXd::Identity(size(), size()) - n, m * mu);
+  }
+  // the composite map's image of ξ (deviation from the first touch) and its
+  // tangent map applied to `tangent`; the touches' √(−h) where they impact
+  // (gap rate units once times √(2a)) into `roots`
+  VectorXd composite_image(const VectorXd& xi, double mu, VectorXd& tangent,
+                           std::vector<double>& roots, double* largest_gap = nullptr) const {
+    VectorXd x = xi;
+    for (std::size_t j = 0; j < touches.size(); ++j) {
+      const TouchPieces& touch = touches[j];
+      const double h = touch.c.dot(x) + touch.d * mu;
+      if (largest_gap) *largest_gap = std::max(*largest_gap, std::fabs(h));
+      if (h < 0.0) {
+        const double s = std::sqrt(-h);
+        x += touch.leading * s;
+        tangent -= touch.leading * (touch.c.dot(tangent) / (2.0 * s));
+        roots.push_back(s);
+      }
+      x = flows[j] * x + shifts[j] * mu;
+      tangent = flows[j] * tangent;
+    }
+    return x;
+  }
+};
+
+// The periodic orbit's period among the kept iterates (the deviation's
+// history, newest last): the smallest p ≤ 400 with every kept iterate within
+// tolerance of the one p before it; 0 where none.
+int period_of(const std::vector<VectorXd>& kept, double tolerance) {
+  const int count = static_cast<int>(kept.size());
+  for (int p = 1; p <= 400 && 2 * p < count; ++p) {
+    bool repeats = true;
+    for (int i = count - 1; i >= count - 2 * p && repeats; --i)
+      repeats = (kept[i] - kept[i - p]).lpNorm<Eigen::Infinity>() <= tolerance;
+    if (repeats) return p;
+  }
+  return 0;
+}
+
+}  // namespace
+
+GrazingScenario eigenvalue_rule(const GrazingNormalForm& form) {
+  if (!form.available || form.eigenvalues.empty()) return GrazingScenario::not_applicable;
+  for (const auto& lambda : form.eigenvalues)
+    if (std::fabs(lambda.imag()) > 1e-12 * (1.0 + std::abs(lambda)))
+      return GrazingScenario::not_applicable;
+  const double lambda1 = form.eigenvalues.front().real();
+  if (!(std::fabs(lambda1) < 1.0)) return GrazingScenario::not_applicable;
+  double largest = 0.0;
+  for (double e : form.kick_gaps) largest = std::max(largest, std::fabs(e));
+  for (double e : form.kick_gaps)
+    if (e < -1e-12 * largest) return GrazingScenario::jump;
+  if (!(lambda1 > 0.0) || !(form.dominant_product > 0.0)) return GrazingScenario::jump;
+  if (lambda1 < 0.25) return GrazingScenario::period_adding;
+  if (lambda1 < 2.0 / 3.0) return GrazingScenario::period_adding_with_chaos;
+  return GrazingScenario::chaos;
+}
+
+std::vector<double> normal_form_image(const GrazingNormalForm& form, const std::vector<double>& xi,
+                                      double mu) {
+  const Pieces p(form);
+  const VectorXd x = vector(xi);
+  if (p.composite()) {
+    VectorXd tangent = VectorXd::Zero(p.size());
+    std::vector<double> roots;
+    return values(p.composite_image(x, mu, tangent, roots));
+  }
+  const double h = p.c.dot(x) + p.d * mu;
+  VectorXd image = p.n * x + p.m * mu;
+  if (h < 0.0) image += p.e * std::sqrt(-h);
+  return values(image);
+}
+
+MaximalOrbit maximal_orbit(const GrazingNormalForm& form, int n, double mu) {
+  MaximalOrbit orbit;
+  orbit.n = n;
+  if (!form.available || n < 1 || !form.further_touches.empty()) return orbit;
+  const Pieces p(form);
+  const Eigen::Index size = p.size();
+  const MatrixXd identity = MatrixXd::Identity(size, size);
+  MatrixXd power = identity;  // Nⁿ⁻¹
+  for (int k = 1; k < n; ++k) power = p.n * power;
+  const VectorXd kick = solve(identity - p.n * power, power * p.e);  // (I − Nⁿ)⁻¹ Nⁿ⁻¹ E
+  const double cn = p.c.dot(kick);
+  const double g = form.gap_per_parameter * mu;
+  const double discriminant = cn * cn - 4.0 * g;
+  if (!(discriminant >= 0.0) || !std::isfinite(cn)) return orbit;
+  // the root of s² + c_n s + g = 0 that vanishes with g
+  const double s =
+      g == 0.0 ? 0.0 : -2.0 * g / (cn + std::copysign(std::sqrt(discriminant), cn));
+  if (!(s > 0.0)) return orbit;
+  orbit.exists = true;
+  orbit.root = s;
+  orbit.impact_speed = std::sqrt(2.0 * p.a) * s;
+  const VectorXd start = p.virtual_fixed_point(mu) + kick * s;
+  orbit.state = values(start);
+  // the n − 1 iterations after the impact stay clear of the wall
+  VectorXd x = p.n * start + p.m * mu + p.e * s;
+  orbit.admissible = true;
+  for (int k = 1; k < n; ++k) {
+    if (p.c.dot(x) + p.d * mu < 0.0) orbit.admissible = false;
+    x = p.n * x + p.m * mu;
+  }
+  const MatrixXd jacobian = power * (p.n - p.e * p.c.transpose() / (2.0 * s));
+  orbit.multipliers = multipliers_of(rows_of(jacobian));
+  orbit.stable = std::all_of(orbit.multipliers.begin(), orbit.multipliers.end(),
+                             [](const std::complex<double>& m) { return std::abs(m) < 1.0; });
+  return orbit;
+}
+
+NormalFormAttractor normal_form_attractor(const GrazingNormalForm& form, double mu) {
+  NormalFormAttractor attractor;
+  attractor.distance = mu;
+  if (!form.available) return attractor;
+  const Pieces p(form);
+  const Eigen::Index size = p.size();
+  const double nu = std::fabs(form.gap_per_parameter * mu);
+  double kick = 0.0;
+  for (double e : form.kick_gaps) kick = std::max(kick, std::fabs(e));
+  // a local attractor keeps its gaps within a few times κ√ν + ν (an impact of
+  // speed ∝ √ν kicks later gaps by at most κ√ν); beyond 30 times that, the
+  // motion has left the graze's neighbourhood
+  const double scale = kick * std::sqrt(nu) + nu;
+  const double bound = 30.0 * scale;
+  const double root_scale = std::sqrt(2.0 * p.a);
+  VectorXd x = p.virtual_fixed_point(mu);
+  VectorXd image(size), tangent = VectorXd::Ones(size) / std::sqrt(double(size));
+  constexpr int dropped = 4000, kept_count = 2000;
+  std::vector<VectorXd> kept;
+  kept.reserve(kept_count);
+  std::vector<double> speeds;
+  double log_growth = 0.0;
+  std::vector<double> roots;
+  for (int i = 0; i < dropped + kept_count; ++i) {
+    const double h = p.c.dot(x) + p.d * mu;
+    if (!std::isfinite(h) || std::fabs(h) > bound) {
+      attractor.kind = "escapes";
+      return attractor;
+    }
+    VectorXd next_tangent = tangent;
+    if (p.composite()) {
+      // every touch's gap is held to the same bound
+      roots.clear();
+      double largest = 0.0;
+      image = p.composite_image(x, mu, next_tangent, roots, &largest);
+      if (!(largest <= bound)) {
+        attractor.kind = "escapes";
+        return attractor;
+      }
+      if (i >= dropped)
+        for (double s : roots) speeds.push_back(root_scale * s);
+    } else {
+      image.noalias() = p.n * x;
+      image += p.m * mu;
+      next_tangent = p.n * tangent;
+      if (h < 0.0) {
+        const double s = std::sqrt(-h);
+        image += p.e * s;
+        next_tangent -= p.e * (p.c.dot(tangent) / (2.0 * s));
+        if (i >= dropped) speeds.push_back(root_scale * s);
+      }
+    }
+    const double norm = next_tangent.norm();
+    if (norm > 0.0 && std::isfinite(norm)) {
+      tangent = next_tangent / norm;
+      if (i >= dropped) log_growth += std::log(norm);
+    }
+    x = image;
+    if (i >= dropped) kept.push_back(x);
+  }
+  attractor.lyapunov = log_growth / kept_count;
+  for (double v : speeds) attractor.max_impact_speed = std::max(attractor.max_impact_speed, v);
+  const int period = period_of(kept, 1e-7 * scale);
+  if (period > 0) {
+    attractor.kind = "periodic";
+    attractor.period = period;
+    // the impacts of the last period
+    for (int i = kept_count - period; i < kept_count; ++i) {
+      if (p.composite()) {
+        VectorXd unused = VectorXd::Zero(size);
+        std::vector<double> found;
+        p.composite_image(kept[i - 1], mu, unused, found);
+        for (double s : found) attractor.impact_speeds.push_back(root_scale * s);
+        continue;
+      }
+      const double h = p.c.dot(kept[i - 1]) + p.d * mu;
+      if (h < 0.0) attractor.impact_speeds.push_back(root_scale * std::sqrt(-h));
+    }
+    attractor.impacts = static_cast<int>(attractor.impact_speeds.size());
+  } else {
+    attractor.kind = attractor.lyapunov > 0.0 ? "chaotic" : "aperiodic";
+    attractor.impacts = static_cast<int>(speeds.size());
+    const std::size_t stride = std::max<std::size_t>(1, speeds.size() / 64);
+    for (std::size_t i = 0; i < speeds.size() && attractor.impact_speeds.size() < 64; i += stride)
+      attractor.impact_speeds.push_back(speeds[i]);
+  }
+  return attractor;
+}
+
+GrazingNormalForm grazing_normal_form(const GrazingLocalFlow& local, double parameter) {
+  GrazingNormalForm form;
+  form.parameter = parameter;
+  const auto fail = [&](const std::string& why) {
+    form.available = false;
+    form.note = why;
+    return form;
+  };
+  if (!local.completed) return fail(local.failure.empty() ? "no local flow" : local.failure);
+  if (local.touches.empty() || local.segments.size() != local.touches.size())
+    return fail("the local flow has no touch, or not one segment per touch");
+  const auto reduced = [](double phase) {
+    const double r = std::fmod(phase, 2.0 * std::numbers::pi);
+    return r < 0.0 ? r + 2.0 * std::numbers::pi : r;
+  };
+  const GrazingTouch& first = local.touches.front();
+  form.map = discontinuity_map(first);
+  if (!form.map.available) return fail(form.map.failure);
+  const std::size_t n = first.state.size();
+  for (const GrazingSegment& segment : local.segments)
+    if (segment.flow.size() != n || segment.parameter_derivative.size() != n)
+      return fail("the local flow's pieces do not match the state's dimension");
+  form.state = first.state;
+  form.phase = reduced(first.phase);
+  for (std::size_t j = 1; j < local.touches.size(); ++j) {
+    const GrazingTouch& touch = local.touches[j];
+    FurtherTouch further;
+    further.phase = reduced(touch.phase);
+    further.after = std::fmod(touch.time - first.time + local.period, local.period);
+    further.witness = touch.witness;
+    further.map = discontinuity_map(touch);
+    further.gap_parameter = touch.gap_parameter_derivative;
+    if (!further.map.available) return fail("a further touch: " + further.map.failure);
+    form.further_touches.push_back(further);
+  }
+
+  // the section through the first touch: N = A_K ⋯ A_1, M = Σ_j A_K ⋯ A_{j+1} B_j
+  MatrixXd linear = MatrixXd::Identity(n, n);
+  VectorXd m = VectorXd::Zero(n);
+  for (const GrazingSegment& segment : local.segments) {
+    const MatrixXd flow = matrix(segment.flow);
+    linear = flow * linear;
+    m = flow * m + vector(segment.parameter_derivative);
+    if (local.touches.size() > 1) {
+      form.segment_flows.push_back(segment.flow);
+      form.segment_parameter_vectors.push_back(segment.parameter_derivative);
+    }
+  }
+  const VectorXd e = linear * vector(form.map.leading);
+  form.linear = rows_of(linear);
+  form.parameter_vector = values(m);
+  form.gap_gradient = first.gap_gradient;
+  form.gap_parameter = first.gap_parameter_derivative;
+  form.root_vector = values(e);
+  if (!linear.allFinite() || !m.allFinite() || !e.allFinite() ||
+      !std::isfinite(form.gap_parameter))
+    return fail("the virtual orbit's flow or parameter derivatives are not finite");
+  form.eigenvalues = multipliers_of(form.linear);
+  form.available = true;
+
+  // the virtual fixed point's gap per unit μ, and the side it penetrates on
+  const MatrixXd identity = MatrixXd::Identity(n, n);
+  const VectorXd c = vector(form.gap_gradient);
+  form.gap_per_parameter = c.dot(solve(identity - linear, m)) + form.gap_parameter;
+  const double a = form.map.gap_acceleration;
+  form.root_coefficient = std::sqrt(2.0 * a * std::fabs(form.gap_per_parameter));
+  form.impacting_side = form.gap_per_parameter > 0.0 ? -1 : form.gap_per_parameter < 0.0 ? 1 : 0;
+
+  // an impact's effect on the gaps after it, e_k = C Nᵏ⁻¹ E
+  VectorXd power_e = e;
+  for (int k = 1; k <= 24; ++k) {
+    form.kick_gaps.push_back(c.dot(power_e));
+    power_e = linear * power_e;
+  }
+  // K = C P₁ E for a real dominant eigenvalue: (C v)(wᵀ E)/(wᵀ v)
+  const std::complex<double> lambda1 = form.eigenvalues.front();
+  if (std::fabs(lambda1.imag()) <= 1e-12 * (1.0 + std::abs(lambda1))) {
+    const VectorXd v = vector(eigenvector_for(form.linear, lambda1.real()));
+    const VectorXd w = vector(eigenvector_for(rows_of(linear.transpose()), lambda1.real()));
+    const double overlap = w.dot(v);
+    if (std::fabs(overlap) > 1e-12) form.dominant_product = c.dot(v) * w.dot(e) / overlap;
+  }
+
+  // the local period-1 impacting orbit: c₁ = C (I − N)⁻¹ E; it exists where
+  // −g_μ μ / c₁ > 0
+  const double c1 = c.dot(solve(identity - linear, e));
+  if (std::isfinite(c1) && c1 != 0.0 && form.gap_per_parameter != 0.0 &&
+      form.further_touches.empty()) {
+    form.period_one_slope = std::sqrt(2.0 * a) * std::fabs(form.gap_per_parameter / c1);
+    form.period_one_side = c1 > 0.0 ? form.impacting_side : -form.impacting_side;
+  }
+
+  const bool orbit_stable = std::all_of(form.eigenvalues.begin(), form.eigenvalues.end(),
+                                        [](const std::complex<double>& l) { return std::abs(l) < 1.0; });
+  form.other_side = orbit_stable ? "non_impacting_orbit" : "unstable_non_impacting_orbit";
+  form.rule = form.further_touches.empty() ? eigenvalue_rule(form) : GrazingScenario::not_applicable;
+  if (form.impacting_side == 0) {
+    form.note = "degenerate: the virtual orbit's gap does not change with the parameter (g_mu = 0)";
+    form.scenario = GrazingScenario::not_applicable;
+    return form;
+  }
+  if (!orbit_stable) {
+    form.note = "the grazing orbit is unstable: no attractor to follow through the graze";
+    form.scenario = GrazingScenario::not_applicable;
+    return form;
+  }
+
+  // the normal form iterated at 25 distances, 4 a decade, ν/κ² from 1e-3 to
+  // 1e-9 (ν = |g_μ μ| the virtual orbit's penetration, κ = max |e_k| the
+  // scale of an impact's kick on later gaps)
+  double kick = 0.0;
+  for (double value : form.kick_gaps) kick = std::max(kick, std::fabs(value));
+  int escapes = 0, periodic = 0, irregular = 0;
+  std::vector<int> periods, impacts;
+  for (int j = 0; j <= 24; ++j) {
+    const double nu = kick * kick * std::pow(10.0, -3.0 - 0.25 * j);
+    const double mu = form.impacting_side * nu / std::fabs(form.gap_per_parameter);
+    NormalFormAttractor attractor = normal_form_attractor(form, mu);
+    if (attractor.kind == "escapes") {
+      ++escapes;
+    } else if (attractor.kind == "periodic") {
+      ++periodic;
+      periods.push_back(attractor.period);
+      impacts.push_back(attractor.impacts);
+      if (form.period_sequence.empty() || form.period_sequence.back() != attractor.period)
+        form.period_sequence.push_back(attractor.period);
+    } else {
+      ++irregular;
+    }
+    form.attractors.push_back(std::move(attractor));
+  }
+  if (escapes > 0)
+    form.scenario = GrazingScenario::jump;
+  else if (irregular == 0 && std::all_of(periods.begin(), periods.end(),
+                                         [&](int q) { return q == periods.front(); }) &&
+           std::all_of(impacts.begin(), impacts.end(), [](int k) { return k == 1; }))
+    form.scenario = GrazingScenario::stable_impacting_orbit;
+  else if (irregular == 0)
+    form.scenario = GrazingScenario::period_adding;
+  else if (periodic > 0)
+    form.scenario = GrazingScenario::period_adding_with_chaos;
+  else
+    form.scenario = GrazingScenario::chaos;
+  return form;
+}
+
+}  // namespace impactlab
