@@ -766,25 +766,51 @@ py::dict bench_binding(const Scene& scene, std::vector<std::string> methods,
   return out;
 }
 
-// Pseudo-arclength continuation of a period-n orbit (the CLI's `continue`):
-// per branch, the columns of branch.csv; all branches' bifurcation points as
-// the rows of points.csv.
+// The columns of N-wide orbit states (q, qdot, state3 ... stateN) and of
+// their N multipliers (multiplier1 ... multiplierN), as the CLI's continuation
+// files name them; a missing component is NaN.
+class OrbitColumns {
+ public:
+  explicit OrbitColumns(std::size_t dimension) : states_(dimension), multipliers_(dimension) {}
+
+  void add_state(const OrbitPoint& state) {
+    for (std::size_t k = 0; k < states_.size(); ++k)
+      states_[k].push_back(k < state.size() ? state[k] : NAN);
+  }
+  void add_multipliers(const std::vector<std::complex<double>>& multipliers) {
+    for (std::size_t k = 0; k < multipliers_.size(); ++k)
+      multipliers_[k].push_back(k < multipliers.size() ? multipliers[k]
+                                                       : std::complex<double>(NAN, NAN));
+  }
+  void put_states(py::dict& columns) {
+    for (std::size_t k = 0; k < states_.size(); ++k)
+      columns[py::str(k == 0 ? std::string("q") : k == 1 ? std::string("qdot")
+                                                          : "state" + std::to_string(k + 1))] =
+          owning_array(std::move(states_[k]));
+  }
+  void put_multipliers(py::dict& columns) {
+    for (std::size_t k = 0; k < multipliers_.size(); ++k)
+      columns[py::str("multiplier" + std::to_string(k + 1))] =
+          owning_array(std::move(multipliers_[k]));
+  }
+
+ private:
+  std::vector<std::vector<double>> states_;
+  std::vector<std::vector<std::complex<double>>> multipliers_;
+};
+
 // One two-parameter curve as columns (the rows of curve.csv that carry its
 // branch number); states and multipliers N = `dimension` wide.
 py::dict curve_columns(const BranchCurve& curve, const std::string& parameter,
                        const std::string& parameter2, std::size_t dimension) {
   std::vector<double> p1, p2, graze_time;
-  std::vector<std::vector<double>> states(dimension);
-  std::vector<std::vector<std::complex<double>>> multipliers(dimension);
+  OrbitColumns orbit(dimension);
   std::vector<int> impacts, newton_iterations;
   for (const CurvePoint& p : curve.curve.curve) {
     p1.push_back(p.p1);
     p2.push_back(p.p2);
-    for (std::size_t k = 0; k < dimension; ++k) {
-      states[k].push_back(k < p.state.size() ? p.state[k] : NAN);
-      multipliers[k].push_back(k < p.multipliers.size() ? p.multipliers[k]
-                                                        : std::complex<double>(NAN, NAN));
-    }
+    orbit.add_state(p.state);
+    orbit.add_multipliers(p.multipliers);
     graze_time.push_back(p.graze_time);
     impacts.push_back(p.impacts);
     newton_iterations.push_back(p.newton_iterations);
@@ -799,11 +825,8 @@ py::dict curve_columns(const BranchCurve& curve, const std::string& parameter,
   one["map_evaluations"] = curve.curve.map_evaluations;
   one[py::str(parameter)] = owning_array(std::move(p1));
   one[py::str(parameter2)] = owning_array(std::move(p2));
-  for (std::size_t k = 0; k < dimension; ++k) {
-    const std::string state = k == 0 ? "q" : k == 1 ? "qdot" : "state" + std::to_string(k + 1);
-    one[py::str(state)] = owning_array(std::move(states[k]));
-    one[py::str("multiplier" + std::to_string(k + 1))] = owning_array(std::move(multipliers[k]));
-  }
+  orbit.put_states(one);
+  orbit.put_multipliers(one);
   one["graze_time"] = owning_array(std::move(graze_time));
   one["impacts"] = owning_array(std::move(impacts));
   one["newton_iterations"] = owning_array(std::move(newton_iterations));
@@ -816,19 +839,15 @@ py::dict curve_point_columns(const std::vector<BranchCurve>& curves, const std::
                              const std::string& parameter2, std::size_t dimension) {
   std::vector<std::string> type, note;
   std::vector<double> p1, p2, error_estimate, graze_time;
-  std::vector<std::vector<double>> states(dimension);
-  std::vector<std::vector<std::complex<double>>> multipliers(dimension);
+  OrbitColumns orbit(dimension);
   std::vector<int> located, branch, period;
   for (const BranchCurve& curve : curves)
     for (const CodimensionTwoPoint& p : curve.curve.points) {
       type.emplace_back(to_string(p.type));
       p1.push_back(p.p1);
       p2.push_back(p.p2);
-      for (std::size_t k = 0; k < dimension; ++k) {
-        states[k].push_back(k < p.state.size() ? p.state[k] : NAN);
-        multipliers[k].push_back(k < p.multipliers.size() ? p.multipliers[k]
-                                                          : std::complex<double>(NAN, NAN));
-      }
+      orbit.add_state(p.state);
+      orbit.add_multipliers(p.multipliers);
       error_estimate.push_back(p.error_estimate);
       located.push_back(p.located ? 1 : 0);
       graze_time.push_back(p.graze_time);
@@ -840,11 +859,8 @@ py::dict curve_point_columns(const std::vector<BranchCurve>& curves, const std::
   columns["type"] = py::cast(type);
   columns[py::str(parameter)] = owning_array(std::move(p1));
   columns[py::str(parameter2)] = owning_array(std::move(p2));
-  for (std::size_t k = 0; k < dimension; ++k) {
-    const std::string state = k == 0 ? "q" : k == 1 ? "qdot" : "state" + std::to_string(k + 1);
-    columns[py::str(state)] = owning_array(std::move(states[k]));
-    columns[py::str("multiplier" + std::to_string(k + 1))] = owning_array(std::move(multipliers[k]));
-  }
+  orbit.put_states(columns);
+  orbit.put_multipliers(columns);
   columns["error_estimate"] = owning_array(std::move(error_estimate));
   columns["located"] = owning_array(std::move(located));
   columns["graze_time"] = owning_array(std::move(graze_time));
@@ -869,29 +885,11 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
       every ? every->continuation : relay.run([&] { return continue_orbit(scene, job); });
   relay(1.0);
 
-  // the columns of the states (q, qdot, state3 ... stateN) and of the N
-  // multipliers (multiplier1 ... multiplierN), as in the CLI's CSV files
   const std::size_t dimension = result.dimension;
-  const auto state_name = [](std::size_t k) {
-    return k == 0 ? std::string("q") : k == 1 ? std::string("qdot") : "state" + std::to_string(k + 1);
-  };
-  using Columns = std::vector<std::vector<double>>;
-  using ComplexColumns = std::vector<std::vector<std::complex<double>>>;
-  const auto put_states = [&](const OrbitPoint& state, Columns& columns) {
-    for (std::size_t k = 0; k < dimension; ++k)
-      columns[k].push_back(k < state.size() ? state[k] : NAN);
-  };
-  const auto put_multipliers = [&](const std::vector<std::complex<double>>& multipliers,
-                                   ComplexColumns& columns) {
-    for (std::size_t k = 0; k < dimension; ++k)
-      columns[k].push_back(k < multipliers.size() ? multipliers[k]
-                                                  : std::complex<double>(NAN, NAN));
-  };
   py::list branches;
   std::vector<std::string> type, note;
   std::vector<double> point_parameter, error_estimate, graze_time;
-  Columns point_states(dimension);
-  ComplexColumns point_multipliers(dimension);
+  OrbitColumns point_orbits(dimension);
   std::vector<int> point_period, point_branch, located, graze_witness;
   // the grazing points' normal forms: points.csv's columns and grazing.json's entries
   std::vector<std::string> scenario;
@@ -902,16 +900,15 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
   for (std::size_t b = 0; b < result.branches.size(); ++b) {
     const ContinuedBranch& continued = result.branches[b];
     std::vector<double> value, min_impact_speed, min_flight_gap;
-    Columns states(dimension);
+    OrbitColumns orbits(dimension);
     std::vector<int> impacts, contact_phases, stable, newton_iterations;
-    ComplexColumns multipliers(dimension);
     for (const BranchPoint& p : continued.result.branch) {
       value.push_back(p.parameter);
-      put_states(p.state, states);
+      orbits.add_state(p.state);
       impacts.push_back(p.impacts);
       contact_phases.push_back(p.contact_phases);
       stable.push_back(p.stable ? 1 : 0);
-      put_multipliers(p.multipliers, multipliers);
+      orbits.add_multipliers(p.multipliers);
       // branch.csv leaves an undefined speed or gap empty (NaN here)
       min_impact_speed.push_back(std::isfinite(p.min_impact_speed) ? p.min_impact_speed : NAN);
       min_flight_gap.push_back(std::isfinite(p.min_flight_gap) ? p.min_flight_gap : NAN);
@@ -923,13 +920,11 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
     one["stop_detail"] = continued.result.stop_detail;
     one["map_evaluations"] = continued.result.map_evaluations;
     one[py::str(parameter)] = owning_array(std::move(value));
-    for (std::size_t k = 0; k < dimension; ++k)
-      one[py::str(state_name(k))] = owning_array(std::move(states[k]));
+    orbits.put_states(one);
     one["impacts"] = owning_array(std::move(impacts));
     one["contact_phases"] = owning_array(std::move(contact_phases));
     one["stable"] = owning_array(std::move(stable));
-    for (std::size_t k = 0; k < dimension; ++k)
-      one[py::str("multiplier" + std::to_string(k + 1))] = owning_array(std::move(multipliers[k]));
+    orbits.put_multipliers(one);
     one["min_impact_speed"] = owning_array(std::move(min_impact_speed));
     one["min_flight_gap"] = owning_array(std::move(min_flight_gap));
     one["newton_iterations"] = owning_array(std::move(newton_iterations));
@@ -938,10 +933,10 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
     for (const BifurcationPoint& p : continued.result.points) {
       type.emplace_back(type_name(p));
       point_parameter.push_back(p.parameter);
-      put_states(p.state, point_states);
+      point_orbits.add_state(p.state);
       point_period.push_back(continued.period);
       point_branch.push_back(static_cast<int>(b));
-      put_multipliers(p.multipliers, point_multipliers);
+      point_orbits.add_multipliers(p.multipliers);
       error_estimate.push_back(p.error_estimate);
       located.push_back(p.located ? 1 : 0);
       graze_time.push_back(p.graze_time);
@@ -964,13 +959,10 @@ py::dict continue_binding(const Scene& scene, const ContinueOptions& options,
   py::dict points;
   points["type"] = py::cast(type);
   points[py::str(parameter)] = owning_array(std::move(point_parameter));
-  for (std::size_t k = 0; k < dimension; ++k)
-    points[py::str(state_name(k))] = owning_array(std::move(point_states[k]));
+  point_orbits.put_states(points);
   points["period"] = owning_array(std::move(point_period));
   points["branch"] = owning_array(std::move(point_branch));
-  for (std::size_t k = 0; k < dimension; ++k)
-    points[py::str("multiplier" + std::to_string(k + 1))] =
-        owning_array(std::move(point_multipliers[k]));
+  point_orbits.put_multipliers(points);
   points["error_estimate"] = owning_array(std::move(error_estimate));
   points["located"] = owning_array(std::move(located));
   points["graze_time"] = owning_array(std::move(graze_time));
