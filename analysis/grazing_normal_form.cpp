@@ -100,20 +100,6 @@ struct Pieces {
   }
 };
 
-// The periodic orbit's period among the kept iterates (the deviation's
-// history, newest last): the smallest p ≤ 400 with every kept iterate within
-// tolerance of the one p before it; 0 where none.
-int period_of(const std::vector<VectorXd>& kept, double tolerance) {
-  const int count = static_cast<int>(kept.size());
-  for (int p = 1; p <= 400 && 2 * p < count; ++p) {
-    bool repeats = true;
-    for (int i = count - 1; i >= count - 2 * p && repeats; --i)
-      repeats = (kept[i] - kept[i - p]).lpNorm<Eigen::Infinity>() <= tolerance;
-    if (repeats) return p;
-  }
-  return 0;
-}
-
 }  // namespace
 
 GrazingScenario eigenvalue_rule(const GrazingNormalForm& form) {
@@ -185,12 +171,164 @@ MaximalOrbit maximal_orbit(const GrazingNormalForm& form, int n, double mu) {
   return orbit;
 }
 
-NormalFormAttractor normal_form_attractor(const GrazingNormalForm& form, double mu) {
+namespace {
+
+// The normal form iterated, on vectors and matrices of type Vec and Mat:
+// fixed-capacity ones for the small dimensions (no allocation per
+// iteration), dynamic ones beyond.
+template <class Vec, class Mat>
+class Iteration {
+ public:
+  explicit Iteration(const GrazingNormalForm& form) {
+    const auto n = static_cast<Eigen::Index>(form.linear.size());
+    const auto mat = [&](const MonodromyMatrix& m) {
+      Mat a = Mat::Zero(n, n);
+      for (Eigen::Index i = 0; i < n; ++i)
+        for (Eigen::Index j = 0; j < n; ++j) a(i, j) = m[i][j];
+      return a;
+    };
+    const auto vec = [&](const std::vector<double>& v) {
+      Vec a = Vec::Zero(n);
+      for (Eigen::Index i = 0; i < n; ++i) a(i) = v[i];
+      return a;
+    };
+    n_ = mat(form.linear);
+    m_ = vec(form.parameter_vector);
+    // the first touch's own L only where the map is a composition (else E = N L)
+    touches_.push_back({vec(form.gap_gradient),
+                        form.further_touches.empty() ? Vec(Vec::Zero(n)) : vec(form.map.leading),
+                        form.gap_parameter});
+    e_ = vec(form.root_vector);
+    for (const FurtherTouch& touch : form.further_touches)
+      touches_.push_back(
+          {vec(touch.map.gap_gradient), vec(touch.map.leading), touch.gap_parameter});
+    for (std::size_t j = 0; j < form.segment_flows.size(); ++j) {
+      flows_.push_back(mat(form.segment_flows[j]));
+      shifts_.push_back(vec(form.segment_parameter_vectors[j]));
+    }
+  }
+  [[nodiscard]] double gap(const Vec& x, double mu) const {
+    return touches_[0].c.dot(x) + touches_[0].d * mu;
+  }
+  // one iteration of x (and of the tangent vector); the √(−h) of its impacts
+  // into `roots`, the largest |h| of its touches into `largest`
+  void step(Vec& x, Vec& tangent, double mu, std::vector<double>& roots, double& largest) const {
+    if (flows_.empty()) {
+      const double h = gap(x, mu);
+      largest = std::max(largest, std::fabs(h));
+      Vec image = n_ * x + m_ * mu;
+      Vec next = n_ * tangent;
+      if (h < 0.0) {
+        const double s = std::sqrt(-h);
+        image += e_ * s;
+        next -= e_ * (touches_[0].c.dot(tangent) / (2.0 * s));
+        roots.push_back(s);
+      }
+      x = image;
+      tangent = next;
+      return;
+    }
+    for (std::size_t j = 0; j < touches_.size(); ++j) {
+      const Touch& touch = touches_[j];
+      const double h = touch.c.dot(x) + touch.d * mu;
+      largest = std::max(largest, std::fabs(h));
+      if (h < 0.0) {
+        const double s = std::sqrt(-h);
+        x += touch.leading * s;
+        tangent -= touch.leading * (touch.c.dot(tangent) / (2.0 * s));
+        roots.push_back(s);
+      }
+      x = flows_[j] * x + shifts_[j] * mu;
+      tangent = flows_[j] * tangent;
+    }
+  }
+  [[nodiscard]] Vec start(double mu) const {
+    const auto n = n_.rows();
+    Eigen::MatrixXd a = Eigen::MatrixXd::Identity(n, n) - Eigen::MatrixXd(n_);
+    const Eigen::VectorXd b = Eigen::VectorXd(m_) * mu;
+    const Eigen::VectorXd x = full_pivot_lu_solve(a, b);
+    return Vec(x);
+  }
+
+ private:
+  struct Touch {
+    Vec c, leading;
+    double d;
+  };
+  Mat n_;
+  Vec m_, e_;
+  std::vector<Touch> touches_;
+  std::vector<Mat> flows_;
+  std::vector<Vec> shifts_;
+};
+
+// The smallest p ≤ 400 with each of the last 2p iterates (of `kept`, a ring
+// whose newest is at `newest`) within `tolerance` of the one p before; 0
+// where none.
+template <class Vec>
+int period_of(const std::vector<Vec>& kept, int newest, int count, double tolerance) {
+  const int size = static_cast<int>(kept.size());
+  const auto at = [&](int back) { return kept[((newest - back) % size + size) % size]; };
+  for (int p = 1; p <= 400 && 2 * p < count; ++p) {
+    bool repeats = true;
+    for (int i = 0; i < 2 * p && repeats; ++i)
+      repeats = (at(i) - at(i + p)).template lpNorm<Eigen::Infinity>() <= tolerance;
+    if (repeats) return p;
+  }
+  return 0;
+}
+
+// The √(−h) of each iteration's impacts (at most one per touch), kept for the
+// last `ring` iterations without an allocation per iteration.
+class RootRing {
+ public:
+  RootRing(int ring, int touches)
+      : ring_(ring), width_(touches), roots_(static_cast<std::size_t>(ring * touches)),
+        counts_(static_cast<std::size_t>(ring), 0) {}
+  void put(int i, const std::vector<double>& roots) {
+    const int slot = i % ring_;
+    const int count = std::min(static_cast<int>(roots.size()), width_);
+    for (int k = 0; k < count; ++k) roots_[slot * width_ + k] = roots[k];
+    counts_[slot] = count;
+  }
+  // the roots of the iteration `back` before i
+  template <class F>
+  void each(int i, int back, F&& f) const {
+    const int slot = ((i - back) % ring_ + ring_) % ring_;
+    for (int k = 0; k < counts_[slot]; ++k) f(roots_[slot * width_ + k]);
+  }
+  [[nodiscard]] int count(int i, int back) const {
+    return counts_[((i - back) % ring_ + ring_) % ring_];
+  }
+  [[nodiscard]] double root(int i, int back, int k) const {
+    return roots_[((i - back) % ring_ + ring_) % ring_ * width_ + k];
+  }
+
+ private:
+  int ring_, width_;
+  std::vector<double> roots_;
+  std::vector<int> counts_;
+};
+
+// Whether the impacts of the last `period` iterations (newest at i) repeat,
+// to 1e-2 relative, after half of it.
+bool halves_alike(const RootRing& roots, int i, int period) {
+  const int half = period / 2;
+  for (int back = 0; back < half; ++back) {
+    if (roots.count(i, back) != roots.count(i, back + half)) return false;
+    for (int k = 0; k < roots.count(i, back); ++k) {
+      const double a = roots.root(i, back, k), b = roots.root(i, back + half, k);
+      if (std::fabs(a - b) > 1e-2 * std::max(a, b)) return false;
+    }
+  }
+  return true;
+}
+
+template <class Vec, class Mat>
+NormalFormAttractor iterate(const GrazingNormalForm& form, double mu) {
   NormalFormAttractor attractor;
   attractor.distance = mu;
-  if (!form.available) return attractor;
-  const Pieces p(form);
-  const Eigen::Index size = p.size();
+  const Iteration<Vec, Mat> map(form);
   const double nu = std::fabs(form.gap_per_parameter * mu);
   double kick = 0.0;
   for (double e : form.kick_gaps) kick = std::max(kick, std::fabs(e));
@@ -199,79 +337,95 @@ NormalFormAttractor normal_form_attractor(const GrazingNormalForm& form, double 
   // motion has left the graze's neighbourhood
   const double scale = kick * std::sqrt(nu) + nu;
   const double bound = 30.0 * scale;
-  const double root_scale = std::sqrt(2.0 * p.a);
-  VectorXd x = p.virtual_fixed_point(mu);
-  VectorXd image(size), tangent = VectorXd::Ones(size) / std::sqrt(double(size));
-  constexpr int dropped = 4000, kept_count = 2000;
-  std::vector<VectorXd> kept;
-  kept.reserve(kept_count);
-  std::vector<double> speeds;
+  const double root_scale = std::sqrt(2.0 * form.map.gap_acceleration);
+  const auto n = static_cast<Eigen::Index>(form.linear.size());
+  Vec x = map.start(mu);
+  Vec tangent = Vec::Constant(n, 1.0 / std::sqrt(static_cast<double>(n)));
+  // up to 4000 iterations; the last 1000 kept (a ring), the period looked for
+  // every 50 from the 250th, every 250 from the 1000th; the Lyapunov exponent
+  // from the 300th
+  constexpr int most = 4000, ring = 1000, lyapunov_from = 300;
+  std::vector<Vec> kept(ring, Vec::Zero(n));
+  RootRing roots_of(ring, 1 + static_cast<int>(form.further_touches.size()));
+  std::vector<double> roots, speeds;
   double log_growth = 0.0;
-  std::vector<double> roots;
-  for (int i = 0; i < dropped + kept_count; ++i) {
-    const double h = p.c.dot(x) + p.d * mu;
-    if (!std::isfinite(h) || std::fabs(h) > bound) {
+  int measured = 0, period = 0, i = 0;
+  for (; i < most; ++i) {
+    roots.clear();
+    double largest = 0.0;
+    map.step(x, tangent, mu, roots, largest);
+    if (!std::isfinite(largest) || largest > bound) {
       attractor.kind = "escapes";
       return attractor;
     }
-    VectorXd next_tangent = tangent;
-    if (p.composite()) {
-      // every touch's gap is held to the same bound
-      roots.clear();
-      double largest = 0.0;
-      image = p.composite_image(x, mu, next_tangent, roots, &largest);
-      if (!(largest <= bound)) {
-        attractor.kind = "escapes";
-        return attractor;
-      }
-      if (i >= dropped)
-        for (double s : roots) speeds.push_back(root_scale * s);
-    } else {
-      image.noalias() = p.n * x;
-      image += p.m * mu;
-      next_tangent = p.n * tangent;
-      if (h < 0.0) {
-        const double s = std::sqrt(-h);
-        image += p.e * s;
-        next_tangent -= p.e * (p.c.dot(tangent) / (2.0 * s));
-        if (i >= dropped) speeds.push_back(root_scale * s);
-      }
-    }
-    const double norm = next_tangent.norm();
+    const double norm = tangent.norm();
     if (norm > 0.0 && std::isfinite(norm)) {
-      tangent = next_tangent / norm;
-      if (i >= dropped) log_growth += std::log(norm);
+      tangent /= norm;
+      if (i >= lyapunov_from) {
+        log_growth += std::log(norm);
+        ++measured;
+      }
     }
-    x = image;
-    if (i >= dropped) kept.push_back(x);
+    kept[i % ring] = x;
+    roots_of.put(i, roots);
+    if (i >= 250 && i % (i < 1000 ? 50 : 250) == 0) {
+      period = period_of(kept, i % ring, std::min(i + 1, ring), 1e-7 * scale);
+      // an even period whose two halves impact alike may be the slow approach
+      // to the half period's orbit near its period doubling (a multiplier
+      // near −1): iterated on to the end before it is believed
+      if (period > 0 && !(period % 2 == 0 && halves_alike(roots_of, i, period))) break;
+      period = 0;
+      // no period yet and a clearly positive Lyapunov exponent over 1200
+      // iterations: chaotic (a slow approach to a periodic orbit has one ≤ 0)
+      if (i >= 1500 && log_growth / measured > 0.02) break;
+    }
   }
-  attractor.lyapunov = log_growth / kept_count;
-  for (double v : speeds) attractor.max_impact_speed = std::max(attractor.max_impact_speed, v);
-  const int period = period_of(kept, 1e-7 * scale);
+  if (period == 0 && i == most) {
+    --i;
+    period = period_of(kept, i % ring, ring, 1e-7 * scale);
+  }
+  if (period == 0) {
+    // the impact speeds of the last 1000 iterations (the ring)
+    speeds.clear();
+    for (int back = 0; back < std::min(i + 1, ring); ++back)
+      roots_of.each(i, back, [&](double root) { speeds.push_back(root_scale * root); });
+  }
+  attractor.lyapunov = measured > 0 ? log_growth / measured : 0.0;
   if (period > 0) {
     attractor.kind = "periodic";
     attractor.period = period;
     // the impacts of the last period
-    for (int i = kept_count - period; i < kept_count; ++i) {
-      if (p.composite()) {
-        VectorXd unused = VectorXd::Zero(size);
-        std::vector<double> found;
-        p.composite_image(kept[i - 1], mu, unused, found);
-        for (double s : found) attractor.impact_speeds.push_back(root_scale * s);
-        continue;
-      }
-      const double h = p.c.dot(kept[i - 1]) + p.d * mu;
-      if (h < 0.0) attractor.impact_speeds.push_back(root_scale * std::sqrt(-h));
-    }
+    for (int back = period - 1; back >= 0; --back)
+      roots_of.each(i, back, [&](double s) { attractor.impact_speeds.push_back(root_scale * s); });
     attractor.impacts = static_cast<int>(attractor.impact_speeds.size());
-  } else {
-    attractor.kind = attractor.lyapunov > 0.0 ? "chaotic" : "aperiodic";
-    attractor.impacts = static_cast<int>(speeds.size());
-    const std::size_t stride = std::max<std::size_t>(1, speeds.size() / 64);
-    for (std::size_t i = 0; i < speeds.size() && attractor.impact_speeds.size() < 64; i += stride)
-      attractor.impact_speeds.push_back(speeds[i]);
+    for (double v : attractor.impact_speeds)
+      attractor.max_impact_speed = std::max(attractor.max_impact_speed, v);
+    return attractor;
   }
+  for (double v : speeds) attractor.max_impact_speed = std::max(attractor.max_impact_speed, v);
+  attractor.kind = attractor.lyapunov > 0.0 ? "chaotic" : "aperiodic";
+  attractor.impacts = static_cast<int>(speeds.size());
+  const std::size_t stride = std::max<std::size_t>(1, speeds.size() / 64);
+  for (std::size_t k = 0; k < speeds.size() && attractor.impact_speeds.size() < 64; k += stride)
+    attractor.impact_speeds.push_back(speeds[k]);
   return attractor;
+}
+
+}  // namespace
+
+NormalFormAttractor normal_form_attractor(const GrazingNormalForm& form, double mu) {
+  if (!form.available) {
+    NormalFormAttractor none;
+    none.distance = mu;
+    return none;
+  }
+  // fixed sizes for (q, q̇), fixed capacity up to 6 states: no allocation per
+  // iteration
+  if (form.linear.size() == 2) return iterate<Eigen::Vector2d, Eigen::Matrix2d>(form, mu);
+  using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+  using SmallMat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+  if (form.linear.size() <= 6) return iterate<SmallVec, SmallMat>(form, mu);
+  return iterate<VectorXd, MatrixXd>(form, mu);
 }
 
 GrazingNormalForm grazing_normal_form(const GrazingLocalFlow& local, double parameter) {

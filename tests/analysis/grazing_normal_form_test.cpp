@@ -656,7 +656,7 @@ TEST(GrazingNormalForm, ChaoticWindowsAgreeWithBruteForceRuns) {
 // jump: an impact drives the next swing deeper into the walls (e₁ < 0).
 // Brute-force runs from the grazing orbit's state 1e-4 … 1e-8 m/s past the
 // graze settle on an impacting period-2 orbit whose impact speed (0.151
-// rad/s) does not shrink with the distance, while the first impact's c√|μ|
+// rad/s, the gap being θ₀ − θ) does not shrink with the distance, while the first impact's c√|μ|
 // falls a hundredfold: the motion has left the graze's neighbourhood.
 TEST(GrazingNormalForm, Jin2003SymmetricGrazeJumpsAsBruteForceRunsDo) {
   Scene scene = impactlab::load_scene("jin2003");
@@ -685,7 +685,7 @@ TEST(GrazingNormalForm, Jin2003SymmetricGrazeJumpsAsBruteForceRunsDo) {
   EXPECT_EQ(form.rule, GrazingScenario::not_applicable);  // two touches
   EXPECT_EQ(form.scenario, GrazingScenario::jump);
 
-  const double gap_per_rate = 0.7 * std::cos(std::asin(0.05 / 0.7));  // |∂h/∂θ| = l cos θ₀
+  const double gap_per_rate = std::fabs(form.gap_gradient[0]);  // the gap θ₀ − θ: 1
   std::vector<double> speeds;
   for (int k = 4; k <= 8; ++k) {
     const double mu = std::pow(10.0, -k);

@@ -1,6 +1,7 @@
 // `impactlab continue` at a located grazing point: the normal form's columns
 // of points.csv, grazing.json (an entry per grazing point, with its units and
 // provenance), --no-normal-forms, and --plot's grazing.png beside a sweep.
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -105,6 +106,44 @@ TEST(ContinueGrazing, PlotDrawsThePredictionBesideTheSweep) {
     EXPECT_TRUE(fs::exists(out / "continuation.png")) << outcome.err;
     EXPECT_TRUE(fs::exists(out / "grazing.png")) << outcome.err;
   }
+}
+
+// jin2003's own graze (ω = 8.5: the period-2 swing born from the hanging
+// pendulum grazes both walls at V0 = 0.652035): continue predicts a jump,
+// and a brute-force sweep through the graze on the impact section sees it,
+// its impact speed the same 0.151 rad/s at every value past the graze (a
+// distant impacting orbit, not one growing from zero as c√|μ|).
+TEST(ContinueGrazing, Jin2003ScenarioAgreesWithASweepThroughItsGraze) {
+  const ScratchFolder scratch;
+  const auto out = scratch / "out";
+  const ProgramRun outcome = run_command_line(
+      "continue jin2003 --set omega=8.5 --param V0=0.05:1.5 --start 0,0 --switch --quiet --out " +
+      out.string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const auto grazing = nlohmann::json::parse(slurp(out / "grazing.json"));
+  ASSERT_EQ(grazing["points"].size(), 1u);
+  const auto& point = grazing["points"][0];
+  EXPECT_EQ(point["scenario"], "jump");
+  EXPECT_EQ(point["further_touches"].size(), 1u);
+  const double graze = point["V0"].get<double>(), c = point["impact_speed_coefficient"];
+  const auto sweep = scratch / "sweep";
+  const ProgramRun swept = run_command_line(
+      "sweep jin2003 --set omega=8.5 --param V0=" + std::to_string(graze + 1e-5) + ":" +
+      std::to_string(graze + 1e-3) + ":5 --section impact:1 --points 4 --quiet --out " +
+      sweep.string());
+  ASSERT_EQ(swept.status, 0) << swept.err;
+  const auto rows = columns_of(sweep / "bifurcation.csv");
+  ASSERT_FALSE(rows.at("qdot").empty());
+  // the gap θ₀ − θ (rad): its rate is |q̇| times |∂h/∂θ| = 1
+  const double gap_per_rate = std::fabs(point["discontinuity_map"]["gap_gradient"][0].get<double>());
+  double slowest = INFINITY, fastest = 0.0;
+  for (const auto& value : rows.at("qdot")) {
+    const double speed = std::fabs(std::stod(value)) * gap_per_rate;
+    slowest = std::min(slowest, speed);
+    fastest = std::max(fastest, speed);
+  }
+  EXPECT_GT(slowest, 0.8 * fastest);  // one orbit at every value (c√|μ| grows tenfold over them)
+  EXPECT_GT(slowest, 3.0 * c * std::sqrt(1e-5));  // far above c√|μ| near the graze
 }
 
 }  // namespace
