@@ -177,14 +177,14 @@ void RunFiles::commit() {
 std::span<const std::string_view> output_file_names() {
   // every command's files (cli/*_command.cpp, api/jin2003_report.cpp) and
   // the plots drawn from them
-  static constexpr std::array<std::string_view, 50> names = {
+  static constexpr std::array<std::string_view, 56> names = {
       "meta.json", "events.csv", "trajectory.csv", "simulation.png", "poincare.csv",
       "poincare.png", "bifurcation.csv", "bifurcation.png", "summary.csv", "classes.csv",
-      "classes.png", "basins.csv", "basins.png", "attractors.csv", "periodic.json",
+      "classes.png", "basins.csv", "basins.png", "attractors.csv", "attractor_points.csv",
+      "attractors.png", "samples.csv", "lyapunov.csv", "lyapunov.png", "periodic.json",
       "orbits.csv", "spectrum.csv",
       "branch.csv", "points.csv", "curve.csv", "curve_points.csv", "curve.json", "curve.png",
-      "grazing.json", "grazing.png",
-      "continuation.png",
+      "grazing.json", "grazing.png", "continuation.json", "continuation.png",
       "compare.json", "compare.png", "compare_impacts.csv", "compare_contacts.csv",
       "compare_section.csv", "work_precision.csv", "work_precision.json", "summary.md",
       "report.json", "REPORT.md", "fig4a.csv", "fig4a.json", "fig4a.png", "fig4a_values.csv",
