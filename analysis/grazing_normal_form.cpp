@@ -40,63 +40,21 @@ std::vector<double> values(const VectorXd& v) { return {v.data(), v.data() + v.s
 // x with A x = b (full pivoting; non-finite where A is singular)
 VectorXd solve(const MatrixXd& a, const VectorXd& b) { return full_pivot_lu_solve(a, b); }
 
-// One touch of the composite map: its gap (C, d) and ZDM leading vector L.
-struct TouchPieces {
-  VectorXd c, leading;
-  double d = 0.0;
-};
-
 // The normal form's pieces as Eigen objects, once per call.
 struct Pieces {
   MatrixXd n;
   VectorXd m, c, e;
   double d = 0.0, a = 0.0;
-  // with further touches: each touch's gap and ZDM, and the flow on to the next
-  std::vector<TouchPieces> touches;
-  std::vector<MatrixXd> flows;
-  std::vector<VectorXd> shifts;
   explicit Pieces(const GrazingNormalForm& form)
       : n(matrix(form.linear)),
         m(vector(form.parameter_vector)),
         c(vector(form.gap_gradient)),
         e(vector(form.root_vector)),
         d(form.gap_parameter),
-        a(form.map.gap_acceleration) {
-    if (form.further_touches.empty()) return;
-    touches.push_back({c, vector(form.map.leading), d});
-    for (const FurtherTouch& touch : form.further_touches)
-      touches.push_back({vector(touch.map.gap_gradient), vector(touch.map.leading),
-                         touch.gap_parameter});
-    for (std::size_t j = 0; j < form.segment_flows.size(); ++j) {
-      flows.push_back(matrix(form.segment_flows[j]));
-      shifts.push_back(vector(form.segment_parameter_vectors[j]));
-    }
-  }
+        a(form.map.gap_acceleration) {}
   [[nodiscard]] Eigen::Index size() const { return n.rows(); }
-  [[nodiscard]] bool composite() const { return !touches.empty(); }
   [[nodiscard]] VectorXd virtual_fixed_point(double mu) const {
     return solve(MatrixXd::Identity(size(), size()) - n, m * mu);
-  }
-  // the composite map's image of ξ (deviation from the first touch) and its
-  // tangent map applied to `tangent`; the touches' √(−h) where they impact
-  // (gap rate units once times √(2a)) into `roots`
-  VectorXd composite_image(const VectorXd& xi, double mu, VectorXd& tangent,
-                           std::vector<double>& roots, double* largest_gap = nullptr) const {
-    VectorXd x = xi;
-    for (std::size_t j = 0; j < touches.size(); ++j) {
-      const TouchPieces& touch = touches[j];
-      const double h = touch.c.dot(x) + touch.d * mu;
-      if (largest_gap) *largest_gap = std::max(*largest_gap, std::fabs(h));
-      if (h < 0.0) {
-        const double s = std::sqrt(-h);
-        x += touch.leading * s;
-        tangent -= touch.leading * (touch.c.dot(tangent) / (2.0 * s));
-        roots.push_back(s);
-      }
-      x = flows[j] * x + shifts[j] * mu;
-      tangent = flows[j] * tangent;
-    }
-    return x;
   }
 };
 
@@ -117,21 +75,6 @@ GrazingScenario eigenvalue_rule(const GrazingNormalForm& form) {
   if (lambda1 < 0.25) return GrazingScenario::period_adding;
   if (lambda1 < 2.0 / 3.0) return GrazingScenario::period_adding_with_chaos;
   return GrazingScenario::chaos;
-}
-
-std::vector<double> normal_form_image(const GrazingNormalForm& form, const std::vector<double>& xi,
-                                      double mu) {
-  const Pieces p(form);
-  const VectorXd x = vector(xi);
-  if (p.composite()) {
-    VectorXd tangent = VectorXd::Zero(p.size());
-    std::vector<double> roots;
-    return values(p.composite_image(x, mu, tangent, roots));
-  }
-  const double h = p.c.dot(x) + p.d * mu;
-  VectorXd image = p.n * x + p.m * mu;
-  if (h < 0.0) image += p.e * std::sqrt(-h);
-  return values(image);
 }
 
 MaximalOrbit maximal_orbit(const GrazingNormalForm& form, int n, double mu) {

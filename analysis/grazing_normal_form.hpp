@@ -147,10 +147,6 @@ struct GrazingNormalForm {
 // the note) where the ZDM is unavailable or the data are not finite.
 GrazingNormalForm grazing_normal_form(const GrazingLocalFlow& local, double parameter);
 
-// One iteration of the normal form: the image of the deviation ξ at μ.
-std::vector<double> normal_form_image(const GrazingNormalForm& form, const std::vector<double>& xi,
-                                      double mu);
-
 // The maximal period-n orbit at μ.
 MaximalOrbit maximal_orbit(const GrazingNormalForm& form, int n, double mu);
 
