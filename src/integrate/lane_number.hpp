@@ -38,6 +38,18 @@ struct LaneVector<8> {
   typedef double type __attribute__((vector_size(64)));
 };
 
+// Whether a batch makes passes over LaneNumber. On x86-64 the passes are
+// compiled for AVX2 alone (four lanes in one register) and chosen at run
+// time, so that the build runs on any x86-64: without AVX2 a batch
+// evaluates each lane in double, with the same results. Elsewhere always.
+inline bool lane_passes_available() {
+#if defined(__x86_64__) && defined(__GNUC__)
+  return __builtin_cpu_supports("avx2");
+#else
+  return true;
+#endif
+}
+
 template <int B>
 struct LaneNumber {
   static constexpr int width = B;

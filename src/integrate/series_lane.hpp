@@ -1,9 +1,9 @@
 // Where a Taylor stepper gets its series computed when it runs in a lane of a
 // batch (simulate/series_batch.hpp): instead of evaluating its recurrences
 // itself, the stepper posts a request and waits; the batch gathers the
-// requests of all its lanes and evaluates them together, order by order
-// (integrate/taylor_series.hpp, TaylorSeries::evaluate_lanes), then hands
-// each lane its coefficients back. Everything else a step does (its size,
+// requests of all its lanes and evaluates them (together, in passes over
+// lanes, where the system allows it: integrate/taylor_stepper.hpp), then
+// hands each lane its coefficients back. Everything else a step does (its size,
 // the exclusion test and root isolation on the witness polynomials, the
 // events) stays in the lane, in the scalar stepper's own code.
 #pragma once

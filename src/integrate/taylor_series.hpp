@@ -430,7 +430,7 @@ TaylorVariable<Real> sign(const TaylorVariable<Real>& a) {
   evaluation->note_sign_argument(a.row());
   Real s = 0;
   if constexpr (is_lane_number<Real>) {
-    // a batch evaluates without the slope (TaylorSeries::evaluate_lanes)
+    // a pass over lanes evaluates without the slope (take_lane)
     if (k == 0) s = detail::sign_of(a.value());
   } else if (k == 0) {
     s = evaluation->signs_from_slope() && detail::near_zero(a.value(), a.row()[1])
@@ -473,12 +473,12 @@ class TaylorSeries {
   void evaluate(const Real* x0, const Real& t0, int order, Rhs&& rhs, bool signs_from_slope = false) {
     if constexpr (is_lane_number<Real>) {
 #if defined(__x86_64__) && defined(__GNUC__)
-      // four lanes in one AVX2 register where the processor has it (chosen
-      // at run time: the build runs on any x86-64); in two SSE2 registers,
-      // at little gain over double, otherwise
-      if (__builtin_cpu_supports("avx2")) return evaluate_avx2(x0, t0, order, rhs);
-#endif
+      // four lanes in one AVX2 register; a batch makes passes over lanes
+      // only where the processor has it (lane_passes_available)
+      evaluate_avx2(x0, t0, order, rhs);
+#else
       evaluate_inlined(x0, t0, order, rhs, signs_from_slope);
+#endif
     } else if constexpr (std::is_same_v<Real, double>) {
       evaluate_inlined(x0, t0, order, rhs, signs_from_slope);
     } else {
@@ -567,44 +567,6 @@ class TaylorSeries {
       out_row[k] = out.coefficient(k);
       output_rows_[j] = out_row;
     }
-  }
-
- public:
-  // One series of a batch (integrate/series_lane.hpp): where its
-  // coefficients go, the expansion point, the order, and the right-hand
-  // side (of the same type in every lane, its system and mode its own).
-  template <class Rhs>
-  struct Lane {
-    TaylorSeries* series;
-    const Real* x0;
-    Real t0;
-    int order;
-    Rhs rhs;
-  };
-
-  // The series of several lanes together, order by order: at each order
-  // every lane's right-hand side runs before any lane's next order, so that
-  // the lanes' independent chains of recurrences (each order waits for the
-  // one before it: docs/performance.md) overlap in the processor's
-  // out-of-order window instead of running one after the other. Each lane
-  // runs exactly evaluate()'s operations in evaluate()'s order, without the
-  // slope of the signs (a lane whose signs need it evaluates again alone, as
-  // evaluate() would): its coefficients are evaluate()'s to the last bit.
-  template <class Rhs>
-  [[gnu::flatten]] static void evaluate_lanes(Lane<Rhs>* lanes, int count) {
-    static_assert(std::is_same_v<Real, double>, "a batch runs in double");
-    std::array<std::optional<Pass>, max_series_lanes> passes;
-    int highest_order = 0;
-    for (int i = 0; i < count; ++i) {
-      passes[i].emplace(*lanes[i].series, lanes[i].x0, lanes[i].t0, false);
-      highest_order = std::max(highest_order, lanes[i].order);
-    }
-    for (int k = 0; k <= highest_order; ++k)
-      for (int i = 0; i < count; ++i)
-        if (k <= lanes[i].order)
-          lanes[i].series->evaluate_order(*passes[i], k, lanes[i].order, lanes[i].rhs);
-    for (int i = 0; i < count; ++i)
-      lanes[i].series->needs_slope_ = signs_need_slope(passes[i]->evaluation);
   }
 
  public:

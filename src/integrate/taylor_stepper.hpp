@@ -72,7 +72,7 @@ concept HasSeriesRhs = HybridSystem<S> && requires(const S& system, typename S::
 // right-hand side's and witnesses' operations depend on the mode alone (no
 // branch on a value, no start_value), and it is plain data, so that two
 // lanes of equal bytes are one system. Other systems' lanes are evaluated
-// side by side, each in double (TaylorSeries::evaluate_lanes).
+// one after the other, each in double.
 template <class S>
 concept SeriesLanesAllowed = std::is_trivially_copyable_v<S> && requires {
   requires S::series_operations_by_mode_alone;
@@ -343,40 +343,40 @@ class TaylorStepper {
   }
 
   // The series of `count` requests of steppers of this type: those of one
-  // system and mode in passes over lanes where the system allows it, the
-  // others side by side in double.
+  // system and mode in passes over lanes where the system allows it and the
+  // processor has the passes' vector instructions (lane_passes_available),
+  // the others one after the other, each in double as evaluate() computes
+  // it alone.
   static void evaluate_requests(SeriesRequest* const* requests, int count) {
-    using Lane = typename TaylorSeries<Real, dimension>::template Lane<SeriesRhs>;
-    std::array<Lane, max_series_lanes> lanes;
-    int alone = 0;
-    auto add_alone = [&](const LaneRequest& request) {
+    auto evaluate_alone = [](const LaneRequest& request) {
       TaylorStepper& stepper = *request.stepper;
-      lanes[alone++] = Lane{&stepper.series_, stepper.x_old_.data(), stepper.t_old_,
-                            stepper.order_, SeriesRhs{request.system, request.mode}};
+      stepper.series_.evaluate(stepper.x_old_.data(), stepper.t_old_, stepper.order_,
+                               SeriesRhs{request.system, request.mode}, false);
     };
     if constexpr (SeriesLanesAllowed<System> && std::is_same_v<Real, double>) {
-      std::array<bool, max_series_lanes> taken{};
-      for (int i = 0; i < count; ++i) {
-        if (taken[i]) continue;
-        const auto& first = *static_cast<const LaneRequest*>(requests[i]);
-        std::array<const LaneRequest*, series_lane_width> members{};
-        int n = 0;
-        for (int j = i; j < count && n < series_lane_width; ++j) {
-          const auto& other = *static_cast<const LaneRequest*>(requests[j]);
-          if (!taken[j] && one_pass(first, other)) {
-            members[n++] = &other;
-            taken[j] = true;
+      if (lane_passes_available()) {
+        std::array<bool, max_series_lanes> taken{};
+        for (int i = 0; i < count; ++i) {
+          if (taken[i]) continue;
+          const auto& first = *static_cast<const LaneRequest*>(requests[i]);
+          std::array<const LaneRequest*, series_lane_width> members{};
+          int n = 0;
+          for (int j = i; j < count && n < series_lane_width; ++j) {
+            const auto& other = *static_cast<const LaneRequest*>(requests[j]);
+            if (!taken[j] && one_pass(first, other)) {
+              members[n++] = &other;
+              taken[j] = true;
+            }
           }
+          if (n > 1)
+            evaluate_pass(members, n);
+          else
+            evaluate_alone(first);
         }
-        if (n > 1)
-          evaluate_pass(members, n);
-        else
-          add_alone(first);
+        return;
       }
-    } else {
-      for (int i = 0; i < count; ++i) add_alone(*static_cast<const LaneRequest*>(requests[i]));
     }
-    if (alone > 0) TaylorSeries<Real, dimension>::evaluate_lanes(lanes.data(), alone);
+    for (int i = 0; i < count; ++i) evaluate_alone(*static_cast<const LaneRequest*>(requests[i]));
   }
 
   // the coefficients of the state and of the mode's witnesses at the step's

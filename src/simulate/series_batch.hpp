@@ -5,8 +5,8 @@
 // simulation code whose steppers carry the lane in their settings
 // (StepperSettings::series_lane): each Taylor step suspends its lane where it
 // needs its series (integrate/series_lane.hpp). When every lane waits, the
-// batch evaluates the waiting requests together, order by order
-// (TaylorSeries::evaluate_lanes), and resumes each lane with its own
+// batch evaluates the waiting requests (in passes over lanes where the
+// system allows it: TaylorStepper's evaluate_requests), and resumes each lane with its own
 // coefficients; the lane then finishes its step alone, in the scalar
 // stepper's own code: step size, exclusion test, root isolation, events.
 // A lane whose job ends takes the next job at once, so no lane waits for
