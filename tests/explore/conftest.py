@@ -18,12 +18,25 @@ def cli_binary():
     return binary
 
 
+def server_environment():
+    """The server's environment. Under AddressSanitizer (scripts/test.sh
+    --sanitize exports ASAN_OPTIONS) the server runs without the allocator's
+    quarantine, which holds every freed block back (256 MB by default), so
+    that its resident size measures what it keeps, as the peak-memory tests
+    of tests/io/output_test.cpp do."""
+    environment = dict(os.environ)
+    if "ASAN_OPTIONS" in environment:
+        environment["ASAN_OPTIONS"] += ":quarantine_size_mb=0"
+    return environment
+
+
 class Explorer:
     """A running `impactlab explore`: its url, port and token."""
 
     def __init__(self, scene="jin2003"):
         self.process = subprocess.Popen([cli_binary(), "explore", scene, "--port", "0"],
-                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                        env=server_environment())
         for line in self.process.stdout:
             match = re.search(r"(http://127\.0\.0\.1:(\d+)/\?token=([0-9a-f]+))", line)
             if match:
