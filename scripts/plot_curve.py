@@ -83,7 +83,7 @@ def draw_curve(curves, kind, meta, param1, param2, classes=None, special_points=
                     label="start (located on the branch)" if index == 0 else None)
     if special_points is not None:
         points = plot_files.as_columns(special_points)
-        types = np.atleast_1d(points.get("type", np.array([])))
+        types = np.atleast_1d(points.get("type", np.array([]))).astype(str)
         for name, (marker, colour, label) in CODIMENSION_TWO_MARKERS.items():
             chosen = types == name
             if np.any(chosen):
