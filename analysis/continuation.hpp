@@ -67,6 +67,8 @@ enum class CurveType {
   grazing,          // zero gap and zero gap rate at t_g
   contact_onset,    // the push on the mass at rest at its landing is zero (contact_landing.hpp)
   contact_end,      // the same condition, from a located contact_end point
+  contact_boundary, // a scene's parameter boundary of that name is zero (the pendulum's
+                    // V0·ω = g: ParameterBoundary, continuation_problem.hpp)
 };
 
 // The names points.csv, continuation.json and Python use.
@@ -107,6 +109,7 @@ constexpr std::string_view to_string(CurveType type) {
     case CurveType::grazing: return "grazing";
     case CurveType::contact_onset: return "contact_onset";
     case CurveType::contact_end: return "contact_end";
+    case CurveType::contact_boundary: return "contact_boundary";
   }
   return "unknown";
 }
@@ -114,7 +117,8 @@ constexpr std::string_view to_string(CurveType type) {
 // The curve type named `text` (the option `curve`); none for another word.
 constexpr std::optional<CurveType> parse_curve_type(std::string_view text) {
   for (const CurveType type : {CurveType::fold, CurveType::period_doubling, CurveType::grazing,
-                               CurveType::contact_onset, CurveType::contact_end})
+                               CurveType::contact_onset, CurveType::contact_end,
+                               CurveType::contact_boundary})
     if (to_string(type) == text) return type;
   return std::nullopt;
 }
@@ -182,6 +186,13 @@ struct BifurcationPoint {
 inline std::string_view type_name(const BifurcationPoint& point) {
   return point.type == BifurcationType::boundary ? std::string_view(point.boundary)
                                                  : to_string(point.type);
+}
+
+// The curve that follows this located point: its type's, and a boundary's
+// the curve type of the same name; none for a point no curve follows.
+inline std::optional<CurveType> curve_type_of(const BifurcationPoint& point) {
+  return point.type == BifurcationType::boundary ? parse_curve_type(point.boundary)
+                                                 : curve_type_of(point.type);
 }
 
 struct ContinuationResult {

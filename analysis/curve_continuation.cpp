@@ -42,6 +42,7 @@ class CurveDriver {
       : problem_(problem), request_(request) {
     grazing_ = request.type == CurveType::grazing;
     contact_ = request.type == CurveType::contact_onset || request.type == CurveType::contact_end;
+    boundary_ = request.type == CurveType::contact_boundary;
     at_start_ = problem.at(request.from2);
     n_ = static_cast<int>(at_start_.dimension);
     p1_ = n_;
@@ -77,6 +78,10 @@ class CurveDriver {
       z[tg_] = request_.graze_time / time_scale_;
       window_center_ = request_.graze_time;
     }
+    if (boundary_ && !boundary_of(at_start_))
+      return stop(StopReason::start_not_converged,
+                  "the scene has no parameter boundary named " +
+                      std::string(to_string(request_.type)));
     choose_section(z);
     // the start: corrected at p₂ = from2
     Vector fixed_p2 = Vector::Zero(size_);
@@ -145,6 +150,15 @@ class CurveDriver {
  private:
   double p1_of(const Vector& z) const { return z[p1_] * scale1_; }
   double p2_of(const Vector& z) const { return z[p2_] * scale2_; }
+
+  // the problem's parameter boundary that a boundary curve follows (its name
+  // is the curve type's); none where the scene has none of that name
+  const ParameterBoundary* boundary_of(const ContinuationProblem& at) const {
+    const auto found = std::find_if(
+        at.boundaries.begin(), at.boundaries.end(),
+        [&](const ParameterBoundary& b) { return b.name == to_string(request_.type); });
+    return found == at.boundaries.end() ? nullptr : &*found;
+  }
   OrbitPoint state_of(const Vector& z) const { return OrbitPoint(z.data(), z.data() + n_); }
 
   ContactWindow window() const {
@@ -169,6 +183,11 @@ class CurveDriver {
     } else if (contact_) {
       // the push on the mass at rest at its landing (contact_landing.hpp)
       e.residual[n_] = e.orbit.landing_push;
+    } else if (boundary_) {
+      // the scene's boundary, a function of the parameters alone
+      const ParameterBoundary* boundary = boundary_of(at);
+      if (!boundary) return e;
+      e.residual[n_] = boundary->value(p1_of(z));
     } else if (request_.type == CurveType::period_doubling) {
       e.residual[n_] = det_plus_identity(e.orbit.monodromy);
     } else {
@@ -408,6 +427,7 @@ class CurveDriver {
   ContinuationProblem at_start_;
   bool grazing_ = false;
   bool contact_ = false;                  // a contact onset or end: the landing push's zero
+  bool boundary_ = false;                 // a scene's parameter boundary: its zero
   int n_ = 2;                             // N: the state's components on the section
   int p1_ = 2, p2_ = 3, tg_ = 4;          // the indices of p₁, p₂ and t_g in z
   int size_ = 4;                          // unknowns: (x, p₁, p₂ [, t_g])

@@ -1,5 +1,6 @@
 // Two-parameter continuation: the curve of a fold, period doubling, grazing,
-// contact onset or contact end point in the plane of two parameters
+// contact onset or contact end point, or of a scene's parameter boundary
+// (contact_boundary), in the plane of two parameters
 // (p₁, p₂), followed by pseudo-arclength from a point located on a
 // one-parameter branch (branch_continuation.hpp).
 //
@@ -15,6 +16,11 @@
 //                      zero: the mass returns to the wall exactly where the
 //                      push falls through zero, so the contact phase has
 //                      zero length           unknowns (q, q̇, p₁, p₂)
+//  * contact boundary: the scene's parameter boundary of that name is zero
+//                      (the pendulum's V0·ω − g: ParameterBoundary,
+//                      continuation_problem.hpp; the problem at each p₂
+//                      carries it as a function of p₁)
+//                                            unknowns (q, q̇, p₁, p₂)
 // (q, q̇) stands for the N components of the state on the section (a model
 // file's N states). M is the saltation-corrected monodromy; the other
 // derivatives are central

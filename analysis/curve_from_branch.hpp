@@ -41,7 +41,7 @@ bool continue_curve_of(const ContinuationJobResult& result, std::size_t index, C
   const int period = result.branches[index].period;
   // the type asked for; without one, the first fold, period doubling or grazing
   const auto wanted = [&](const BifurcationPoint& p) {
-    const std::optional<CurveType> type = curve_type_of(p.type);
+    const std::optional<CurveType> type = curve_type_of(p);
     if (!p.located || !type) return false;
     if (job.curve_type) return *type == *job.curve_type;
     return *type == CurveType::fold || *type == CurveType::period_doubling ||
@@ -56,7 +56,7 @@ bool continue_curve_of(const ContinuationJobResult& result, std::size_t index, C
     return false;
   }
   CurveRequest request;
-  request.type = *curve_type_of(found->type);
+  request.type = *curve_type_of(*found);
   request.from1 = job.from;
   request.to1 = job.to;
   request.from2 = job.second_from;

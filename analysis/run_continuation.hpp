@@ -158,18 +158,21 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
     };
     const OrbitPoint full_start = request.start;
     hold_if_neutral(full_start);
-    auto problem_for = [&](int period) {
-      ContinuationProblem problem = map_at(scene, period);
+    // the section map with the scene's boundaries, as functions of the
+    // continued parameter at the other values of `base`
+    auto bounded_map_at = [&](const Scene& base, int period) {
+      ContinuationProblem problem = map_at(base, period);
       for (const SceneBoundary& boundary : boundaries)
         problem.boundaries.push_back(
             {boundary.name, boundary.note,
-             [scene, parameter = job.parameter, value = boundary.value](double p) {
-               Scene at = scene;
+             [base, parameter = job.parameter, value = boundary.value](double p) {
+               Scene at = base;
                at.values[parameter] = p;
                return value(at);
              }});
       return problem;
     };
+    auto problem_for = [&](int period) { return bounded_map_at(scene, period); };
     // a held component checked on the full map at every point of a branch
     auto checked = [&](ContinuationResult branch, int period) {
       if (held) {
@@ -239,14 +242,14 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
     }
     if (!job.second_parameter.empty()) {
       result.has_curve =
-          continue_curve_of<System>(result, 0, result.curve, result.curve_note, system_at, map_at,
-                                    flight_mode, scene, job, setup, omega);
+          continue_curve_of<System>(result, 0, result.curve, result.curve_note, system_at,
+                                    bounded_map_at, flight_mode, scene, job, setup, omega);
       for (CurvePoint& point : result.curve.curve) reduce(point.state);
       for (std::size_t b = 1; b < result.branches.size(); ++b) {
         BranchCurve doubled{static_cast<int>(b), result.branches[b].period};
         doubled.has_curve =
-            continue_curve_of<System>(result, b, doubled.curve, doubled.note, system_at, map_at,
-                                      flight_mode, scene, job, setup, omega);
+            continue_curve_of<System>(result, b, doubled.curve, doubled.note, system_at,
+                                      bounded_map_at, flight_mode, scene, job, setup, omega);
         for (CurvePoint& point : doubled.curve.curve) reduce(point.state);
         result.doubled_curves.push_back(std::move(doubled));
       }

@@ -52,7 +52,9 @@ ContinuationJob continuation_job(const ContinueOptions& options) {
     throw BadInput("curve", options.curve, "needs " + mention("param2"));
   const std::optional<CurveType> curve_type = parse_curve_type(options.curve);
   if (!options.curve.empty() && !curve_type)
-    throw BadInput("curve", options.curve, "expected fold, period_doubling, grazing, contact_onset or contact_end");
+    throw BadInput("curve", options.curve,
+                   "expected fold, period_doubling, grazing, contact_onset, contact_end or "
+                   "contact_boundary");
   check_whole("period", options.period);
   check_whole("max_points", options.max_points);
   const OptionSpec& transient = job_option("continue", "transient");

@@ -68,7 +68,7 @@ ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& 
   if (job.curve_type && !result.has_curve) {
     const auto& points = result.branches[0].result.points;
     const bool has_point = std::any_of(points.begin(), points.end(), [&](const BifurcationPoint& p) {
-      return p.located && curve_type_of(p.type) == job.curve_type;
+      return p.located && curve_type_of(p) == job.curve_type;
     });
     if (!has_point) {
       std::string located;

@@ -376,7 +376,7 @@ int run_continue(const ContinueCommandOptions& command_options,
           {"branch", "the branch the curve starts from: 0, then k for the k-th doubled one "
                      "(--switch; doubled_curves)"},
           {"period", "forcing periods of that branch's orbit"},
-          {"type", "the curve's type: fold, period_doubling or grazing"},
+          {"type", "the curve's type: fold, period_doubling, grazing, contact_onset, contact_end or contact_boundary"},
           {"start", "branch: the curve starts at a point located on the branch; "
                     "grazing_period_doubling or grazing_fold: it runs through that "
                     "codimension-two point of the first curve (--switch; switched_curves), "

@@ -660,7 +660,8 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
           classification_tol=_default("sweep", "classification_tol"), progress=None, **keys):
     """A 1D bifurcation sweep (param="omega=FROM:TO:N") or a 2D map (a list of
     two). Returns bifurcation (1D: the rows of bifurcation.csv), summary (the
-    rows of summary.csv, or of classes.csv for a 2D map), definition.
+    rows of summary.csv, or of classes.csv for a 2D map), definition, run
+    (meta.json's threads and batch_width: the lanes per thread).
     classification_tol: "auto" (a 2D map integrates at the scene's
     integrator.classification_* unless an integrator key was set) or "off"
     (the scene's integrator); the CLI's --classification-tol."""
@@ -712,7 +713,8 @@ def sweep(scene_=None, *, param, direction=_default("sweep", "direction"),
     result = SweepResult(scene=loaded, axes=tuple(axes),
                          bifurcation=Table(bifurcation) if bifurcation else None,
                          summary=Table(summary), definition=raw["definition"],
-                         wall_time_s=raw["wall_time_s"])
+                         wall_time_s=raw["wall_time_s"],
+                         run={"threads": raw["threads"], "batch_width": raw["batch_width"]})
     if len(params) == 2:
         # the map's columns shaped like the map: [j, i] is the second key's
         # j-th value and the first key's i-th (classes.csv: the first fastest)
@@ -999,7 +1001,8 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     are N wide: N = 2 (q, qdot), or a model file's N states (q, qdot, state3,
     ...; multiplier1 ... multiplierN).
     param2="NAME=FROM:TO" (with curve= fold, period_doubling, grazing,
-    contact_onset or contact_end, a type the branch has no located point of
+    contact_onset, contact_end or contact_boundary (the pendulum's
+    V0*omega = g), a type the branch has no located point of
     raising ValueError naming curve; else the first located fold, period
     doubling or grazing) follows that bifurcation's curve in the
     plane of the two keys from the point the branch located (the CLI's

@@ -13,6 +13,11 @@
 // (TOMS 748), the flight below the stop before it. Every point of the curve
 // must lie on it to 1e-9 in ω, with the closed form's state on the section
 // (the stroboscopic one, and the impact section of the stop).
+//
+// The pendulum's contact boundary V0·ω = g (--curve contact_boundary), a
+// condition on the parameters alone, against V0 = g/ω and brute-force runs
+// (the last test).
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -23,6 +28,7 @@
 #include <gtest/gtest.h>
 
 #include <impactlab/analysis/continuation.hpp>
+#include <impactlab/analysis/section.hpp>
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/io/bad_input.hpp>
@@ -158,18 +164,72 @@ TEST(ContactBoundaryCurve, ContactEndOnTheImpactSectionAtItsClosedForm) {
 }
 
 TEST(ContactBoundaryCurve, ATypeTheBranchHasNoPointOfIsBadInputNamingCurve) {
-  // the branch of the plastic stop from ω = 1.5 to 1.8 has a contact end and
-  // no contact onset
-  ContinuationJob job = contact_end_job(0.3);
-  job.curve_type = CurveType::contact_onset;
-  try {
-    impactlab::continue_orbit(plastic_stop_scene(), job);
-    FAIL() << "no BadInput";
-  } catch (const impactlab::BadInput& error) {
-    EXPECT_EQ(error.key(), "curve");
-    EXPECT_EQ(error.value(), "contact_onset");
-    EXPECT_NE(std::string(error.what()).find("contact_end"), std::string::npos) << error.what();
+  // the branch of the plastic stop from ω = 1.5 to 1.8 has a contact end, no
+  // contact onset, and no parameter boundary (the oscillator supplies none)
+  for (const CurveType type : {CurveType::contact_onset, CurveType::contact_boundary}) {
+    ContinuationJob job = contact_end_job(0.3);
+    job.curve_type = type;
+    try {
+      impactlab::continue_orbit(plastic_stop_scene(), job);
+      ADD_FAILURE() << "no BadInput for " << impactlab::to_string(type);
+    } catch (const impactlab::BadInput& error) {
+      EXPECT_EQ(error.key(), "curve");
+      EXPECT_EQ(error.value(), impactlab::to_string(type));
+      EXPECT_NE(std::string(error.what()).find("contact_end"), std::string::npos) << error.what();
+    }
   }
+}
+
+// The pendulum's V0·ω = g (the pivot's peak acceleration reaches g; below
+// it no contact phase can exist) followed as a curve (--curve
+// contact_boundary): jin2003's period-2 impacting orbit, continued down in V0
+// at ω = 7 rad/s, crosses it at V0 = g/ω; the curve runs from there to
+// ω = 6.6 in (V0, ω). Every point must lie on V0 = g/ω (the closed form) to
+// 1e-12, and where the orbit is stable its state must be one of the
+// stroboscopic points that a plain run from the scene's initial state
+// settles on (2000 forcing periods of transient), to 1e-8.
+TEST(ContactBoundaryCurve, PendulumV0OmegaEqualToGIsFollowedOnItsClosedForm) {
+  const Scene scene = impactlab::load_scene("jin2003");
+  ContinuationJob job;
+  job.parameter = "V0";
+  job.from = 1.6;
+  job.to = 1.3;
+  job.period = 2;
+  job.second_parameter = "omega";
+  job.second_from = 7.0;
+  job.second_to = 6.6;
+  job.curve_type = CurveType::contact_boundary;
+  const auto result = impactlab::continue_orbit(scene, job);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  EXPECT_EQ(curve.type, CurveType::contact_boundary);
+  EXPECT_EQ(curve.stop_reason, StopReason::end_of_range) << curve.stop_detail;
+  ASSERT_GE(curve.curve.size(), 10u);
+  EXPECT_DOUBLE_EQ(curve.curve.front().p2, 7.0);
+  EXPECT_DOUBLE_EQ(curve.curve.back().p2, 6.6);
+  const double g = scene.number("g");
+  int compared = 0;
+  for (const auto& point : curve.curve) {
+    EXPECT_NEAR(point.p1, g / point.p2, 1e-12 * g / point.p2) << "omega = " << point.p2;
+    EXPECT_EQ(point.impacts, 2) << "omega = " << point.p2;
+    if (std::abs(point.multipliers[0]) > 0.97 || compared == 3) continue;
+    ++compared;
+    Scene at = scene;
+    at.values["V0"] = point.p1;
+    at.values["omega"] = point.p2;
+    impactlab::SectionRequest request;
+    request.settle = false;
+    request.transient_periods = 2000;
+    request.points = 4;
+    const impactlab::SectionResult plain = impactlab::poincare(at, request);
+    ASSERT_EQ(plain.points.size(), 4u);
+    double nearest = INFINITY;
+    for (const impactlab::SectionPoint& strobe : plain.points)
+      nearest = std::min(nearest, std::max(std::fabs(strobe.q - point.state[0]),
+                                           std::fabs(strobe.qdot - point.state[1])));
+    EXPECT_LE(nearest, 1e-8) << "omega = " << point.p2;
+  }
+  EXPECT_EQ(compared, 3);
 }
 
 }  // namespace

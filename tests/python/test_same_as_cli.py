@@ -178,6 +178,21 @@ def test_sweep_2d_map_equals_cli(cli):
         assert result.grids.termination[j, i] == classes["termination"][row]
 
 
+@pytest.mark.parametrize("batch, width", [(True, 4), (False, 1)])
+def test_sweep_2d_map_says_its_batch_width_as_the_cli(cli, batch, width):
+    """The lanes per thread (batch on: 4 with the Taylor stepper) in the
+    result's run as in meta.json's, and the same classes with or without."""
+    grid = ["omega=6.5:7.5:3", "V0=3.5:4.5:2"]
+    out = cli("sweep", "jin2003", "--param", grid[0], "--param", grid[1], "--points", "6",
+              "--transient", "5", "--batch", "on" if batch else "off")
+    result = impactlab.sweep("jin2003", param=grid, points=6, transient=5, batch=batch)
+    assert result.run["batch_width"] == read_json(out / "meta.json")["run"]["batch_width"] == width
+    assert result.run["threads"] == read_json(out / "meta.json")["run"]["threads"]
+    classes = read_csv(out / "classes.csv")
+    for column in ("period", "impacts_per_period", "lyapunov"):
+        same_numbers(classes[column], result.summary[column])
+
+
 def test_every_result_reads_its_columns_as_attributes():
     run = impactlab.simulate("jin2003", periods=5)
     assert run.events.t is not None and (run.events.t == run.events["t"]).all()
