@@ -22,9 +22,14 @@ namespace impactlab {
 
 // A system whose contact phase is one mode named `stuck` (the mass resting on
 // its stop or table: the linear impact oscillator, the bouncing ball), whose
-// witness 0 is the push into the wall. Others note no landing push.
+// witness 0 is the push into the wall, and whose flight mode `free` has the
+// wall's gap as witness 0 (its rate: the normal speed relative to the wall).
+// Others note no landing push.
 template <class System>
-concept HasStuckMode = requires { System::Mode::stuck; };
+concept HasStuckMode = requires {
+  System::Mode::stuck;
+  System::Mode::free;
+};
 
 // The landing among the records [begin, end) whose push on the mass at rest
 // is nearest zero, into result.landing_push and result.landing_time (since
@@ -34,7 +39,14 @@ void note_landing_push(const System& system, Records begin, Records end, double 
                        OrbitEvaluation& result) {
   if constexpr (HasStuckMode<System>) {
     for (auto event = begin; event != end; ++event) {
-      const bool plastic = event->kind == EventKind::impact && event->qdot_after == 0.0;
+      // a plastic impact leaves the mass at zero speed relative to the wall
+      // (a fixed stop: q̇ = 0; a moving table: ẏ = ż)
+      typename System::State after{};
+      after[0] = event->q;
+      after[1] = event->qdot_after;
+      const bool plastic =
+          event->kind == EventKind::impact &&
+          system.witness(System::Mode::free, 0, after, event->t).rate == 0.0;
       if (!plastic && event->kind != EventKind::accumulation) continue;
       // at rest on the wall: position q on it, zero rate (the stuck mode's
       // push of these systems depends on time alone)

@@ -56,14 +56,20 @@ ContinuationJobResult continue_orbit(const Scene& scene, const ContinuationJob& 
   ContinuationJobResult result = continuation_of_scene(scene, job);
   if (!result.available) throw BadInput("oscillator", scene.oscillator, result.note);
   if (result.branches.empty() ||
-      result.branches[0].result.stop_reason == StopReason::start_not_converged)
+      result.branches[0].result.stop_reason == StopReason::start_not_converged) {
+    const std::string detail =
+        result.branches.empty() ? std::string() : result.branches[0].result.stop_detail;
+    // a detail that names an option is its own remedy
+    const std::string remedy =
+        detail.find('`') != std::string::npos
+            ? std::string()
+            : fmt::format(" (try {}, {} or {})", mention("period"), mention("start"),
+                          mention("transient"));
     throw BadInput("param", fmt::format("{}={}:{}", job.parameter, job.from, job.to),
-                   fmt::format("no period-{} orbit converged at {} = {}{} (try {}, {} or {})",
-                               job.period, job.parameter, job.from,
-                               job.impact_wall != 0 && !result.branches.empty()
-                                   ? ": " + result.branches[0].result.stop_detail
-                                   : "",
-                               mention("period"), mention("start"), mention("transient")));
+                   fmt::format("no period-{} orbit converged at {} = {}{}{}", job.period,
+                               job.parameter, job.from, detail.empty() ? "" : ": " + detail,
+                               remedy));
+  }
   // a curve type asked for that the branch has no located point of
   if (job.curve_type && !result.has_curve) {
     const auto& points = result.branches[0].result.points;

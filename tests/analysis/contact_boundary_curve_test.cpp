@@ -14,9 +14,10 @@
 // must lie on it to 1e-9 in ω, with the closed form's state on the section
 // (the stroboscopic one, and the impact section of the stop).
 //
-// The pendulum's contact boundary V0·ω = g (--curve contact_boundary), a
-// condition on the parameters alone, against V0 = g/ω and brute-force runs
-// (the last test).
+// The same on the bouncing ball's moving table (r = 0), against its
+// closed form Aω² = g √(1 + π²). The pendulum's contact boundary V0·ω = g
+// (--curve contact_boundary), a condition on the parameters alone, against
+// V0 = g/ω and brute-force runs (the last test).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -177,6 +178,89 @@ TEST(ContactBoundaryCurve, ATypeTheBranchHasNoPointOfIsBadInputNamingCurve) {
       EXPECT_EQ(error.value(), impactlab::to_string(type));
       EXPECT_NE(std::string(error.what()).find("contact_end"), std::string::npos) << error.what();
     }
+  }
+}
+
+// The bouncing ball with a plastic impact (r = 0) on its table z = A sin ωt:
+// it rides the table while the push g + z̈ is positive and is released where
+// A ω² sin ωt_r = g (the table moving up), flies the parabola from (z, ż) at
+// t_r and lands on the table plastically. Its period-1 orbit lands again
+// before t_r + T and rides the table to the next release; the contact phase
+// ends where the landing comes exactly at t_r + T: z(t_r + T) = z(t_r) on the
+// parabola gives ż(t_r) = gT/2 = πg/ω, and with sin ωt_r = g/(Aω²),
+// A ω² = g √(1 + π²) (Γ = √(1 + π²), the classical sticking threshold).
+// The branch in A at ω = 30 rad/s must locate the contact end there to 1e-9,
+// and the curve in (A, ω) must lie on it to 1e-9 with the parabola's state
+// on the section ωt ≡ 2.4 rad (in the flight) to 1e-8, until A leaves its range.
+TEST(ContactBoundaryCurve, BouncingBallContactEndAtGammaEqualToRootOfOnePlusPiSquared) {
+  Scene scene = impactlab::load_scene("bouncing_ball");
+  scene.values["r"] = 0.0;
+  const double g = scene.number("g");
+  const double threshold = std::sqrt(1.0 + std::numbers::pi * std::numbers::pi);
+  const auto amplitude_at = [&](double omega) { return g * threshold / (omega * omega); };
+  ContinuationJob job;
+  job.parameter = "A";
+  job.from = 0.03;
+  job.to = 0.04;
+  job.phase = 2.4;
+  job.second_parameter = "omega";
+  job.second_from = 30.0;
+  job.second_to = 40.0;
+  job.curve_type = CurveType::contact_end;
+  const auto result = impactlab::continue_orbit(scene, job);
+  const auto ends =
+      std::count_if(result.branches.at(0).result.points.begin(),
+                    result.branches[0].result.points.end(), [](const auto& point) {
+                      return point.type == BifurcationType::contact_end && point.located;
+                    });
+  EXPECT_EQ(ends, 1);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  ASSERT_GE(curve.curve.size(), 10u) << curve.stop_detail;
+  EXPECT_NEAR(curve.curve.front().p1, amplitude_at(30.0), 1e-9 * amplitude_at(30.0));
+  // A falls as 1/ω² along the curve: it leaves [0.03, 0.04] at ω ≈ 32.9
+  EXPECT_EQ(curve.stop_reason, StopReason::left_range) << curve.stop_detail;
+  EXPECT_GT(curve.curve.back().p2, 32.5);
+  for (const auto& point : curve.curve) {
+    const double omega = point.p2, expected = amplitude_at(omega);
+    EXPECT_NEAR(point.p1, expected, 1e-9 * expected) << "omega = " << omega;
+    const double release = std::asin(1.0 / threshold) / omega, period = two_pi / omega;
+    const double y0 = expected * std::sin(omega * release);
+    const double v0 = expected * omega * std::cos(omega * release);
+    const auto flight = [&](double t) {
+      const double tau = t - release;
+      return std::array<double, 2>{y0 + v0 * tau - 0.5 * g * tau * tau, v0 - g * tau};
+    };
+    // the flight stays above the table until it lands at t_r + T
+    for (int k = 1; k < 200; ++k) {
+      const double t = release + period * k / 200.0;
+      ASSERT_GT(flight(t)[0], expected * std::sin(omega * t)) << "omega = " << omega;
+    }
+    const auto x = flight(2.4 / omega);
+    EXPECT_NEAR(point.state[0], x[0], 1e-8) << "omega = " << omega;
+    EXPECT_NEAR(point.state[1], x[1], 1e-8) << "omega = " << omega;
+    EXPECT_LT(std::abs(point.multipliers[0]), 1e-6) << "omega = " << omega;
+  }
+}
+
+// On the scene's own section ωt ≡ 0 the same orbit rides the table, so the
+// section map, which runs from a flight, has no start there: bad input
+// naming `param`, with the section as the remedy.
+TEST(ContactBoundaryCurve, AnOrbitRestingOnTheTableAtTheSectionIsRefusedNamingTheSection) {
+  Scene scene = impactlab::load_scene("bouncing_ball");
+  scene.values["r"] = 0.0;
+  ContinuationJob job;
+  job.parameter = "A";
+  job.from = 0.03;
+  job.to = 0.04;
+  try {
+    impactlab::continue_orbit(scene, job);
+    FAIL() << "no BadInput";
+  } catch (const impactlab::BadInput& error) {
+    EXPECT_EQ(error.key(), "param");
+    EXPECT_NE(std::string(error.what()).find("rests on a wall at the section"), std::string::npos)
+        << error.what();
+    EXPECT_NE(std::string(error.what()).find("`section`"), std::string::npos) << error.what();
   }
 }
 
