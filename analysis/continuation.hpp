@@ -220,14 +220,29 @@ struct CurvePoint {
 enum class CodimensionTwoType {
   grazing_period_doubling,  // on a grazing curve: the virtual orbit's multiplier through −1
   grazing_fold,             // on a grazing curve: the virtual orbit's multiplier through +1
+  grazing_scenario_change,  // on a grazing curve: its dominant multiplier through a threshold
+                            // of the eigenvalue rule (1/4 or 2/3), where the predicted
+                            // scenario past the graze changes
 };
 
 constexpr std::string_view to_string(CodimensionTwoType type) {
   switch (type) {
     case CodimensionTwoType::grazing_period_doubling: return "grazing_period_doubling";
     case CodimensionTwoType::grazing_fold: return "grazing_fold";
+    case CodimensionTwoType::grazing_scenario_change: return "grazing_scenario_change";
   }
   return "unknown";
+}
+
+// The other curve through a codimension-two point (`switch`): the period
+// doubling's or the fold's; none through a change of the grazing scenario.
+constexpr std::optional<CurveType> curve_through(CodimensionTwoType type) {
+  switch (type) {
+    case CodimensionTwoType::grazing_period_doubling: return CurveType::period_doubling;
+    case CodimensionTwoType::grazing_fold: return CurveType::fold;
+    case CodimensionTwoType::grazing_scenario_change: return std::nullopt;
+  }
+  return std::nullopt;
 }
 
 struct CodimensionTwoPoint {

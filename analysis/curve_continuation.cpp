@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <boost/math/tools/toms748_solve.hpp>
@@ -13,6 +17,7 @@
 #include <impactlab/analysis/bifurcation_location.hpp>
 #include <impactlab/analysis/dense_solve.hpp>
 #include <impactlab/analysis/floquet_multipliers.hpp>
+#include <impactlab/analysis/grazing_normal_form.hpp>
 
 namespace impactlab {
 
@@ -20,6 +25,27 @@ namespace {
 
 using Vector = Eigen::VectorXd;
 using Matrix = Eigen::MatrixXd;
+
+// The dominant multiplier where it is real; NaN where it is one of a complex
+// pair (the eigenvalue rule does not apply there, and no sign is watched).
+double dominant_real_multiplier(const MonodromyMatrix& m) {
+  const std::vector<std::complex<double>> multipliers = multipliers_of(m);
+  if (multipliers.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const std::complex<double> dominant = multipliers.front();
+  if (std::fabs(dominant.imag()) > 1e-12 * (1.0 + std::abs(dominant)))
+    return std::numeric_limits<double>::quiet_NaN();
+  return dominant.real();
+}
+
+// The eigenvalue rule's thresholds on λ₁ (grazing_normal_form.hpp,
+// eigenvalue_rule): period adding below 1/4, with chaotic windows up to 2/3,
+// chaos above.
+double dominant_multiplier_past_quarter(const MonodromyMatrix& m) {
+  return dominant_real_multiplier(m) - 0.25;
+}
+double dominant_multiplier_past_two_thirds(const MonodromyMatrix& m) {
+  return dominant_real_multiplier(m) - 2.0 / 3.0;
+}
 
 // The residual of the defining system at one point, and the orbit it ran.
 struct Evaluation {
@@ -303,14 +329,25 @@ class CurveDriver {
 
   // A second condition watched along a grazing curve: the virtual orbit's
   // multiplier through −1 or +1, where the grazing curve meets a period
-  // doubling or a fold curve of the orbit it grazes.
+  // doubling or a fold curve of the orbit it grazes; its dominant multiplier
+  // λ₁ through a threshold of the eigenvalue rule, where the predicted
+  // scenario past the graze changes (reported only where the rule applies
+  // there: every kick gap e_k ≥ 0 and λ₁ > 0; `note` names the scenarios on
+  // either side, λ₁ growing).
   struct WatchedCondition {
     CodimensionTwoType type;
     double (*function)(const MonodromyMatrix&);
+    const char* note;
   };
-  static constexpr std::array<WatchedCondition, 2> watched_ = {
-      WatchedCondition{CodimensionTwoType::grazing_period_doubling, det_plus_identity},
-      WatchedCondition{CodimensionTwoType::grazing_fold, det_minus_identity}};
+  static constexpr std::array<WatchedCondition, 4> watched_ = {
+      WatchedCondition{CodimensionTwoType::grazing_period_doubling, det_plus_identity, ""},
+      WatchedCondition{CodimensionTwoType::grazing_fold, det_minus_identity, ""},
+      WatchedCondition{CodimensionTwoType::grazing_scenario_change,
+                       dominant_multiplier_past_quarter,
+                       "lambda1 = 1/4: period_adding below, period_adding_with_chaos above"},
+      WatchedCondition{CodimensionTwoType::grazing_scenario_change,
+                       dominant_multiplier_past_two_thirds,
+                       "lambda1 = 2/3: period_adding_with_chaos below, chaos above"}};
 
   // Each watched condition whose sign differs between the curve point a and
   // the new point b (reached from a by the arclength `step` along `tangent`),
@@ -319,7 +356,10 @@ class CurveDriver {
                               const Corrected& b) {
     for (std::size_t k = 0; k < watched_.size(); ++k) {
       const double fa = last_tests_[k], fb = watched_[k].function(b.at.orbit.monodromy);
-      if (fa * fb < 0.0) result_.points.push_back(locate(watched_[k], a, tangent, step, fa));
+      if (!(fa * fb < 0.0)) continue;
+      CodimensionTwoPoint point = locate(watched_[k], a, tangent, step, fa);
+      if (point.type != CodimensionTwoType::grazing_scenario_change || rule_applies(point))
+        result_.points.push_back(std::move(point));
     }
   }
 
@@ -329,6 +369,7 @@ class CurveDriver {
                              const Vector& tangent, double step, double fa) {
     CodimensionTwoPoint point;
     point.type = condition.type;
+    point.note = condition.note;
     std::optional<Corrected> last;
     auto on_curve = [&](double s) -> double {
       const Vector predicted = a + s * tangent;
@@ -349,6 +390,7 @@ class CurveDriver {
       const auto bracket = boost::math::tools::toms748_solve(
           on_curve, 0.0, step, fa, fb, boost::math::tools::eps_tolerance<double>(42), iterations);
       on_curve(0.5 * (bracket.first + bracket.second));
+      located_z_ = last->z;
       const CurvePoint at = point_of(*last);
       point.p1 = at.p1;
       point.p2 = at.p2;
@@ -363,9 +405,31 @@ class CurveDriver {
       point.p2 = p2_of(middle);
       point.state = state_of(middle);
       point.error_estimate = rate * step;
-      point.note = "detected; the corrector failed while locating it";
+      point.note = std::string(condition.note) + (point.note.empty() ? "" : "; ") +
+                   "detected; the corrector failed while locating it";
     }
     return point;
+  }
+
+  // Whether the eigenvalue rule decides the scenario at a located threshold
+  // of λ₁: its normal form there (the grazing orbit's local flow) has every
+  // kick gap e_k ≥ 0 and K > 0, so that the rule is period adding, with or
+  // without chaos, or chaos, not a jump. Where the normal form cannot be
+  // formed the threshold is reported as it is.
+  bool rule_applies(const CodimensionTwoPoint& point) const {
+    if (!point.located) return true;
+    const ContinuationProblem at = problem_.at(point.p2);
+    if (!at.grazing_flow) return true;
+    const double graze = located_z_[tg_] * time_scale_;
+    const GrazingNormalForm form = grazing_normal_form(
+        at.grazing_flow(state_of(located_z_), p1_of(located_z_), phase_,
+                        ContactWindow{request_.graze_witness, graze - window_half_width_,
+                                      graze + window_half_width_},
+                        graze),
+        p1_of(located_z_));
+    if (!form.available) return true;
+    const GrazingScenario rule = eigenvalue_rule(form);
+    return rule != GrazingScenario::jump && rule != GrazingScenario::not_applicable;
   }
 
   // The fraction of the span between the section (moved by `shift_time`) and
@@ -438,7 +502,8 @@ class CurveDriver {
   double h_initial_ = 0.01, h_min_ = 1e-7, h_max_ = 0.02;
   double requested_phase_ = 0.0, phase_ = 0.0;  // rad: the requested and the working section
   Vector z_, tangent_;
-  std::array<double, 2> last_tests_{};    // the watched conditions at the last curve point
+  Vector located_z_;                      // the last codimension-two point located (working section)
+  std::array<double, watched_.size()> last_tests_{};  // the watched conditions at the last point
   CurveResult result_;
 };
 

@@ -140,10 +140,13 @@ bool continue_curve_from_point(const CodimensionTwoPoint& point, int period, Cur
     note = "a curve through a codimension-two point is followed on the stroboscopic section only";
     return false;
   }
+  const std::optional<CurveType> through = curve_through(point.type);
+  if (!through) {
+    note = "no other curve runs through a " + std::string(to_string(point.type)) + " point";
+    return false;
+  }
   CurveRequest request;
-  request.type = point.type == CodimensionTwoType::grazing_period_doubling
-                     ? CurveType::period_doubling
-                     : CurveType::fold;
+  request.type = *through;
   request.from1 = job.from;
   request.to1 = job.to;
   request.from2 = point.p2;

@@ -13,6 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include <impactlab/analysis/branch_continuation.hpp>
 #include <impactlab/analysis/continuation.hpp>
 #include <impactlab/analysis/continuation_problem.hpp>
@@ -90,6 +92,13 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
                             loop_options(setup), log);
           });
       request.start.assign(transient.state.begin(), transient.state.begin() + n);
+      // the section map runs from a flight: an orbit resting on a wall at
+      // the section (the ball riding its table) needs another section phase
+      if (job.impact_wall == 0 && transient.mode != flight_mode)
+        return no_start(result, job,
+                        fmt::format("the transient rests on a wall at the section (omega t "
+                                    "= {:g} rad): try a `section` strobe:PHASE in a flight",
+                                    job.phase));
       if (job.impact_wall != 0) {
         // on the impact section: the transient's next impact with the wall,
         // (phase, the state before it without q)
@@ -255,7 +264,7 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
       }
       if (job.doublings > 0 && result.has_curve)
         for (const CodimensionTwoPoint& point : result.curve.points) {
-          if (!point.located) continue;
+          if (!point.located || !curve_through(point.type)) continue;
           BranchCurve switched{0, job.period};
           switched.started_at = point.type;
           switched.has_curve = continue_curve_from_point(point, job.period, switched.curve,

@@ -376,7 +376,8 @@ int run_continue(const ContinueCommandOptions& command_options,
           {"branch", "the branch the curve starts from: 0, then k for the k-th doubled one "
                      "(--switch; doubled_curves)"},
           {"period", "forcing periods of that branch's orbit"},
-          {"type", "the curve's type: fold, period_doubling, grazing, contact_onset, contact_end or contact_boundary"},
+          {"type", "the curve's type: fold, period_doubling, grazing, contact_onset, "
+                   "contact_end or contact_boundary"},
           {"start", "branch: the curve starts at a point located on the branch; "
                     "grazing_period_doubling or grazing_fold: it runs through that "
                     "codimension-two point of the first curve (--switch; switched_curves), "
@@ -385,7 +386,10 @@ int run_continue(const ContinueCommandOptions& command_options,
            {{"type", "grazing_period_doubling or grazing_fold: on a grazing curve, where the "
                      "virtual orbit (the orbit through the graze) has a multiplier -1 or +1, "
                      "i.e. where a period-doubling or fold curve of that orbit meets the "
-                     "grazing curve; located by TOMS 748 on the curve's arclength"},
+                     "grazing curve; grazing_scenario_change: where its dominant multiplier "
+                     "passes 1/4 or 2/3, the eigenvalue rule's thresholds, so that the "
+                     "predicted scenario past the graze changes (note); located by TOMS 748 on "
+                     "the curve's arclength"},
             {"error_estimate", "bound on the error of both parameter values (each in its "
                                "own unit; the larger)"},
             {"located", "1: located; 0: detected between two curve points only (note)"},

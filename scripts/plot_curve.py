@@ -47,6 +47,7 @@ def curves_of(curve_table):
 CODIMENSION_TWO_MARKERS = {
     "grazing_period_doubling": ("D", "tab:purple", "grazing meets period doubling"),
     "grazing_fold": ("s", "tab:orange", "grazing meets fold"),
+    "grazing_scenario_change": ("P", "tab:red", "grazing scenario changes"),
 }
 
 

@@ -55,6 +55,9 @@ if [ "${1:-}" = "--sanitize" ]; then
     'AttractorsCli\.SerialThreadedAndResumedRunsWriteIdenticalFiles'
     'BoxStack\.StackAtRestStaysWithinTheStatedBound'
     'explore_browser'
+    'CommittedReproduction\.RangesAreRederivedFromTheCsv'
+    'installed_library_build_example'
+    'installed_library_run_example'
   )
   exclude="^($(IFS='|'; echo "${release_only[*]}"))( |$)"
   # sanitized code runs several times slower: a longer per-test limit

@@ -35,7 +35,11 @@
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/scene.hpp>
 
+#include "support/curve_job.hpp"
+
 namespace {
+
+using impactlab::testing::curve_job;
 
 using impactlab::BifurcationType;
 using impactlab::ContinuationJob;
@@ -102,15 +106,7 @@ Scene plastic_stop_scene() {
 }
 
 ContinuationJob contact_end_job(double sigma_to) {
-  ContinuationJob job;
-  job.parameter = "omega";
-  job.from = 1.5;
-  job.to = 1.8;
-  job.second_parameter = "sigma";
-  job.second_from = 0.2;
-  job.second_to = sigma_to;
-  job.curve_type = CurveType::contact_end;
-  return job;
+  return curve_job("omega", 1.5, 1.8, "sigma", 0.2, sigma_to, CurveType::contact_end);
 }
 
 TEST(ContactBoundaryCurve, ContactEndOfThePlasticStopInOmegaAndSigmaAtItsClosedForm) {
@@ -198,15 +194,8 @@ TEST(ContactBoundaryCurve, BouncingBallContactEndAtGammaEqualToRootOfOnePlusPiSq
   const double g = scene.number("g");
   const double threshold = std::sqrt(1.0 + std::numbers::pi * std::numbers::pi);
   const auto amplitude_at = [&](double omega) { return g * threshold / (omega * omega); };
-  ContinuationJob job;
-  job.parameter = "A";
-  job.from = 0.03;
-  job.to = 0.04;
-  job.phase = 2.4;
-  job.second_parameter = "omega";
-  job.second_from = 30.0;
-  job.second_to = 40.0;
-  job.curve_type = CurveType::contact_end;
+  ContinuationJob job = curve_job("A", 0.03, 0.04, "omega", 30.0, 40.0, CurveType::contact_end);
+  job.phase = 2.4;  // rad: in the flight
   const auto result = impactlab::continue_orbit(scene, job);
   const auto ends =
       std::count_if(result.branches.at(0).result.points.begin(),
@@ -249,10 +238,7 @@ TEST(ContactBoundaryCurve, BouncingBallContactEndAtGammaEqualToRootOfOnePlusPiSq
 TEST(ContactBoundaryCurve, AnOrbitRestingOnTheTableAtTheSectionIsRefusedNamingTheSection) {
   Scene scene = impactlab::load_scene("bouncing_ball");
   scene.values["r"] = 0.0;
-  ContinuationJob job;
-  job.parameter = "A";
-  job.from = 0.03;
-  job.to = 0.04;
+  ContinuationJob job = curve_job("A", 0.03, 0.04, "omega", 30.0, 40.0, CurveType::contact_end);
   try {
     impactlab::continue_orbit(scene, job);
     FAIL() << "no BadInput";
@@ -274,15 +260,8 @@ TEST(ContactBoundaryCurve, AnOrbitRestingOnTheTableAtTheSectionIsRefusedNamingTh
 // settles on (2000 forcing periods of transient), to 1e-8.
 TEST(ContactBoundaryCurve, PendulumV0OmegaEqualToGIsFollowedOnItsClosedForm) {
   const Scene scene = impactlab::load_scene("jin2003");
-  ContinuationJob job;
-  job.parameter = "V0";
-  job.from = 1.6;
-  job.to = 1.3;
+  ContinuationJob job = curve_job("V0", 1.6, 1.3, "omega", 7.0, 6.6, CurveType::contact_boundary);
   job.period = 2;
-  job.second_parameter = "omega";
-  job.second_from = 7.0;
-  job.second_to = 6.6;
-  job.curve_type = CurveType::contact_boundary;
   const auto result = impactlab::continue_orbit(scene, job);
   ASSERT_TRUE(result.has_curve) << result.curve_note;
   const auto& curve = result.curve;

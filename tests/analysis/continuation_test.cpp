@@ -28,6 +28,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <boost/math/tools/roots.hpp>
@@ -36,6 +37,7 @@
 #include <impactlab/analysis/branch_continuation.hpp>
 #include <impactlab/analysis/continuation.hpp>
 #include <impactlab/analysis/continuation_problem.hpp>
+#include <impactlab/analysis/grazing_normal_form.hpp>
 #include <impactlab/analysis/periodic.hpp>
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/api/scene_jobs.hpp>
@@ -43,7 +45,11 @@
 #include <impactlab/io/bad_input.hpp>
 #include <impactlab/io/scene.hpp>
 
+#include "support/curve_job.hpp"
+
 namespace {
+
+using impactlab::testing::curve_job;
 
 using impactlab::BifurcationPoint;
 using impactlab::BifurcationType;
@@ -800,19 +806,6 @@ TEST(Continuation, StickOnsetLocatedWhereTheStickImpactsPerOrbitChange) {
   EXPECT_NEAR(ends[0].parameter, onset, 1e-9);
 }
 
-ContinuationJob curve_job(const std::string& key, double from, double to, const std::string& key2,
-                          double from2, double to2, CurveType type) {
-  ContinuationJob job;
-  job.parameter = key;
-  job.from = from;
-  job.to = to;
-  job.second_parameter = key2;
-  job.second_from = from2;
-  job.second_to = to2;
-  job.curve_type = type;
-  return job;
-}
-
 TEST(CurveContinuation, BouncingBallPeriodDoublingCurveInAmplitudeAndRestitution) {
   const Scene scene = impactlab::load_scene("bouncing_ball");  // g 9.81, ω 30, r 0.8
   ContinuationJob job = curve_job("A", 0.0112, 0.02, "r", 0.8, 0.5, CurveType::period_doubling);
@@ -1049,6 +1042,73 @@ TEST(CurveContinuation, BouncingBallFoldCurveOnTheImpactSection) {
     EXPECT_NEAR(point.p1, expected, 1e-9 * expected) << "r = " << point.p2;
     EXPECT_NEAR(std::remainder(point.state[0], two_pi), 0.0, 1e-6) << "r = " << point.p2;
     EXPECT_NEAR(point.state[1], -0.5 * g * period, 1e-9) << "r = " << point.p2;
+  }
+}
+
+// Where the grazing scenario changes along a grazing curve. The overdamped
+// linear impact oscillator (ζ = 1.2, A = 1) grazes where its harmonic
+// response's amplitude A/√D(ω), D = (1 − ω²)² + 4ζ²ω², reaches the stop σ.
+// The grazing orbit is the free one, whose multipliers e^{(−ζ ± √(ζ² − 1))T}
+// do not depend on σ: the dominant λ₁ = e^{−(ζ − √(ζ² − 1))2π/ω} passes the
+// eigenvalue rule's thresholds 1/4 at ω = 2π(ζ − √(ζ² − 1))/ln 4 and 2/3 at
+// ω = 2π(ζ − √(ζ² − 1))/ln(3/2), where the predicted scenario changes from
+// period adding to period adding with chaotic windows, then to chaos. The
+// grazing curve from ω = 2.2 (σ = A/√D(2.2)) down in σ to 0.0125 (ω ≈ 8.9)
+// must locate both, each on the closed form to 1e-9 in ω and in σ, with
+// λ₁ = 1/4 and 2/3 to 1e-9; and the normal forms of grazing points located
+// on branches between them must give the scenarios the points name.
+TEST(CurveContinuation, GrazingScenarioChangesOfTheOverdampedOscillatorAtTheirClosedForms) {
+  const double zeta = 1.2, decay = zeta - std::sqrt(zeta * zeta - 1.0);
+  const auto amplitude = [&](double omega) {
+    const double detuning = 1.0 - omega * omega;
+    return 1.0 / std::sqrt(detuning * detuning + 4.0 * zeta * zeta * omega * omega);
+  };
+  Scene scene = impactlab::load_scene("linear_impact");
+  scene.values["zeta"] = zeta;
+  scene.values["A"] = 1.0;
+  scene.values["integrator.method"] = std::string("taylor");
+  scene.values["integrator.rtol"] = 1e-13;
+  scene.values["integrator.atol"] = 1e-15;
+  // the grazing point of the free orbit's branch in ω, falling from 9, at σ
+  const auto grazing_at = [&](double sigma, const std::string& key2, double to2) {
+    Scene at = scene;
+    at.values["sigma"] = sigma;
+    ContinuationJob job = curve_job("omega", 9.0, 2.0, key2, sigma, to2, CurveType::grazing);
+    if (key2.empty()) job.curve_type.reset();
+    return impactlab::continue_orbit(at, job);
+  };
+  const auto result = grazing_at(amplitude(2.2), "sigma", 0.0125);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  EXPECT_EQ(result.curve.stop_reason, StopReason::end_of_range) << result.curve.stop_detail;
+  const std::array<double, 2> thresholds = {0.25, 2.0 / 3.0};
+  ASSERT_EQ(result.curve.points.size(), thresholds.size());
+  for (std::size_t k = 0; k < thresholds.size(); ++k) {
+    const auto& point = result.curve.points[k];
+    const double omega = 2.0 * std::numbers::pi * decay / std::log(1.0 / thresholds[k]);
+    EXPECT_EQ(point.type, impactlab::CodimensionTwoType::grazing_scenario_change);
+    EXPECT_TRUE(point.located) << point.note;
+    EXPECT_NEAR(point.p1, omega, 1e-9 * omega);
+    EXPECT_NEAR(point.p2, amplitude(omega), 1e-9 * amplitude(omega));
+    EXPECT_NEAR(point.multipliers[0].real(), thresholds[k], 1e-9);
+  }
+  EXPECT_NE(result.curve.points[0].note.find("period_adding below, period_adding_with_chaos above"),
+            std::string::npos)
+      << result.curve.points[0].note;
+  EXPECT_NE(result.curve.points[1].note.find("period_adding_with_chaos below, chaos above"),
+            std::string::npos)
+      << result.curve.points[1].note;
+  // the rule at grazing points below, between and above the two (λ₁ grows with ω)
+  const std::array<std::pair<double, impactlab::GrazingScenario>, 3> sides = {
+      std::pair{2.3, impactlab::GrazingScenario::period_adding},
+      std::pair{5.0, impactlab::GrazingScenario::period_adding_with_chaos},
+      std::pair{8.7, impactlab::GrazingScenario::chaos}};
+  for (const auto& [omega, scenario] : sides) {
+    const auto branch = grazing_at(amplitude(omega), "", 0.0);
+    const auto grazing = points_of_type(branch.branches.at(0).result, BifurcationType::grazing);
+    ASSERT_EQ(grazing.size(), 1u) << "omega = " << omega;
+    ASSERT_TRUE(grazing[0].normal_form.has_value()) << "omega = " << omega;
+    EXPECT_NEAR(grazing[0].parameter, omega, 1e-8 * omega);
+    EXPECT_EQ(grazing[0].normal_form->rule, scenario) << "omega = " << omega;
   }
 }
 
