@@ -332,8 +332,8 @@ class CurveDriver {
   // doubling or a fold curve of the orbit it grazes; its dominant multiplier
   // λ₁ through a threshold of the eigenvalue rule, where the predicted
   // scenario past the graze changes (reported only where the rule applies
-  // there: every kick gap e_k ≥ 0 and λ₁ > 0; `note` names the scenarios on
-  // either side, λ₁ growing).
+  // there, rule_applies; `note` names the scenarios on either side, λ₁
+  // growing).
   struct WatchedCondition {
     CodimensionTwoType type;
     double (*function)(const MonodromyMatrix&);
@@ -413,8 +413,8 @@ class CurveDriver {
 
   // Whether the eigenvalue rule decides the scenario at a located threshold
   // of λ₁: its normal form there (the grazing orbit's local flow) has every
-  // kick gap e_k ≥ 0 and K > 0, so that the rule is period adding, with or
-  // without chaos, or chaos, not a jump. Where the normal form cannot be
+  // kick gap e_k ≥ 0, λ₁ > 0 and K > 0, so that the rule is period adding,
+  // with or without chaos, or chaos, not a jump. Where the normal form cannot be
   // formed the threshold is reported as it is.
   bool rule_applies(const CodimensionTwoPoint& point) const {
     if (!point.located) return true;

@@ -27,13 +27,11 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <optional>
 #include <stdexcept>
 #include <type_traits>
 
 #include <impactlab/core/fast_trig.hpp>
 #include <impactlab/integrate/lane_number.hpp>
-#include <impactlab/integrate/series_lane.hpp>
 
 namespace impactlab {
 
