@@ -357,16 +357,16 @@ class CurveDriver {
     for (std::size_t k = 0; k < watched_.size(); ++k) {
       const double fa = last_tests_[k], fb = watched_[k].function(b.at.orbit.monodromy);
       if (!(fa * fb < 0.0)) continue;
-      CodimensionTwoPoint point = locate(watched_[k], a, tangent, step, fa);
-      if (point.type != CodimensionTwoType::grazing_scenario_change || rule_applies(point))
-        result_.points.push_back(std::move(point));
+      if (auto point = locate(watched_[k], a, tangent, step, fa))
+        result_.points.push_back(std::move(*point));
     }
   }
 
   // The root of a watched condition on the arclength from a (TOMS 748), each
-  // trial point corrected onto the curve.
-  CodimensionTwoPoint locate(const WatchedCondition& condition, const Vector& a,
-                             const Vector& tangent, double step, double fa) {
+  // trial point corrected onto the curve; none at a located threshold of the
+  // eigenvalue rule where the rule does not apply (rule_applies).
+  std::optional<CodimensionTwoPoint> locate(const WatchedCondition& condition, const Vector& a,
+                                            const Vector& tangent, double step, double fa) {
     CodimensionTwoPoint point;
     point.type = condition.type;
     point.note = condition.note;
@@ -390,7 +390,9 @@ class CurveDriver {
       const auto bracket = boost::math::tools::toms748_solve(
           on_curve, 0.0, step, fa, fb, boost::math::tools::eps_tolerance<double>(42), iterations);
       on_curve(0.5 * (bracket.first + bracket.second));
-      located_z_ = last->z;
+      if (condition.type == CodimensionTwoType::grazing_scenario_change &&
+          !rule_applies(last->z))
+        return std::nullopt;
       const CurvePoint at = point_of(*last);
       point.p1 = at.p1;
       point.p2 = at.p2;
@@ -405,8 +407,8 @@ class CurveDriver {
       point.p2 = p2_of(middle);
       point.state = state_of(middle);
       point.error_estimate = rate * step;
-      point.note = std::string(condition.note) + (point.note.empty() ? "" : "; ") +
-                   "detected; the corrector failed while locating it";
+      point.note += std::string(point.note.empty() ? "" : "; ") +
+                    "detected; the corrector failed while locating it";
     }
     return point;
   }
@@ -416,17 +418,16 @@ class CurveDriver {
   // kick gap e_k ≥ 0, λ₁ > 0 and K > 0, so that the rule is period adding,
   // with or without chaos, or chaos, not a jump. Where the normal form cannot be
   // formed the threshold is reported as it is.
-  bool rule_applies(const CodimensionTwoPoint& point) const {
-    if (!point.located) return true;
-    const ContinuationProblem at = problem_.at(point.p2);
+  bool rule_applies(const Vector& z) const {
+    const ContinuationProblem at = problem_.at(p2_of(z));
     if (!at.grazing_flow) return true;
-    const double graze = located_z_[tg_] * time_scale_;
+    const double graze = z[tg_] * time_scale_;
     const GrazingNormalForm form = grazing_normal_form(
-        at.grazing_flow(state_of(located_z_), p1_of(located_z_), phase_,
+        at.grazing_flow(state_of(z), p1_of(z), phase_,
                         ContactWindow{request_.graze_witness, graze - window_half_width_,
                                       graze + window_half_width_},
                         graze),
-        p1_of(located_z_));
+        p1_of(z));
     if (!form.available) return true;
     const GrazingScenario rule = eigenvalue_rule(form);
     return rule != GrazingScenario::jump && rule != GrazingScenario::not_applicable;
@@ -502,7 +503,6 @@ class CurveDriver {
   double h_initial_ = 0.01, h_min_ = 1e-7, h_max_ = 0.02;
   double requested_phase_ = 0.0, phase_ = 0.0;  // rad: the requested and the working section
   Vector z_, tangent_;
-  Vector located_z_;                      // the last codimension-two point located (working section)
   std::array<double, watched_.size()> last_tests_{};  // the watched conditions at the last point
   CurveResult result_;
 };

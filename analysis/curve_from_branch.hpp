@@ -127,26 +127,21 @@ bool continue_curve_of(const ContinuationJobResult& result, std::size_t index, C
   return true;
 }
 
-// The curve through a codimension-two point of a curve (`switch`): at a
-// grazing–period-doubling point the period-doubling curve of the orbit it
-// grazes, at a grazing–fold point its fold curve, followed from the point
-// towards job.second_from (the side the grazing curve came from) on the
-// stroboscopic section; false, with why in `note`, where it cannot start.
+// The curve of type `through` (curve_through) through a codimension-two
+// point of a curve (`switch`): at a grazing–period-doubling point the
+// period-doubling curve of the orbit it grazes, at a grazing–fold point its
+// fold curve, followed from the point towards job.second_from (the side the
+// grazing curve came from) on the stroboscopic section; false, with why in `note`, where it cannot start.
 template <class MapAt>
-bool continue_curve_from_point(const CodimensionTwoPoint& point, int period, CurveResult& curve,
-                               std::string& note, MapAt map_at, const Scene& scene,
-                               const ContinuationJob& job) {
+bool continue_curve_from_point(const CodimensionTwoPoint& point, CurveType through, int period,
+                               CurveResult& curve, std::string& note, MapAt map_at,
+                               const Scene& scene, const ContinuationJob& job) {
   if (job.impact_wall != 0) {
     note = "a curve through a codimension-two point is followed on the stroboscopic section only";
     return false;
   }
-  const std::optional<CurveType> through = curve_through(point.type);
-  if (!through) {
-    note = "no other curve runs through a " + std::string(to_string(point.type)) + " point";
-    return false;
-  }
   CurveRequest request;
-  request.type = *through;
+  request.type = through;
   request.from1 = job.from;
   request.to1 = job.to;
   request.from2 = point.p2;

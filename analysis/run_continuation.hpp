@@ -264,11 +264,12 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
       }
       if (job.doublings > 0 && result.has_curve)
         for (const CodimensionTwoPoint& point : result.curve.points) {
-          if (!point.located || !curve_through(point.type)) continue;
+          const std::optional<CurveType> through = curve_through(point.type);
+          if (!point.located || !through) continue;
           BranchCurve switched{0, job.period};
           switched.started_at = point.type;
-          switched.has_curve = continue_curve_from_point(point, job.period, switched.curve,
-                                                         switched.note, map_at, scene, job);
+          switched.has_curve = continue_curve_from_point(
+              point, *through, job.period, switched.curve, switched.note, map_at, scene, job);
           result.switched_curves.push_back(std::move(switched));
         }
     }

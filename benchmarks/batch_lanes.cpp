@@ -19,20 +19,24 @@
 
 namespace {
 
-// Runs every task of `plan` on one thread, batch on or off; the number of
-// records.
-std::size_t run_plan_once(const impactlab::Scene& scene, const impactlab::SweepTarget& target,
-                          const impactlab::SweepPlan& plan,
-                          const std::vector<impactlab::SweepTask>& tasks, bool batch) {
+// Runs every task of `plan` on one thread per iteration, batch on where the
+// benchmark's argument is 1; the counter `trajectories` is the records run.
+void run_plan(benchmark::State& state, const impactlab::Scene& scene,
+              const impactlab::SweepTarget& target, const impactlab::SweepPlan& plan) {
+  const std::vector<impactlab::SweepTask> tasks = impactlab::sweep_tasks(plan);
   std::vector<const impactlab::SweepTask*> all;
   for (const auto& task : tasks) all.push_back(&task);
   impactlab::SweepJobOptions options;
   options.threads = 1;
-  options.batch = batch ? "on" : "off";
-  const impactlab::SweepOutput output = impactlab::run_sweep(scene, target, plan, all, options);
+  options.batch = state.range(0) != 0 ? "on" : "off";
   std::size_t records = 0;
-  for (const auto& task_records : output.records) records += task_records.size();
-  return records;
+  for (auto _ : state) {
+    const impactlab::SweepOutput output = impactlab::run_sweep(scene, target, plan, all, options);
+    records = 0;
+    for (const auto& task_records : output.records) records += task_records.size();
+    benchmark::DoNotOptimize(records);
+  }
+  state.counters["trajectories"] = static_cast<double>(records);
 }
 
 void BM_PeriodicBasinsGrid(benchmark::State& state) {
@@ -44,11 +48,7 @@ void BM_PeriodicBasinsGrid(benchmark::State& state) {
   spec.section.transient_periods = 50;
   spec.section.points = 100;
   const impactlab::SweepTarget target = impactlab::sweep_target(scene);
-  const impactlab::SweepPlan plan = impactlab::make_basins_plan(spec, scene, *target.schema);
-  const std::vector<impactlab::SweepTask> tasks = impactlab::sweep_tasks(plan);
-  for (auto _ : state)
-    benchmark::DoNotOptimize(run_plan_once(scene, target, plan, tasks, state.range(0) != 0));
-  state.counters["trajectories"] = 64;
+  run_plan(state, scene, target, impactlab::make_basins_plan(spec, scene, *target.schema));
 }
 BENCHMARK(BM_PeriodicBasinsGrid)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
@@ -57,11 +57,7 @@ void BM_MapWithLyapunovExponents(benchmark::State& state) {
   impactlab::SweepSpec spec;
   spec.params = {"omega=6:8:6", "V0=1:5:6"};
   const impactlab::SweepTarget target = impactlab::sweep_target(scene);
-  const impactlab::SweepPlan plan = impactlab::make_sweep_plan(spec, scene, *target.schema);
-  const std::vector<impactlab::SweepTask> tasks = impactlab::sweep_tasks(plan);
-  for (auto _ : state)
-    benchmark::DoNotOptimize(run_plan_once(scene, target, plan, tasks, state.range(0) != 0));
-  state.counters["trajectories"] = 36;
+  run_plan(state, scene, target, impactlab::make_sweep_plan(spec, scene, *target.schema));
 }
 BENCHMARK(BM_MapWithLyapunovExponents)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
