@@ -223,6 +223,8 @@ enum class CodimensionTwoType {
   grazing_scenario_change,  // on a grazing curve: its dominant multiplier through a threshold
                             // of the eigenvalue rule (1/4 or 2/3), where the predicted
                             // scenario past the graze changes
+  cusp,                     // on a fold curve: the curve's tangent has no parameter component
+                            // (the fold's quadratic coefficient is zero; two fold curves meet)
 };
 
 constexpr std::string_view to_string(CodimensionTwoType type) {
@@ -230,17 +232,20 @@ constexpr std::string_view to_string(CodimensionTwoType type) {
     case CodimensionTwoType::grazing_period_doubling: return "grazing_period_doubling";
     case CodimensionTwoType::grazing_fold: return "grazing_fold";
     case CodimensionTwoType::grazing_scenario_change: return "grazing_scenario_change";
+    case CodimensionTwoType::cusp: return "cusp";
   }
   return "unknown";
 }
 
 // The other curve through a codimension-two point (`switch`): the period
-// doubling's or the fold's; none through a change of the grazing scenario.
+// doubling's or the fold's; none through a change of the grazing scenario or
+// a cusp (the fold curve through it is the curve itself).
 constexpr std::optional<CurveType> curve_through(CodimensionTwoType type) {
   switch (type) {
     case CodimensionTwoType::grazing_period_doubling: return CurveType::period_doubling;
     case CodimensionTwoType::grazing_fold: return CurveType::fold;
     case CodimensionTwoType::grazing_scenario_change: return std::nullopt;
+    case CodimensionTwoType::cusp: return std::nullopt;
   }
   return std::nullopt;
 }

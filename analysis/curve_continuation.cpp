@@ -126,7 +126,7 @@ class CurveDriver {
     if (!tangent) return stop(StopReason::start_not_converged, "no curve tangent at the start");
     accept(start, *tangent, 0.0);
 
-    const double to2 = request_.to2 / scale2_;
+    const double from2 = request_.from2 / scale2_, to2 = request_.to2 / scale2_;
     const double low1 = std::min(request_.from1, request_.to1) / scale1_;
     const double high1 = std::max(request_.from1, request_.to1) / scale1_;
     double h = h_initial_;
@@ -137,6 +137,9 @@ class CurveDriver {
       if (remaining <= 1e-12 * (1.0 + std::fabs(to2))) return finish();
       if (last[p1_] < low1 - 1e-9 || last[p1_] > high1 + 1e-9)
         return stop(StopReason::left_range, "the curve left the first parameter's range");
+      if ((last[p2_] - from2) * direction2 < -1e-9)
+        return stop(StopReason::left_range,
+                    "the curve turned back past the second parameter's start");
       const double toward_end = tau[p2_] * direction2;
       if (toward_end > 0.0 && h * toward_end >= remaining) {
         const double h_end = remaining / toward_end;
@@ -295,6 +298,8 @@ class CurveDriver {
 
   void accept(const Corrected& c, const Vector& tangent, double step) {
     if (grazing_ && !result_.curve.empty()) detect_codimension_two(z_, tangent_, step, c);
+    if (request_.type == CurveType::fold && !result_.curve.empty())
+      detect_cusp(z_, tangent_, step, tangent);
     z_ = c.z;
     tangent_ = tangent;
     CurvePoint point = point_of(c);
@@ -357,27 +362,57 @@ class CurveDriver {
     for (std::size_t k = 0; k < watched_.size(); ++k) {
       const double fa = last_tests_[k], fb = watched_[k].function(b.at.orbit.monodromy);
       if (!(fa * fb < 0.0)) continue;
-      if (auto point = locate(watched_[k], a, tangent, step, fa))
+      const auto value = [&](const Corrected& c) {
+        return watched_[k].function(c.at.orbit.monodromy);
+      };
+      if (auto point = locate(watched_[k].type, watched_[k].note, value, a, tangent, step, fa))
         result_.points.push_back(std::move(*point));
     }
   }
 
-  // The root of a watched condition on the arclength from a (TOMS 748), each
-  // trial point corrected onto the curve; none at a located threshold of the
-  // eigenvalue rule where the rule does not apply (rule_applies).
-  std::optional<CodimensionTwoPoint> locate(const WatchedCondition& condition, const Vector& a,
+  // A cusp between the fold curve's point a and the new point (reached from
+  // a by the arclength `step` along `tangent`, where the curve's tangent is
+  // `next`): the tangent's parameter part reverses. On a fold curve that part
+  // is σ·(w·∂F/∂p₂, −w·∂F/∂p₁), w the left null vector of M − I, so it
+  // vanishes only where σ, the fold's quadratic coefficient, does (the curve
+  // in (x, p₁, p₂) runs on through it, along the null vector). The test
+  // function is the parameter part's projection on a's, located as the
+  // watched conditions are.
+  void detect_cusp(const Vector& a, const Vector& tangent, double step, const Vector& next) {
+    const auto parameter_part = [&](const Vector& t) {
+      return Eigen::Vector2d(t[p1_], t[p2_]);
+    };
+    const Eigen::Vector2d reference = parameter_part(tangent);
+    const double fa = reference.squaredNorm();
+    if (!(parameter_part(next).dot(reference) < 0.0)) return;
+    const auto value = [&](const Corrected& c) {
+      const auto t = tangent_of(c.jacobian, tangent);
+      if (!t) throw std::runtime_error("no curve tangent");
+      return parameter_part(*t).dot(reference);
+    };
+    if (auto point = locate(CodimensionTwoType::cusp, "", value, a, tangent, step, fa))
+      result_.points.push_back(std::move(*point));
+  }
+
+  // The root of a test function `value` of the corrected curve point on the
+  // arclength from a (TOMS 748), each trial point corrected onto the curve;
+  // none at a located threshold of the eigenvalue rule where the rule does not
+  // apply (rule_applies).
+  template <class TestFunction>
+  std::optional<CodimensionTwoPoint> locate(CodimensionTwoType type, const char* note,
+                                            const TestFunction& value, const Vector& a,
                                             const Vector& tangent, double step, double fa) {
     CodimensionTwoPoint point;
-    point.type = condition.type;
-    point.note = condition.note;
+    point.type = type;
+    point.note = note;
     std::optional<Corrected> last;
     auto on_curve = [&](double s) -> double {
       const Vector predicted = a + s * tangent;
       Corrected c = correct(predicted, tangent, predicted);
       if (!c.converged) throw std::runtime_error("corrector failed");
-      const double value = condition.function(c.at.orbit.monodromy);
+      const double f = value(c);
       last = std::move(c);
-      return value;
+      return f;
     };
     // the parameters' change per unit of arclength, in their own units
     const double rate = std::max(std::fabs(tangent[p1_]) * scale1_, std::fabs(tangent[p2_]) * scale2_);
@@ -390,8 +425,7 @@ class CurveDriver {
       const auto bracket = boost::math::tools::toms748_solve(
           on_curve, 0.0, step, fa, fb, boost::math::tools::eps_tolerance<double>(42), iterations);
       on_curve(0.5 * (bracket.first + bracket.second));
-      if (condition.type == CodimensionTwoType::grazing_scenario_change &&
-          !rule_applies(last->z))
+      if (type == CodimensionTwoType::grazing_scenario_change && !rule_applies(last->z))
         return std::nullopt;
       const CurvePoint at = point_of(*last);
       point.p1 = at.p1;

@@ -27,8 +27,10 @@
 // differences. Newton corrector with the arclength condition
 // τ·(z − z_pred) = 0 in (q, q̇, p₁/|range₁|, p₂/|range₂| [, t_g/T]); the curve
 // runs from p₂ = from₂ towards to₂ and ends there exactly, where p₁ leaves its
-// range, at the point limit, or where the corrector fails below the smallest
-// step.
+// range, where p₂ turns back past from₂, at the point limit, or where the
+// corrector fails below the smallest step. A fold curve passes through a cusp
+// (its tangent's parameter part reverses there) and reports it as a
+// codimension-two point.
 #pragma once
 
 #include <array>

@@ -388,8 +388,9 @@ int run_continue(const ContinueCommandOptions& command_options,
                      "i.e. where a period-doubling or fold curve of that orbit meets the "
                      "grazing curve; grazing_scenario_change: where its dominant multiplier "
                      "passes 1/4 or 2/3, the eigenvalue rule's thresholds, so that the "
-                     "predicted scenario past the graze changes (note); located by TOMS 748 on "
-                     "the curve's arclength"},
+                     "predicted scenario past the graze changes (note); cusp: on a fold curve, "
+                     "where its tangent has no parameter component (two folds meet); located "
+                     "by TOMS 748 on the curve's arclength"},
             {"error_estimate", "bound on the error of both parameter values (each in its "
                                "own unit; the larger)"},
             {"located", "1: located; 0: detected between two curve points only (note)"},

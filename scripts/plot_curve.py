@@ -48,6 +48,7 @@ CODIMENSION_TWO_MARKERS = {
     "grazing_period_doubling": ("D", "tab:purple", "grazing meets period doubling"),
     "grazing_fold": ("s", "tab:orange", "grazing meets fold"),
     "grazing_scenario_change": ("P", "tab:red", "grazing scenario changes"),
+    "cusp": ("*", "tab:green", "cusp of folds"),
 }
 
 

@@ -1011,7 +1011,7 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     (switch=True); curve_note says why there is none; curve_points holds the
     codimension-two points located on them (curve_points.csv's columns: on a
     grazing curve, grazing_period_doubling, grazing_fold and
-    grazing_scenario_change).
+    grazing_scenario_change; on a fold curve, cusp).
     all=True continues every orbit of the period that periodic(all=True) finds
     at FROM (from `starts` states drawn from `box`, seeded by `seed`): each
     branch then has `orbit` (the id of the orbit it continues), and the result

@@ -46,6 +46,7 @@
 #include <impactlab/io/scene.hpp>
 
 #include "support/curve_job.hpp"
+#include "support/test_support.hpp"
 
 namespace {
 
@@ -1043,6 +1044,50 @@ TEST(CurveContinuation, BouncingBallFoldCurveOnTheImpactSection) {
     EXPECT_NEAR(std::remainder(point.state[0], two_pi), 0.0, 1e-6) << "r = " << point.p2;
     EXPECT_NEAR(point.state[1], -0.5 * g * period, 1e-9) << "r = " << point.p2;
   }
+}
+
+// A cusp of folds, on a model file with its cusp in closed form
+// (oscillators/model_file/examples/cusp_potential.toml): a damped particle in
+// the potential of the cusp catastrophe, ẍ = a + b x − x³ − c ẋ. Its equilibria are fixed points of the stroboscopic map (T = 2π/ω), with
+// multipliers e^{λT}; one is 1 where f′ = b − 3x² = 0, so the fold curve is
+// (a, b) = (−2x³, 3x²) with x the fold's equilibrium, and its cusp is at
+// a = b = 0, x = 0, where the other multiplier is e^{−cT}. From the fold at
+// a = 2 (x = −1, b = 3) the curve must run down to the cusp, locate it there,
+// and come back up the other fold, a = −2(b/3)^{3/2}, until b turns back past
+// its start.
+TEST(CurveContinuation, FoldCurvePassesTheCuspOfTheCuspPotentialAtTheOrigin) {
+  const impactlab::testing::ScratchFolder folder;
+  ASSERT_EQ(::setenv("IMPACTLAB_CACHE_DIR", (folder / "cache").c_str(), 1), 0);
+  const Scene scene = impactlab::load_scene(
+      std::string(IMPACTLAB_SOURCE_DIR) + "/oscillators/model_file/examples/cusp_potential.toml");
+  ::unsetenv("IMPACTLAB_CACHE_DIR");
+  const auto result =
+      impactlab::continue_orbit(scene, curve_job("a", -3.0, 3.0, "b", 3.0, -1.0, CurveType::fold));
+  const auto folds = points_of_type(result.branches.at(0).result, BifurcationType::fold);
+  ASSERT_FALSE(folds.empty());
+  EXPECT_NEAR(folds[0].parameter, 2.0, 1e-9);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  EXPECT_EQ(curve.stop_reason, StopReason::left_range) << curve.stop_detail;
+  ASSERT_GE(curve.curve.size(), 20u);
+  for (const auto& point : curve.curve) {
+    const double x = point.state[0];
+    EXPECT_NEAR(point.p1, -2.0 * x * x * x, 1e-9) << "b = " << point.p2;
+    EXPECT_NEAR(point.p2, 3.0 * x * x, 1e-9) << "b = " << point.p2;
+  }
+  EXPECT_LT(curve.curve.back().p1, -1.9);
+  EXPECT_GT(curve.curve.back().state[0], 0.9);
+  ASSERT_EQ(curve.points.size(), 1u);
+  const auto& cusp = curve.points[0];
+  EXPECT_EQ(cusp.type, impactlab::CodimensionTwoType::cusp);
+  EXPECT_TRUE(cusp.located) << cusp.note;
+  EXPECT_NEAR(cusp.p1, 0.0, 1e-9);
+  EXPECT_NEAR(cusp.p2, 0.0, 1e-9);
+  EXPECT_NEAR(cusp.state[0], 0.0, 1e-8);
+  EXPECT_NEAR(cusp.state[1], 0.0, 1e-9);
+  ASSERT_EQ(cusp.multipliers.size(), 2u);
+  EXPECT_NEAR(cusp.multipliers[0].real(), 1.0, 1e-9);
+  EXPECT_NEAR(cusp.multipliers[1].real(), std::exp(-two_pi), 1e-9);
 }
 
 // Where the grazing scenario changes along a grazing curve. The overdamped
