@@ -237,13 +237,17 @@ constexpr std::string_view to_string(CodimensionTwoType type) {
   return "unknown";
 }
 
-// The other curve through a codimension-two point (`switch`): the period
-// doubling's or the fold's; none through a change of the grazing scenario or
-// a cusp (the fold curve through it is the curve itself).
-constexpr std::optional<CurveType> curve_through(CodimensionTwoType type) {
+// The other curve through a codimension-two point (`switch`) located on a
+// curve of type `on`: at a grazing–period-doubling (grazing–fold) point the
+// period doubling's (fold's) from a grazing curve, the grazing curve from
+// the other; none through a change of the grazing scenario or a cusp (the
+// fold curve through it is the curve itself).
+constexpr std::optional<CurveType> curve_through(CodimensionTwoType type, CurveType on) {
   switch (type) {
-    case CodimensionTwoType::grazing_period_doubling: return CurveType::period_doubling;
-    case CodimensionTwoType::grazing_fold: return CurveType::fold;
+    case CodimensionTwoType::grazing_period_doubling:
+      return on == CurveType::grazing ? CurveType::period_doubling : CurveType::grazing;
+    case CodimensionTwoType::grazing_fold:
+      return on == CurveType::grazing ? CurveType::fold : CurveType::grazing;
     case CodimensionTwoType::grazing_scenario_change: return std::nullopt;
     case CodimensionTwoType::cusp: return std::nullopt;
   }
@@ -256,6 +260,7 @@ struct CodimensionTwoPoint {
   OrbitPoint state{};                                  // on the requested section
   std::vector<std::complex<double>> multipliers;       // largest modulus first
   double graze_time = std::numeric_limits<double>::quiet_NaN();  // s since the requested section
+  int graze_witness = -1;                              // the grazed wall's witness
   // bound on the error of p₁ and of p₂ (the larger, in each one's unit): the
   // final arclength bracket times the tangent's component
   double error_estimate = 0.0;

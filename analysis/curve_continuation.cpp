@@ -146,7 +146,9 @@ class CurveDriver {
         Vector predicted = last + h_end * tau;
         predicted[p2_] = to2;
         Corrected c = correct(predicted, fixed_p2, predicted);
-        if (c.converged) {
+        if (c.converged && grazes_between(c)) {
+          if (auto graze = meets_graze(h_end)) return stop_at(std::move(*graze));
+        } else if (c.converged) {
           const auto t = tangent_of(c.jacobian, tau);
           if (t) {
             accept(c, *t, h_end);
@@ -154,24 +156,25 @@ class CurveDriver {
           }
         }
         h = 0.5 * std::min(h, h_end);
-        if (h < h_min_)
-          return stop(StopReason::branch_point, "the corrector fails before the end of the range");
+        if (h < h_min_) return stop_below_smallest_step(h_end);
         continue;
       }
       const Vector predicted = last + h * tau;
       Corrected c = correct(predicted, tau, predicted);
-      std::optional<Vector> t;
-      if (c.converged) t = tangent_of(c.jacobian, tau);
-      if (t && t->dot(tau) > std::cos(30.0 * std::numbers::pi / 180.0)) {
-        accept(c, *t, h);
-        if (c.iterations <= 3) h = std::min(1.5 * h, h_max_);
-        else if (c.iterations > 6) h *= 0.7;
-        continue;
+      if (c.converged && grazes_between(c)) {
+        if (auto graze = meets_graze(h)) return stop_at(std::move(*graze));
+      } else {
+        std::optional<Vector> t;
+        if (c.converged) t = tangent_of(c.jacobian, tau);
+        if (t && t->dot(tau) > std::cos(30.0 * std::numbers::pi / 180.0)) {
+          accept(c, *t, h);
+          if (c.iterations <= 3) h = std::min(1.5 * h, h_max_);
+          else if (c.iterations > 6) h *= 0.7;
+          continue;
+        }
       }
       h *= 0.5;
-      if (h < h_min_)
-        return stop(StopReason::branch_point,
-                    "step below the smallest: the corrector cannot pass this point");
+      if (h < h_min_) return stop_below_smallest_step(2.0 * h);
     }
     return stop(StopReason::max_points, "the curve reached the point limit");
   }
@@ -306,6 +309,7 @@ class CurveDriver {
     point.newton_iterations = c.iterations;
     point.step = step;
     if (grazing_) window_center_ = c.z[tg_] * time_scale_;
+    last_signature_ = c.at.orbit.signature;
     for (std::size_t k = 0; k < watched_.size(); ++k)
       last_tests_[k] = watched_[k].function(c.at.orbit.monodromy);
     result_.curve.push_back(point);
@@ -319,10 +323,7 @@ class CurveDriver {
     point.p2 = p2_of(c.z);
     point.multipliers = multipliers_of(c.at.orbit.monodromy);
     point.impacts = c.at.orbit.impacts;
-    const double omega = c.at.orbit.omega;
-    const double shift = std::remainder(phase_ - requested_phase_, 2.0 * std::numbers::pi);
-    const double delay = (shift < 0.0 ? shift + 2.0 * std::numbers::pi : shift) / omega;
-    if (grazing_) point.graze_time = std::fmod(c.z[tg_] * time_scale_ + delay, c.at.orbit.span);
+    if (grazing_) point.graze_time = graze_time_on_requested(c.z[tg_] * time_scale_, c.at.orbit);
     point.state = state_of(c.z);
     if (phase_ != requested_phase_) {
       const auto moved = problem_.at(point.p2).transport(state_of(c.z), point.p1, phase_,
@@ -330,6 +331,145 @@ class CurveDriver {
       if (moved) point.state = *moved;
     }
     return point;
+  }
+
+  // A graze time on the working section (s since it) as a time since the
+  // requested section.
+  double graze_time_on_requested(double time, const OrbitEvaluation& orbit) const {
+    const double shift = std::remainder(phase_ - requested_phase_, 2.0 * std::numbers::pi);
+    const double delay = (shift < 0.0 ? shift + 2.0 * std::numbers::pi : shift) / orbit.omega;
+    return std::fmod(time + delay, orbit.span);
+  }
+
+  // Whether a fold or period-doubling curve's corrected point c has another
+  // impact signature than the last point: the orbit grazed between them (a
+  // wall touched in flight, or an impact's speed gone to zero), and c is an
+  // orbit of another family.
+  bool grazes_between(const Corrected& c) const {
+    const bool watches = request_.type == CurveType::fold ||
+                         request_.type == CurveType::period_doubling;
+    return watches && !result_.curve.empty() && c.at.orbit.signature != last_signature_;
+  }
+
+  // A solution of the system of the curve's condition and a graze: z = (x,
+  // p₁, p₂, t_g) in curve units, the virtual orbit there, Newton's last step.
+  struct GrazeMeeting {
+    Vector z;
+    OrbitEvaluation orbit;
+    double last_step = 0.0;
+  };
+
+  // Where the curve meets a grazing curve, within reach of the last point
+  // (the arclength h ahead, where the signature changed): for each candidate
+  // of the last orbit (its lowest flight gap, its slowest impact; the impact
+  // section's own wall apart), the curve's condition solved with the
+  // grazing system's (gap(t_g) = 0, gap rate(t_g) = 0, the wall's contacts
+  // near t_g suppressed); the solution nearest along the curve.
+  std::optional<CodimensionTwoPoint> meets_graze(double h) {
+    struct Candidate {
+      int witness;
+      double time;
+      const char* kind;
+    };
+    std::vector<Candidate> candidates;
+    const ContinuationProblem at = problem_.at(p2_of(z_));
+    // the last orbit again, its flight gaps sampled
+    const OrbitEvaluation last = at.evaluate(state_of(z_), p1_of(z_), phase_, true, window());
+    ++result_.map_evaluations;
+    if (!last.completed) return std::nullopt;
+    if (last.min_flight_gap_witness >= 0 && last.min_flight_gap_witness != at.section_witness)
+      candidates.push_back({last.min_flight_gap_witness, last.min_flight_gap_time,
+                            "a flight extremum touches the wall"});
+    if (last.slowest_impact_witness >= 0 && last.slowest_impact_witness != at.section_witness)
+      candidates.push_back({last.slowest_impact_witness, last.slowest_impact_time,
+                            "an impact velocity goes to zero"});
+    std::optional<CodimensionTwoPoint> best;
+    double best_s = INFINITY;
+    for (const Candidate& candidate : candidates) {
+      const auto solved = solve_graze_meeting(candidate.witness, candidate.time);
+      if (!solved) continue;
+      const double s = tangent_.dot(solved->z.head(size_) - z_);
+      if (s < -0.05 * h || s > 1.5 * h || s >= best_s) continue;
+      best_s = s;
+      CodimensionTwoPoint point;
+      point.type = request_.type == CurveType::fold ? CodimensionTwoType::grazing_fold
+                                                    : CodimensionTwoType::grazing_period_doubling;
+      Corrected at;
+      at.z = solved->z.head(size_);
+      at.at.orbit = solved->orbit;
+      const CurvePoint on = point_of(at);
+      point.p1 = on.p1;
+      point.p2 = on.p2;
+      point.state = on.state;
+      point.multipliers = on.multipliers;
+      point.graze_time =
+          graze_time_on_requested(solved->z[size_] * time_scale_, solved->orbit);
+      point.graze_witness = candidate.witness;
+      point.error_estimate =
+          solved->last_step * std::max(scale1_, scale2_) +
+          request_.tolerance * (1.0 + std::max(std::fabs(on.p1), std::fabs(on.p2)));
+      point.located = true;
+      point.note = candidate.kind;
+      best = std::move(point);
+    }
+    return best;
+  }
+
+  // Newton on (F, the curve's condition, gap(t_g), gap rate(t_g)) = 0 in
+  // (x, p₁, p₂, t_g) from the last point, the contacts of `witness`
+  // suppressed within nT/10 of the guess t₀ (s since the working section);
+  // central-difference Jacobian. None where a run fails, Newton does not
+  // converge in 25 iterations, or t_g leaves the window.
+  std::optional<GrazeMeeting> solve_graze_meeting(int witness, double t0) {
+    const int size = size_ + 1, tg = size_;
+    const ContactWindow window{witness, t0 - window_half_width_, t0 + window_half_width_};
+    const auto residual = [&](const Vector& y, OrbitEvaluation* orbit) -> std::optional<Vector> {
+      ++result_.map_evaluations;
+      const ContinuationProblem at = problem_.at(p2_of(y));
+      OrbitEvaluation o = at.evaluate(state_of(y), p1_of(y), phase_, false, window);
+      if (!o.completed) return std::nullopt;
+      const GapSample gap = at.gap_at(state_of(y), p1_of(y), phase_, window, y[tg] * time_scale_);
+      if (!gap.completed) return std::nullopt;
+      Vector r(size);
+      for (int i = 0; i < n_; ++i) r[i] = o.image[i] - y[i];
+      r[n_] = request_.type == CurveType::fold ? det_minus_identity(o.monodromy)
+                                               : det_plus_identity(o.monodromy);
+      r[n_ + 1] = gap.value;
+      r[n_ + 2] = gap.rate;
+      if (!r.allFinite()) return std::nullopt;
+      if (orbit) *orbit = std::move(o);
+      return r;
+    };
+    GrazeMeeting solved;
+    solved.z = Vector(size);
+    solved.z.head(size_) = z_;
+    solved.z[tg] = t0 / time_scale_;
+    double last_step = INFINITY;
+    for (int iteration = 0; iteration <= 25; ++iteration) {
+      const auto r = residual(solved.z, &solved.orbit);
+      if (!r) return std::nullopt;
+      const double scale = 1.0 + solved.z.head(n_).norm();
+      if (r->norm() <= request_.tolerance * scale && last_step <= 1e-9 * (1.0 + solved.z.norm())) {
+        solved.last_step = last_step;
+        return solved;
+      }
+      Matrix j(size, size);
+      for (int k = 0; k < size; ++k) {
+        const double dz = (k < n_ || k == tg ? 1e-7 : 1e-6) * (1.0 + std::fabs(solved.z[k]));
+        Vector up = solved.z, down = solved.z;
+        up[k] += dz;
+        down[k] -= dz;
+        const auto ru = residual(up, nullptr), rd = residual(down, nullptr);
+        if (!ru || !rd) return std::nullopt;
+        j.col(k) = (*ru - *rd) / (2.0 * dz);
+      }
+      const Vector step = full_pivot_lu_solve(j, -*r);
+      if (!step.allFinite()) return std::nullopt;
+      solved.z += step;
+      last_step = step.norm();
+      if (std::fabs(solved.z[tg] * time_scale_ - t0) > window_half_width_) return std::nullopt;
+    }
+    return std::nullopt;
   }
 
   // A second condition watched along a grazing curve: the virtual orbit's
@@ -433,6 +573,7 @@ class CurveDriver {
       point.state = at.state;
       point.multipliers = at.multipliers;
       point.graze_time = at.graze_time;
+      point.graze_witness = request_.graze_witness;
       point.error_estimate = rate * (bracket.second - bracket.first);
       point.located = true;
     } catch (const std::exception&) {
@@ -514,6 +655,24 @@ class CurveDriver {
     }
   }
 
+  // The curve ends where it meets a graze: past it the orbit it follows
+  // penetrates the wall.
+  CurveResult stop_at(CodimensionTwoPoint graze) {
+    const std::string detail = "grazing: " + graze.note;
+    result_.points.push_back(std::move(graze));
+    return stop(StopReason::signature_change, detail);
+  }
+
+  // The step fell below the smallest: where the last orbit grazes within
+  // reach (the square-root singularity stops the corrector), there;
+  // otherwise the corrector cannot pass this point.
+  CurveResult stop_below_smallest_step(double h) {
+    if (request_.type == CurveType::fold || request_.type == CurveType::period_doubling)
+      if (auto graze = meets_graze(h)) return stop_at(std::move(*graze));
+    return stop(StopReason::branch_point,
+                "step below the smallest: the corrector cannot pass this point");
+  }
+
   CurveResult stop(StopReason reason, const std::string& detail) {
     result_.stop_reason = reason;
     result_.stop_detail = detail;
@@ -537,6 +696,7 @@ class CurveDriver {
   double h_initial_ = 0.01, h_min_ = 1e-7, h_max_ = 0.02;
   double requested_phase_ = 0.0, phase_ = 0.0;  // rad: the requested and the working section
   Vector z_, tangent_;
+  std::string last_signature_;            // the last point's orbit's impact signature
   std::array<double, watched_.size()> last_tests_{};  // the watched conditions at the last point
   CurveResult result_;
 };

@@ -30,7 +30,9 @@
 // range, where p₂ turns back past from₂, at the point limit, or where the
 // corrector fails below the smallest step. A fold curve passes through a cusp
 // (its tangent's parameter part reverses there) and reports it as a
-// codimension-two point.
+// codimension-two point. A fold or period-doubling curve ends where its
+// orbit's impact signature would change, at the point where it meets the
+// grazing curve (its condition solved with the grazing system's).
 #pragma once
 
 #include <array>

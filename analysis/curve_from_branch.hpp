@@ -148,6 +148,8 @@ bool continue_curve_from_point(const CodimensionTwoPoint& point, CurveType throu
   request.to2 = job.second_from;
   request.p1 = point.p1;
   request.state = point.state;
+  request.graze_time = point.graze_time;
+  request.graze_witness = point.graze_witness;
   request.max_points = job.numerics.max_points;
   request.tolerance = job.numerics.tolerance;
   if (job.numerics.max_step > 0.0) request.max_step = job.numerics.max_step / std::fabs(job.to - job.from);

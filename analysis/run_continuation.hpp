@@ -264,7 +264,7 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
       }
       if (job.doublings > 0 && result.has_curve)
         for (const CodimensionTwoPoint& point : result.curve.points) {
-          const std::optional<CurveType> through = curve_through(point.type);
+          const std::optional<CurveType> through = curve_through(point.type, result.curve.type);
           if (!point.located || !through) continue;
           BranchCurve switched{0, job.period};
           switched.started_at = point.type;

@@ -1163,8 +1163,11 @@ TEST(CurveContinuation, GrazingScenarioChangesOfTheOverdampedOscillatorAtTheirCl
 // period-doubling curve of that orbit meets the grazing curve. Closed form:
 // for each σ the grazing ω_g(σ) is the root of the highest interior point
 // minus σ, and the point is the root in σ of 1 + tr M + det M at (ω_g(σ), σ).
-TEST(CurveContinuation, LinearImpactGrazingPeriodDoublingPointAtItsClosedForm) {
-  ImpactOscillator o;  // ζ = 0.05, r = 0.8, A = 1; σ from 0 downwards
+// The closed form's grazing–period-doubling point of the one-impact
+// period-1 orbit below σ = 0 (o's σ aside): the grazing ω(σ), where the
+// flight's interior maximum reaches σ, and the root in σ of 1 + tr M + det M
+// of the closed-form monodromy at that ω.
+std::pair<double, double> grazing_period_doubling_omega_sigma(const ImpactOscillator& o) {
   auto grazing_omega = [&](double sigma) {
     ImpactOscillator at = o;
     at.sigma = sigma;
@@ -1176,8 +1179,13 @@ TEST(CurveContinuation, LinearImpactGrazingPeriodDoublingPointAtItsClosedForm) {
     at.sigma = sigma;
     return PeriodOneOrbit(at, grazing_omega(sigma), false).test_functions()[0];
   };
-  const double sigma_expected = solve(doubling_test, -0.03, -0.02);
-  const double omega_expected = grazing_omega(sigma_expected);
+  const double sigma = solve(doubling_test, -0.03, -0.02);
+  return {grazing_omega(sigma), sigma};
+}
+
+TEST(CurveContinuation, LinearImpactGrazingPeriodDoublingPointAtItsClosedForm) {
+  ImpactOscillator o;  // ζ = 0.05, r = 0.8, A = 1; σ from 0 downwards
+  const auto [omega_expected, sigma_expected] = grazing_period_doubling_omega_sigma(o);
 
   Scene scene = linear_impact_scene(o);
   scene.values["initial.x"] = -0.5;  // inside the stop down to σ = −0.04
@@ -1203,6 +1211,61 @@ TEST(CurveContinuation, LinearImpactGrazingPeriodDoublingPointAtItsClosedForm) {
   EXPECT_NEAR(point.state[0], virtual_orbit.section_state()[0], 1e-8);
   EXPECT_NEAR(point.state[1], virtual_orbit.section_state()[1], 1e-8);
   EXPECT_TRUE(std::isfinite(point.graze_time));
+}
+
+// The same point from the other curve: the period-doubling curve of the
+// branch's lower period doubling (ω = 1.03997 at σ = 0) runs down in σ into
+// the graze. Past it the one-impact orbit penetrates the stop, and a
+// two-impact orbit with a multiplier −1 lies next to it: the curve must stop
+// at the grazing–period-doubling point, located on the closed form to 1e-8,
+// every point of it a one-impact orbit; --switch there follows the grazing
+// curve.
+TEST(CurveContinuation, PeriodDoublingCurveStopsWhereItMeetsTheGrazeAtItsClosedForm) {
+  ImpactOscillator o;  // ζ = 0.05, r = 0.8, A = 1; σ from 0 downwards
+  const auto [omega_expected, sigma_expected] = grazing_period_doubling_omega_sigma(o);
+  const Scene scene = linear_impact_scene(o);
+  ContinuationJob job =
+      curve_job("omega", 1.09, 0.8, "sigma", 0.0, -0.04, CurveType::period_doubling);
+  job.has_start = true;
+  const auto start = PeriodOneOrbit(o, 1.09).section_state();
+  job.start.assign(start.begin(), start.end());
+  job.doublings = 1;  // --switch
+  const auto result = impactlab::continue_orbit(scene, job);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  EXPECT_EQ(result.curve.stop_reason, StopReason::signature_change) << result.curve.stop_detail;
+  ASSERT_GE(result.curve.curve.size(), 10u);
+  for (const auto& point : result.curve.curve) {
+    EXPECT_EQ(point.impacts, 1) << "sigma = " << point.p2;
+    EXPECT_GT(point.p2, sigma_expected);
+  }
+  ASSERT_EQ(result.curve.points.size(), 1u);
+  const auto& point = result.curve.points[0];
+  EXPECT_EQ(point.type, impactlab::CodimensionTwoType::grazing_period_doubling);
+  EXPECT_TRUE(point.located) << point.note;
+  EXPECT_NEAR(point.p1, omega_expected, 1e-8);
+  EXPECT_NEAR(point.p2, sigma_expected, 1e-8);
+  EXPECT_LT(point.error_estimate, 1e-8);
+  EXPECT_NEAR(point.multipliers[0].real(), -1.0, 1e-7);
+  ImpactOscillator at = o;
+  at.sigma = sigma_expected;
+  const PeriodOneOrbit virtual_orbit(at, omega_expected, false);
+  EXPECT_NEAR(point.state[0], virtual_orbit.section_state()[0], 1e-8);
+  EXPECT_NEAR(point.state[1], virtual_orbit.section_state()[1], 1e-8);
+  // the switch there follows the grazing curve, back towards σ = 0, on the
+  // closed form's grazing ω(σ)
+  ASSERT_EQ(result.switched_curves.size(), 1u);
+  const auto& switched = result.switched_curves[0];
+  ASSERT_TRUE(switched.has_curve) << switched.note;
+  EXPECT_EQ(switched.curve.type, CurveType::grazing);
+  EXPECT_EQ(switched.curve.stop_reason, StopReason::end_of_range) << switched.curve.stop_detail;
+  ASSERT_GE(switched.curve.curve.size(), 5u);
+  EXPECT_EQ(switched.curve.curve.back().p2, 0.0);
+  for (const auto& on_graze : switched.curve.curve) {
+    ImpactOscillator graze = o;
+    graze.sigma = on_graze.p2;
+    EXPECT_NEAR(PeriodOneOrbit(graze, on_graze.p1, false).highest_interior(), on_graze.p2, 1e-9)
+        << "sigma = " << on_graze.p2;
+  }
 }
 
 // With switch, the period-doubling curve through that point: followed from
