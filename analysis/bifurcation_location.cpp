@@ -28,17 +28,6 @@ double determinant_shifted(const MonodromyMatrix& m, Shift shift) {
   return a.fullPivLu().determinant();
 }
 
-// λᵢλⱼ − 1 over the pairs i < j: det M − 1 for N = 2; zero where a complex
-// pair crosses the unit circle (a Neimark–Sacker point) whatever N
-double det_minus_one(const MonodromyMatrix& m) {
-  if (m.size() == 2) return m[0][0] * m[1][1] - m[0][1] * m[1][0] - 1.0;
-  const auto lambda = multipliers_of(m);
-  std::complex<double> product = 1.0;
-  for (std::size_t i = 0; i < lambda.size(); ++i)
-    for (std::size_t j = i + 1; j < lambda.size(); ++j) product *= lambda[i] * lambda[j] - 1.0;
-  return product.real();
-}
-
 bool all_real(const std::vector<std::complex<double>>& multipliers) {
   return std::all_of(multipliers.begin(), multipliers.end(),
                      [](const std::complex<double>& z) { return z.imag() == 0.0; });
@@ -62,6 +51,15 @@ double det_plus_identity(const MonodromyMatrix& m) {
   return determinant_shifted(m, std::plus<>());
 }
 
+double neimark_sacker_test(const MonodromyMatrix& m) {
+  if (m.size() == 2) return m[0][0] * m[1][1] - m[0][1] * m[1][0] - 1.0;
+  const auto lambda = multipliers_of(m);
+  std::complex<double> product = 1.0;
+  for (std::size_t i = 0; i < lambda.size(); ++i)
+    for (std::size_t j = i + 1; j < lambda.size(); ++j) product *= lambda[i] * lambda[j] - 1.0;
+  return product.real();
+}
+
 namespace detail {
 
 template <int Size>
@@ -73,7 +71,7 @@ void BifurcationLocator<Size>::detect(const Node& a, const Node& b, double step,
   };
   static constexpr Test tests[] = {{BifurcationType::fold, &det_minus_identity},
                                    {BifurcationType::period_doubling, &det_plus_identity},
-                                   {BifurcationType::neimark_sacker, &det_minus_one}};
+                                   {BifurcationType::neimark_sacker, &neimark_sacker_test}};
   const int n = corrector_.dimension();
   for (const Test& test : tests) {
     const double fa = test.function(a.orbit.monodromy), fb = test.function(b.orbit.monodromy);

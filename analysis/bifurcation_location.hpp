@@ -27,6 +27,10 @@ namespace impactlab {
 // two-parameter curves, curve_continuation.hpp).
 double det_minus_identity(const MonodromyMatrix& m);
 double det_plus_identity(const MonodromyMatrix& m);
+// The test function of a Neimark–Sacker point: ∏ᵢ<ⱼ (λᵢλⱼ − 1), det M − 1
+// for N = 2, zero where a complex pair crosses the unit circle whatever N
+// (also the defining condition of its two-parameter curve).
+double neimark_sacker_test(const MonodromyMatrix& m);
 
 namespace detail {
 

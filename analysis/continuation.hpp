@@ -69,6 +69,7 @@ enum class CurveType {
   contact_end,      // the same condition, from a located contact_end point
   contact_boundary, // a scene's parameter boundary of that name is zero (the pendulum's
                     // V0·ω = g: ParameterBoundary, continuation_problem.hpp)
+  neimark_sacker,   // det M − 1 = 0 (N = 2), ∏ᵢ<ⱼ(λᵢλⱼ − 1) = 0 (N > 2)
 };
 
 // The names points.csv, continuation.json and Python use.
@@ -110,6 +111,7 @@ constexpr std::string_view to_string(CurveType type) {
     case CurveType::contact_onset: return "contact_onset";
     case CurveType::contact_end: return "contact_end";
     case CurveType::contact_boundary: return "contact_boundary";
+    case CurveType::neimark_sacker: return "neimark_sacker";
   }
   return "unknown";
 }
@@ -118,7 +120,7 @@ constexpr std::string_view to_string(CurveType type) {
 constexpr std::optional<CurveType> parse_curve_type(std::string_view text) {
   for (const CurveType type : {CurveType::fold, CurveType::period_doubling, CurveType::grazing,
                                CurveType::contact_onset, CurveType::contact_end,
-                               CurveType::contact_boundary})
+                               CurveType::contact_boundary, CurveType::neimark_sacker})
     if (to_string(type) == text) return type;
   return std::nullopt;
 }
@@ -133,6 +135,7 @@ constexpr std::optional<CurveType> curve_type_of(BifurcationType type) {
     case BifurcationType::grazing: return CurveType::grazing;
     case BifurcationType::contact_onset: return CurveType::contact_onset;
     case BifurcationType::contact_end: return CurveType::contact_end;
+    case BifurcationType::neimark_sacker: return CurveType::neimark_sacker;
     default: return std::nullopt;
   }
 }
@@ -225,6 +228,8 @@ enum class CodimensionTwoType {
                             // scenario past the graze changes
   cusp,                     // on a fold curve: the curve's tangent has no parameter component
                             // (the fold's quadratic coefficient is zero; two fold curves meet)
+  resonance_1_1,            // on a Neimark–Sacker curve: the pair on the unit circle meets at +1
+  resonance_1_2,            // on a Neimark–Sacker curve: the pair meets at −1
 };
 
 constexpr std::string_view to_string(CodimensionTwoType type) {
@@ -233,6 +238,8 @@ constexpr std::string_view to_string(CodimensionTwoType type) {
     case CodimensionTwoType::grazing_fold: return "grazing_fold";
     case CodimensionTwoType::grazing_scenario_change: return "grazing_scenario_change";
     case CodimensionTwoType::cusp: return "cusp";
+    case CodimensionTwoType::resonance_1_1: return "resonance_1_1";
+    case CodimensionTwoType::resonance_1_2: return "resonance_1_2";
   }
   return "unknown";
 }
@@ -240,8 +247,8 @@ constexpr std::string_view to_string(CodimensionTwoType type) {
 // The other curve through a codimension-two point (`switch`) located on a
 // curve of type `on`: at a grazing–period-doubling (grazing–fold) point the
 // period doubling's (fold's) from a grazing curve, the grazing curve from
-// the other; none through a change of the grazing scenario or a cusp (the
-// fold curve through it is the curve itself).
+// the other; none through a change of the grazing scenario, a cusp (the
+// fold curve through it is the curve itself) or a resonance.
 constexpr std::optional<CurveType> curve_through(CodimensionTwoType type, CurveType on) {
   switch (type) {
     case CodimensionTwoType::grazing_period_doubling:
@@ -249,7 +256,9 @@ constexpr std::optional<CurveType> curve_through(CodimensionTwoType type, CurveT
     case CodimensionTwoType::grazing_fold:
       return on == CurveType::grazing ? CurveType::fold : CurveType::grazing;
     case CodimensionTwoType::grazing_scenario_change: return std::nullopt;
-    case CodimensionTwoType::cusp: return std::nullopt;
+    case CodimensionTwoType::cusp:
+    case CodimensionTwoType::resonance_1_1:
+    case CodimensionTwoType::resonance_1_2: return std::nullopt;
   }
   return std::nullopt;
 }

@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -222,6 +223,8 @@ class CurveDriver {
       e.residual[n_] = boundary->value(p1_of(z));
     } else if (request_.type == CurveType::period_doubling) {
       e.residual[n_] = det_plus_identity(e.orbit.monodromy);
+    } else if (request_.type == CurveType::neimark_sacker) {
+      e.residual[n_] = neimark_sacker_test(e.orbit.monodromy);
     } else {
       e.residual[n_] = det_minus_identity(e.orbit.monodromy);
     }
@@ -300,7 +303,7 @@ class CurveDriver {
   }
 
   void accept(const Corrected& c, const Vector& tangent, double step) {
-    if (grazing_ && !result_.curve.empty()) detect_codimension_two(z_, tangent_, step, c);
+    if (!result_.curve.empty()) detect_codimension_two(z_, tangent_, step, c);
     if (request_.type == CurveType::fold && !result_.curve.empty())
       detect_cusp(z_, tangent_, step, tangent);
     z_ = c.z;
@@ -310,8 +313,9 @@ class CurveDriver {
     point.step = step;
     if (grazing_) window_center_ = c.z[tg_] * time_scale_;
     last_signature_ = c.at.orbit.signature;
-    for (std::size_t k = 0; k < watched_.size(); ++k)
-      last_tests_[k] = watched_[k].function(c.at.orbit.monodromy);
+    const auto watched = watched_conditions();
+    for (std::size_t k = 0; k < watched.size(); ++k)
+      last_tests_[k] = watched[k].function(c.at.orbit.monodromy);
     result_.curve.push_back(point);
   }
 
@@ -484,7 +488,7 @@ class CurveDriver {
     double (*function)(const MonodromyMatrix&);
     const char* note;
   };
-  static constexpr std::array<WatchedCondition, 4> watched_ = {
+  static constexpr std::array<WatchedCondition, 4> watched_on_grazing_ = {
       WatchedCondition{CodimensionTwoType::grazing_period_doubling, det_plus_identity, ""},
       WatchedCondition{CodimensionTwoType::grazing_fold, det_minus_identity, ""},
       WatchedCondition{CodimensionTwoType::grazing_scenario_change,
@@ -493,19 +497,34 @@ class CurveDriver {
       WatchedCondition{CodimensionTwoType::grazing_scenario_change,
                        dominant_multiplier_past_two_thirds,
                        "lambda1 = 2/3: period_adding_with_chaos below, chaos above"}};
+  // Along a Neimark–Sacker curve: the pair on the unit circle meeting at +1
+  // or −1 (det(M ∓ I) through zero; with N > 2 reported only where two
+  // multipliers are there, pair_at, not where a third, real one crosses).
+  static constexpr std::array<WatchedCondition, 2> watched_on_neimark_sacker_ = {
+      WatchedCondition{CodimensionTwoType::resonance_1_1, det_minus_identity, ""},
+      WatchedCondition{CodimensionTwoType::resonance_1_2, det_plus_identity, ""}};
+
+  // The conditions watched along this curve (none but on grazing and
+  // Neimark–Sacker curves).
+  std::span<const WatchedCondition> watched_conditions() const {
+    if (grazing_) return watched_on_grazing_;
+    if (request_.type == CurveType::neimark_sacker) return watched_on_neimark_sacker_;
+    return {};
+  }
 
   // Each watched condition whose sign differs between the curve point a and
   // the new point b (reached from a by the arclength `step` along `tangent`),
   // located on the curve.
   void detect_codimension_two(const Vector& a, const Vector& tangent, double step,
                               const Corrected& b) {
-    for (std::size_t k = 0; k < watched_.size(); ++k) {
-      const double fa = last_tests_[k], fb = watched_[k].function(b.at.orbit.monodromy);
+    const auto watched = watched_conditions();
+    for (std::size_t k = 0; k < watched.size(); ++k) {
+      const double fa = last_tests_[k], fb = watched[k].function(b.at.orbit.monodromy);
       if (!(fa * fb < 0.0)) continue;
       const auto value = [&](const Corrected& c) {
-        return watched_[k].function(c.at.orbit.monodromy);
+        return watched[k].function(c.at.orbit.monodromy);
       };
-      if (auto point = locate(watched_[k].type, watched_[k].note, value, a, tangent, step, fa))
+      if (auto point = locate(watched[k].type, watched[k].note, value, a, tangent, step, fa))
         result_.points.push_back(std::move(*point));
     }
   }
@@ -567,6 +586,10 @@ class CurveDriver {
       on_curve(0.5 * (bracket.first + bracket.second));
       if (type == CodimensionTwoType::grazing_scenario_change && !rule_applies(last->z))
         return std::nullopt;
+      if (type == CodimensionTwoType::resonance_1_1 && !pair_at(last->at.orbit.monodromy, 1.0))
+        return std::nullopt;
+      if (type == CodimensionTwoType::resonance_1_2 && !pair_at(last->at.orbit.monodromy, -1.0))
+        return std::nullopt;
       const CurvePoint at = point_of(*last);
       point.p1 = at.p1;
       point.p2 = at.p2;
@@ -586,6 +609,15 @@ class CurveDriver {
                     "detected; the corrector failed while locating it";
     }
     return point;
+  }
+
+  // Whether two multipliers of m lie at `target` (within 1e-4: a double
+  // multiplier is known only to the square root of the map's error).
+  static bool pair_at(const MonodromyMatrix& m, double target) {
+    int near = 0;
+    for (const std::complex<double>& lambda : multipliers_of(m))
+      if (std::abs(lambda - target) <= 1e-4) ++near;
+    return near >= 2;
   }
 
   // Whether the eigenvalue rule decides the scenario at a located threshold
@@ -697,7 +729,8 @@ class CurveDriver {
   double requested_phase_ = 0.0, phase_ = 0.0;  // rad: the requested and the working section
   Vector z_, tangent_;
   std::string last_signature_;            // the last point's orbit's impact signature
-  std::array<double, watched_.size()> last_tests_{};  // the watched conditions at the last point
+  std::array<double, watched_on_grazing_.size()> last_tests_{};  // the watched conditions at the
+                                                                // last point
   CurveResult result_;
 };
 

@@ -1,6 +1,6 @@
 // Two-parameter continuation: the curve of a fold, period doubling, grazing,
-// contact onset or contact end point, or of a scene's parameter boundary
-// (contact_boundary), in the plane of two parameters
+// Neimark–Sacker, contact onset or contact end point, or of a scene's
+// parameter boundary (contact_boundary), in the plane of two parameters
 // (p₁, p₂), followed by pseudo-arclength from a point located on a
 // one-parameter branch (branch_continuation.hpp).
 //
@@ -16,6 +16,8 @@
 //                      zero: the mass returns to the wall exactly where the
 //                      push falls through zero, so the contact phase has
 //                      zero length           unknowns (q, q̇, p₁, p₂)
+//  * Neimark–Sacker:   ∏ᵢ<ⱼ(λᵢλⱼ − 1) = 0 (det M − 1 for N = 2)
+//                                            unknowns (q, q̇, p₁, p₂)
 //  * contact boundary: the scene's parameter boundary of that name is zero
 //                      (the pendulum's V0·ω − g: ParameterBoundary,
 //                      continuation_problem.hpp; the problem at each p₂

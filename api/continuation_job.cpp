@@ -53,8 +53,8 @@ ContinuationJob continuation_job(const ContinueOptions& options) {
   const std::optional<CurveType> curve_type = parse_curve_type(options.curve);
   if (!options.curve.empty() && !curve_type)
     throw BadInput("curve", options.curve,
-                   "expected fold, period_doubling, grazing, contact_onset, contact_end or "
-                   "contact_boundary");
+                   "expected fold, period_doubling, grazing, contact_onset, contact_end, "
+                   "contact_boundary or neimark_sacker");
   check_whole("period", options.period);
   check_whole("max_points", options.max_points);
   const OptionSpec& transient = job_option("continue", "transient");

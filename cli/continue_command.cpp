@@ -377,7 +377,7 @@ int run_continue(const ContinueCommandOptions& command_options,
                      "(--switch; doubled_curves)"},
           {"period", "forcing periods of that branch's orbit"},
           {"type", "the curve's type: fold, period_doubling, grazing, contact_onset, "
-                   "contact_end or contact_boundary"},
+                   "contact_end, contact_boundary or neimark_sacker"},
           {"start", "branch: the curve starts at a point located on the branch; "
                     "grazing_period_doubling or grazing_fold: it runs through that "
                     "codimension-two point of the first curve (--switch; switched_curves), "
@@ -391,8 +391,10 @@ int run_continue(const ContinueCommandOptions& command_options,
                      "grazing_scenario_change: where its dominant multiplier "
                      "passes 1/4 or 2/3, the eigenvalue rule's thresholds, so that the "
                      "predicted scenario past the graze changes (note); cusp: on a fold curve, "
-                     "where its tangent has no parameter component (two folds meet); located "
-                     "by TOMS 748 on the curve's arclength"},
+                     "where its tangent has no parameter component (two folds meet); "
+                     "resonance_1_1, resonance_1_2: on a Neimark-Sacker curve, where the pair "
+                     "on the unit circle meets at +1 or -1; located by TOMS 748 on the "
+                     "curve's arclength"},
             {"error_estimate", "bound on the error of both parameter values (each in its "
                                "own unit; the larger)"},
             {"located", "1: located; 0: detected between two curve points only (note)"},

@@ -49,6 +49,8 @@ CODIMENSION_TWO_MARKERS = {
     "grazing_fold": ("s", "tab:orange", "grazing meets fold"),
     "grazing_scenario_change": ("P", "tab:red", "grazing scenario changes"),
     "cusp": ("*", "tab:green", "cusp of folds"),
+    "resonance_1_1": ("^", "tab:blue", "1:1 resonance"),
+    "resonance_1_2": ("v", "tab:cyan", "1:2 resonance"),
 }
 
 

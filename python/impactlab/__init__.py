@@ -1001,8 +1001,8 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     are N wide: N = 2 (q, qdot), or a model file's N states (q, qdot, state3,
     ...; multiplier1 ... multiplierN).
     param2="NAME=FROM:TO" (with curve= fold, period_doubling, grazing,
-    contact_onset, contact_end or contact_boundary (the pendulum's
-    V0*omega = g), a type the branch has no located point of
+    contact_onset, contact_end, contact_boundary (the pendulum's
+    V0*omega = g) or neimark_sacker, a type the branch has no located point of
     raising ValueError naming curve; else the first located fold, period
     doubling or grazing) follows that bifurcation's curve in the
     plane of the two keys from the point the branch located (the CLI's
@@ -1011,7 +1011,9 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     (switch=True); curve_note says why there is none; curve_points holds the
     codimension-two points located on them (curve_points.csv's columns: on a
     grazing curve, grazing_period_doubling, grazing_fold and
-    grazing_scenario_change; on a fold curve, cusp).
+    grazing_scenario_change; on a fold curve, cusp; on a Neimark-Sacker
+    curve, resonance_1_1 and resonance_1_2; on a fold or period-doubling
+    curve that runs into a graze, grazing_fold or grazing_period_doubling).
     all=True continues every orbit of the period that periodic(all=True) finds
     at FROM (from `starts` states drawn from `box`, seeded by `seed`): each
     branch then has `orbit` (the id of the orbit it continues), and the result

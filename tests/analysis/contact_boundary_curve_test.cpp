@@ -162,8 +162,10 @@ TEST(ContactBoundaryCurve, ContactEndOnTheImpactSectionAtItsClosedForm) {
 
 TEST(ContactBoundaryCurve, ATypeTheBranchHasNoPointOfIsBadInputNamingCurve) {
   // the branch of the plastic stop from ω = 1.5 to 1.8 has a contact end, no
-  // contact onset, and no parameter boundary (the oscillator supplies none)
-  for (const CurveType type : {CurveType::contact_onset, CurveType::contact_boundary}) {
+  // contact onset, no parameter boundary (the oscillator supplies none) and
+  // no Neimark–Sacker point
+  for (const CurveType type :
+       {CurveType::contact_onset, CurveType::contact_boundary, CurveType::neimark_sacker}) {
     ContinuationJob job = contact_end_job(0.3);
     job.curve_type = type;
     try {

@@ -37,6 +37,7 @@
 #include <impactlab/analysis/branch_continuation.hpp>
 #include <impactlab/analysis/continuation.hpp>
 #include <impactlab/analysis/continuation_problem.hpp>
+#include <impactlab/analysis/curve_continuation.hpp>
 #include <impactlab/analysis/grazing_normal_form.hpp>
 #include <impactlab/analysis/periodic.hpp>
 #include <impactlab/analysis/section.hpp>
@@ -764,6 +765,69 @@ TEST(Continuation, NeimarkSackerOfARotatingMapAtItsClosedForm) {
     if (std::fabs(point.parameter - expected) > 1e-9) {
       EXPECT_EQ(point.stable, point.parameter < expected) << point.parameter;
     }
+  }
+}
+
+// The Neimark–Sacker curve of a map written here in closed form, and its
+// resonances: P(x; p₁, p₂) = c(p₁) + ρ S(p₂) (x − c(p₁)), c(p₁) = (sin p₁,
+// p₁²), ρ = 0.5 + p₁² + 0.1 p₂ and S(τ) = [[τ/2, 1], [τ²/4 − 1, τ/2]]
+// (det S = 1, tr S = τ). The fixed point is c(p₁); with ρ = 1 the
+// multipliers are τ/2 ± √(τ²/4 − 1), a complex pair on the unit circle for
+// |τ| < 2 that meets at +1 (τ = 2: 1:1 resonance) or −1 (τ = −2: 1:2) and
+// leaves it as a real pair (λ, 1/λ). So the curve is p₁ = √(0.5 − 0.1 p₂),
+// with its 1:1 resonance at p₂ = 2 and its 1:2 resonance at p₂ = −2.
+TEST(CurveContinuation, NeimarkSackerCurveAndItsResonancesOnAMapInClosedForm) {
+  auto centre = [](double p1) { return std::array<double, 2>{std::sin(p1), p1 * p1}; };
+  impactlab::TwoParameterProblem problem;
+  problem.at = [&](double p2) {
+    return closed_form_problem([p2, centre](const impactlab::OrbitPoint& x, double p1) {
+      impactlab::OrbitEvaluation e;
+      const double rho = 0.5 + p1 * p1 + 0.1 * p2, tau = p2;
+      const std::array<std::array<double, 2>, 2> m = {
+          {{rho * tau / 2.0, rho}, {rho * (tau * tau / 4.0 - 1.0), rho * tau / 2.0}}};
+      const auto c = centre(p1);
+      const double u = x[0] - c[0], v = x[1] - c[1];
+      e.completed = true;
+      e.image = {c[0] + m[0][0] * u + m[0][1] * v, c[1] + m[1][0] * u + m[1][1] * v};
+      e.monodromy = {{m[0][0], m[0][1]}, {m[1][0], m[1][1]}};
+      e.span = two_pi;
+      e.omega = 1.0;
+      return e;
+    });
+  };
+  const struct {
+    double to2;
+    impactlab::CodimensionTwoType type;
+    double at2, multiplier;
+  } cases[] = {{3.0, impactlab::CodimensionTwoType::resonance_1_1, 2.0, 1.0},
+               {-3.0, impactlab::CodimensionTwoType::resonance_1_2, -2.0, -1.0}};
+  for (const auto& one : cases) {
+    impactlab::CurveRequest request;
+    request.type = CurveType::neimark_sacker;
+    request.from1 = 0.0;
+    request.to1 = 1.0;
+    request.from2 = 0.5;
+    request.to2 = one.to2;
+    request.p1 = 0.6;  // a guess: the curve is at √0.45 there
+    request.state = {0.5, 0.4};
+    const auto curve = impactlab::continue_curve(problem, request);
+    EXPECT_EQ(curve.stop_reason, StopReason::end_of_range) << curve.stop_detail;
+    ASSERT_GE(curve.curve.size(), 10u);
+    for (const auto& point : curve.curve) {
+      const double p1 = std::sqrt(0.5 - 0.1 * point.p2);
+      EXPECT_NEAR(point.p1, p1, 1e-10) << "p2 = " << point.p2;
+      EXPECT_NEAR(point.state[0], centre(p1)[0], 1e-10) << "p2 = " << point.p2;
+      EXPECT_NEAR(point.state[1], centre(p1)[1], 1e-10) << "p2 = " << point.p2;
+    }
+    ASSERT_EQ(curve.points.size(), 1u) << "to p2 = " << one.to2;
+    const auto& resonance = curve.points[0];
+    EXPECT_EQ(resonance.type, one.type);
+    EXPECT_TRUE(resonance.located) << resonance.note;
+    EXPECT_NEAR(resonance.p2, one.at2, 1e-8);
+    EXPECT_NEAR(resonance.p1, std::sqrt(0.5 - 0.1 * one.at2), 1e-8);
+    ASSERT_EQ(resonance.multipliers.size(), 2u);
+    for (const auto& multiplier : resonance.multipliers)
+      EXPECT_NEAR(std::abs(multiplier - one.multiplier), 0.0, 1e-4);
   }
 }
 
