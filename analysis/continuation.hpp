@@ -230,6 +230,8 @@ enum class CodimensionTwoType {
                             // (the fold's quadratic coefficient is zero; two fold curves meet)
   resonance_1_1,            // on a Neimark–Sacker curve: the pair on the unit circle meets at +1
   resonance_1_2,            // on a Neimark–Sacker curve: the pair meets at −1
+  degenerate_period_doubling,  // on a period-doubling curve: the flip's cubic coefficient is
+                               // zero (the doubled orbit's criticality changes)
 };
 
 constexpr std::string_view to_string(CodimensionTwoType type) {
@@ -240,6 +242,7 @@ constexpr std::string_view to_string(CodimensionTwoType type) {
     case CodimensionTwoType::cusp: return "cusp";
     case CodimensionTwoType::resonance_1_1: return "resonance_1_1";
     case CodimensionTwoType::resonance_1_2: return "resonance_1_2";
+    case CodimensionTwoType::degenerate_period_doubling: return "degenerate_period_doubling";
   }
   return "unknown";
 }
@@ -248,7 +251,8 @@ constexpr std::string_view to_string(CodimensionTwoType type) {
 // curve of type `on`: at a grazing–period-doubling (grazing–fold) point the
 // period doubling's (fold's) from a grazing curve, the grazing curve from
 // the other; none through a change of the grazing scenario, a cusp (the
-// fold curve through it is the curve itself) or a resonance.
+// fold curve through it is the curve itself), a resonance or a degenerate
+// period doubling.
 constexpr std::optional<CurveType> curve_through(CodimensionTwoType type, CurveType on) {
   switch (type) {
     case CodimensionTwoType::grazing_period_doubling:
@@ -258,7 +262,8 @@ constexpr std::optional<CurveType> curve_through(CodimensionTwoType type, CurveT
     case CodimensionTwoType::grazing_scenario_change: return std::nullopt;
     case CodimensionTwoType::cusp:
     case CodimensionTwoType::resonance_1_1:
-    case CodimensionTwoType::resonance_1_2: return std::nullopt;
+    case CodimensionTwoType::resonance_1_2:
+    case CodimensionTwoType::degenerate_period_doubling: return std::nullopt;
   }
   return std::nullopt;
 }

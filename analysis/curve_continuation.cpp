@@ -306,6 +306,11 @@ class CurveDriver {
     if (!result_.curve.empty()) detect_codimension_two(z_, tangent_, step, c);
     if (request_.type == CurveType::fold && !result_.curve.empty())
       detect_cusp(z_, tangent_, step, tangent);
+    double flip = std::numeric_limits<double>::quiet_NaN();
+    if (request_.type == CurveType::period_doubling) {
+      flip = flip_coefficient(c);
+      if (!result_.curve.empty()) detect_degenerate_flip(z_, tangent_, step, flip);
+    }
     z_ = c.z;
     tangent_ = tangent;
     CurvePoint point = point_of(c);
@@ -313,6 +318,7 @@ class CurveDriver {
     point.step = step;
     if (grazing_) window_center_ = c.z[tg_] * time_scale_;
     last_signature_ = c.at.orbit.signature;
+    last_flip_coefficient_ = flip;
     const auto watched = watched_conditions();
     for (std::size_t k = 0; k < watched.size(); ++k)
       last_tests_[k] = watched[k].function(c.at.orbit.monodromy);
@@ -553,6 +559,78 @@ class CurveDriver {
       result_.points.push_back(std::move(*point));
   }
 
+  // The cubic coefficient of the flip's normal form at the period-doubling
+  // curve's point c (η ↦ −η + κη³ on the centre manifold; Kuznetsov,
+  // "Elements of applied bifurcation theory", the flip of maps):
+  //   κ = ⟨p, C(q,q,q)⟩/6 + ⟨p, B(q, (I − M)⁻¹ B(q,q))⟩/2,
+  // q and p the eigenvectors of M and Mᵀ for −1 (⟨p, q⟩ = 1), B and C the
+  // map's second and third derivatives, by central differences of the map
+  // with the step h = 1e-3 (1 + |x|) along q (and along (I − M)⁻¹B(q,q)).
+  // The map's error ε enters as ε/h³: κ is known to about 1e-3 on an
+  // integrated map. NaN where a run fails or where a run of the stencil has
+  // another impact signature (the map is not smooth across it: near a graze).
+  double flip_coefficient(const Corrected& c) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const MonodromyMatrix& m = c.at.orbit.monodromy;
+    Matrix a(n_, n_);
+    for (int i = 0; i < n_; ++i)
+      for (int j = 0; j < n_; ++j) a(i, j) = m[i][j];
+    const Matrix identity = Matrix::Identity(n_, n_);
+    Vector q = last_right_singular_vector(a + identity);
+    Vector p = last_right_singular_vector((a + identity).transpose());
+    if (!q.allFinite() || !p.allFinite() || !(q.norm() > 0.0)) return nan;
+    q.normalize();
+    if (!(std::fabs(p.dot(q)) > 1e-12)) return nan;
+    p /= p.dot(q);
+    const Vector x = c.z.head(n_);
+    const ContinuationProblem at = problem_.at(p2_of(c.z));
+    bool completed = true;
+    const auto image = [&](const Vector& y) {
+      ++result_.map_evaluations;
+      const OrbitEvaluation e =
+          at.evaluate(OrbitPoint(y.data(), y.data() + n_), p1_of(c.z), phase_, false, window());
+      if (!e.completed || e.signature != c.at.orbit.signature) {
+        completed = false;  // a run failed, or the stencil reaches across a graze
+        return Vector(Vector::Zero(n_));
+      }
+      return Vector(Eigen::Map<const Vector>(e.image.data(), n_));
+    };
+    const double h = 1e-3 * (1.0 + x.norm());
+    const Vector centre = Eigen::Map<const Vector>(c.at.orbit.image.data(), n_);
+    const Vector up = image(x + h * q), down = image(x - h * q);
+    const Vector up2 = image(x + 2.0 * h * q), down2 = image(x - 2.0 * h * q);
+    const Vector second = (up - 2.0 * centre + down) / (h * h);
+    const Vector third = (up2 - 2.0 * up + 2.0 * down - down2) / (2.0 * h * h * h);
+    const Vector v = full_pivot_lu_solve(identity - a, second);
+    double mixed = 0.0;
+    if (v.norm() > 0.0) {
+      const Vector w = v / v.norm();
+      const Vector b = (image(x + h * q + h * w) - image(x + h * q - h * w) -
+                        image(x - h * q + h * w) + image(x - h * q - h * w)) /
+                       (4.0 * h * h);
+      mixed = p.dot(b) * v.norm();
+    }
+    if (!completed) return nan;
+    return p.dot(third) / 6.0 + mixed / 2.0;
+  }
+
+  // A degenerate period doubling between the curve's point a and the new
+  // point (reached from a by the arclength `step` along `tangent`): the
+  // flip's cubic coefficient changes sign (from `last_flip_coefficient_` to
+  // `next`), located as the watched conditions are.
+  void detect_degenerate_flip(const Vector& a, const Vector& tangent, double step, double next) {
+    const double fa = last_flip_coefficient_;
+    if (!(fa * next < 0.0)) return;
+    const auto value = [&](const Corrected& c) {
+      const double kappa = flip_coefficient(c);
+      if (!std::isfinite(kappa)) throw std::runtime_error("no flip coefficient");
+      return kappa;
+    };
+    if (auto point = locate(CodimensionTwoType::degenerate_period_doubling, "", value, a, tangent,
+                            step, fa))
+      result_.points.push_back(std::move(*point));
+  }
+
   // The root of a test function `value` of the corrected curve point on the
   // arclength from a (TOMS 748), each trial point corrected onto the curve;
   // none at a located threshold of the eigenvalue rule where the rule does not
@@ -729,6 +807,7 @@ class CurveDriver {
   double requested_phase_ = 0.0, phase_ = 0.0;  // rad: the requested and the working section
   Vector z_, tangent_;
   std::string last_signature_;            // the last point's orbit's impact signature
+  double last_flip_coefficient_ = 0.0;    // a period-doubling curve: κ at the last point
   std::array<double, watched_on_grazing_.size()> last_tests_{};  // the watched conditions at the
                                                                 // last point
   CurveResult result_;

@@ -393,8 +393,9 @@ int run_continue(const ContinueCommandOptions& command_options,
                      "predicted scenario past the graze changes (note); cusp: on a fold curve, "
                      "where its tangent has no parameter component (two folds meet); "
                      "resonance_1_1, resonance_1_2: on a Neimark-Sacker curve, where the pair "
-                     "on the unit circle meets at +1 or -1; located by TOMS 748 on the "
-                     "curve's arclength"},
+                     "on the unit circle meets at +1 or -1; degenerate_period_doubling: on a "
+                     "period-doubling curve, where the flip's cubic coefficient is zero; "
+                     "located by TOMS 748 on the curve's arclength"},
             {"error_estimate", "bound on the error of both parameter values (each in its "
                                "own unit; the larger)"},
             {"located", "1: located; 0: detected between two curve points only (note)"},

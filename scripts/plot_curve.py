@@ -51,6 +51,7 @@ CODIMENSION_TWO_MARKERS = {
     "cusp": ("*", "tab:green", "cusp of folds"),
     "resonance_1_1": ("^", "tab:blue", "1:1 resonance"),
     "resonance_1_2": ("v", "tab:cyan", "1:2 resonance"),
+    "degenerate_period_doubling": ("X", "tab:brown", "degenerate period doubling"),
 }
 
 

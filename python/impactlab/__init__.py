@@ -1012,8 +1012,9 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     codimension-two points located on them (curve_points.csv's columns: on a
     grazing curve, grazing_period_doubling, grazing_fold and
     grazing_scenario_change; on a fold curve, cusp; on a Neimark-Sacker
-    curve, resonance_1_1 and resonance_1_2; on a fold or period-doubling
-    curve that runs into a graze, grazing_fold or grazing_period_doubling).
+    curve, resonance_1_1 and resonance_1_2; on a period-doubling curve,
+    degenerate_period_doubling; on a fold or period-doubling curve that runs
+    into a graze, grazing_fold or grazing_period_doubling).
     all=True continues every orbit of the period that periodic(all=True) finds
     at FROM (from `starts` states drawn from `box`, seeded by `seed`): each
     branch then has `orbit` (the id of the orbit it continues), and the result

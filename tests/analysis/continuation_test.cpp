@@ -831,6 +831,47 @@ TEST(CurveContinuation, NeimarkSackerCurveAndItsResonancesOnAMapInClosedForm) {
   }
 }
 
+// A degenerate period doubling on a map written here in closed form:
+// P(x, y; p₁, p₂) = (−(1 + p₁)x + p₂x³ + e x y, y/2 + d x²), fixed at the
+// origin, its period-doubling curve p₁ = 0. On that curve the centre
+// manifold is y = 2d x² + O(x⁴) (invariance: h(−x) = h(x)/2 + d x²), so the
+// map reduced to it is x ↦ −x + (p₂ + 2ed)x³: the flip's cubic coefficient
+// vanishes at p₂ = −2ed, −1 for e = 1, d = 1/2.
+TEST(CurveContinuation, DegeneratePeriodDoublingOfAMapInClosedFormAtTheCentreManifoldsRoot) {
+  constexpr double e = 1.0, d = 0.5;
+  impactlab::TwoParameterProblem problem;
+  problem.at = [&](double p2) {
+    return closed_form_problem([p2](const impactlab::OrbitPoint& z, double p1) {
+      impactlab::OrbitEvaluation out;
+      const double x = z[0], y = z[1];
+      out.completed = true;
+      out.image = {-(1.0 + p1) * x + p2 * x * x * x + e * x * y, 0.5 * y + d * x * x};
+      out.monodromy = {{-(1.0 + p1) + 3.0 * p2 * x * x + e * y, e * x}, {2.0 * d * x, 0.5}};
+      out.span = two_pi;
+      out.omega = 1.0;
+      return out;
+    });
+  };
+  impactlab::CurveRequest request;
+  request.type = CurveType::period_doubling;
+  request.from1 = -0.5;
+  request.to1 = 0.5;
+  request.from2 = 0.0;
+  request.to2 = -2.0;
+  request.p1 = 0.01;  // a guess: the curve is at p₁ = 0
+  request.state = {0.01, 0.0};
+  const auto curve = impactlab::continue_curve(problem, request);
+  EXPECT_EQ(curve.stop_reason, StopReason::end_of_range) << curve.stop_detail;
+  ASSERT_GE(curve.curve.size(), 10u);
+  for (const auto& point : curve.curve) EXPECT_NEAR(point.p1, 0.0, 1e-12) << "p2 = " << point.p2;
+  ASSERT_EQ(curve.points.size(), 1u);
+  const auto& degenerate = curve.points[0];
+  EXPECT_EQ(degenerate.type, impactlab::CodimensionTwoType::degenerate_period_doubling);
+  EXPECT_TRUE(degenerate.located) << degenerate.note;
+  EXPECT_NEAR(degenerate.p1, 0.0, 1e-12);
+  EXPECT_NEAR(degenerate.p2, -2.0 * e * d, 1e-6);
+}
+
 // The driver on a map whose orbit has an impact that sticks above p = 1/π
 // (the count of stick impacts the map reports, as the rigid pendulum's
 // impulse law does where its stick impulse enters the friction cone):
