@@ -542,7 +542,8 @@ class CurveDriver {
   // vanishes only where σ, the fold's quadratic coefficient, does (the curve
   // in (x, p₁, p₂) runs on through it, along the null vector). The test
   // function is the parameter part's projection on a's, located as the
-  // watched conditions are.
+  // watched conditions are; reported where the parameter part is zero there
+  // (tangent_along_state).
   void detect_cusp(const Vector& a, const Vector& tangent, double step, const Vector& next) {
     const auto parameter_part = [&](const Vector& t) {
       return Eigen::Vector2d(t[p1_], t[p2_]);
@@ -664,6 +665,8 @@ class CurveDriver {
       on_curve(0.5 * (bracket.first + bracket.second));
       if (type == CodimensionTwoType::grazing_scenario_change && !rule_applies(last->z))
         return std::nullopt;
+      if (type == CodimensionTwoType::cusp && !tangent_along_state(*last, tangent))
+        return std::nullopt;
       if (type == CodimensionTwoType::resonance_1_1 && !pair_at(last->at.orbit.monodromy, 1.0))
         return std::nullopt;
       if (type == CodimensionTwoType::resonance_1_2 && !pair_at(last->at.orbit.monodromy, -1.0))
@@ -687,6 +690,14 @@ class CurveDriver {
                     "detected; the corrector failed while locating it";
     }
     return point;
+  }
+
+  // Whether the curve's unit tangent at c (oriented along `along`) has a
+  // parameter part below 1e-4: a cusp, not a sharp turn of the curve in the
+  // parameter plane that the projection test also sees.
+  bool tangent_along_state(const Corrected& c, const Vector& along) const {
+    const auto t = tangent_of(c.jacobian, along);
+    return t && std::hypot((*t)[p1_], (*t)[p2_]) <= 1e-4;
   }
 
   // Whether two multipliers of m lie at `target` (within 1e-4: a double

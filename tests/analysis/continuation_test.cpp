@@ -1288,10 +1288,28 @@ std::pair<double, double> grazing_period_doubling_omega_sigma(const ImpactOscill
   return {grazing_omega(sigma), sigma};
 }
 
+// A located grazing–period-doubling point of o's one-impact orbit on that
+// closed form to 1e-8: both parameters, the multiplier −1, and its state the
+// closed form's virtual orbit there (the orbit that touches the stop).
+void expect_grazing_period_doubling_at_closed_form(const impactlab::CodimensionTwoPoint& point,
+                                                   const ImpactOscillator& o) {
+  const auto [omega_expected, sigma_expected] = grazing_period_doubling_omega_sigma(o);
+  EXPECT_EQ(point.type, impactlab::CodimensionTwoType::grazing_period_doubling);
+  EXPECT_TRUE(point.located) << point.note;
+  EXPECT_NEAR(point.p1, omega_expected, 1e-8);
+  EXPECT_NEAR(point.p2, sigma_expected, 1e-8);
+  EXPECT_LT(point.error_estimate, 1e-8);
+  EXPECT_NEAR(point.multipliers[0].real(), -1.0, 1e-7);
+  ImpactOscillator at = o;
+  at.sigma = sigma_expected;
+  const PeriodOneOrbit virtual_orbit(at, omega_expected, false);
+  EXPECT_NEAR(point.state[0], virtual_orbit.section_state()[0], 1e-8);
+  EXPECT_NEAR(point.state[1], virtual_orbit.section_state()[1], 1e-8);
+  EXPECT_TRUE(std::isfinite(point.graze_time));
+}
+
 TEST(CurveContinuation, LinearImpactGrazingPeriodDoublingPointAtItsClosedForm) {
   ImpactOscillator o;  // ζ = 0.05, r = 0.8, A = 1; σ from 0 downwards
-  const auto [omega_expected, sigma_expected] = grazing_period_doubling_omega_sigma(o);
-
   Scene scene = linear_impact_scene(o);
   scene.values["initial.x"] = -0.5;  // inside the stop down to σ = −0.04
   ContinuationJob job = curve_job("omega", 1.5, 0.8, "sigma", 0.0, -0.04, CurveType::grazing);
@@ -1302,20 +1320,7 @@ TEST(CurveContinuation, LinearImpactGrazingPeriodDoublingPointAtItsClosedForm) {
   ASSERT_TRUE(result.has_curve) << result.curve_note;
   EXPECT_EQ(result.curve.stop_reason, StopReason::end_of_range) << result.curve.stop_detail;
   ASSERT_EQ(result.curve.points.size(), 1u);
-  const auto& point = result.curve.points[0];
-  EXPECT_EQ(point.type, impactlab::CodimensionTwoType::grazing_period_doubling);
-  EXPECT_TRUE(point.located) << point.note;
-  EXPECT_NEAR(point.p1, omega_expected, 1e-8);
-  EXPECT_NEAR(point.p2, sigma_expected, 1e-8);
-  EXPECT_LT(point.error_estimate, 1e-8);
-  EXPECT_NEAR(point.multipliers[0].real(), -1.0, 1e-7);
-  // its state is the closed form's virtual orbit there, and it touches
-  ImpactOscillator at = o;
-  at.sigma = sigma_expected;
-  const PeriodOneOrbit virtual_orbit(at, omega_expected, false);
-  EXPECT_NEAR(point.state[0], virtual_orbit.section_state()[0], 1e-8);
-  EXPECT_NEAR(point.state[1], virtual_orbit.section_state()[1], 1e-8);
-  EXPECT_TRUE(std::isfinite(point.graze_time));
+  expect_grazing_period_doubling_at_closed_form(result.curve.points[0], o);
 }
 
 // The same point from the other curve: the period-doubling curve of the
@@ -1327,7 +1332,7 @@ TEST(CurveContinuation, LinearImpactGrazingPeriodDoublingPointAtItsClosedForm) {
 // curve.
 TEST(CurveContinuation, PeriodDoublingCurveStopsWhereItMeetsTheGrazeAtItsClosedForm) {
   ImpactOscillator o;  // ζ = 0.05, r = 0.8, A = 1; σ from 0 downwards
-  const auto [omega_expected, sigma_expected] = grazing_period_doubling_omega_sigma(o);
+  const double sigma_expected = grazing_period_doubling_omega_sigma(o).second;
   const Scene scene = linear_impact_scene(o);
   ContinuationJob job =
       curve_job("omega", 1.09, 0.8, "sigma", 0.0, -0.04, CurveType::period_doubling);
@@ -1344,18 +1349,7 @@ TEST(CurveContinuation, PeriodDoublingCurveStopsWhereItMeetsTheGrazeAtItsClosedF
     EXPECT_GT(point.p2, sigma_expected);
   }
   ASSERT_EQ(result.curve.points.size(), 1u);
-  const auto& point = result.curve.points[0];
-  EXPECT_EQ(point.type, impactlab::CodimensionTwoType::grazing_period_doubling);
-  EXPECT_TRUE(point.located) << point.note;
-  EXPECT_NEAR(point.p1, omega_expected, 1e-8);
-  EXPECT_NEAR(point.p2, sigma_expected, 1e-8);
-  EXPECT_LT(point.error_estimate, 1e-8);
-  EXPECT_NEAR(point.multipliers[0].real(), -1.0, 1e-7);
-  ImpactOscillator at = o;
-  at.sigma = sigma_expected;
-  const PeriodOneOrbit virtual_orbit(at, omega_expected, false);
-  EXPECT_NEAR(point.state[0], virtual_orbit.section_state()[0], 1e-8);
-  EXPECT_NEAR(point.state[1], virtual_orbit.section_state()[1], 1e-8);
+  expect_grazing_period_doubling_at_closed_form(result.curve.points[0], o);
   // the switch there follows the grazing curve, back towards σ = 0, on the
   // closed form's grazing ω(σ)
   ASSERT_EQ(result.switched_curves.size(), 1u);
