@@ -7,27 +7,11 @@
 #include <Eigen/Dense>
 
 #include <impactlab/analysis/dense_solve.hpp>
+#include <impactlab/analysis/impact_signature.hpp>
 
 namespace impactlab::detail {
 
 namespace {
-
-// The walls hit, in order: the signature without its contact phases ("c+1"),
-// which may appear or end along a branch without stopping it.
-std::string walls_hit(const std::string& signature) {
-  std::string walls;
-  std::size_t begin = 0;
-  while (begin < signature.size()) {
-    std::size_t end = signature.find(' ', begin);
-    if (end == std::string::npos) end = signature.size();
-    if (end > begin && signature[begin] != 'c') {
-      if (!walls.empty()) walls += ' ';
-      walls.append(signature, begin, end - begin);
-    }
-    begin = end + 1;
-  }
-  return walls;
-}
 
 // the parameter's unit of arclength: its range (1 for an empty one)
 double range_scale(const ContinuationRequest& request) {

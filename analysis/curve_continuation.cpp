@@ -19,6 +19,7 @@
 #include <impactlab/analysis/dense_solve.hpp>
 #include <impactlab/analysis/floquet_multipliers.hpp>
 #include <impactlab/analysis/grazing_normal_form.hpp>
+#include <impactlab/analysis/impact_signature.hpp>
 
 namespace impactlab {
 
@@ -351,14 +352,15 @@ class CurveDriver {
     return std::fmod(time + delay, orbit.span);
   }
 
-  // Whether a fold or period-doubling curve's corrected point c has another
-  // impact signature than the last point: the orbit grazed between them (a
-  // wall touched in flight, or an impact's speed gone to zero), and c is an
-  // orbit of another family.
+  // Whether a fold or period-doubling curve's corrected point c hits other
+  // walls than the last point (contact phases aside, as on a branch): the
+  // orbit grazed between them (a wall touched in flight, or an impact's speed
+  // gone to zero), and c is an orbit of another family.
   bool grazes_between(const Corrected& c) const {
     const bool watches = request_.type == CurveType::fold ||
                          request_.type == CurveType::period_doubling;
-    return watches && !result_.curve.empty() && c.at.orbit.signature != last_signature_;
+    return watches && !result_.curve.empty() &&
+           walls_hit(c.at.orbit.signature) != walls_hit(last_signature_);
   }
 
   // A solution of the system of the curve's condition and a graze: z = (x,
