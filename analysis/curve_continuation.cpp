@@ -222,15 +222,25 @@ class CurveDriver {
       const ParameterBoundary* boundary = boundary_of(at);
       if (!boundary) return e;
       e.residual[n_] = boundary->value(p1_of(z));
-    } else if (request_.type == CurveType::period_doubling) {
-      e.residual[n_] = det_plus_identity(e.orbit.monodromy);
-    } else if (request_.type == CurveType::neimark_sacker) {
-      e.residual[n_] = neimark_sacker_test(e.orbit.monodromy);
     } else {
-      e.residual[n_] = det_minus_identity(e.orbit.monodromy);
+      e.residual[n_] = multiplier_condition(e.orbit.monodromy);
     }
     e.completed = e.residual.allFinite();
     return e;
+  }
+
+  // The condition on the multipliers of a fold, period-doubling or
+  // Neimark–Sacker curve.
+  double multiplier_condition(const MonodromyMatrix& m) const {
+    if (request_.type == CurveType::period_doubling) return det_plus_identity(m);
+    if (request_.type == CurveType::neimark_sacker) return neimark_sacker_test(m);
+    return det_minus_identity(m);
+  }
+
+  // Whether the curve ends where its orbit grazes: fold and period-doubling
+  // curves.
+  bool stops_at_grazes() const {
+    return request_.type == CurveType::fold || request_.type == CurveType::period_doubling;
   }
 
   // ∂residual/∂z: the orbit rows' state part from the monodromy, the rest by
@@ -357,9 +367,7 @@ class CurveDriver {
   // orbit grazed between them (a wall touched in flight, or an impact's speed
   // gone to zero), and c is an orbit of another family.
   bool grazes_between(const Corrected& c) const {
-    const bool watches = request_.type == CurveType::fold ||
-                         request_.type == CurveType::period_doubling;
-    return watches && !result_.curve.empty() &&
+    return stops_at_grazes() && !result_.curve.empty() &&
            walls_hit(c.at.orbit.signature) != walls_hit(last_signature_);
   }
 
@@ -444,8 +452,7 @@ class CurveDriver {
       if (!gap.completed) return std::nullopt;
       Vector r(size);
       for (int i = 0; i < n_; ++i) r[i] = o.image[i] - y[i];
-      r[n_] = request_.type == CurveType::fold ? det_minus_identity(o.monodromy)
-                                               : det_plus_identity(o.monodromy);
+      r[n_] = multiplier_condition(o.monodromy);
       r[n_ + 1] = gap.value;
       r[n_ + 2] = gap.rate;
       if (!r.allFinite()) return std::nullopt;
@@ -790,7 +797,7 @@ class CurveDriver {
   // reach (the square-root singularity stops the corrector), there;
   // otherwise the corrector cannot pass this point.
   CurveResult stop_below_smallest_step(double h) {
-    if (request_.type == CurveType::fold || request_.type == CurveType::period_doubling)
+    if (stops_at_grazes())
       if (auto graze = meets_graze(h)) return stop_at(std::move(*graze));
     return stop(StopReason::branch_point,
                 "step below the smallest: the corrector cannot pass this point");
