@@ -93,6 +93,12 @@ void BifurcationLocator<Size>::detect(const Node& a, const Node& b, double step,
   if (a.orbit.impacts > 0 || b.orbit.impacts > 0)
     for (const ParameterBoundary& boundary : corrector_.problem().boundaries)
       if (auto point = locate_boundary(boundary, a, b)) points.push_back(*point);
+  detect_count_changes(a, b, step, points);
+}
+
+template <int Size>
+void BifurcationLocator<Size>::detect_count_changes(const Node& a, const Node& b, double step,
+                                                    std::vector<BifurcationPoint>& points) {
   for (int OrbitEvaluation::*count : {&OrbitEvaluation::contact_phases, &OrbitEvaluation::stick_impacts})
     if (a.orbit.*count != b.orbit.*count) points.push_back(locate_count_change(count, a, b, step));
 }

@@ -49,6 +49,11 @@ class BifurcationLocator {
   // boundary crossed, and a change of the contact phases or of the stick
   // impacts per orbit.
   void detect(const Node& a, const Node& b, double step, std::vector<BifurcationPoint>& points);
+  // Only the changes of the contact phases and of the stick impacts per
+  // orbit: for a map whose monodromy is not the real map's (a stick forced
+  // on the friction cone's edge, ContinuationProblem::stick_forced_at).
+  void detect_count_changes(const Node& a, const Node& b, double step,
+                            std::vector<BifurcationPoint>& points);
 
  private:
   using Vec = typename Spaces<Size>::Vec;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -89,7 +90,10 @@ class BranchDriver {
     b.phase = problem_.phase;
     b.impacts = node.orbit.impacts;
     b.contact_phases = node.orbit.contact_phases;
-    b.multipliers = multipliers_of(node.orbit);
+    // a forced stick's monodromy is not the real map's, which has none
+    b.multipliers = on_cone_edge_ && entered_cone_edge_
+                        ? missing_multipliers(node.orbit.monodromy.size())
+                        : multipliers_of(node.orbit);
     b.stable = std::all_of(b.multipliers.begin(), b.multipliers.end(),
                            [](const std::complex<double>& m) { return std::abs(m) < 1.0; });
     b.min_impact_speed = node.orbit.min_impact_speed;
@@ -109,7 +113,11 @@ class BranchDriver {
     node.step = step;
     node.orbit = corrector_.evaluate(c.y, true, {});
     if (!node.orbit.completed) return false;
-    if (!nodes_.empty()) locator_.detect(nodes_.back(), node, step, result_.points);
+    // on the forced stick's map the monodromy is not the real map's: only
+    // the contact phases are watched there (a change of the stick impacts
+    // is a corner, cross_corner)
+    if (!nodes_.empty() && !on_cone_edge_) locator_.detect(nodes_.back(), node, step, result_.points);
+    if (!nodes_.empty() && on_cone_edge_) note_contact_changes(node, step);
     move_section_off_events(node);
     nodes_.push_back(node);
     result_.branch.push_back(branch_point(node, step));
@@ -211,7 +219,15 @@ class BranchDriver {
         const auto turned = corrector_.tangent_at(c, tau);
         ok = turned && turned->dot(tau) > std::cos(30.0 * std::numbers::pi / 180.0);
       }
+      // where an impact starts or stops sticking and an impulse can sit on
+      // the friction cone's edge, the branch has a corner: approached by
+      // smaller steps, then crossed at fixed parameter (cross_corner)
+      if (ok && c.orbit.stick_impacts != nodes_.back().orbit.stick_impacts &&
+          (on_cone_edge_ || (problem_.stick_forced_at &&
+                             c.orbit.stick_impacts < nodes_.back().orbit.stick_impacts)))
+        ok = false;
       if (ok && accept(c, tau, h)) {
+        if (left_cone_edge_) return finish();
         if (nodes_.back().orbit.one_sided) return stop_on_cone_edge();
         // a gap or impact speed about to vanish: end at the grazing point
         // before Newton meets the square-root singularity
@@ -234,19 +250,157 @@ class BranchDriver {
         return stop(StopReason::signature_change,
                     "the impact signature changes from '" + signature_ + "' to '" +
                         c.orbit.signature + "'; no grazing point located");
-      if (h < steps_.smallest)
+      if (h < steps_.smallest) {
+        // the corner of an impulse reaching the friction cone's edge
+        if (on_cone_edge_ && cross_corner(direction)) {
+          if (left_cone_edge_) return finish();
+          h = steps_.initial;
+          continue;
+        }
+        if (auto along_edge = follow_cone_edge(nodes_.back().orbit.stuck_witness, false))
+          return std::move(*along_edge);
         return stop(StopReason::branch_point,
                     "step below the smallest: the corrector cannot pass this point");
+      }
     }
     return stop(StopReason::max_points, "the branch reached the point limit");
   }
 
+  // On the forced stick's map: changes of the contact phases, located there;
+  // their multipliers are the real map's, which do not exist on the edge.
+  void note_contact_changes(const Node& node, double step) {
+    const std::size_t before = result_.points.size();
+    if (node.orbit.contact_phases != nodes_.back().orbit.contact_phases)
+      locator_.detect_count_changes(nodes_.back(), node, step, result_.points);
+    for (std::size_t i = before; i < result_.points.size(); ++i)
+      result_.points[i].multipliers = missing_multipliers(node.orbit.monodromy.size());
+  }
+
+  // On the forced stick's map, where the stick impacts per orbit change,
+  // the branch turns at a corner, and no predictor along the tangent
+  // reaches the other side. From the last point, p is stepped at fixed
+  // value (4, 40 and 400 smallest steps on): a point past the corner is
+  // accepted. Fewer stick impacts: another impact starts to slide, and the
+  // forced impulse goes onto the cone's edge (`stick_end`; from here on no
+  // multipliers). More: another impact starts to stick, the forced impulse
+  // leaves the edge (`stick_onset`), and the real map takes over. The
+  // corner is located on the real map, from the side where every impact
+  // sticks inside the cone (its smooth side): by bisection in p, each trial
+  // corrected at fixed p from that side's orbit, the side decided by the
+  // trial converging with that side's stick impacts, to 1e-13 relative. A
+  // step at fixed p that meets no corner is accepted as a plain point.
+  // False where none converges.
+  bool cross_corner(double direction) {
+    const Node a = nodes_.back();
+    auto fixed_parameter = [](BranchCorrector<Size>& corrector, double p, const Vec& from,
+                              const std::string* signature) {
+      Vec y = from;
+      y[y.size() - 1] = p;
+      return corrector.correct(y, corrector.along_parameter(1.0), y, {}, signature);
+    };
+    for (double multiple : {4.0, 40.0, 400.0}) {
+      const double dp = multiple * steps_.smallest * direction;
+      Correction past = fixed_parameter(corrector_, a.y[n_] + dp, a.y, &signature_);
+      if (!past.converged) continue;
+      const int sticks = past.orbit.stick_impacts;
+      if (sticks == a.orbit.stick_impacts)
+        return accept(past, corrector_.along_parameter(direction), std::fabs(dp));
+      const bool onto_edge = sticks < a.orbit.stick_impacts;
+      // the side where every impact sticks inside the cone, on the real map
+      BranchCorrector<Size> real(*real_problem_, request_);
+      Vec inside_y = onto_edge ? a.y : past.y;
+      const int inside_sticks = std::max(sticks, a.orbit.stick_impacts);
+      double inside = inside_y[n_], outside = onto_edge ? past.y[n_] : a.y[n_];
+      for (int bisection = 0; bisection < 60; ++bisection) {
+        if (std::fabs(outside - inside) <= 1e-13 * (1.0 + std::fabs(inside))) break;
+        const double middle = 0.5 * (inside + outside);
+        const Correction trial = fixed_parameter(real, middle, inside_y, nullptr);
+        if (trial.converged && trial.orbit.stick_impacts == inside_sticks) {
+          inside = middle;
+          inside_y = trial.y;
+        } else {
+          outside = middle;
+        }
+      }
+      BifurcationPoint point;
+      point.type = onto_edge ? BifurcationType::stick_end : BifurcationType::stick_onset;
+      point.parameter = inside * corrector_.scale();
+      point.state = corrector_.reported_state(inside_y);
+      point.multipliers = missing_multipliers(a.orbit.monodromy.size());
+      point.error_estimate = std::fabs(outside - inside) * corrector_.scale() +
+                             request_.tolerance * (1.0 + std::fabs(point.parameter));
+      point.located = true;
+      point.note = "stick impacts per orbit " + std::to_string(a.orbit.stick_impacts) + " -> " +
+                   std::to_string(sticks) +
+                   (onto_edge ? ": an impact starts to slide, the other's impulse goes onto "
+                                "the friction cone's edge"
+                              : ": an impact starts to stick, the impulse on the friction "
+                                "cone's edge leaves it") +
+                   " (a corner of the branch, located at fixed parameter)";
+      (onto_edge ? entered_cone_edge_ : left_cone_edge_) = true;
+      if (!accept(past, corrector_.along_parameter(direction), std::fabs(dp))) return false;
+      result_.points.push_back(point);
+      return true;
+    }
+    return false;
+  }
+
   // The last point's orbit has an impulse on the friction cone's edge: its
   // multipliers do not exist, nor does a tangent to follow the branch by.
+  // Where the problem can force that impact to stick, the branch goes on
+  // along the edge (follow_cone_edge); otherwise it ends here.
   ContinuationResult stop_on_cone_edge() {
+    if (auto along_edge = follow_cone_edge(nodes_.back().orbit.one_sided_witness, true))
+      return std::move(*along_edge);
     return stop(StopReason::no_tangent_map,
                 "the orbit at " + to_text(result_.branch.back().parameter) +
                     " has an impulse on the friction cone's edge: no multipliers");
+  }
+
+  // An orbit can hold an impulse on the friction cone's edge over a range of
+  // the parameter (docs/rigidbody.md), where the real map has no tangent map
+  // and Newton meets its kink. From the last point (on the edge where
+  // `on_edge`), the branch goes on as the fixed points of the map with the
+  // impacts at flight witness `witness` forced to stick: the real map's
+  // while every other impact slides, or while all stick inside the cone.
+  // It is taken only where it runs along the edge: from a point on it, or
+  // through an impact that starts to slide (located there as `stick_end`).
+  // Back on the real map from where another impact starts to stick.
+  std::optional<ContinuationResult> follow_cone_edge(int witness, bool on_edge) {
+    if (on_cone_edge_ || !problem_.stick_forced_at) return std::nullopt;
+    const auto edge = problem_.stick_forced_at(witness);
+    if (!edge) return std::nullopt;
+    ContinuationRequest along_edge = request_;
+    along_edge.start = result_.branch.back().state;
+    along_edge.from = result_.branch.back().parameter;
+    along_edge.max_points = request_.max_points - static_cast<int>(result_.branch.size()) + 1;
+    BranchDriver follow(*edge, along_edge);
+    follow.on_cone_edge_ = true;
+    follow.real_problem_ = &problem_;
+    follow.entered_cone_edge_ = on_edge;
+    ContinuationResult rest = follow.run_from_start();
+    if (!follow.entered_cone_edge_ || rest.branch.size() < 2) return std::nullopt;
+    if (follow.left_cone_edge_) {
+      ContinuationRequest off_edge = request_;
+      off_edge.start = rest.branch.back().state;
+      off_edge.from = rest.branch.back().parameter;
+      off_edge.max_points = along_edge.max_points - static_cast<int>(rest.branch.size()) + 1;
+      append(rest, BranchDriver(problem_, off_edge).run_from_start());
+    }
+    result_.map_evaluations = corrector_.map_evaluations();
+    append(result_, std::move(rest));
+    return std::move(result_);
+  }
+
+  // `later` continues `earlier` from its last point, which is its first
+  // (kept from `later`, whose map that point is on)
+  static void append(ContinuationResult& earlier, ContinuationResult later) {
+    if (!later.branch.empty() && !earlier.branch.empty()) earlier.branch.pop_back();
+    earlier.branch.insert(earlier.branch.end(), later.branch.begin(), later.branch.end());
+    earlier.points.insert(earlier.points.end(), later.points.begin(), later.points.end());
+    earlier.stop_reason = later.stop_reason;
+    earlier.stop_detail = later.stop_detail;
+    earlier.map_evaluations += later.map_evaluations;
   }
 
   ContinuationResult stop(StopReason reason, const std::string& detail) {
@@ -266,6 +420,12 @@ class BranchDriver {
   StepControl steps_;
   BifurcationLocator<Size> locator_;
   GrazingSystem<Size> grazing_;
+  // this driver follows a stick forced on the friction cone's edge
+  // (follow_cone_edge), and the forced impulse has left the edge
+  bool on_cone_edge_ = false;
+  const ContinuationProblem* real_problem_ = nullptr;  // there: the map without the forced stick
+  bool entered_cone_edge_ = false;  // its points are on the edge (no multipliers)
+  bool left_cone_edge_ = false;
   int n_ = 2;                     // N: the state's components on the section
   double from_ = 0.0, to_ = 1.0;  // the range in branch units
   int stalled_ = 0;               // consecutive points reached by tiny steps

@@ -40,6 +40,8 @@ struct OrbitEvaluation {
   // edge, Transition::one_sided): the monodromy serves Newton, but the
   // orbit's multipliers do not exist
   bool one_sided = false;
+  int one_sided_witness = -1;  // the flight witness of such an impact (its wall); −1: none
+  int stuck_witness = -1;      // the flight witness of the last impact that stuck; −1: none
   std::string signature;       // the walls of the events in order ("+1 +1 -1", "+1 c+1": contact)
   double min_impact_speed = std::numeric_limits<double>::infinity();  // min |q̇⁻| of the impacts
   // the smallest local minimum of a wall gap in flight (not at an impact), from
@@ -117,6 +119,13 @@ struct ContinuationProblem {
   double forcing_period_at_p = 0.0;  // nT at the start (s): the scale of the grazing window
   std::size_t dimension = 2;         // N: the components of an OrbitPoint
   std::vector<ParameterBoundary> boundaries;  // reported where the branch crosses them
+  // The same map with every impact at the wall of flight witness k forced
+  // to stick, whatever friction it needs: where an orbit holds an impulse on
+  // the friction cone's edge over a range of parameters, it is a fixed point
+  // of this map, which is smooth there, while the real map has no tangent
+  // map (the rigid model with free spin, docs/rigidbody.md). Empty for a
+  // system without a friction cone; null for a witness that is not a wall's.
+  std::function<std::shared_ptr<const ContinuationProblem>(int witness)> stick_forced_at;
   // The impact section only. Where the impact with the section's own wall
   // grazes (its speed goes to zero), the section is tangent to the flow and
   // the impact map ends, so that grazing is solved on the stroboscopic map of

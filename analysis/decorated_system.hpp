@@ -50,6 +50,10 @@ struct CrossingTrace {
     double speed;  // |witness rate| just before (the normal approach speed)
   };
   std::vector<Crossing> crossings;
+  // the flight witness of the last impact whose tangent map is one side's
+  // (an impulse on the friction cone's edge, ResetJacobianOf::one_sided);
+  // −1: none
+  int one_sided_witness = -1;
 };
 
 // What the stop at a wall impact saw of the impacts with its wall during one run.
@@ -225,7 +229,10 @@ class DecoratedSystem {
       const Transition<State, Mode>& after) const
     requires HasJacobian<Base>
   {
-    return base_.reset_jacobian(mode, k, crossing, x, t, after);
+    auto jacobian = base_.reset_jacobian(mode, k, crossing, x, t, after);
+    if (crossings_ && jacobian.one_sided && mode == flight_mode_)
+      crossings_->one_sided_witness = static_cast<int>(k);
+    return jacobian;
   }
   [[nodiscard]] bool pinned(Mode mode) const
     requires HasJacobian<Base>

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -132,11 +133,18 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
     std::optional<HeldComponent> held;
     // the section map of the system `base` describes, continued in
     // job.parameter, integrated with `flow` (the scene's setup unless said)
-    auto full_map_at = [&](const Scene& base, int period, const FlowSetup* flow = nullptr) {
-      auto make_system = [base, parameter = job.parameter, system_at](double p) {
+    // (with every impact at the wall of flight witness `forced_witness`
+    // forced to stick, where that is not −1: ContinuationProblem::stick_forced_at)
+    auto full_map_at = [&](const Scene& base, int period, const FlowSetup* flow = nullptr,
+                           int forced_witness = -1) {
+      auto make_system = [base, parameter = job.parameter, system_at, forced_witness](double p) {
         Scene at = base;
         at.values[parameter] = p;
-        return system_at(at);
+        System system = system_at(at);
+        if constexpr (requires { system.force_stick_at_witness(std::size_t{0}); })
+          if (forced_witness >= 0)
+            system.force_stick_at_witness(static_cast<std::size_t>(forced_witness));
+        return system;
       };
       const FlowSetup& integration = flow != nullptr ? *flow : setup;
       if (job.impact_wall != 0)
@@ -171,6 +179,15 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
     // continued parameter at the other values of `base`
     auto bounded_map_at = [&](const Scene& base, int period) {
       ContinuationProblem problem = map_at(base, period);
+      if constexpr (requires(System& system) { system.force_stick_at_witness(std::size_t{0}); })
+        if (!held && job.impact_wall == 0)
+          problem.stick_forced_at = [&full_map_at, base, period,
+                                     walls = start_system.witness_count(flight_mode)](
+                                        int witness) -> std::shared_ptr<const ContinuationProblem> {
+            if (witness < 0 || static_cast<std::size_t>(witness) >= walls) return nullptr;
+            return std::make_shared<const ContinuationProblem>(
+                full_map_at(base, period, nullptr, witness));
+          };
       for (const SceneBoundary& boundary : boundaries)
         problem.boundaries.push_back(
             {boundary.name, boundary.note,

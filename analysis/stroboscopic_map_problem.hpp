@@ -88,6 +88,7 @@ ContinuationProblem stroboscopic_map_problem(MakeSystem make_system,
         });
     if (run.termination != Termination::completed || run.mode != shared->flight_mode) return result;
     result.one_sided = run.counters.one_sided_events > 0;
+    result.one_sided_witness = trace.one_sided_witness;
     const auto state = Tangent::base_state(run.state);
     result.completed = std::all_of(state.begin(), state.begin() + n,
                                    [](double component) { return std::isfinite(component); });
@@ -97,6 +98,10 @@ ContinuationProblem stroboscopic_map_problem(MakeSystem make_system,
     result.span = span;
     result.omega = omega;
     note_events(log.records().begin(), log.records().end(), t0, result);
+    for (const EventRecord& record : log.records())
+      if (record.kind == EventKind::impact && record.sticks)
+        for (const auto& crossing : trace.crossings)
+          if (crossing.t == record.t) result.stuck_witness = crossing.witness;
     note_landing_push(system, log.records().begin(), log.records().end(), t0, result);
     for (const auto& crossing : trace.crossings) {
       if (crossing.speed < result.min_impact_speed) {

@@ -352,7 +352,8 @@ Options continue_options() {
        .default_value = false},
       {.name = "plot", .type = OptionType::flag,
        .help = "draw continuation.png (scripts/plot_continuation.py): stable solid, unstable "
-               "dashed, bifurcations marked; with a located grazing point grazing.png "
+               "dashed, without multipliers (an impulse on the friction cone's edge) dotted, "
+               "bifurcations marked; with a located grazing point grazing.png "
                "(scripts/plot_grazing.py): its predicted scenario beside the sweep's impacts",
        .default_value = false, .front_ends = FrontEnds::cli},
       {.name = "with_sweep", .type = OptionType::text,

@@ -2,9 +2,13 @@
 """The continuation diagram of `impactlab continue --plot` (or by hand).
 
     plot_continuation.py branch.csv out.png PARAM QNAME [bifurcation.csv]
+                         [--y COLUMN LABEL]
 
 q on the section against the parameter for every branch (stable parts solid,
-unstable parts dashed, one colour per branch), the bifurcations of points.csv
+unstable parts dashed, parts without multipliers dotted: an impulse on the
+friction cone's edge; one colour per branch), or another column of
+branch.csv with --y (e.g. `--y state3 "ball's spin rate (rad/s)"`), the
+bifurcations of points.csv
 (found beside branch.csv) marked and labelled, and, when given, the points of a
 brute-force sweep's bifurcation.csv of the same range underneath in grey.
 Each kind of point has its own marker (a branch point and a boundary such as
@@ -43,9 +47,9 @@ def read(path):
     return plot_files.read_columns(path)
 
 
-def marked_points(points, param):
+def marked_points(points, param, y="q"):
     """The located points of `points` (points.csv's columns) by type:
-    {type: (parameters, q)}, and how many could not be located (empty q: no
+    {type: (parameters, y)}, and how many could not be located (empty y: no
     state to draw them at)."""
     count = len(points["type"])
     located = np.asarray(points["located"]) == 1 if "located" in points else \
@@ -56,13 +60,13 @@ def marked_points(points, param):
         rows = (types == kind) & located
         if rows.any():
             marked[str(kind)] = (np.asarray(points[param], dtype=float)[rows],
-                                 np.asarray(points["q"], dtype=float)[rows])
+                                 np.asarray(points[y], dtype=float)[rows])
     return marked, int(np.count_nonzero(~located))
 
 
-def runs(mask):
-    """(start, stop) index pairs of the runs of equal values in a boolean array."""
-    edges = np.flatnonzero(np.diff(mask.astype(int))) + 1
+def runs_of_values(values):
+    """(start, stop) index pairs of the runs of equal values in an array."""
+    edges = np.flatnonzero(np.diff(np.asarray(values, dtype=int))) + 1
     starts = np.concatenate(([0], edges))
     stops = np.concatenate((edges, [len(mask)]))
     return zip(starts, stops)
@@ -76,11 +80,13 @@ def branches_of(branch_table):
             for number in np.unique(numbers)]
 
 
-def draw_continuation(branches, points, meta, param, q_name, sweep=None):
+def draw_continuation(branches, points, meta, param, q_name, sweep=None, y="q", y_label=None):
     """The branches (a list of tables with the columns of branch.csv: param,
-    q, stable, period) stable solid and unstable dashed, the located points
-    of `points` (points.csv's columns, or None) marked, and a sweep's points
-    (bifurcation.csv's columns, or None) underneath in grey."""
+    q, stable, period, multiplier1_re) stable solid, unstable dashed and
+    without multipliers dotted, the located points of `points` (points.csv's
+    columns, or None) marked, and a sweep's points (bifurcation.csv's
+    columns, or None) underneath in grey. `y` is the column drawn (q on the
+    section unless said), `y_label` its axis label."""
     fig, ax = plt.subplots(figsize=(8, 6))
     if sweep is not None:
         swept = plot_files.as_columns(sweep)
@@ -90,24 +96,28 @@ def draw_continuation(branches, points, meta, param, q_name, sweep=None):
     for index, table in enumerate(branches):
         rows = plot_files.as_columns(table)
         colour = colours[index % len(colours)]
-        stable = np.asarray(rows["stable"]) == 1
-        for start, stop in runs(stable):
-            # overlap one point so that the stable and unstable pieces join
-            piece = slice(start, min(stop + 1, len(stable)))
-            ax.plot(rows[param][piece], rows["q"][piece], "-" if stable[start] else "--",
+        # 0 unstable, 1 stable, 2 no multipliers (the friction cone's edge)
+        style = np.where(np.asarray(rows["stable"]) == 1, 1, 0)
+        if "multiplier1_re" in rows:
+            style = np.where(np.isnan(np.asarray(rows["multiplier1_re"], dtype=float)), 2, style)
+        for start, stop in runs_of_values(style):
+            # overlap one point so that the pieces join
+            piece = slice(start, min(stop + 1, len(style)))
+            ax.plot(rows[param][piece], rows[y][piece], ("--", "-", ":")[style[start]],
                     color=colour, linewidth=1.4)
         period = int(np.ravel(rows["period"])[0])
-        ax.plot([], [], "-", color=colour, label=f"period {period} (dashed: unstable)")
+        edge = "dotted: no multipliers, " if (style == 2).any() else ""
+        ax.plot([], [], "-", color=colour, label=f"period {period} ({edge}dashed: unstable)")
     if points is not None:
-        marked, not_located = marked_points(plot_files.as_columns(points), param)
-        for kind, (where, q) in marked.items():
+        marked, not_located = marked_points(plot_files.as_columns(points), param, y)
+        for kind, (where, value) in marked.items():
             marker, colour = MARKERS.get(kind, BOUNDARY_MARKER)
-            ax.plot(where, q, marker, color=colour, markersize=8, linestyle="none",
+            ax.plot(where, value, marker, color=colour, markersize=8, linestyle="none",
                     label=kind.replace("_", " "))
         if not_located:
             ax.plot([], [], " ", label=f"{not_located} not located (points.csv)")
     ax.set_xlabel(plot_labels.key_label(meta, param))
-    ax.set_ylabel(plot_labels.coordinate_labels(meta, q_name)[0] + " on the section")
+    ax.set_ylabel((y_label or plot_labels.coordinate_labels(meta, q_name)[0]) + " on the section")
     ax.set_title(plot_labels.title(meta, "continuation", (param,)), fontsize=8)
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), fontsize=8, ncol=3,
               frameon=False)
@@ -119,13 +129,26 @@ def main(argv):
     if len(argv) < 5 or argv[1] in ("-h", "--help"):
         print(__doc__)
         sys.exit(0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2)
-    branch_csv, png, param, q_name, *sweep = argv[1:]
+    arguments = argv[1:]
+    y, y_label = "q", None
+    if "--y" in arguments:
+        at = arguments.index("--y")
+        if len(arguments) < at + 3:
+            print("plot_continuation.py: --y takes COLUMN LABEL", file=sys.stderr)
+            sys.exit(2)
+        y, y_label = arguments[at + 1], arguments[at + 2]
+        del arguments[at:at + 3]
+    branch_csv, png, param, q_name, *sweep = arguments
     directory = os.path.dirname(branch_csv)
     points_csv = os.path.join(directory, "points.csv")
-    figure = draw_continuation(branches_of(read(branch_csv)),
+    branches = branches_of(read(branch_csv))
+    if y not in branches[0]:
+        print(f"plot_continuation.py: --y = {y}: not a column of branch.csv", file=sys.stderr)
+        sys.exit(2)
+    figure = draw_continuation(branches,
                                read(points_csv) if os.path.exists(points_csv) else None,
                                plot_labels.read_meta(directory), param, q_name,
-                               read(sweep[0]) if sweep else None)
+                               read(sweep[0]) if sweep else None, y, y_label)
     plot_files.save_figure(figure, png)
 
 

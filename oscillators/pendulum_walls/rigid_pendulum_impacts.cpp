@@ -8,7 +8,8 @@
 namespace impactlab {
 
 auto RigidPendulumWalls::impact_at(int wall, const State& x, double t) const -> WallImpact {
-  const rigidbody::ImpactCoefficients coefficients{p_.e_n, p_.mu, p_.e_t};
+  const double friction_bound = wall == stick_forced_wall_ ? INFINITY : p_.mu;
+  const rigidbody::ImpactCoefficients coefficients{p_.e_n, friction_bound, p_.e_t};
   if (spin_free_) {
     const auto result = rigidbody::generalized_impact<2>(free_spin_contact(wall, x, t),
                                                          Eigen::Vector2d(x[1], x[spin_rate]), coefficients);
@@ -26,7 +27,9 @@ auto RigidPendulumWalls::impact_case(int wall, const State& x, double t) const -
   const double needed = spin_free_ && impulse.regime == rigidbody::ImpulseRegime::stick
                             ? std::fabs(impulse.impulse(1)) / impulse.impulse(0)
                             : friction_to_stick(wall, x, t);
-  const bool on_edge = std::fabs(needed - p_.mu) <= cone_edge_tolerance * p_.mu;
+  // a forced stick takes the stick case's derivative whatever it needs
+  const bool on_edge =
+      wall != stick_forced_wall_ && std::fabs(needed - p_.mu) <= cone_edge_tolerance * p_.mu;
   // the slide's impulse is j (1, −μ s) with j > 0: s is the tangential part's opposite sign
   return {impulse.regime, impulse.impulse(1) > 0.0 ? -1.0 : 1.0, on_edge};
 }

@@ -113,6 +113,15 @@ class RigidPendulumWalls {
   // the pendulum's own parameters (m, l, b, d, g, V0, ω, e_n, μ, e_t)
   [[nodiscard]] const PendulumWallsParameters& parameters() const { return p_; }
 
+  // Every impact at the wall of flight witness k (0: the right wall, +1; 1:
+  // the left, −1) sticks, whatever friction it needs: the impulse law with
+  // no bound on friction there. Not a model of anything: the map whose
+  // fixed points are the orbits with an impulse on the friction cone's edge
+  // (docs/rigidbody.md, "Orbits that stick on the cone's edge"), smooth
+  // where the real map has no tangent map, so that continuation can follow
+  // them (analysis/continuation_problem.hpp, stick_forced_at).
+  void force_stick_at_witness(std::size_t k) { stick_forced_wall_ = k == 0 ? 1 : -1; }
+
   // effective gravity in the pivot's frame (m/s²), its rate (m/s³), the
   // pivot's velocity (m/s) and acceleration (m/s²) along the wall; like the
   // right-hand side and the witnesses, written over a number type (a series
@@ -446,6 +455,7 @@ class RigidPendulumWalls {
   double rod_inertia_;    // m l² (kg m²)
   double theta_inertia_;  // M_θ: m l² (spin free) or m l² + I_b (locked) (kg m²)
   double sin0_, theta0_, cos0_;
+  int stick_forced_wall_ = 0;  // the wall whose impacts always stick (0: none)
 };
 
 static_assert(HybridSystem<RigidPendulumWalls>);

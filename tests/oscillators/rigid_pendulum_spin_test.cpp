@@ -799,5 +799,116 @@ TEST(RigidPendulumSpin, ALocatedStickEndIsWhereTheImpulseReachesTheConesEdge) {
   EXPECT_LE(nearest, 1e-9);  // measured: 4.4e-10 at μ = 13.6297158
 }
 
+// The points of a branch below μ_max that hold an impulse on the friction
+// cone's edge, checked against the real system, not the forced stick the
+// branch follows them by: every fourth, run at its μ from its section state
+// for the orbit's two periods, comes back to it; one impact needs μ to stick
+// (the closed-form impulse law by hand) and the other more, so it slides;
+// and they have no multipliers. Returns how many were checked.
+int expect_real_orbits_on_the_cones_edge(const ContinuationResult& branch, double mu_max,
+                                         const std::vector<std::string>& assignments) {
+  int checked = 0;
+  for (std::size_t i = 0; i < branch.branch.size(); i += 4) {
+    const BranchPoint& point = branch.branch[i];
+    if (point.parameter > mu_max) continue;
+    for (const auto& multiplier : point.multipliers) EXPECT_TRUE(std::isnan(multiplier.real()));
+    std::vector<std::string> at = assignments;
+    std::ostringstream value;
+    value << "mu=" << std::setprecision(17) << point.parameter;
+    at.push_back(value.str());
+    const Scene scene = pendulum_scene(at);
+    using System = FreeSpinPendulum;
+    const System system(rigid_pendulum_parameters(scene));
+    const FlowSetup setup = flow_setup(scene);
+    const double period = 2.0 * std::numbers::pi / system.parameters().omega;
+    EXPECT_EQ(point.state.size(), 3u);
+    if (point.state.size() != 3u) return checked;
+    const System::State x{point.state[0], point.state[1], point.state[2], 0.0, 0.0};
+    EventLog log(true);
+    const auto run = with_flow<System>(setup.method, stepper_settings(system, setup),
+                                       [&](auto& stepper) {
+                                         return simulate(system, stepper, x, System::Mode::free,
+                                                         0.0, 2.0 * period, loop_options(setup),
+                                                         log);
+                                       });
+    EXPECT_EQ(run.termination, Termination::completed);
+    for (std::size_t k = 0; k < 3; ++k)
+      EXPECT_NEAR(run.state[k], x[k], 1e-9 * (1.0 + std::fabs(x[k]))) << "mu = " << point.parameter;
+    std::vector<double> needed;
+    for (const EventRecord& e : log.records())
+      if (e.kind == EventKind::impact) needed.push_back(friction_a_stick_needs(e, scene));
+    EXPECT_EQ(needed.size(), 2u);
+    if (needed.size() != 2u) return checked;
+    const double mu = point.parameter;
+    // measured at rtol 1e-13: at most 1.1e-10 μ here, and the return above
+    // to 1.7e-10; at the scene's rtol 1e-10 both are near 1e-8 (the
+    // integrator's error in the impulse), and the real system's spin then
+    // drifts off the upward branch's orbit by 3e-8 per orbit
+    EXPECT_NEAR(std::min(needed[0], needed[1]), mu, 1e-9 * mu) << "mu = " << mu;
+    EXPECT_GT(std::max(needed[0], needed[1]), mu * (1.0 + 1e-6)) << "mu = " << mu;
+    ++checked;
+  }
+  return checked;
+}
+
+const BifurcationPoint* first_of_type(const ContinuationResult& branch, BifurcationType type) {
+  for (const BifurcationPoint& point : branch.points)
+    if (point.type == type) return &point;
+  return nullptr;
+}
+
+// Below the stick end the orbit holds one impulse on the friction cone's
+// edge over a range of μ, where the real map has no tangent map. Continued
+// down from μ = 16, the branch turns at the stick end's corner and goes on
+// along the edge to the end of the range; continued up from μ = 8, it runs
+// along the edge to the same corner, where the other impact starts to
+// stick, and on above it as the real map's orbit with its multipliers.
+// Integrated at rtol 1e-13, so that the reference runs can tell the cone's
+// edge to 1e-9.
+TEST(RigidPendulumSpin, ThroughTheStickEndTheBranchFollowsTheImpulseOnTheConesEdge) {
+  const std::vector<std::string> assignments = {"model=rigid", "radius=0.02", "spin=free", "V0=2",
+                                                "integrator.rtol=1e-13", "integrator.atol=1e-15", "mu=16"};
+  ContinuationJob job;
+  job.parameter = "mu";
+  job.from = 16.0;
+  job.to = 8.0;
+  job.period = 2;
+  job.transient_periods = 2000;
+  const ContinuationResult down =
+      continue_orbit(pendulum_scene(assignments), job).branches.at(0).result;
+  EXPECT_EQ(down.stop_reason, StopReason::end_of_range) << down.stop_detail;
+  ASSERT_FALSE(down.branch.empty());
+  EXPECT_DOUBLE_EQ(down.branch.back().parameter, 8.0);
+  const BifurcationPoint* stick_end = first_of_type(down, BifurcationType::stick_end);
+  ASSERT_NE(stick_end, nullptr);
+  ASSERT_TRUE(stick_end->located);
+  EXPECT_GE(expect_real_orbits_on_the_cones_edge(down, stick_end->parameter - 1e-3, assignments),
+            10);
+
+  std::vector<std::string> from_below = assignments;
+  from_below.back() = "mu=8";
+  job.from = 8.0;
+  job.to = 16.0;
+  const ContinuationResult up =
+      continue_orbit(pendulum_scene(from_below), job).branches.at(0).result;
+  EXPECT_EQ(up.stop_reason, StopReason::end_of_range) << up.stop_detail;
+  ASSERT_FALSE(up.branch.empty());
+  EXPECT_DOUBLE_EQ(up.branch.back().parameter, 16.0);
+  const BifurcationPoint* stick_onset = first_of_type(up, BifurcationType::stick_onset);
+  ASSERT_NE(stick_onset, nullptr);
+  ASSERT_TRUE(stick_onset->located);
+  // the same corner, reached from the other edge orbit
+  EXPECT_NEAR(stick_onset->parameter, stick_end->parameter,
+              stick_onset->error_estimate + stick_end->error_estimate);
+  EXPECT_GE(expect_real_orbits_on_the_cones_edge(up, stick_onset->parameter - 1e-3, from_below),
+            10);
+  // above it every impact sticks inside the cone: the real map's multipliers
+  for (const BranchPoint& point : up.branch) {
+    if (point.parameter <= stick_onset->parameter + 1e-3) continue;
+    for (const auto& multiplier : point.multipliers)
+      EXPECT_TRUE(std::isfinite(multiplier.real())) << "mu = " << point.parameter;
+  }
+}
+
 }  // namespace
 }  // namespace impactlab
