@@ -215,19 +215,35 @@ class BranchDriver {
       const Vec predicted = last.y + h * tau;
       Correction c = corrector_.correct(predicted, tau, predicted, {}, &signature_);
       bool ok = c.converged;
+      // where an impact starts or stops sticking and an impulse can sit on
+      // the friction cone's edge, the branch turns at a corner, past which
+      // the step has landed: on the forced stick's map the corner is
+      // crossed there (cross_corner); on the real map, where an impact
+      // stops sticking, the forced map's branch takes over from the last
+      // point (follow_cone_edge)
+      if (ok && c.orbit.stick_impacts != nodes_.back().orbit.stick_impacts) {
+        if (on_cone_edge_) {
+          if (cross_corner(direction, &c, std::fabs(h * tau[n_]))) {
+            if (left_cone_edge_) return finish();
+            continue;
+          }
+          ok = false;
+        } else if (c.orbit.stick_impacts < nodes_.back().orbit.stick_impacts) {
+          // where no edge runs on from there, the step is taken as it is
+          if (auto along_edge = follow_cone_edge(nodes_.back().orbit.stuck_witness, false))
+            return std::move(*along_edge);
+        }
+      }
       if (ok) {
         const auto turned = corrector_.tangent_at(c, tau);
         ok = turned && turned->dot(tau) > std::cos(30.0 * std::numbers::pi / 180.0);
       }
-      // where an impact starts or stops sticking and an impulse can sit on
-      // the friction cone's edge, the branch has a corner: approached by
-      // smaller steps, then crossed at fixed parameter (cross_corner)
-      if (ok && c.orbit.stick_impacts != nodes_.back().orbit.stick_impacts &&
-          (on_cone_edge_ || (problem_.stick_forced_at &&
-                             c.orbit.stick_impacts < nodes_.back().orbit.stick_impacts)))
-        ok = false;
       if (ok && accept(c, tau, h)) {
         if (left_cone_edge_) return finish();
+        // the forced map's branch is wanted only through a corner onto the
+        // edge, which lies within the first steps from an interior point
+        if (on_cone_edge_ && !entered_cone_edge_ && nodes_.size() > 4)
+          return stop(StopReason::branch_point, "no corner onto the friction cone's edge");
         if (nodes_.back().orbit.one_sided) return stop_on_cone_edge();
         // a gap or impact speed about to vanish: end at the grazing point
         // before Newton meets the square-root singularity
@@ -252,7 +268,7 @@ class BranchDriver {
                         c.orbit.signature + "'; no grazing point located");
       if (h < steps_.smallest) {
         // the corner of an impulse reaching the friction cone's edge
-        if (on_cone_edge_ && cross_corner(direction)) {
+        if (on_cone_edge_ && cross_corner(direction, nullptr, 0.0)) {
           if (left_cone_edge_) return finish();
           h = steps_.initial;
           continue;
@@ -277,10 +293,12 @@ class BranchDriver {
   }
 
   // On the forced stick's map, where the stick impacts per orbit change,
-  // the branch turns at a corner, and no predictor along the tangent
-  // reaches the other side. From the last point, p is stepped at fixed
-  // value (4, 40 and 400 smallest steps on): a point past the corner is
-  // accepted. Fewer stick impacts: another impact starts to slide, and the
+  // the branch turns at a corner. A point past it is accepted: `landed`, a
+  // step's corrected point there, where it lies within twice the step's
+  // `reach` in p (past a corner the branch can run almost normal to the
+  // step, and the corrector far along it); or else one from the last point
+  // at fixed p, `reach` on, then 4, 40 and 400 smallest steps on. Fewer
+  // stick impacts: another impact starts to slide, and the
   // forced impulse goes onto the cone's edge (`stick_end`; from here on no
   // multipliers). More: another impact starts to stick, the forced impulse
   // leaves the edge (`stick_onset`), and the real map takes over. The
@@ -290,7 +308,7 @@ class BranchDriver {
   // trial converging with that side's stick impacts, to 1e-13 relative. A
   // step at fixed p that meets no corner is accepted as a plain point.
   // False where none converges.
-  bool cross_corner(double direction) {
+  bool cross_corner(double direction, const Correction* landed, double reach) {
     const Node a = nodes_.back();
     auto fixed_parameter = [](BranchCorrector<Size>& corrector, double p, const Vec& from,
                               const std::string* signature) {
@@ -298,10 +316,18 @@ class BranchDriver {
       y[y.size() - 1] = p;
       return corrector.correct(y, corrector.along_parameter(1.0), y, {}, signature);
     };
-    for (double multiple : {4.0, 40.0, 400.0}) {
-      const double dp = multiple * steps_.smallest * direction;
-      Correction past = fixed_parameter(corrector_, a.y[n_] + dp, a.y, &signature_);
+    std::vector<double> steps;  // fixed-p steps from a, after `landed`
+    if (reach > 0.0) steps.push_back(reach);
+    for (double multiple : {4.0, 40.0, 400.0}) steps.push_back(multiple * steps_.smallest);
+    const bool landed_near =
+        landed != nullptr && std::fabs(landed->y[n_] - a.y[n_]) <= 2.0 * reach;
+    for (std::size_t attempt = landed_near ? 0 : 1; attempt <= steps.size(); ++attempt) {
+      Correction past = attempt == 0 ? *landed
+                                     : fixed_parameter(corrector_,
+                                                       a.y[n_] + steps[attempt - 1] * direction,
+                                                       a.y, &signature_);
       if (!past.converged) continue;
+      const double dp = past.y[n_] - a.y[n_];
       const int sticks = past.orbit.stick_impacts;
       if (sticks == a.orbit.stick_impacts)
         return accept(past, corrector_.along_parameter(direction), std::fabs(dp));
@@ -367,7 +393,8 @@ class BranchDriver {
   // through an impact that starts to slide (located there as `stick_end`).
   // Back on the real map from where another impact starts to stick.
   std::optional<ContinuationResult> follow_cone_edge(int witness, bool on_edge) {
-    if (on_cone_edge_ || !problem_.stick_forced_at) return std::nullopt;
+    if (on_cone_edge_ || edge_tried_ || !problem_.stick_forced_at) return std::nullopt;
+    edge_tried_ = true;  // once: where it finds no edge, it will not later
     const auto edge = problem_.stick_forced_at(witness);
     if (!edge) return std::nullopt;
     ContinuationRequest along_edge = request_;
@@ -426,6 +453,7 @@ class BranchDriver {
   const ContinuationProblem* real_problem_ = nullptr;  // there: the map without the forced stick
   bool entered_cone_edge_ = false;  // its points are on the edge (no multipliers)
   bool left_cone_edge_ = false;
+  bool edge_tried_ = false;  // follow_cone_edge was tried from this branch
   int n_ = 2;                     // N: the state's components on the section
   double from_ = 0.0, to_ = 1.0;  // the range in branch units
   int stalled_ = 0;               // consecutive points reached by tiny steps

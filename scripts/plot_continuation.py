@@ -68,7 +68,7 @@ def runs_of_values(values):
     """(start, stop) index pairs of the runs of equal values in an array."""
     edges = np.flatnonzero(np.diff(np.asarray(values, dtype=int))) + 1
     starts = np.concatenate(([0], edges))
-    stops = np.concatenate((edges, [len(mask)]))
+    stops = np.concatenate((edges, [len(values)]))
     return zip(starts, stops)
 
 
