@@ -2,7 +2,8 @@
 continuation point that could not be located (empty q in points.csv) is not
 drawn at q = 0, off the branch; axes carry quantities and units from the
 run's record; a rest is named as one; points that did not settle are marked;
-every script answers --help."""
+a branch's points without multipliers (the friction cone's edge) are
+dotted, and another column is drawn with --y; every script answers --help."""
 import importlib.util
 import pathlib
 import subprocess
@@ -37,6 +38,29 @@ def test_a_point_not_located_is_not_drawn(tmp_path):
     np.testing.assert_array_equal(marked["fold"][0], [5.5])
     np.testing.assert_array_equal(marked["fold"][1], [0.25])
     assert not_located == 1
+
+
+def test_points_without_multipliers_are_dotted_and_another_column_drawn(tmp_path):
+    plot = load("plot_continuation")
+    branch = tmp_path / "branch.csv"
+    branch.write_text("mu,q,qdot,state3,period,branch,stable,multiplier1_re\n"
+                      "4,0.04,-0.02,20,2,0,0,\n5,0.04,-0.02,12,2,0,0,\n"
+                      "14,0.04,-0.02,-60,2,0,1,0.98\n16,0.04,-0.02,-60,2,0,1,0.98\n")
+    figure = plot.draw_continuation(plot.branches_of(plot.read(branch)), None, {}, "mu",
+                                    "theta", y="state3", y_label="spin rate (rad/s)")
+    lines = [line for line in figure.axes[0].get_lines() if len(line.get_xdata())]
+    styles = {line.get_linestyle(): list(line.get_ydata()) for line in lines}
+    # the edge's two points and the one that joins them to the stable part
+    assert styles[":"] == [20.0, 12.0, -60.0]
+    assert styles["-"] == [-60.0, -60.0]
+    assert figure.axes[0].get_ylabel() == "spin rate (rad/s) on the section"
+    # a column branch.csv lacks is bad input naming it
+    done = subprocess.run([sys.executable, str(SCRIPTS / "plot_continuation.py"), str(branch),
+                           str(tmp_path / "out.png"), "mu", "theta", "--y", "spin", "spin (rad/s)"],
+                          capture_output=True, text=True)
+    assert done.returncode == 2
+    assert "--y = spin" in done.stderr
+    assert not (tmp_path / "out.png").exists()
 
 
 def test_axes_carry_quantities_and_units_from_the_runs_record(cli):
