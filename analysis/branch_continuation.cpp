@@ -91,7 +91,7 @@ class BranchDriver {
     b.impacts = node.orbit.impacts;
     b.contact_phases = node.orbit.contact_phases;
     // a forced stick's monodromy is not the real map's, which has none
-    b.multipliers = on_cone_edge_ && entered_cone_edge_
+    b.multipliers = forced_map_ && entered_cone_edge_
                         ? missing_multipliers(node.orbit.monodromy.size())
                         : multipliers_of(node.orbit);
     b.stable = std::all_of(b.multipliers.begin(), b.multipliers.end(),
@@ -116,8 +116,8 @@ class BranchDriver {
     // on the forced stick's map the monodromy is not the real map's: only
     // the contact phases are watched there (a change of the stick impacts
     // is a corner, cross_corner)
-    if (!nodes_.empty() && !on_cone_edge_) locator_.detect(nodes_.back(), node, step, result_.points);
-    if (!nodes_.empty() && on_cone_edge_) note_contact_changes(node, step);
+    if (!nodes_.empty() && !forced_map_) locator_.detect(nodes_.back(), node, step, result_.points);
+    if (!nodes_.empty() && forced_map_) note_contact_changes(node, step);
     move_section_off_events(node);
     nodes_.push_back(node);
     result_.branch.push_back(branch_point(node, step));
@@ -222,7 +222,7 @@ class BranchDriver {
       // stops sticking, the forced map's branch takes over from the last
       // point (follow_cone_edge)
       if (ok && c.orbit.stick_impacts != nodes_.back().orbit.stick_impacts) {
-        if (on_cone_edge_) {
+        if (forced_map_) {
           if (cross_corner(direction, &c, std::fabs(h * tau[n_]))) {
             if (left_cone_edge_) return finish();
             continue;
@@ -242,7 +242,7 @@ class BranchDriver {
         if (left_cone_edge_) return finish();
         // the forced map's branch is wanted only through a corner onto the
         // edge, which lies within the first steps from an interior point
-        if (on_cone_edge_ && !entered_cone_edge_ && nodes_.size() > 4)
+        if (forced_map_ && !entered_cone_edge_ && nodes_.size() > 4)
           return stop(StopReason::branch_point, "no corner onto the friction cone's edge");
         if (nodes_.back().orbit.one_sided) return stop_on_cone_edge();
         // a gap or impact speed about to vanish: end at the grazing point
@@ -268,7 +268,7 @@ class BranchDriver {
                         c.orbit.signature + "'; no grazing point located");
       if (h < steps_.smallest) {
         // the corner of an impulse reaching the friction cone's edge
-        if (on_cone_edge_ && cross_corner(direction, nullptr, 0.0)) {
+        if (forced_map_ && cross_corner(direction, nullptr, 0.0)) {
           if (left_cone_edge_) return finish();
           h = steps_.initial;
           continue;
@@ -363,8 +363,13 @@ class BranchDriver {
                               : ": an impact starts to stick, the impulse on the friction "
                                 "cone's edge leaves it") +
                    " (a corner of the branch, located at fixed parameter)";
-      (onto_edge ? entered_cone_edge_ : left_cone_edge_) = true;
-      if (!accept(past, corrector_.along_parameter(direction), std::fabs(dp))) return false;
+      real_map_evaluations_ += real.map_evaluations();
+      bool& crossed = onto_edge ? entered_cone_edge_ : left_cone_edge_;
+      crossed = true;  // before accept: the point past the corner is on its side
+      if (!accept(past, corrector_.along_parameter(direction), std::fabs(dp))) {
+        crossed = false;
+        return false;
+      }
       result_.points.push_back(point);
       return true;
     }
@@ -393,7 +398,7 @@ class BranchDriver {
   // through an impact that starts to slide (located there as `stick_end`).
   // Back on the real map from where another impact starts to stick.
   std::optional<ContinuationResult> follow_cone_edge(int witness, bool on_edge) {
-    if (on_cone_edge_ || edge_tried_ || !problem_.stick_forced_at) return std::nullopt;
+    if (forced_map_ || edge_tried_ || !problem_.stick_forced_at) return std::nullopt;
     edge_tried_ = true;  // once: where it finds no edge, it will not later
     const auto edge = problem_.stick_forced_at(witness);
     if (!edge) return std::nullopt;
@@ -402,7 +407,7 @@ class BranchDriver {
     along_edge.from = result_.branch.back().parameter;
     along_edge.max_points = request_.max_points - static_cast<int>(result_.branch.size()) + 1;
     BranchDriver follow(*edge, along_edge);
-    follow.on_cone_edge_ = true;
+    follow.forced_map_ = true;
     follow.real_problem_ = &problem_;
     follow.entered_cone_edge_ = on_edge;
     ContinuationResult rest = follow.run_from_start();
@@ -414,7 +419,7 @@ class BranchDriver {
       off_edge.max_points = along_edge.max_points - static_cast<int>(rest.branch.size()) + 1;
       append(rest, BranchDriver(problem_, off_edge).run_from_start());
     }
-    result_.map_evaluations = corrector_.map_evaluations();
+    result_.map_evaluations = map_evaluations();
     append(result_, std::move(rest));
     return std::move(result_);
   }
@@ -436,8 +441,13 @@ class BranchDriver {
     return finish();
   }
 
+  // this driver's own, the real map's bisections at a corner included
+  [[nodiscard]] int map_evaluations() const {
+    return corrector_.map_evaluations() + real_map_evaluations_;
+  }
+
   ContinuationResult finish() {
-    result_.map_evaluations = corrector_.map_evaluations();
+    result_.map_evaluations = map_evaluations();
     return std::move(result_);
   }
 
@@ -447,13 +457,17 @@ class BranchDriver {
   StepControl steps_;
   BifurcationLocator<Size> locator_;
   GrazingSystem<Size> grazing_;
-  // this driver follows a stick forced on the friction cone's edge
-  // (follow_cone_edge), and the forced impulse has left the edge
-  bool on_cone_edge_ = false;
-  const ContinuationProblem* real_problem_ = nullptr;  // there: the map without the forced stick
-  bool entered_cone_edge_ = false;  // its points are on the edge (no multipliers)
+  // Along the friction cone's edge (follow_cone_edge): this driver runs on
+  // the map with a wall's impacts forced to stick, `real_problem_` the map
+  // without; its points are on the edge from `entered_cone_edge_` on, and
+  // past `left_cone_edge_` the real map takes over. A driver on the real
+  // map tries the edge once (`edge_tried_`).
+  bool forced_map_ = false;
+  const ContinuationProblem* real_problem_ = nullptr;
+  bool entered_cone_edge_ = false;
   bool left_cone_edge_ = false;
-  bool edge_tried_ = false;  // follow_cone_edge was tried from this branch
+  bool edge_tried_ = false;
+  int real_map_evaluations_ = 0;
   int n_ = 2;                     // N: the state's components on the section
   double from_ = 0.0, to_ = 1.0;  // the range in branch units
   int stalled_ = 0;               // consecutive points reached by tiny steps
