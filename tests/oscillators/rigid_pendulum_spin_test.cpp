@@ -30,6 +30,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <iomanip>
 #include <sstream>
 #include <cmath>
@@ -747,43 +748,44 @@ TEST(RigidPendulumSpin, AnImpactOnTheConesEdgeHasNoTangentMap) {
   EXPECT_TRUE(std::isfinite(sliding.exponent));
 }
 
-// Continued down in μ from 16, the period-2 orbit of V0 = 2 sticks at both
-// walls until the friction a stick needs exceeds μ; there an impact starts to
-// slide (stick_end). At the located μ, the impact's friction cone condition
-// |J_T| = μ J_N, solved by hand from the located orbit's impacts, holds.
-TEST(RigidPendulumSpin, ALocatedStickEndIsWhereTheImpulseReachesTheConesEdge) {
-  const std::vector<std::string> assignments = {"model=rigid", "radius=0.02", "spin=free", "V0=2",
-                                                "mu=16"};
+// The free-spin pendulum's branch of the period-2 orbit in μ from `from` to
+// `to`, the scene `assignments` and μ = from, its start from a 2000-period
+// transient.
+ContinuationResult mu_branch(std::vector<std::string> assignments, double from, double to) {
+  std::ostringstream start;
+  start << "mu=" << std::setprecision(17) << from;
+  assignments.push_back(start.str());
   ContinuationJob job;
   job.parameter = "mu";
-  job.from = 16.0;
-  job.to = 12.0;
+  job.from = from;
+  job.to = to;
   job.period = 2;
   job.transient_periods = 2000;
-  const ContinuationJobResult continued = continue_orbit(pendulum_scene(assignments), job);
-  const ContinuationResult& branch = continued.branches.at(0).result;
-  const auto stick_end = std::find_if(branch.points.begin(), branch.points.end(),
-                                      [](const BifurcationPoint& point) {
-                                        return point.type == BifurcationType::stick_end;
-                                      });
-  ASSERT_NE(stick_end, branch.points.end()) << branch.stop_detail;
-  ASSERT_TRUE(stick_end->located);
-  const double mu = stick_end->parameter;
-  // on the edge, no multipliers
-  for (const auto& multiplier : stick_end->multipliers) EXPECT_TRUE(std::isnan(multiplier.real()));
+  return continue_orbit(pendulum_scene(assignments), job).branches.at(0).result;
+}
 
-  // the located orbit, run at the located μ from its section state (phase 0)
-  std::vector<std::string> at = assignments;
+// The real system (no forced stick) run at μ from a section state (phase 0)
+// for the orbit's two periods: how it ends, and the friction each impact on
+// the way needs to stick (the impulse law solved by hand).
+struct TwoPeriods {
+  Termination termination = Termination::completed;
+  std::array<double, 3> start{}, end{};  // θ, θ̇, φ̇
+  std::vector<double> needed;
+};
+TwoPeriods run_two_periods(const std::vector<double>& state, double mu,
+                           std::vector<std::string> assignments) {
   std::ostringstream value;
   value << "mu=" << std::setprecision(17) << mu;
-  at.push_back(value.str());
-  const Scene scene = pendulum_scene(at);
+  assignments.push_back(value.str());
+  const Scene scene = pendulum_scene(assignments);
   using System = FreeSpinPendulum;
   const System system(rigid_pendulum_parameters(scene));
   const FlowSetup setup = flow_setup(scene);
   const double period = 2.0 * std::numbers::pi / system.parameters().omega;
-  ASSERT_EQ(stick_end->state.size(), 3u);
-  const System::State x{stick_end->state[0], stick_end->state[1], stick_end->state[2], 0.0, 0.0};
+  TwoPeriods result;
+  EXPECT_EQ(state.size(), 3u);
+  if (state.size() != 3u) return result;
+  const System::State x{state[0], state[1], state[2], 0.0, 0.0};
   EventLog log(true);
   const auto run = with_flow<System>(setup.method, stepper_settings(system, setup),
                                      [&](auto& stepper) {
@@ -791,70 +793,72 @@ TEST(RigidPendulumSpin, ALocatedStickEndIsWhereTheImpulseReachesTheConesEdge) {
                                                        0.0, 2.0 * period, loop_options(setup),
                                                        log);
                                      });
-  ASSERT_EQ(run.termination, Termination::completed);
-  double nearest = INFINITY;
-  for (const EventRecord& e : log.records())
-    if (e.kind == EventKind::impact)
-      nearest = std::min(nearest, std::fabs(friction_a_stick_needs(e, scene) - mu));
-  EXPECT_LE(nearest, 1e-9);  // measured: 3.2e-10 at μ = 13.629715726
-}
-
-// The points of a branch below μ_max that hold an impulse on the friction
-// cone's edge, checked against the real system, not the forced stick the
-// branch follows them by: every fourth, run at its μ from its section state
-// for the orbit's two periods, comes back to it; one impact needs μ to stick
-// (the closed-form impulse law by hand) and the other more, so it slides;
-// and they have no multipliers. Returns how many were checked.
-int expect_real_orbits_on_the_cones_edge(const ContinuationResult& branch, double mu_max,
-                                         const std::vector<std::string>& assignments) {
-  int checked = 0;
-  for (std::size_t i = 0; i < branch.branch.size(); i += 4) {
-    const BranchPoint& point = branch.branch[i];
-    if (point.parameter > mu_max) continue;
-    for (const auto& multiplier : point.multipliers) EXPECT_TRUE(std::isnan(multiplier.real()));
-    std::vector<std::string> at = assignments;
-    std::ostringstream value;
-    value << "mu=" << std::setprecision(17) << point.parameter;
-    at.push_back(value.str());
-    const Scene scene = pendulum_scene(at);
-    using System = FreeSpinPendulum;
-    const System system(rigid_pendulum_parameters(scene));
-    const FlowSetup setup = flow_setup(scene);
-    const double period = 2.0 * std::numbers::pi / system.parameters().omega;
-    EXPECT_EQ(point.state.size(), 3u);
-    if (point.state.size() != 3u) return checked;
-    const System::State x{point.state[0], point.state[1], point.state[2], 0.0, 0.0};
-    EventLog log(true);
-    const auto run = with_flow<System>(setup.method, stepper_settings(system, setup),
-                                       [&](auto& stepper) {
-                                         return simulate(system, stepper, x, System::Mode::free,
-                                                         0.0, 2.0 * period, loop_options(setup),
-                                                         log);
-                                       });
-    EXPECT_EQ(run.termination, Termination::completed);
-    for (std::size_t k = 0; k < 3; ++k)
-      EXPECT_NEAR(run.state[k], x[k], 1e-9 * (1.0 + std::fabs(x[k]))) << "mu = " << point.parameter;
-    std::vector<double> needed;
-    for (const EventRecord& e : log.records())
-      if (e.kind == EventKind::impact) needed.push_back(friction_a_stick_needs(e, scene));
-    EXPECT_EQ(needed.size(), 2u);
-    if (needed.size() != 2u) return checked;
-    const double mu = point.parameter;
-    // measured at rtol 1e-13: at most 1.1e-10 μ here, and the return above
-    // to 1.7e-10; at the scene's rtol 1e-10 both are near 1e-8 (the
-    // integrator's error in the impulse), and the real system's spin then
-    // drifts off the upward branch's orbit by 3e-8 per orbit
-    EXPECT_NEAR(std::min(needed[0], needed[1]), mu, 1e-9 * mu) << "mu = " << mu;
-    EXPECT_GT(std::max(needed[0], needed[1]), mu * (1.0 + 1e-6)) << "mu = " << mu;
-    ++checked;
+  result.termination = run.termination;
+  for (std::size_t k = 0; k < 3; ++k) {
+    result.start[k] = x[k];
+    result.end[k] = run.state[k];
   }
-  return checked;
+  for (const EventRecord& e : log.records())
+    if (e.kind == EventKind::impact) result.needed.push_back(friction_a_stick_needs(e, scene));
+  return result;
 }
 
 const BifurcationPoint* first_of_type(const ContinuationResult& branch, BifurcationType type) {
   for (const BifurcationPoint& point : branch.points)
     if (point.type == type) return &point;
   return nullptr;
+}
+
+const std::vector<std::string> v0_2_free_spin = {"model=rigid", "radius=0.02", "spin=free",
+                                                 "V0=2"};
+
+// Continued down in μ from 16, the period-2 orbit of V0 = 2 sticks at both
+// walls until the friction a stick needs exceeds μ; there an impact starts to
+// slide (stick_end). At the located μ, the impact's friction cone condition
+// |J_T| = μ J_N, solved by hand from the located orbit's impacts, holds.
+TEST(RigidPendulumSpin, ALocatedStickEndIsWhereTheImpulseReachesTheConesEdge) {
+  const ContinuationResult branch = mu_branch(v0_2_free_spin, 16.0, 12.0);
+  const BifurcationPoint* stick_end = first_of_type(branch, BifurcationType::stick_end);
+  ASSERT_NE(stick_end, nullptr) << branch.stop_detail;
+  ASSERT_TRUE(stick_end->located);
+  // on the edge, no multipliers
+  for (const auto& multiplier : stick_end->multipliers) EXPECT_TRUE(std::isnan(multiplier.real()));
+  // the located orbit, run at the located μ
+  const TwoPeriods run = run_two_periods(stick_end->state, stick_end->parameter, v0_2_free_spin);
+  ASSERT_EQ(run.termination, Termination::completed);
+  double nearest = INFINITY;
+  for (double needed : run.needed) nearest = std::min(nearest, std::fabs(needed - stick_end->parameter));
+  EXPECT_LE(nearest, 1e-9);  // measured: 3.2e-10 at μ = 13.629715726
+}
+
+// The points of a branch below μ_max, which hold an impulse on the friction
+// cone's edge, checked against the real system, not the forced stick the
+// branch follows them by: every fourth comes back to itself after the
+// orbit's two periods; one impact needs μ to stick and the other more, so
+// it slides; and they have no multipliers. Returns how many were checked.
+int expect_real_orbits_on_the_cones_edge(const ContinuationResult& branch, double mu_max,
+                                         const std::vector<std::string>& assignments) {
+  int checked = 0;
+  for (std::size_t i = 0; i < branch.branch.size(); i += 4) {
+    const BranchPoint& point = branch.branch[i];
+    const double mu = point.parameter;
+    if (mu > mu_max) continue;
+    for (const auto& multiplier : point.multipliers) EXPECT_TRUE(std::isnan(multiplier.real()));
+    const TwoPeriods run = run_two_periods(point.state, mu, assignments);
+    EXPECT_EQ(run.termination, Termination::completed);
+    for (std::size_t k = 0; k < 3; ++k)
+      EXPECT_NEAR(run.end[k], run.start[k], 1e-9 * (1.0 + std::fabs(run.start[k]))) << "mu = " << mu;
+    EXPECT_EQ(run.needed.size(), 2u);
+    if (run.needed.size() != 2u) return checked;
+    // measured at rtol 1e-13: at most 1.1e-10 μ here, and the return above
+    // to 1.7e-10; at the scene's rtol 1e-10 both are near 1e-8 (the
+    // integrator's error in the impulse), and the real system's spin then
+    // drifts off the upward branch's orbit by 3e-8 per orbit
+    EXPECT_NEAR(std::min(run.needed[0], run.needed[1]), mu, 1e-9 * mu) << "mu = " << mu;
+    EXPECT_GT(std::max(run.needed[0], run.needed[1]), mu * (1.0 + 1e-6)) << "mu = " << mu;
+    ++checked;
+  }
+  return checked;
 }
 
 // Below the stick end the orbit holds one impulse on the friction cone's
@@ -866,51 +870,39 @@ const BifurcationPoint* first_of_type(const ContinuationResult& branch, Bifurcat
 // Integrated at rtol 1e-13, so that the reference runs can tell the cone's
 // edge to 1e-9.
 TEST(RigidPendulumSpin, ThroughTheStickEndTheBranchFollowsTheImpulseOnTheConesEdge) {
-  const std::vector<std::string> assignments = {"model=rigid", "radius=0.02", "spin=free", "V0=2",
-                                                "integrator.rtol=1e-13", "integrator.atol=1e-15", "mu=16"};
-  ContinuationJob job;
-  job.parameter = "mu";
-  job.from = 16.0;
-  job.to = 8.0;
-  job.period = 2;
-  job.transient_periods = 2000;
-  const ContinuationResult down =
-      continue_orbit(pendulum_scene(assignments), job).branches.at(0).result;
-  EXPECT_EQ(down.stop_reason, StopReason::end_of_range) << down.stop_detail;
-  ASSERT_FALSE(down.branch.empty());
-  EXPECT_DOUBLE_EQ(down.branch.back().parameter, 8.0);
-  const BifurcationPoint* stick_end = first_of_type(down, BifurcationType::stick_end);
-  ASSERT_NE(stick_end, nullptr);
-  ASSERT_TRUE(stick_end->located);
-  EXPECT_GE(expect_real_orbits_on_the_cones_edge(down, stick_end->parameter - 1e-3, assignments),
-            10);
-
-  std::vector<std::string> from_below = assignments;
-  from_below.back() = "mu=8";
-  job.from = 8.0;
-  job.to = 16.0;
-  const ContinuationResult up =
-      continue_orbit(pendulum_scene(from_below), job).branches.at(0).result;
-  EXPECT_EQ(up.stop_reason, StopReason::end_of_range) << up.stop_detail;
-  ASSERT_FALSE(up.branch.empty());
-  EXPECT_DOUBLE_EQ(up.branch.back().parameter, 16.0);
-  const BifurcationPoint* stick_onset = first_of_type(up, BifurcationType::stick_onset);
-  ASSERT_NE(stick_onset, nullptr);
-  ASSERT_TRUE(stick_onset->located);
-  // the same corner, reached from the other edge orbit
-  EXPECT_NEAR(stick_onset->parameter, stick_end->parameter,
-              stick_onset->error_estimate + stick_end->error_estimate);
-  EXPECT_GE(expect_real_orbits_on_the_cones_edge(up, stick_onset->parameter - 1e-3, from_below),
-            10);
-  // no point leaves the range; above the corner every impact sticks inside
-  // the cone: the real map's multipliers
-  for (const BranchPoint& point : up.branch) {
-    EXPECT_GE(point.parameter, 8.0 - 1e-12);
-    EXPECT_LE(point.parameter, 16.0 + 1e-12);
-    if (point.parameter <= stick_onset->parameter + 1e-3) continue;
-    for (const auto& multiplier : point.multipliers)
-      EXPECT_TRUE(std::isfinite(multiplier.real())) << "mu = " << point.parameter;
+  std::vector<std::string> assignments = v0_2_free_spin;
+  assignments.insert(assignments.end(), {"integrator.rtol=1e-13", "integrator.atol=1e-15"});
+  struct Direction {
+    double from, to;
+    BifurcationType corner;  // the stick change met on the way
+  };
+  std::vector<double> corners;
+  for (const Direction& direction : {Direction{16.0, 8.0, BifurcationType::stick_end},
+                                     Direction{8.0, 16.0, BifurcationType::stick_onset}}) {
+    const ContinuationResult branch = mu_branch(assignments, direction.from, direction.to);
+    EXPECT_EQ(branch.stop_reason, StopReason::end_of_range) << branch.stop_detail;
+    ASSERT_FALSE(branch.branch.empty());
+    EXPECT_DOUBLE_EQ(branch.branch.back().parameter, direction.to);
+    const BifurcationPoint* corner = first_of_type(branch, direction.corner);
+    ASSERT_NE(corner, nullptr);
+    ASSERT_TRUE(corner->located);
+    corners.push_back(corner->parameter);
+    EXPECT_GE(expect_real_orbits_on_the_cones_edge(branch, corner->parameter - 1e-3, assignments),
+              10);
+    // no point leaves the range; above the corner every impact sticks
+    // inside the cone: the real map's multipliers
+    for (const BranchPoint& point : branch.branch) {
+      EXPECT_GE(point.parameter, 8.0 - 1e-12);
+      EXPECT_LE(point.parameter, 16.0 + 1e-12);
+      if (point.parameter <= corner->parameter + 1e-3) continue;
+      for (const auto& multiplier : point.multipliers)
+        EXPECT_TRUE(std::isfinite(multiplier.real())) << "mu = " << point.parameter;
+    }
   }
+  // the same corner, reached from either side (the two edge orbits, one per
+  // wall, meet the all-stick orbit there)
+  ASSERT_EQ(corners.size(), 2u);
+  EXPECT_NEAR(corners[0], corners[1], 1e-9 * corners[0]);
 }
 
 }  // namespace
