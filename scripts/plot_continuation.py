@@ -98,8 +98,10 @@ def draw_continuation(branches, points, meta, param, q_name, sweep=None, y="q", 
         colour = colours[index % len(colours)]
         # 0 unstable, 1 stable, 2 no multipliers (the friction cone's edge)
         style = np.where(np.asarray(rows["stable"]) == 1, 1, 0)
-        if "multiplier1_re" in rows:
-            style = np.where(np.isnan(np.asarray(rows["multiplier1_re"], dtype=float)), 2, style)
+        # branch.csv's multiplier1_re, or a Python result's complex multiplier1
+        multiplier = rows["multiplier1_re"] if "multiplier1_re" in rows else rows.get("multiplier1")
+        if multiplier is not None:
+            style = np.where(np.isnan(np.real(np.asarray(multiplier, dtype=complex))), 2, style)
         for start, stop in runs_of_values(style):
             # overlap one point so that the pieces join
             piece = slice(start, min(stop + 1, len(style)))

@@ -268,9 +268,12 @@ class WorkPrecisionResult(Result):
 
 
 class ContinuationResult(Result):
-    """continue_'s result. plot(): the branches, stable solid and unstable
-    dashed, with the located points (which="branches"; sweep=a 1D sweep's
-    result draws its points underneath), the two-parameter curves
+    """continue_'s result. plot(): the branches, stable solid, unstable
+    dashed and without multipliers (an impulse on the friction cone's edge)
+    dotted, with the located points (which="branches"; sweep=a 1D sweep's
+    result draws its points underneath; y=another column of the branches,
+    such as "state3", the rigid pendulum's spin, with y_label its axis
+    label), the two-parameter curves
     (which="curve", with param2; sweep=a 2D sweep's result draws its period
     map underneath), or each grazing point's predicted scenario beside a 1D
     sweep through it (which="grazing"; an impact-section sweep's impact
@@ -278,7 +281,7 @@ class ContinuationResult(Result):
 
     FIGURES = ("branches", "curve", "grazing")
 
-    def _draw(self, which, sweep=None):
+    def _draw(self, which, sweep=None, y="q", y_label=None):
         from .figures import plot_continuation, plot_curve, plot_grazing
 
         if sweep is not None and not isinstance(sweep, SweepResult):
@@ -290,9 +293,13 @@ class ContinuationResult(Result):
                 if sweep.bifurcation is None:
                     raise ValueError("sweep: a 2D map; the branches are drawn over a 1D sweep")
                 underneath = sweep.bifurcation
+            columns = list(self.branches[0]) if self.branches else []
+            if y not in columns:
+                raise ValueError("y = {!r}: not a column of the branches ({})".format(
+                    y, ", ".join(columns)))
             return plot_continuation.draw_continuation(
                 self.branches, self.points, record, self.parameter, self.scene.main_coordinate,
-                underneath)
+                underneath, y, y_label)
         if which == "grazing":
             if not self.grazing:
                 raise ValueError("which = 'grazing': the run located no grazing point")

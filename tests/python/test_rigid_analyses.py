@@ -1,7 +1,8 @@
 """The rigid-body pendulum in the analyses from Python: the numbers of the
 CLI's files bit for bit (periodic with the spin free: three multipliers, one
-of them the neutral spin's 1; continue with the spin held), a sweep over the
-friction coefficient, and the refusals as ValueError naming the option."""
+of them the neutral spin's 1; continue with the spin held, and through the
+stick end onto the friction cone's edge), a sweep over the friction
+coefficient, and the refusals as ValueError naming the option."""
 import pytest
 
 import impactlab
@@ -48,6 +49,28 @@ def test_friction_sweep_equals_cli(cli):
     summary = read_csv(out / "summary.csv")
     same_numbers(summary["mu"], sweep.summary["mu"])
     same_numbers(summary["period"], sweep.summary["period"])
+
+
+def test_continue_through_the_stick_end_equals_cli_and_draws_the_spin(cli):
+    keys = {"model": "rigid", "spin": "free", "radius": 0.02, "V0": 2, "mu": 16}
+    options = [word for key, value in keys.items() for word in ("--set", f"{key}={value}")]
+    out = cli("continue", "jin2003", "--period", "2", "--param", "mu=16:12", "--transient",
+              "2000", *options)
+    result = impactlab.continue_("jin2003", period=2, param="mu=16:12", transient=2000, **keys)
+    branch = read_csv(out / "branch.csv")
+    one = result.branches[0]
+    for column in ("mu", "q", "qdot", "state3", "stable"):
+        same_numbers(branch[column], one[column])
+    same_numbers(branch["multiplier1_re"], one["multiplier1"].real)
+    assert list(result.points["type"]) == ["stick_end"]
+    # below the stick end the branch is on the friction cone's edge: drawn dotted
+    figure = result.plot(y="state3", y_label="spin rate (rad/s)")
+    styles = {line.get_linestyle() for line in figure.axes[0].get_lines()
+              if len(line.get_xdata())}
+    assert {"-", ":"} <= styles
+    assert figure.axes[0].get_ylabel() == "spin rate (rad/s) on the section"
+    with pytest.raises(ValueError, match="y = 'spin'"):
+        result.plot(y="spin")
 
 
 def test_refusals_name_the_option():
