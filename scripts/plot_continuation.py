@@ -86,11 +86,16 @@ def draw_continuation(branches, points, meta, param, q_name, sweep=None, y="q", 
     without multipliers dotted, the located points of `points` (points.csv's
     columns, or None) marked, and a sweep's points (bifurcation.csv's
     columns, or None) underneath in grey. `y` is the column drawn (q on the
-    section unless said), `y_label` its axis label."""
+    section unless said), `y_label` its axis label. ValueError naming `y`
+    where the branches, or the sweep given, have no such column."""
+    swept = plot_files.as_columns(sweep)
+    for name, tables in (("the branches", branches), ("the sweep", [swept])):
+        columns = list(tables[0]) if tables and tables[0] is not None else [y]
+        if y not in columns:
+            raise ValueError(f"y = {y!r}: not a column of {name} ({', '.join(columns)})")
     fig, ax = plt.subplots(figsize=(8, 6))
     if sweep is not None:
-        swept = plot_files.as_columns(sweep)
-        ax.plot(swept[param], swept["q"], ",", color="0.6", rasterized=True)
+        ax.plot(swept[param], swept[y], ",", color="0.6", rasterized=True)
         ax.plot([], [], ".", color="0.6", label="sweep (brute force)")
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for index, table in enumerate(branches):
@@ -143,14 +148,14 @@ def main(argv):
     branch_csv, png, param, q_name, *sweep = arguments
     directory = os.path.dirname(branch_csv)
     points_csv = os.path.join(directory, "points.csv")
-    branches = branches_of(read(branch_csv))
-    if y not in branches[0]:
-        print(f"plot_continuation.py: --y = {y}: not a column of branch.csv", file=sys.stderr)
+    try:
+        figure = draw_continuation(branches_of(read(branch_csv)),
+                                   read(points_csv) if os.path.exists(points_csv) else None,
+                                   plot_labels.read_meta(directory), param, q_name,
+                                   read(sweep[0]) if sweep else None, y, y_label)
+    except ValueError as error:  # a --y column the files lack
+        print(f"plot_continuation.py: --{error}", file=sys.stderr)
         sys.exit(2)
-    figure = draw_continuation(branches,
-                               read(points_csv) if os.path.exists(points_csv) else None,
-                               plot_labels.read_meta(directory), param, q_name,
-                               read(sweep[0]) if sweep else None, y, y_label)
     plot_files.save_figure(figure, png)
 
 

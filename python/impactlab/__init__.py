@@ -293,10 +293,6 @@ class ContinuationResult(Result):
                 if sweep.bifurcation is None:
                     raise ValueError("sweep: a 2D map; the branches are drawn over a 1D sweep")
                 underneath = sweep.bifurcation
-            columns = list(self.branches[0]) if self.branches else []
-            if y not in columns:
-                raise ValueError("y = {!r}: not a column of the branches ({})".format(
-                    y, ", ".join(columns)))
             return plot_continuation.draw_continuation(
                 self.branches, self.points, record, self.parameter, self.scene.main_coordinate,
                 underneath, y, y_label)

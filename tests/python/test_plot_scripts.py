@@ -10,6 +10,7 @@ import subprocess
 import sys
 
 import numpy as np
+import pytest
 
 SCRIPTS = pathlib.Path(__file__).resolve().parents[2] / "scripts"
 
@@ -54,12 +55,17 @@ def test_points_without_multipliers_are_dotted_and_another_column_drawn(tmp_path
     assert styles[":"] == [20.0, 12.0, -60.0]
     assert styles["-"] == [-60.0, -60.0]
     assert figure.axes[0].get_ylabel() == "spin rate (rad/s) on the section"
+    # a sweep drawn underneath must have the column too: no θ under a spin axis
+    sweep = {"mu": np.array([4.0, 5.0]), "q": np.array([0.04, 0.04])}
+    with pytest.raises(ValueError, match="y = 'state3': not a column of the sweep"):
+        plot.draw_continuation(plot.branches_of(plot.read(branch)), None, {}, "mu", "theta",
+                               sweep, y="state3")
     # a column branch.csv lacks is bad input naming it
     done = subprocess.run([sys.executable, str(SCRIPTS / "plot_continuation.py"), str(branch),
                            str(tmp_path / "out.png"), "mu", "theta", "--y", "spin", "spin (rad/s)"],
                           capture_output=True, text=True)
     assert done.returncode == 2
-    assert "--y = spin" in done.stderr
+    assert "--y = 'spin'" in done.stderr
     assert not (tmp_path / "out.png").exists()
 
 
