@@ -18,7 +18,7 @@
 #include <impactlab/analysis/attractor_following.hpp>
 #include <impactlab/analysis/initial_box.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::AttractorChange;
 using impactlab::AttractorsAtValue;

@@ -20,7 +20,7 @@
 
 #include <impactlab/analysis/basin_measures.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::basin_measures;
 using impactlab::BasinMeasures;

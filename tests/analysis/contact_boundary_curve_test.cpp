@@ -37,7 +37,7 @@
 
 #include "support/curve_job.hpp"
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::testing::curve_job;
 

@@ -49,7 +49,7 @@
 #include "support/curve_job.hpp"
 #include "support/test_support.hpp"
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::testing::curve_job;
 
@@ -308,7 +308,7 @@ TEST(Continuation, LinearImpactSecondParameterSetEndsWhereTheImpactSpeedVanishes
 // oscillators/model_file/examples/linear_impact_model.toml): its continuation
 // finds the closed form's period doubling and grazing as the built-in does.
 TEST(Continuation, LinearImpactModelFileFindsTheClosedFormsPeriodDoublingAndGrazing) {
-  const std::string cache = testing::TempDir() + "impactlab_continuation_model_cache";
+  const std::string cache = ::testing::TempDir() + "impactlab_continuation_model_cache";
   ASSERT_EQ(::setenv("IMPACTLAB_CACHE_DIR", cache.c_str(), 1), 0);
   ImpactOscillator o;
   o.sigma = 0.2;

@@ -22,7 +22,7 @@
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 #include <impactlab/simulate/simulator.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::BouncingBall;
 using impactlab::DecoratedSystem;

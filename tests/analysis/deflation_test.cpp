@@ -12,7 +12,7 @@
 #include <impactlab/analysis/deflation.hpp>
 
 namespace impactlab {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using Vector = std::array<double, 2>;
 

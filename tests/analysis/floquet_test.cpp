@@ -36,7 +36,7 @@
 
 #include "support/linear_impact_closed_form.hpp"
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using Complex = std::complex<double>;
 using impactlab::FlowSetup;

@@ -44,7 +44,7 @@
 #include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::BifurcationPoint;
 using impactlab::BifurcationType;

@@ -14,7 +14,7 @@
 #include <impactlab/analysis/neutral_component.hpp>
 
 namespace impactlab {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 double drift(double p) { return p <= 0.5 ? 0.0 : (p - 0.5) * (p - 0.5); }
 

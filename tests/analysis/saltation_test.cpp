@@ -25,7 +25,7 @@
 
 #include "support/base_flow.hpp"
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::FlowSetup;
 using impactlab::TangentMatrix;

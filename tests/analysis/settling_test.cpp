@@ -10,7 +10,7 @@
 
 #include <impactlab/analysis/settling.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::SectionPoint;
 using impactlab::settling_verdict;

@@ -14,7 +14,7 @@
 
 #include "support/test_support.hpp"
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 TEST(Spectrum, SumOfCosinesComesBackLineForLine) {
   const int n = 256;

@@ -47,7 +47,7 @@
 #include "support/linear_impact_closed_form.hpp"
 #include "support/test_support.hpp"
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using namespace impactlab;
 namespace fs = std::filesystem;

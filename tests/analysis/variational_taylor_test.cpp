@@ -34,7 +34,7 @@
 
 #include "support/base_flow.hpp"
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::Dual;
 using impactlab::FlowSetup;

@@ -20,7 +20,7 @@
 #include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::BouncingBall;
 using impactlab::DecoratedSystem;

@@ -23,7 +23,7 @@
 #include "support/test_support.hpp"
 
 namespace impactlab {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using namespace impactlab::testing;
 

@@ -17,7 +17,7 @@
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/io/bad_input.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::ExploreBusy;
 using impactlab::ExploreJobControl;

@@ -19,7 +19,7 @@
 
 #include "support/test_support.hpp"
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::FrontEnds;
 using impactlab::job_option;

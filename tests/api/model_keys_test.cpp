@@ -21,7 +21,7 @@
 
 #include "support/test_support.hpp"
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::KeySpec;
 using impactlab::Scene;

@@ -27,7 +27,7 @@
 #include "support/test_support.hpp"
 
 namespace impactlab {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 // |a − b| on the section's (q, q̇)
 double distance(const std::vector<double>& a, const std::vector<double>& b) {

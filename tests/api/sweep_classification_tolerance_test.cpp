@@ -28,7 +28,7 @@
 #include <impactlab/io/bad_input.hpp>
 
 namespace impactlab {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 // the reference grid of jin2003 (docs/performance.md): the (ω, V0) map of the
 // performance section at 20 × 20, with its transient and record

@@ -17,7 +17,7 @@
 
 #include "support/test_support.hpp"
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 namespace fs = std::filesystem;
 using namespace impactlab::testing;
@@ -31,7 +31,7 @@ std::vector<std::string> split(const std::string& line) {
   return fields;
 }
 
-class BenchQuick : public testing::Test {
+class BenchQuick : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     scratch_ = std::make_unique<ScratchFolder>();

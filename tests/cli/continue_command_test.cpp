@@ -10,7 +10,7 @@
 
 #include "support/test_support.hpp"
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 namespace fs = std::filesystem;
 using namespace impactlab::testing;

@@ -24,7 +24,7 @@
 #include <impactlab/io/scene.hpp>
 
 namespace impactlab {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 // --- the local model: z̈ = −(a + ȧ s) − c ż, restitution r ------------------
 
@@ -80,7 +80,7 @@ struct ModelCase {
   double r, a_rate, damping, u;
 };
 
-class AccumulationEstimate : public testing::TestWithParam<ModelCase> {};
+class AccumulationEstimate : public ::testing::TestWithParam<ModelCase> {};
 
 // The first-order estimate is within its error bound, and far closer than
 // the constant-acceleration sum 2u/(a(1 − r)).
@@ -100,7 +100,7 @@ TEST_P(AccumulationEstimate, IsWithinItsBoundOfTheIntegratedModel) {
 
 INSTANTIATE_TEST_SUITE_P(
     Model, AccumulationEstimate,
-    testing::Values(ModelCase{0.0, 0.02, 0.0, 0.01}, ModelCase{0.3, 0.02, 0.0, 0.007},
+    ::testing::Values(ModelCase{0.0, 0.02, 0.0, 0.01}, ModelCase{0.3, 0.02, 0.0, 0.007},
                     ModelCase{0.3, -0.02, 0.0, 0.007}, ModelCase{0.8, 0.02, 0.0, 0.002},
                     ModelCase{0.3, 0.0, 0.03, 0.007}, ModelCase{0.6, 0.01, 0.02, 0.004}));
 
@@ -245,7 +245,7 @@ long double reference_first_accumulation(const PendulumReference& p) {
   return NAN;
 }
 
-class Jin2003Accumulation : public testing::Test {
+class Jin2003Accumulation : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     reference_ = static_cast<double>(reference_first_accumulation(PendulumReference{}));

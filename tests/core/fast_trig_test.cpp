@@ -12,7 +12,7 @@
 
 #include <impactlab/core/fast_trig.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 // |value − reference| in ulps of the reference rounded to double
 double ulps(double value, long double reference) {

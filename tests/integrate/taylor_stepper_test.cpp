@@ -25,7 +25,7 @@
 #include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using namespace impactlab;
 constexpr double pi = std::numbers::pi;

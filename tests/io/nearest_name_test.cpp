@@ -11,7 +11,7 @@
 #include <impactlab/io/nearest_name.hpp>
 
 namespace impactlab {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 const std::vector<std::string_view> keys = {"omega", "V0", "mu", "e_n", "e_t",
                                             "integrator.rtol", "integrator.atol",

@@ -8,7 +8,7 @@
 
 #include <impactlab/io/toml_nesting.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::check_toml_nesting;
 

@@ -27,7 +27,7 @@
 #include <impactlab/integrate/stepper_dispatch.hpp>
 #include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::BouncingBall;
 using impactlab::BouncingBallParameters;

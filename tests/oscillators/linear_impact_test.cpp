@@ -28,7 +28,7 @@
 #include <impactlab/integrate/stepper_dispatch.hpp>
 #include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::EventKind;
 using impactlab::EventLog;

@@ -30,7 +30,7 @@
 #include <impactlab/oscillators/model_file/compiled_model.hpp>
 #include <impactlab/oscillators/model_file/model_system.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using namespace impactlab;
 
@@ -39,7 +39,7 @@ const std::string examples = std::string(IMPACTLAB_SOURCE_DIR) + "/oscillators/m
 
 std::shared_ptr<const CompiledModel> compiled(const std::string& file) {
   CompileOptions options;
-  options.cache_directory = testing::TempDir() + "impactlab_model_examples_cache";
+  options.cache_directory = ::testing::TempDir() + "impactlab_model_examples_cache";
   return compile_model(read_model_file(examples + file), options);
 }
 

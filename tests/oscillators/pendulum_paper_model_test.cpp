@@ -28,7 +28,7 @@
 #include <impactlab/oscillators/pendulum_walls/sliding_impact.hpp>
 
 namespace impactlab {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 constexpr double pi = std::numbers::pi;
 const std::vector<std::string> numerical_steppers = {"dopri5", "rkf78", "bulirsch_stoer", "rk8pd",

@@ -27,7 +27,7 @@
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 
 namespace impactlab {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using State = PendulumWalls::State;
 using Mode = PendulumWalls::Mode;
@@ -159,14 +159,14 @@ std::string last_events(const EventLog& log, std::size_t count = 4) {
   return text;
 }
 
-std::string stepper_test_name(const testing::TestParamInfo<std::string>& info) {
+std::string stepper_test_name(const ::testing::TestParamInfo<std::string>& info) {
   return info.param;
 }
 
 // ---------------------------------------------------------------------------
 // Contact phases of the paper's case V0 = 4.163 m/s, ω = 7 rad/s.
 
-class PendulumWallsContact : public testing::TestWithParam<std::string> {};
+class PendulumWallsContact : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(PendulumWallsContact, Jin2003ContactPhasesMatchClosedForms) {
   const PendulumWallsParameters p = jin2003(4.163);
@@ -302,7 +302,7 @@ TEST_P(PendulumWallsContact, ImpactsObeyNewtonLawWithHandImpulse) {
 // pass before the jump. The acceleration is not constant over the early,
 // long flights, so allow twice 1 + n; crawling would take hundreds of
 // impacts (or trip the Zeno guard).
-class PendulumWallsChatter : public testing::TestWithParam<double> {};
+class PendulumWallsChatter : public ::testing::TestWithParam<double> {};
 
 TEST_P(PendulumWallsChatter, ImpactsBeforeAccumulationAreBounded) {
   PendulumWallsParameters p = jin2003(5.0);
@@ -372,8 +372,8 @@ TEST_P(PendulumWallsChatter, ImpactsBeforeAccumulationAreBounded) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Restitution, PendulumWallsChatter, testing::Values(0.1, 0.3, 0.5),
-                         [](const testing::TestParamInfo<double>& info) {
+INSTANTIATE_TEST_SUITE_P(Restitution, PendulumWallsChatter, ::testing::Values(0.1, 0.3, 0.5),
+                         [](const ::testing::TestParamInfo<double>& info) {
                            return "e_n_0" +
                                   std::to_string(static_cast<int>(std::lround(info.param * 10.0)));
                          });
@@ -399,7 +399,7 @@ struct EnergyCase {
   double rtol;
 };
 
-class PendulumWallsEnergy : public testing::TestWithParam<EnergyCase> {};
+class PendulumWallsEnergy : public ::testing::TestWithParam<EnergyCase> {};
 
 TEST_P(PendulumWallsEnergy, ElasticUnforcedEnergyIsConserved) {
   PendulumWallsParameters p = jin2003(0.0);
@@ -447,12 +447,12 @@ TEST_P(PendulumWallsEnergy, ElasticUnforcedEnergyIsConserved) {
 
 INSTANTIATE_TEST_SUITE_P(
     Steppers, PendulumWallsEnergy,
-    testing::Values(EnergyCase{"dopri5", 1e-10}, EnergyCase{"rkf78", 1e-10},
+    ::testing::Values(EnergyCase{"dopri5", 1e-10}, EnergyCase{"rkf78", 1e-10},
                     EnergyCase{"bulirsch_stoer", 1e-10}, EnergyCase{"rk8pd", 1e-10},
                     EnergyCase{"dopri5", 1e-12}, EnergyCase{"rkf78", 1e-12},
                     EnergyCase{"bulirsch_stoer", 1e-12}, EnergyCase{"rk8pd", 1e-12},
                     EnergyCase{"taylor", 1e-10}, EnergyCase{"taylor", 1e-12}),
-    [](const testing::TestParamInfo<EnergyCase>& info) {
+    [](const ::testing::TestParamInfo<EnergyCase>& info) {
       return info.param.method + (info.param.rtol == 1e-10 ? "_rtol1e10" : "_rtol1e12");
     });
 
@@ -602,7 +602,7 @@ TEST_P(PendulumWallsContact, RestingOnAttractingWallIsNotPenetrated) {
       << last_events(run.log);
 }
 
-INSTANTIATE_TEST_SUITE_P(Steppers, PendulumWallsContact, testing::ValuesIn(numerical_steppers),
+INSTANTIATE_TEST_SUITE_P(Steppers, PendulumWallsContact, ::testing::ValuesIn(numerical_steppers),
                          stepper_test_name);
 
 // ---------------------------------------------------------------------------

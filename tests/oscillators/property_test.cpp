@@ -41,7 +41,7 @@
 #include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using namespace impactlab;
 

@@ -57,7 +57,7 @@
 #include <impactlab/simulate/simulator.hpp>
 
 namespace impactlab {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 Scene pendulum_scene(const std::vector<std::string>& assignments) {
   Scene scene = load_scene("jin2003");
@@ -392,7 +392,7 @@ TEST(RigidPendulumSpin, LockedSpinWithoutRadiusContinuesAsModelN) {
 }  // namespace impactlab
 
 namespace impactlab {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 // the nearest (θ, θ̇) among the section points of a long brute-force run
 // (the attractor reached from the scene's start; its slowest multiplier,
@@ -561,7 +561,7 @@ TEST(RigidPendulumSpin, AStartOnNoFamilyIsConvergedBeforeTheSpinIsHeld) {
 }  // namespace impactlab
 
 namespace impactlab {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 // The friction |J_T| / J_N a sticking impact needs, solved by hand from an
 // impact's record: K = W M⁻¹ Wᵀ of the ball on wall w at θ = w θ0 (spin
@@ -829,6 +829,20 @@ TEST(RigidPendulumSpin, ALocatedStickEndIsWhereTheImpulseReachesTheConesEdge) {
   double nearest = INFINITY;
   for (double needed : run.needed) nearest = std::min(nearest, std::fabs(needed - stick_end->parameter));
   EXPECT_LE(nearest, 1e-9);  // measured: 3.2e-10 at μ = 13.629715726
+  // past the stick end the branch goes on along the cone's edge to the end
+  // of the range: there it has no multipliers (the sanitized suite's run of
+  // that path; the next test checks those points against the real system)
+  EXPECT_EQ(branch.stop_reason, StopReason::end_of_range) << branch.stop_detail;
+  ASSERT_FALSE(branch.branch.empty());
+  EXPECT_DOUBLE_EQ(branch.branch.back().parameter, 12.0);
+  int on_the_edge = 0;
+  for (const BranchPoint& point : branch.branch) {
+    if (point.parameter > stick_end->parameter - 1e-3) continue;
+    ++on_the_edge;
+    for (const auto& multiplier : point.multipliers)
+      EXPECT_TRUE(std::isnan(multiplier.real())) << "mu = " << point.parameter;
+  }
+  EXPECT_GE(on_the_edge, 10);
 }
 
 // The points of a branch below μ_max, which hold an impulse on the friction

@@ -32,7 +32,7 @@
 #include "support/test_support.hpp"
 
 namespace impactlab {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 RunOutput run_scene(const std::vector<std::string>& assignments, double periods) {
   Scene scene = load_scene("jin2003");

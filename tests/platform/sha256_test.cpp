@@ -8,7 +8,7 @@
 
 #include <impactlab/platform/sha256.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::sha256_hex;
 

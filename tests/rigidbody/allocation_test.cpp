@@ -16,7 +16,7 @@
 #include "support/allocation_counter.hpp"
 
 namespace impactlab {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 template <class Stepper>
 void expect_no_allocation(bool spin_free, double V0) {

@@ -23,7 +23,7 @@
 #include <impactlab/rigidbody/quaternion_kinematics.hpp>
 
 namespace impactlab::rigidbody {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 TEST(QuaternionKinematics, ConstantSpinTurnsByAngleAboutAxis) {
   const Eigen::Vector3d omega(0.0, 0.0, 2.0);

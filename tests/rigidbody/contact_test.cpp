@@ -18,7 +18,7 @@
 #include <impactlab/rigidbody/sliding_rod.hpp>
 
 namespace impactlab::rigidbody {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 GeneralizedContact<2> block(double m, double push, double lift) {
   GeneralizedContact<2> c;

@@ -22,7 +22,7 @@
 #include <impactlab/rigidbody/newton_coulomb_impulse.hpp>
 
 namespace impactlab::rigidbody {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 // ---------------------------------------------------------------- sphere
 
@@ -31,7 +31,7 @@ struct SphereCase {
   double vx, vz, spin_y, e_n, mu;
 };
 
-class SphereOnGround : public testing::TestWithParam<SphereCase> {};
+class SphereOnGround : public ::testing::TestWithParam<SphereCase> {};
 
 TEST_P(SphereOnGround, ImpulseMatchesClosedForm) {
   const SphereCase c = GetParam();
@@ -74,7 +74,7 @@ TEST_P(SphereOnGround, ImpulseMatchesClosedForm) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, SphereOnGround,
-    testing::Values(SphereCase{"NoSpinSticks", 1.0, -2.0, 0.0, 0.5, 0.5},
+    ::testing::Values(SphereCase{"NoSpinSticks", 1.0, -2.0, 0.0, 0.5, 0.5},
                     SphereCase{"NoSpinSlides", 3.0, -0.5, 0.0, 0.5, 0.2},
                     SphereCase{"SpinSticks", 0.0, -2.0, 20.0, 0.5, 0.5},
                     SphereCase{"SpinSlides", 0.0, -0.5, 40.0, 0.5, 0.2},
@@ -108,7 +108,7 @@ struct RodCase {
   double angle, vx, vy, omega, e_n, mu;
 };
 
-class RodOnGround : public testing::TestWithParam<RodCase> {};
+class RodOnGround : public ::testing::TestWithParam<RodCase> {};
 
 TEST_P(RodOnGround, ImpulseMatchesHandSolution) {
   const RodCase c = GetParam();
@@ -161,7 +161,7 @@ TEST_P(RodOnGround, ImpulseMatchesHandSolution) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, RodOnGround,
-    testing::Values(RodCase{"SteepFallSticks", 1.0, 0.2, -2.0, 0.0, 0.4, 0.8},
+    ::testing::Values(RodCase{"SteepFallSticks", 1.0, 0.2, -2.0, 0.0, 0.4, 0.8},
                     RodCase{"ShallowSlideSlides", 0.3, 2.0, -1.0, 0.0, 0.4, 0.3},
                     RodCase{"SpinningSlides", 0.6, 0.0, -1.0, 6.0, 0.2, 0.2},
                     RodCase{"Frictionless", 0.8, 1.0, -1.5, -2.0, 0.7, 0.0},

@@ -23,7 +23,7 @@
 
 #include "support/allocation_counter.hpp"
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using namespace impactlab;
 

@@ -45,7 +45,7 @@
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 
 namespace impactlab {
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 constexpr double pi = std::numbers::pi;
 
@@ -114,8 +114,8 @@ struct TableClearance {
   }
 };
 
-class HardCaseExactFlow : public testing::TestWithParam<std::string> {};
-class HardCasePendulum : public testing::TestWithParam<std::string> {};
+class HardCaseExactFlow : public ::testing::TestWithParam<std::string> {};
+class HardCasePendulum : public ::testing::TestWithParam<std::string> {};
 
 // ---------------------------------------------------------------------------
 // Chattering to rest, bouncing ball with small restitution r = 0.05 dropped
@@ -610,9 +610,9 @@ TEST_P(HardCasePendulum, ImpactExactlyAtTheEndTimeIsLoggedOnce) {
   EXPECT_NEAR(r.result.state[1], -p.e_n * speed(theta0), 1e-8);
 }
 
-INSTANTIATE_TEST_SUITE_P(AllSteppers, HardCaseExactFlow, testing::ValuesIn(all_steppers),
+INSTANTIATE_TEST_SUITE_P(AllSteppers, HardCaseExactFlow, ::testing::ValuesIn(all_steppers),
                          [](const auto& info) { return info.param; });
-INSTANTIATE_TEST_SUITE_P(Steppers, HardCasePendulum, testing::ValuesIn(numerical_steppers),
+INSTANTIATE_TEST_SUITE_P(Steppers, HardCasePendulum, ::testing::ValuesIn(numerical_steppers),
                          [](const auto& info) { return info.param; });
 
 }  // namespace

@@ -25,7 +25,7 @@
 #include <impactlab/simulate/series_batch.hpp>
 #include <impactlab/simulate/simulator.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using namespace impactlab;
 using std::numbers::pi;

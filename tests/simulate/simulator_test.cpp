@@ -25,7 +25,7 @@
 #include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
 #include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 
-namespace {
+namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using impactlab::BouncingBall;
 using impactlab::BouncingBallParameters;

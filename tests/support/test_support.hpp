@@ -17,6 +17,16 @@
 
 #include <impactlab/io/bad_input.hpp>
 
+// A test file's own names (helpers, constants, its tests) live in namespace
+// IMPACTLAB_TEST_FILE_SCOPE. The test programs are unity builds
+// (tests/CMakeLists.txt): several test files compiled as one unit, each
+// with its own value of this name, so that one file's helpers are never
+// found, or overloaded, from another. Compiled alone, a file's names are in
+// the anonymous namespace.
+#ifndef IMPACTLAB_TEST_FILE_SCOPE
+#define IMPACTLAB_TEST_FILE_SCOPE
+#endif
+
 namespace impactlab::testing {
 
 // A new, empty folder under the system's temporary directory, removed with
