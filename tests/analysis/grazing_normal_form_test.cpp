@@ -701,7 +701,7 @@ TEST(GrazingNormalForm, Jin2003SymmetricGrazeJumpsAsBruteForceRunsDo) {
       if (event.kind == impactlab::EventKind::impact && event.t > 600.0 * two_pi / 8.5)
         fastest = std::max(fastest, std::fabs(event.qdot_before) * gap_per_rate);
     speeds.push_back(fastest);
-    if (k >= 6) EXPECT_GT(fastest, 5.0 * form.root_coefficient * std::sqrt(mu)) << k;
+    if (k >= 6) { EXPECT_GT(fastest, 5.0 * form.root_coefficient * std::sqrt(mu)) << k; }
   }
   EXPECT_GT(*std::min_element(speeds.begin(), speeds.end()),
             0.9 * *std::max_element(speeds.begin(), speeds.end()));

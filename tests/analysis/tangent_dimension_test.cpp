@@ -246,8 +246,9 @@ TEST(TangentDimension, FourStateContinuationLocatesTheLinearImpactPeriodDoubling
   // stable before the doubling, unstable after it
   for (const auto& point : branch.branch) {
     ASSERT_EQ(point.multipliers.size(), 4u);
-    if (std::fabs(point.parameter - expected) > 1e-6)
+    if (std::fabs(point.parameter - expected) > 1e-6) {
       EXPECT_EQ(point.stable, point.parameter < expected) << point.parameter;
+    }
   }
 }
 

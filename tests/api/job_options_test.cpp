@@ -52,19 +52,24 @@ TEST(JobOptions, EveryTableIsConsistent) {
       EXPECT_FALSE(spec.help.empty() && !spec.for_tests_only) << "no help";
       EXPECT_LE(spec.lower, spec.upper);
       // a required option has no default; a default lies in its range and has the type's kind
-      if (spec.required) EXPECT_TRUE(std::holds_alternative<impactlab::Unset>(spec.default_value));
+      if (spec.required) {
+        EXPECT_TRUE(std::holds_alternative<impactlab::Unset>(spec.default_value));
+      }
       if (const auto* number = std::get_if<double>(&spec.default_value)) {
         EXPECT_TRUE(spec.type == OptionType::number || spec.type == OptionType::integer ||
                     spec.type == OptionType::count);
         EXPECT_GE(*number, spec.lower);
         EXPECT_LE(*number, spec.upper);
-        if (spec.lower_open) EXPECT_GT(*number, spec.lower);
+        if (spec.lower_open) { EXPECT_GT(*number, spec.lower); }
       }
-      if (std::holds_alternative<bool>(spec.default_value)) EXPECT_EQ(spec.type, OptionType::flag);
-      if (std::holds_alternative<std::string_view>(spec.default_value))
+      if (std::holds_alternative<bool>(spec.default_value)) {
+        EXPECT_EQ(spec.type, OptionType::flag);
+      }
+      if (std::holds_alternative<std::string_view>(spec.default_value)) {
         EXPECT_TRUE(spec.type == OptionType::text || spec.type == OptionType::file ||
                     spec.type == OptionType::text_list);
-      if (!spec.excludes.empty()) EXPECT_NO_THROW(job_option(job, spec.excludes));
+      }
+      if (!spec.excludes.empty()) { EXPECT_NO_THROW(job_option(job, spec.excludes)); }
     }
   }
   EXPECT_EQ(impactlab::testing::bad_input_key([] { impactlab::job_options("no_such_job"); }),
@@ -235,7 +240,7 @@ TEST(JobOptions, CommandLineHelpAgreesWithTheTables) {
       EXPECT_NE(entry.find(impactlab::spell_options(spec.help, impactlab::option_flag)),
                 std::string::npos)
           << entry;
-      if (spec.required) EXPECT_NE(entry.find("REQUIRED"), std::string::npos) << entry;
+      if (spec.required) { EXPECT_NE(entry.find("REQUIRED"), std::string::npos) << entry; }
       // the default CLI11 shows: FLAG TYPE[:CHECK]=DEFAULT, before the help
       // text (which follows two spaces or a line break)
       const std::string line = entry.substr(2, entry.find('\n') - 2);

@@ -138,9 +138,10 @@ TEST(LyapunovSpectrumCli, FourStateModelFileGivesFourExponents) {
   ASSERT_EQ(meta["lyapunov_spectrum"].size(), 4u);
   for (int i = 0; i < 4; ++i) {
     ASSERT_TRUE(meta["lyapunov_spectrum"][i].is_number()) << meta["lyapunov_spectrum"];
-    if (i > 0)
+    if (i > 0) {
       EXPECT_LE(meta["lyapunov_spectrum"][i].get<double>(),
                 meta["lyapunov_spectrum"][i - 1].get<double>() + 1e-3);
+    }
   }
   EXPECT_NEAR(meta["lyapunov_spectrum"][0].get<double>(),
               meta["lyapunov"]["largest_exponent_per_time"].get<double>(), 1e-10);

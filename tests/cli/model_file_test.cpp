@@ -160,8 +160,9 @@ TEST(ModelFileCli, LinearImpactModelFileGivesTheBuiltInSweepClassification) {
     ASSERT_EQ(a.size(), 10u) << actual[k];
     const bool has_period = k == 0 || e[2] != "0";
     for (std::size_t column : {0u, 1u, 2u, 3u, 4u, 6u})
-      if (has_period || column == 0u || column == 1u || column == 2u || column == 6u)
+      if (has_period || column == 0u || column == 1u || column == 2u || column == 6u) {
         EXPECT_EQ(e[column], a[column]) << "row " << k << ": " << expected[k] << " | " << actual[k];
+      }
     if (k > 0 && has_period) {
       ++periodic;
       classes.insert(e[2] + "/" + e[3] + "/" + e[4]);

@@ -353,7 +353,7 @@ TEST(RigidPendulumAccumulation, EverySettingCompletesWithinItsReportedBound) {
       SCOPED_TRACE(setting("rtol", rtol) + " " + setting("accumulation_tol", accumulation_tol));
       const auto [t, bound] = accumulation_at(rtol, accumulation_tol);
       ASSERT_TRUE(std::isfinite(t));
-      if (rtol >= 1e-12) EXPECT_LE(std::fabs(t - t_tight), bound + bound_tight + 1e-10);
+      if (rtol >= 1e-12) { EXPECT_LE(std::fabs(t - t_tight), bound + bound_tight + 1e-10); }
     }
   }
 }
