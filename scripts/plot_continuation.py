@@ -80,6 +80,10 @@ def branches_of(branch_table):
             for number in np.unique(numbers)]
 
 
+class MissingColumn(ValueError):
+    """The column asked for (`y`, the script's --y) is not in the files."""
+
+
 def draw_continuation(branches, points, meta, param, q_name, sweep=None, y="q", y_label=None):
     """The branches (a list of tables with the columns of branch.csv: param,
     q, stable, period, multiplier1_re) stable solid, unstable dashed and
@@ -89,10 +93,9 @@ def draw_continuation(branches, points, meta, param, q_name, sweep=None, y="q", 
     section unless said), `y_label` its axis label. ValueError naming `y`
     where the branches, or the sweep given, have no such column."""
     swept = plot_files.as_columns(sweep)
-    for name, tables in (("the branches", branches), ("the sweep", [swept])):
-        columns = list(tables[0]) if tables and tables[0] is not None else [y]
-        if y not in columns:
-            raise ValueError(f"y = {y!r}: not a column of {name} ({', '.join(columns)})")
+    for name, table in (("the branches", branches[0] if branches else None), ("the sweep", swept)):
+        if table is not None and y not in table:
+            raise MissingColumn(f"y = {y!r}: not a column of {name} ({', '.join(table)})")
     fig, ax = plt.subplots(figsize=(8, 6))
     if sweep is not None:
         ax.plot(swept[param], swept[y], ",", color="0.6", rasterized=True)
@@ -153,7 +156,7 @@ def main(argv):
                                    read(points_csv) if os.path.exists(points_csv) else None,
                                    plot_labels.read_meta(directory), param, q_name,
                                    read(sweep[0]) if sweep else None, y, y_label)
-    except ValueError as error:  # a --y column the files lack
+    except MissingColumn as error:
         print(f"plot_continuation.py: --{error}", file=sys.stderr)
         sys.exit(2)
     plot_files.save_figure(figure, png)
