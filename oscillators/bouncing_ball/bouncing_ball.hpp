@@ -48,10 +48,6 @@ class BouncingBall {
     stuck,  // riding on the table after an accumulation of impacts, y = z, ẏ = ż
   };
   static constexpr std::size_t max_witnesses = 1;
-  // the right-hand side's and witnesses' operations depend on the mode
-  // alone, never on a value (a batch evaluates lanes of equal parameters in
-  // one pass: integrate/taylor_stepper.hpp)
-  static constexpr bool series_operations_by_mode_alone = true;
   static constexpr int wall = -1;  // the table, below the ball
 
   explicit BouncingBall(const BouncingBallParameters& p) : p_(p) {}

@@ -51,10 +51,6 @@ class LinearImpact {
     stuck,  // resting on the stop after an accumulation of impacts, x = σ, ẋ = 0
   };
   static constexpr std::size_t max_witnesses = 1;
-  // the right-hand side's and witnesses' operations depend on the mode
-  // alone, never on a value (a batch evaluates lanes of equal parameters in
-  // one pass: integrate/taylor_stepper.hpp)
-  static constexpr bool series_operations_by_mode_alone = true;
   static constexpr int wall = 1;  // the stop, on the positive side of x
 
   explicit LinearImpact(const LinearImpactParameters& p)

@@ -73,10 +73,6 @@ class BasicPendulumWalls {
   }
   using Mode = PendulumMode;
   static constexpr std::size_t max_witnesses = 2;
-  // the right-hand side's and witnesses' operations depend on the mode
-  // alone, never on a value (a batch evaluates lanes of equal parameters in
-  // one pass: integrate/taylor_stepper.hpp)
-  static constexpr bool series_operations_by_mode_alone = true;
 
   explicit BasicPendulumWalls(const PendulumWallsParameters& p)
       : p_(p),

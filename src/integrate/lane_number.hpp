@@ -6,16 +6,10 @@
 // the same operation on that lane's doubles, in the same order: a lane's
 // coefficients are those the series of double would give, to the last bit
 // (no FMA contraction: the build is ISO C++20, -ffp-contract=off).
-//
-// A LaneNumber has no conversion to double: a right-hand side that branches
-// on a value cannot run over it unnoticed (see series_lanes_allowed in
-// integrate/taylor_stepper.hpp).
 #pragma once
 
 #include <cmath>
 #include <type_traits>
-
-#include <impactlab/core/fast_trig.hpp>
 
 namespace impactlab {
 
@@ -97,21 +91,6 @@ double constant_value(const Real& value) {
     return value.lane[0];
   else
     return static_cast<double>(value);
-}
-
-// −1, 0 or +1 by the sign of each lane
-template <int B>
-LaneNumber<B> lane_signs(const LaneNumber<B>& v) {
-  LaneNumber<B> r;
-  for (int i = 0; i < B; ++i) r.lane[i] = v.lane[i] > 0 ? 1.0 : v.lane[i] < 0 ? -1.0 : 0.0;
-  return r;
-}
-
-// sin and cos of each lane by core/fast_trig.hpp's sin_cos_phase, as the
-// series of double computes them
-template <int B>
-void lane_sin_cos(const LaneNumber<B>& v, LaneNumber<B>& s, LaneNumber<B>& c) {
-  for (int i = 0; i < B; ++i) sin_cos_phase(v.lane[i], s.lane[i], c.lane[i]);
 }
 
 }  // namespace impactlab

@@ -2,7 +2,7 @@
 // batch (simulate/series_batch.hpp): instead of evaluating its recurrences
 // itself, the stepper posts a request and waits; the batch gathers the
 // requests of all its lanes and evaluates them (together, in passes over
-// lanes, where the system allows it: integrate/taylor_stepper.hpp), then
+// lanes, where their operations agree: integrate/series_tape.hpp), then
 // hands each lane its coefficients back. Everything else a step does (its size,
 // the exclusion test and root isolation on the witness polynomials, the
 // events) stays in the lane, in the scalar stepper's own code.
@@ -11,6 +11,9 @@
 #include <exception>
 
 namespace impactlab {
+
+class SeriesTape;
+struct SeriesLaneRows;
 
 // the most lanes one batch evaluates together
 inline constexpr int max_series_lanes = 16;
@@ -24,6 +27,15 @@ struct SeriesRequest {
   // what evaluating this request alone threw (the batch evaluates a group
   // that throws one request at a time): rethrown in the requesting lane
   std::exception_ptr failure;
+  // set by `evaluate` where this request's series came from a pass over
+  // lanes with others (BatchStatistics::series_in_passes)
+  bool in_pass = false;
+  // set by the lane before `evaluate` runs: the lane's tape for the
+  // request's order-0 recording, and the batch's rows for a pass over lanes
+  // (integrate/series_tape.hpp); made once per batch, so that nothing is
+  // allocated while the lanes step
+  SeriesTape* tape = nullptr;
+  SeriesLaneRows* rows = nullptr;
 };
 
 // A lane of a batch, as its steppers see it.

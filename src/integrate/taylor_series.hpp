@@ -90,8 +90,6 @@ class TaylorEvaluation {
     if (order_ == 0 && sign_count_ < max_signs) sign_arguments_[sign_count_++] = argument;
   }
   [[nodiscard]] int sign_count() const { return sign_count_; }
-  // the rows the evaluation has taken so far (all of them, once it is done)
-  [[nodiscard]] int rows_taken() const { return next_row_; }
   [[nodiscard]] const Real* sign_argument(int i) const { return sign_arguments_[i]; }
 
  private:
@@ -180,10 +178,7 @@ bool near_zero(const Real& a0, const Real& a1) {
 
 template <class Real>
 Real sign_of(const Real& v) {
-  if constexpr (is_lane_number<Real>)
-    return lane_signs(v);
-  else
-    return v > 0 ? Real(1) : v < 0 ? Real(-1) : Real(0);
+  return v > 0 ? Real(1) : v < 0 ? Real(-1) : Real(0);
 }
 
 // sin and cos of a constant, as doubles (the extended-precision types in
@@ -192,10 +187,7 @@ template <class Real>
 std::array<double, 2> constant_sin_cos(const Real& v) {
   using std::cos;
   using std::sin;
-  if constexpr (is_lane_number<Real>)
-    return {sin(v.lane[0]), cos(v.lane[0])};
-  else
-    return {static_cast<double>(sin(v)), static_cast<double>(cos(v))};
+  return {static_cast<double>(sin(v)), static_cast<double>(cos(v))};
 }
 
 // sin v and cos v in one call: for double, core/fast_trig.hpp's
@@ -208,8 +200,6 @@ void sin_and_cos(const Real& v, Real& s, Real& c) {
   using std::sin;
   if constexpr (std::is_same_v<Real, double>) {
     sin_cos_phase(v, s, c);
-  } else if constexpr (is_lane_number<Real>) {
-    lane_sin_cos(v, s, c);
   } else {
     s = sin(v);
     c = cos(v);
@@ -279,7 +269,6 @@ std::array<TaylorVariable<Real>, 2> sin_cos(const TaylorVariable<Real>& a) {
 // definition a step uses, the step ending at each switch.
 template <class Real>
 double start_value(const TaylorVariable<Real>& v) {
-  static_assert(!is_lane_number<Real>, "a series in lanes has no single start value");
   return static_cast<double>(v.coefficient(0));
 }
 
@@ -427,10 +416,7 @@ TaylorVariable<Real> sign(const TaylorVariable<Real>& a) {
   const int k = evaluation->order();
   evaluation->note_sign_argument(a.row());
   Real s = 0;
-  if constexpr (is_lane_number<Real>) {
-    // a pass over lanes evaluates without the slope (take_lane)
-    if (k == 0) s = detail::sign_of(a.value());
-  } else if (k == 0) {
+  if (k == 0) {
     s = evaluation->signs_from_slope() && detail::near_zero(a.value(), a.row()[1])
             ? detail::sign_of(a.row()[1])
             : detail::sign_of(a.value());
@@ -469,15 +455,7 @@ class TaylorSeries {
 
   template <class Rhs>
   void evaluate(const Real* x0, const Real& t0, int order, Rhs&& rhs, bool signs_from_slope = false) {
-    if constexpr (is_lane_number<Real>) {
-#if defined(__x86_64__) && defined(__GNUC__)
-      // four lanes in one AVX2 register; a batch makes passes over lanes
-      // only where the processor has it (lane_passes_available)
-      evaluate_avx2(x0, t0, order, rhs);
-#else
-      evaluate_inlined(x0, t0, order, rhs, signs_from_slope);
-#endif
-    } else if constexpr (std::is_same_v<Real, double>) {
+    if constexpr (std::is_same_v<Real, double>) {
       evaluate_inlined(x0, t0, order, rhs, signs_from_slope);
     } else {
       evaluate_orders(x0, t0, order, rhs, signs_from_slope);
@@ -514,30 +492,11 @@ class TaylorSeries {
     Outputs outputs;
   };
 
-#if defined(__x86_64__) && defined(__GNUC__)
-  // evaluate_inlined compiled for AVX2 (not FMA: the products and sums stay
-  // separate IEEE operations, as in double)
-  template <class Rhs>
-  [[gnu::flatten, gnu::target("avx2")]] void evaluate_avx2(const Real* x0, const Real& t0,
-                                                           int order, Rhs& rhs) {
-    evaluate_orders(x0, t0, order, rhs, false);
-  }
-#endif
-
   template <class Rhs>
   void evaluate_orders(const Real* x0, const Real& t0, int order, Rhs& rhs, bool signs_from_slope) {
     Pass pass(*this, x0, t0, signs_from_slope);
     for (int k = 0; k <= order; ++k) evaluate_order(pass, k, order, rhs);
-    if constexpr (is_lane_number<Real>) {
-      // each lane's need of the slope is its own (take_lane)
-      rows_taken_ = pass.evaluation.rows_taken();
-      sign_count_ = pass.evaluation.sign_count();
-      for (int i = 0; i < sign_count_; ++i)
-        sign_rows_[i] = static_cast<int>((pass.evaluation.sign_argument(i) - rows_.data()) /
-                                         Evaluation::stride);
-    } else {
-      needs_slope_ = signs_need_slope(pass.evaluation);
-    }
+    needs_slope_ = signs_need_slope(pass.evaluation);
   }
 
   // coefficient k of every operation, and the state's coefficient k + 1
@@ -568,46 +527,40 @@ class TaylorSeries {
   }
 
  public:
-  // This series' coefficients from lane `lane` of a series of lanes
-  // (LaneNumber), evaluated at this series' expansion point by the same
-  // right-hand side: its state's and outputs' rows, and whether its signs
-  // need their slope, as evaluate() would have left them; and where they do,
-  // every row (evaluating again with the slope reads the previous
-  // evaluation's rows).
-  template <class Lanes>
-  void take_lane(const TaylorSeries<Lanes, N>& lanes, int lane, int order) {
-    static_assert(std::is_same_v<Real, double> && is_lane_number<Lanes>);
+  // This series' coefficients from lane `lane` of a pass over lanes
+  // (integrate/series_tape.hpp: `lanes` computed from `tape`, this series'
+  // own order-0 recording, with others that record the same operations):
+  // its state's and outputs' rows, and whether its signs need their slope,
+  // as evaluate() would have left them; and where they do, every row
+  // (evaluating again with the slope reads the previous evaluation's rows).
+  template <class Tape, class LaneRows>
+  void take_lane(const LaneRows& lanes, const Tape& tape, int lane, int order) {
+    static_assert(std::is_same_v<Real, double>);
     needs_slope_ = false;
-    for (int i = 0; i < lanes.sign_count_; ++i) {
-      const Lanes* a = lanes.row_at(lanes.sign_rows_[i]);
-      const double a0 = a[0].lane[lane], a1 = a[1].lane[lane];
+    for (int i = 0; i < tape.sign_count(); ++i) {
+      const double a0 = lanes.coefficient(tape.sign_row(i), 0, lane);
+      const double a1 = lanes.coefficient(tape.sign_row(i), 1, lane);
       if (detail::near_zero(a0, a1) && detail::sign_of(a1) != detail::sign_of(a0))
         needs_slope_ = true;
     }
     auto copy_row = [&](int r) {
-      const Lanes* from = lanes.row_at(r);
       Real* to = row(static_cast<std::size_t>(r));
-      for (int k = 0; k <= order; ++k) to[k] = from[k].lane[lane];
+      for (int k = 0; k <= order; ++k) to[k] = lanes.coefficient(r, k, lane);
     };
     if (needs_slope_) {
-      for (int r = 0; r < lanes.rows_taken_; ++r) copy_row(r);
+      for (int r = 0; r < tape.rows_taken(); ++r) copy_row(r);
     } else {
       for (std::size_t i = 0; i < N; ++i) copy_row(static_cast<int>(i));
     }
-    output_count_ = lanes.output_count_;
+    output_count_ = tape.output_count();
     for (int j = 0; j < output_count_; ++j) {
-      const int r = static_cast<int>((lanes.output_rows_[j] - lanes.rows_.data()) /
-                                     Evaluation::stride);
+      const int r = tape.output_row(j);
       if (!needs_slope_) copy_row(r);
       output_rows_[j] = row(static_cast<std::size_t>(r));
     }
   }
 
  private:
-  template <class, std::size_t>
-  friend class TaylorSeries;
-
-  [[nodiscard]] const Real* row_at(int r) const { return &rows_[r * Evaluation::stride]; }
   Real* row(std::size_t r) { return &rows_[r * Evaluation::stride]; }
   Real* state_row(std::size_t i) { return row(i); }
   Real* rate_row(std::size_t i) { return row(N + i); }
@@ -616,10 +569,6 @@ class TaylorSeries {
   std::array<const Real*, max_outputs> output_rows_{};
   int output_count_ = 0;
   bool needs_slope_ = false;
-  // a series of lanes: the rows its evaluation took, and its signs' arguments' rows
-  int rows_taken_ = 0;
-  std::array<int, Evaluation::max_signs> sign_rows_{};
-  int sign_count_ = 0;
 };
 
 }  // namespace impactlab

@@ -37,7 +37,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
-#include <memory>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -49,6 +48,7 @@
 #include <impactlab/integrate/event_location.hpp>
 #include <impactlab/integrate/polynomial_roots.hpp>
 #include <impactlab/integrate/series_lane.hpp>
+#include <impactlab/integrate/series_tape.hpp>
 #include <impactlab/integrate/stepper_settings.hpp>
 #include <impactlab/integrate/taylor_series.hpp>
 
@@ -67,19 +67,19 @@ concept HasSeriesRhs = HybridSystem<S> && requires(const S& system, typename S::
   { system.witness(mode, k, x, t).value } -> std::convertible_to<TaylorVariable<>>;
 };
 
-// Whether a batch may evaluate several lanes' series of System in one pass
-// over LaneNumber (integrate/lane_number.hpp): the system says that its
-// right-hand side's and witnesses' operations depend on the mode alone (no
-// branch on a value, no start_value), and it is plain data, so that two
-// lanes of equal bytes are one system. Other systems' lanes are evaluated
-// one after the other, each in double.
+// A system whose right-hand side and witnesses also run over TapeVariable
+// (integrate/series_tape.hpp), so that a batch can record its order-0 pass
+// and compute several lanes' series in one pass. Other systems' lanes are
+// evaluated one after the other, each in double.
 template <class S>
-concept SeriesLanesAllowed = std::is_trivially_copyable_v<S> && requires {
-  requires S::series_operations_by_mode_alone;
-};
-
-// the lanes of one pass over LaneNumber
-inline constexpr int series_lane_width = 4;
+concept HasTapeRhs =
+    requires(const S& system, typename S::Mode mode,
+             const std::array<TapeVariable, std::tuple_size_v<typename S::State>>& x,
+             std::array<TapeVariable, std::tuple_size_v<typename S::State>>& dxdt,
+             const TapeVariable& t, std::size_t k) {
+      { system.rhs(mode, x, dxdt, t) };
+      { system.witness(mode, k, x, t).value } -> std::convertible_to<TapeVariable>;
+    };
 
 // the fraction of the radius of convergence a step takes: e^{−step_exponent}
 inline constexpr double taylor_step_exponent = 1.3;
@@ -112,10 +112,6 @@ class TaylorStepper {
         scale_floor_(settings.atol / settings.rtol) {
     if (!(settings.rtol > 0.0) || !(settings.atol > 0.0))
       throw std::invalid_argument("taylor: rtol and atol must be positive");
-    // a stepper in a batch lane may lead a pass over lanes: its scratch made
-    // here, not while stepping
-    if constexpr (SeriesLanesAllowed<System> && std::is_same_v<Real, double>)
-      if (settings.series_lane != nullptr) lane_scratch_.series = std::make_unique<LaneSeries>();
   }
 
   [[nodiscard]] int order() const { return order_; }
@@ -302,81 +298,65 @@ class TaylorStepper {
     Mode mode{};
   };
 
-  using LaneSeries = TaylorSeries<LaneNumber<series_lane_width>, dimension>;
-
-  // Scratch for a pass over lanes that this stepper leads: made on the
-  // first such pass, never copied (a copy of the stepper starts without).
-  struct LaneScratch {
-    LaneScratch() = default;
-    LaneScratch(const LaneScratch&) {}
-    LaneScratch& operator=(const LaneScratch&) { return *this; }
-    std::unique_ptr<LaneSeries> series;
-  };
-
-  // Whether two requests' series are one pass over lanes: the same mode and
-  // order, and equal systems (parameters)
-  static bool one_pass(const LaneRequest& a, const LaneRequest& b) {
-    return a.mode == b.mode && a.stepper->order_ == b.stepper->order_ &&
-           (a.system == b.system || std::memcmp(a.system, b.system, sizeof(System)) == 0);
-  }
-
-  // the series of `count` (2..series_lane_width) requests in one pass over
-  // LaneNumber, spare lanes repeating the first; then each stepper's own
-  static void evaluate_pass(const std::array<const LaneRequest*, series_lane_width>& members,
-                            int count) {
-    TaylorStepper& leader = *members[0]->stepper;
-    // made with the stepper; here only for a copy of one (which starts without)
-    if (!leader.lane_scratch_.series) leader.lane_scratch_.series = std::make_unique<LaneSeries>();
-    std::array<LaneNumber<series_lane_width>, dimension> x0;
-    LaneNumber<series_lane_width> t0;
-    for (int lane = 0; lane < series_lane_width; ++lane) {
-      const TaylorStepper& stepper = *members[lane < count ? lane : 0]->stepper;
-      for (std::size_t i = 0; i < dimension; ++i) x0[i].lane[lane] = stepper.x_old_[i];
-      t0.lane[lane] = stepper.t_old_;
-    }
-    LaneSeries& pass = *leader.lane_scratch_.series;
-    pass.evaluate(x0.data(), t0, leader.order_, SeriesRhs{members[0]->system, members[0]->mode});
-    for (int lane = 0; lane < count; ++lane) {
-      TaylorStepper& stepper = *members[lane]->stepper;
-      stepper.series_.take_lane(pass, lane, stepper.order_);
-    }
-  }
-
-  // The series of `count` requests of steppers of this type: those of one
-  // system and mode in passes over lanes where the system allows it and the
-  // processor has the passes' vector instructions (lane_passes_available),
-  // the others one after the other, each in double as evaluate() computes
-  // it alone.
+  // The series of `count` requests of steppers of this type. Each lane's
+  // order 0 is recorded on its tape; lanes whose tapes record the same
+  // operations at the same order have their orders 1..p computed in one pass
+  // over lanes (integrate/series_tape.hpp), up to tape_lane_width at a time;
+  // a lane left alone is evaluated in double as evaluate() computes it.
   static void evaluate_requests(SeriesRequest* const* requests, int count) {
     auto evaluate_alone = [](const LaneRequest& request) {
       TaylorStepper& stepper = *request.stepper;
       stepper.series_.evaluate(stepper.x_old_.data(), stepper.t_old_, stepper.order_,
                                SeriesRhs{request.system, request.mode}, false);
     };
-    if constexpr (SeriesLanesAllowed<System> && std::is_same_v<Real, double>) {
-      if (lane_passes_available()) {
-        std::array<bool, max_series_lanes> taken{};
-        for (int i = 0; i < count; ++i) {
-          if (taken[i]) continue;
-          const auto& first = *static_cast<const LaneRequest*>(requests[i]);
-          std::array<const LaneRequest*, series_lane_width> members{};
-          int n = 0;
-          for (int j = i; j < count && n < series_lane_width; ++j) {
-            const auto& other = *static_cast<const LaneRequest*>(requests[j]);
-            if (!taken[j] && one_pass(first, other)) {
-              members[n++] = &other;
-              taken[j] = true;
-            }
-          }
-          if (n > 1)
-            evaluate_pass(members, n);
-          else
-            evaluate_alone(first);
-        }
-        return;
+    if constexpr (HasTapeRhs<System> && std::is_same_v<Real, double>) {
+      for (int i = 0; i < count; ++i) {
+        const auto& request = *static_cast<const LaneRequest*>(requests[i]);
+        const TaylorStepper& stepper = *request.stepper;
+        record_series_tape<dimension>(*request.tape, stepper.x_old_.data(), stepper.t_old_,
+                                      SeriesRhs{request.system, request.mode});
       }
+      std::array<bool, max_series_lanes> taken{};
+      for (int i = 0; i < count; ++i) {
+        if (taken[i]) continue;
+        auto& first = *static_cast<LaneRequest*>(requests[i]);
+        std::array<LaneRequest*, tape_lane_width> members{};
+        int n = 0;
+        for (int j = i; j < count && n < tape_lane_width; ++j) {
+          auto& other = *static_cast<LaneRequest*>(requests[j]);
+          if (!taken[j] && one_pass(first, other)) {
+            members[n++] = &other;
+            taken[j] = true;
+          }
+        }
+        if (n > 1)
+          evaluate_pass(members, n);
+        else
+          evaluate_alone(first);
+      }
+      return;
     }
     for (int i = 0; i < count; ++i) evaluate_alone(*static_cast<const LaneRequest*>(requests[i]));
+  }
+
+  // Whether two recorded requests are one pass over lanes: the same order,
+  // and tapes of the same operations
+  static bool one_pass(const LaneRequest& a, const LaneRequest& b) {
+    return a.stepper->order_ == b.stepper->order_ && a.tape->same_operations(*b.tape);
+  }
+
+  // the series of `count` (2..tape_lane_width) recorded requests in one pass
+  // over lanes; then each stepper's own
+  static void evaluate_pass(const std::array<LaneRequest*, tape_lane_width>& members, int count) {
+    std::array<const SeriesTape*, tape_lane_width> tapes{};
+    for (int lane = 0; lane < count; ++lane) tapes[lane] = members[lane]->tape;
+    SeriesLaneRows& rows = *members[0]->rows;
+    replay_series_tapes(tapes, count, members[0]->stepper->order_, rows);
+    for (int lane = 0; lane < count; ++lane) {
+      TaylorStepper& stepper = *members[lane]->stepper;
+      stepper.series_.take_lane(rows, *tapes[lane], lane, stepper.order_);
+      members[lane]->in_pass = true;
+    }
   }
 
   // the coefficients of the state and of the mode's witnesses at the step's
@@ -467,7 +447,6 @@ class TaylorStepper {
   double scale_floor_;  // atol / rtol (state units)
   using Series = TaylorSeries<Real, dimension>;
   Series series_;
-  LaneScratch lane_scratch_;
   RealState x_{}, x_old_{};             // the step's end and start
   Real t_ = 0, t_old_ = 0, step_ = 0;   // s
   State x_double_{}, x_old_double_{};   // the same, rounded, as the loop sees them

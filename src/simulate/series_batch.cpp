@@ -9,6 +9,8 @@
 #include <boost/context/fiber.hpp>
 #include <boost/context/protected_fixedsize_stack.hpp>
 
+#include <impactlab/integrate/series_tape.hpp>
+
 namespace impactlab {
 
 namespace {
@@ -30,6 +32,8 @@ class FiberLane final : public SeriesLane {
   ~FiberLane() = default;
 
   void compute(SeriesRequest& request) override {
+    request.tape = tape;
+    request.rows = rows;
     pending = &request;
     scheduler = std::move(scheduler).resume();
     if (request.failure) std::rethrow_exception(request.failure);
@@ -38,6 +42,8 @@ class FiberLane final : public SeriesLane {
   context::fiber fiber;      // this lane's, resumed by the scheduler
   context::fiber scheduler;  // the scheduler's, resumed by this lane
   SeriesRequest* pending = nullptr;
+  SeriesTape* tape = nullptr;      // this lane's
+  SeriesLaneRows* rows = nullptr;  // the batch's
   bool finished = false;
   std::exception_ptr failure;
 };
@@ -64,8 +70,12 @@ BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_
   if (width < 1 || width > max_series_lanes)
     throw std::invalid_argument("run_in_lanes: the width must be from 1 to max_series_lanes");
   std::array<FiberLane, max_series_lanes> lanes;
+  const auto tapes = std::make_unique<SeriesTape[]>(static_cast<std::size_t>(width));
+  const auto rows = std::make_unique_for_overwrite<SeriesLaneRows>();
   for (int i = 0; i < width; ++i) {
     FiberLane& lane = lanes[i];
+    lane.tape = &tapes[static_cast<std::size_t>(i)];
+    lane.rows = rows.get();
     lane.fiber = context::fiber(
         std::allocator_arg, context::protected_fixedsize_stack(lane_stack_bytes),
         [&lane, &run_next_job](context::fiber&& scheduler) {
@@ -109,6 +119,8 @@ BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_
       evaluate_group(group.data(), count);
       ++statistics.evaluations;
       statistics.lane_series += static_cast<std::uint64_t>(count);
+      for (int j = 0; j < count; ++j)
+        if (group[j]->in_pass) ++statistics.series_in_passes;
     }
   }
   for (int i = 0; i < width; ++i)

@@ -5,8 +5,9 @@
 // simulation code whose steppers carry the lane in their settings
 // (StepperSettings::series_lane): each Taylor step suspends its lane where it
 // needs its series (integrate/series_lane.hpp). When every lane waits, the
-// batch evaluates the waiting requests (in passes over lanes where the
-// system allows it: TaylorStepper's evaluate_requests), and resumes each lane with its own
+// batch evaluates the waiting requests (in passes over lanes where their
+// order-0 tapes record the same operations: integrate/series_tape.hpp,
+// TaylorStepper's evaluate_requests), and resumes each lane with its own
 // coefficients; the lane then finishes its step alone, in the scalar
 // stepper's own code: step size, exclusion test, root isolation, events.
 // A lane whose job ends takes the next job at once, so no lane waits for
@@ -24,16 +25,21 @@
 
 namespace impactlab {
 
-// the lanes a batch runs by default: enough independent chains of
-// recurrences to fill the out-of-order window of a current x86-64 or ARM core
-inline constexpr int default_batch_width = 4;
+// the lanes a batch runs by default: the most it may, so that as many
+// requests as possible wait together and the passes over lanes fill
+// (a pass takes four; with 4 lanes a 2D map's Lyapunov runs, a phase that
+// only some lanes are in at a time, were mostly evaluated alone:
+// docs/performance.md)
+inline constexpr int default_batch_width = max_series_lanes;
 
 // How full the batch ran: how many series it evaluated, in how many
 // evaluations together (lane_series / evaluations: the mean lanes per
-// evaluation, at most the width).
+// evaluation, at most the width), and how many of them in passes over lanes
+// (integrate/series_tape.hpp) rather than alone.
 struct BatchStatistics {
   std::uint64_t evaluations = 0;
   std::uint64_t lane_series = 0;
+  std::uint64_t series_in_passes = 0;
 };
 
 // Calls run_next_job(lane) in each of `width` lanes (1 <= width <=

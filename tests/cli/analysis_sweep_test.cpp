@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include <impactlab/platform/run_program.hpp>
+#include <impactlab/simulate/series_batch.hpp>
 
 #include "support/test_support.hpp"
 
@@ -361,8 +362,8 @@ TEST(Sweep, SerialAndThreadedRunsWriteIdenticalFiles) {
   EXPECT_EQ(classes, slurp(threaded_2d / "classes.csv"));
 }
 
-// Trajectories in the lanes of a batch (--batch on, with the Taylor
-// stepper; off by default) are the scalar runs to the last bit
+// Trajectories in the lanes of a batch (--batch on, the default with the
+// Taylor stepper) are the scalar runs to the last bit
 // (simulate/series_batch.hpp): a 1D sweep in chunks, a 2D map with its
 // Lyapunov exponents and a basins grid write the same files either way, and
 // meta.json says how many lanes ran.
@@ -377,14 +378,14 @@ TEST(Sweep, BatchOnAndOffWriteIdenticalFiles) {
       run_command_line(sweep_1d + " --chunks 6 --batch off --out " + off_1d.string()).status, 0);
   EXPECT_EQ(slurp(on_1d / "bifurcation.csv"), slurp(off_1d / "bifurcation.csv"));
   EXPECT_EQ(slurp(on_1d / "summary.csv"), slurp(off_1d / "summary.csv"));
-  EXPECT_EQ(batch_width(on_1d), 4);
+  EXPECT_EQ(batch_width(on_1d), impactlab::default_batch_width);
   EXPECT_EQ(batch_width(off_1d), 1);
 
   const auto on_2d = scratch / "on2d", off_2d = scratch / "off2d";
   ASSERT_EQ(run_command_line(sweep_2d + " --threads 2 --batch on --out " + on_2d.string()).status, 0);
   ASSERT_EQ(run_command_line(sweep_2d + " --batch off --out " + off_2d.string()).status, 0);
   EXPECT_EQ(slurp(on_2d / "classes.csv"), slurp(off_2d / "classes.csv"));
-  EXPECT_EQ(batch_width(on_2d), 4);
+  EXPECT_EQ(batch_width(on_2d), impactlab::default_batch_width);
 
   const std::string basins =
       "basins jin2003 --set V0=4.163 --x initial.theta=-0.04:0.04:5 "
@@ -394,7 +395,11 @@ TEST(Sweep, BatchOnAndOffWriteIdenticalFiles) {
   ASSERT_EQ(run_command_line(basins + " --batch off --out " + off_basins.string()).status, 0);
   EXPECT_EQ(slurp(on_basins / "basins.csv"), slurp(off_basins / "basins.csv"));
   EXPECT_EQ(slurp(on_basins / "attractors.csv"), slurp(off_basins / "attractors.csv"));
-  EXPECT_EQ(batch_width(on_basins), 4);
+  EXPECT_EQ(batch_width(on_basins), impactlab::default_batch_width);
+  // on by default
+  const auto default_basins = scratch / "default_basins";
+  ASSERT_EQ(run_command_line(basins + " --out " + default_basins.string()).status, 0);
+  EXPECT_EQ(batch_width(default_basins), impactlab::default_batch_width);
 
   // another stepper runs no batch
   const auto rk = scratch / "rk";

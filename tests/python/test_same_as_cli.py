@@ -178,9 +178,9 @@ def test_sweep_2d_map_equals_cli(cli):
         assert result.grids.termination[j, i] == classes["termination"][row]
 
 
-@pytest.mark.parametrize("batch, width", [(True, 4), (False, 1)])
+@pytest.mark.parametrize("batch, width", [(True, 16), (False, 1)])
 def test_sweep_2d_map_says_its_batch_width_as_the_cli(cli, batch, width):
-    """The lanes per thread (batch on: 4 with the Taylor stepper) in the
+    """The lanes per thread (batch on: 16 with the Taylor stepper) in the
     result's run as in meta.json's, and the same classes with or without."""
     grid = ["omega=6.5:7.5:3", "V0=3.5:4.5:2"]
     out = cli("sweep", "jin2003", "--param", grid[0], "--param", grid[1], "--points", "6",

@@ -1,0 +1,197 @@
+#include <impactlab/integrate/series_tape.hpp>
+
+#include <algorithm>
+
+namespace impactlab {
+namespace {
+
+using Lanes = TapeLaneNumber;
+constexpr int stride = SeriesTape::stride;
+
+// An entry of the tape with its rows resolved to addresses in the pass's
+// storage, and its constant in lanes: what each order reads, worked out
+// once for the pass.
+struct ResolvedEntry {
+  TapeOperation operation;
+  SineRecurrence recurrence;
+  int degree_a;
+  int degree_b;
+  Lanes* result;
+  const Lanes* x;  // operand a's row (sin_cos: its argument's), or nullptr: a constant
+  const Lanes* y;  // operand b's row, or nullptr
+  const Lanes* f;  // sin_cos of a state component: its derivative's row
+  Lanes constant;  // scale's factor, lane by lane
+};
+
+// Orders 1..order of every operation of the tape, each recurrence written as
+// TaylorVariable's (integrate/taylor_series.hpp) for k >= 1, the operands'
+// coefficient k read from their rows. A sign, and sin and cos of a constant,
+// are zero beyond order 0: written once, not walked at every order.
+void replay_orders(const SeriesTape& tape, const std::array<Lanes, SeriesTape::max_entries>& constants,
+                   int order, Lanes* rows) {
+  auto row = [rows](int r) { return rows + r * stride; };
+  std::array<ResolvedEntry, SeriesTape::max_entries> resolved;
+  int walked = 0;
+  for (int e = 0; e < tape.entry_count(); ++e) {
+    const TapeEntry& entry = tape.entry(e);
+    Lanes* result = row(entry.result);
+    const bool constant_sine = entry.operation == TapeOperation::sin_cos &&
+                               entry.recurrence == SineRecurrence::constant_argument;
+    if (entry.operation == TapeOperation::sign || constant_sine) {
+      for (int k = 1; k <= order; ++k) result[k] = 0.0;
+      if (constant_sine)
+        for (int k = 1; k <= order; ++k) result[stride + k] = 0.0;
+      continue;
+    }
+    resolved[walked++] = {entry.operation,
+                          entry.recurrence,
+                          entry.degree_a,
+                          entry.degree_b,
+                          result,
+                          entry.a >= 0 ? row(entry.a) : nullptr,
+                          entry.b >= 0 ? row(entry.b) : nullptr,
+                          entry.rate >= 0 ? row(entry.rate) : nullptr,
+                          constants[e]};
+  }
+  const int n = tape.dimension();
+  Lanes* time = row(2 * n);
+  for (int k = 1; k <= order; ++k) {
+    time[k] = k == 1 ? Lanes(1.0) : Lanes(0.0);
+    const Lanes reciprocal = taylor_reciprocal<Lanes>(k);
+    for (int e = 0; e < walked; ++e) {
+      const ResolvedEntry& entry = resolved[e];
+      Lanes* result = entry.result;
+      const Lanes* x = entry.x;
+      const Lanes* y = entry.y;
+      switch (entry.operation) {
+        case TapeOperation::add:
+          result[k] = x[k] + y[k];
+          break;
+        case TapeOperation::subtract:
+          result[k] = x[k] - y[k];
+          break;
+        case TapeOperation::negate:
+          result[k] = -x[k];
+          break;
+        case TapeOperation::scale:
+          result[k] = entry.constant * x[k];
+          break;
+        case TapeOperation::shift:
+          result[k] = x[k];
+          break;
+        case TapeOperation::subtract_from_constant:
+          result[k] = -y[k];
+          break;
+        case TapeOperation::multiply: {
+          const int da = entry.degree_a, db = entry.degree_b;
+          Lanes sum = 0.0;
+          for (int j = std::max(1, k - db); j <= std::min(k - 1, da); ++j) sum += x[j] * y[k - j];
+          if (k <= db) sum += x[0] * y[k];
+          if (k <= da) sum += x[k] * y[0];
+          result[k] = sum;
+          break;
+        }
+        case TapeOperation::divide: {
+          const int db = entry.degree_b;
+          Lanes* q = result;
+          Lanes sum = x != nullptr ? x[k] : Lanes(0.0);
+          for (int j = 1; j <= std::min(k - 1, db); ++j) sum -= y[j] * q[k - j];
+          if (k <= db) sum -= y[k] * q[0];
+          q[k] = sum / y[0];
+          break;
+        }
+        case TapeOperation::sin_cos: {
+          Lanes* s = result;
+          Lanes* c = result + stride;
+          Lanes sk, ck;
+          if (entry.recurrence == SineRecurrence::linear_argument) {
+            const Lanes a1 = x[1];
+            sk = (a1 * c[k - 1]) * reciprocal;
+            ck = -(a1 * s[k - 1]) * reciprocal;
+          } else if (entry.recurrence == SineRecurrence::state_argument) {
+            const Lanes* f = entry.f;
+            Lanes s_sum = 0.0, c_sum = 0.0;
+            for (int j = 2; j < k; ++j) {
+              s_sum += f[j - 1] * c[k - j];
+              c_sum += f[j - 1] * s[k - j];
+            }
+            if (k > 1) {
+              s_sum += f[k - 1] * c[0];
+              c_sum += f[k - 1] * s[0];
+            }
+            s_sum += f[0] * c[k - 1];
+            c_sum += f[0] * s[k - 1];
+            sk = s_sum * reciprocal;
+            ck = -c_sum * reciprocal;
+          } else {
+            Lanes* ja = result + 2 * stride;
+            ja[k] = Lanes(static_cast<double>(k)) * x[k];
+            Lanes s_sum = 0.0, c_sum = 0.0;
+            for (int j = 1; j <= std::min(k, entry.degree_a); ++j) {
+              s_sum += ja[j] * c[k - j];
+              c_sum += ja[j] * s[k - j];
+            }
+            sk = s_sum * reciprocal;
+            ck = -c_sum * reciprocal;
+          }
+          s[k] = sk;
+          c[k] = ck;
+          break;
+        }
+        case TapeOperation::sign:
+          break;
+      }
+    }
+    for (int i = 0; i < n; ++i) {
+      const int from = tape.derivative_row(i);
+      const Lanes f = from >= 0 ? row(from)[k] : Lanes(0.0);
+      row(n + i)[k] = f;
+      if (k < order) row(i)[k + 1] = f * taylor_reciprocal<Lanes>(k + 1);
+    }
+    for (int j = 0; j < tape.output_count(); ++j)
+      if (tape.output_is_constant(j)) row(tape.output_row(j))[k] = 0.0;
+  }
+}
+
+void replay_default(const SeriesTape& tape, const std::array<Lanes, SeriesTape::max_entries>& constants,
+                    int order, Lanes* rows) {
+  replay_orders(tape, constants, order, rows);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+// the same, compiled for AVX2 (four lanes in one register; not FMA: the
+// products and sums stay separate IEEE operations)
+[[gnu::target("avx2"), gnu::flatten]] void replay_avx2(
+    const SeriesTape& tape, const std::array<Lanes, SeriesTape::max_entries>& constants, int order,
+    Lanes* rows) {
+  replay_orders(tape, constants, order, rows);
+}
+#endif
+
+}  // namespace
+
+void replay_series_tapes(const std::array<const SeriesTape*, tape_lane_width>& tapes, int count,
+                         int order, SeriesLaneRows& out) {
+  const SeriesTape& first = *tapes[0];
+  const int n = first.dimension();
+  Lanes* rows = out.rows.data();
+  // order 0 (and the state's coefficient 1), as each lane's recording left it
+  std::array<Lanes, SeriesTape::max_entries> constants;
+  for (int lane = 0; lane < tape_lane_width; ++lane) {
+    const SeriesTape& tape = *tapes[lane < count ? lane : 0];
+    for (int r = 0; r < tape.rows_taken(); ++r) rows[r * stride].lane[lane] = tape.coefficient0(r);
+    for (int i = 0; i < n; ++i)
+      rows[i * stride + 1].lane[lane] =
+          tape.coefficient0(n + i) * taylor_reciprocal<double>(1);
+    for (int e = 0; e < tape.entry_count(); ++e) constants[e].lane[lane] = tape.constant(e);
+  }
+#if defined(__x86_64__) && defined(__GNUC__)
+  if (lane_passes_available()) {
+    replay_avx2(first, constants, order, rows);
+    return;
+  }
+#endif
+  replay_default(first, constants, order, rows);
+}
+
+}  // namespace impactlab
