@@ -57,7 +57,6 @@ void replay_orders(const SeriesTape& tape, const std::array<Lanes, SeriesTape::m
   Lanes* time = row(2 * n);
   for (int k = 1; k <= order; ++k) {
     time[k] = k == 1 ? Lanes(1.0) : Lanes(0.0);
-    const Lanes reciprocal = taylor_reciprocal<Lanes>(k);
     for (int e = 0; e < walked; ++e) {
       const ResolvedEntry& entry = resolved[e];
       Lanes* result = entry.result;
@@ -82,57 +81,25 @@ void replay_orders(const SeriesTape& tape, const std::array<Lanes, SeriesTape::m
         case TapeOperation::subtract_from_constant:
           result[k] = -y[k];
           break;
-        case TapeOperation::multiply: {
-          const int da = entry.degree_a, db = entry.degree_b;
-          Lanes sum = 0.0;
-          for (int j = std::max(1, k - db); j <= std::min(k - 1, da); ++j) sum += x[j] * y[k - j];
-          if (k <= db) sum += x[0] * y[k];
-          if (k <= da) sum += x[k] * y[0];
-          result[k] = sum;
+        case TapeOperation::multiply:
+          result[k] = detail::product_coefficient(x, y, x[k], y[k], k, entry.degree_a, entry.degree_b);
           break;
-        }
-        case TapeOperation::divide: {
-          const int db = entry.degree_b;
-          Lanes* q = result;
-          Lanes sum = x != nullptr ? x[k] : Lanes(0.0);
-          for (int j = 1; j <= std::min(k - 1, db); ++j) sum -= y[j] * q[k - j];
-          if (k <= db) sum -= y[k] * q[0];
-          q[k] = sum / y[0];
+        case TapeOperation::divide:
+          result[k] = detail::quotient_coefficient(x != nullptr ? x[k] : Lanes(0.0), y, y[k],
+                                                   result, k, entry.degree_b);
           break;
-        }
         case TapeOperation::sin_cos: {
           Lanes* s = result;
           Lanes* c = result + stride;
           Lanes sk, ck;
           if (entry.recurrence == SineRecurrence::linear_argument) {
-            const Lanes a1 = x[1];
-            sk = (a1 * c[k - 1]) * reciprocal;
-            ck = -(a1 * s[k - 1]) * reciprocal;
+            detail::sine_of_linear(x[1], s, c, k, sk, ck);
           } else if (entry.recurrence == SineRecurrence::state_argument) {
-            const Lanes* f = entry.f;
-            Lanes s_sum = 0.0, c_sum = 0.0;
-            for (int j = 2; j < k; ++j) {
-              s_sum += f[j - 1] * c[k - j];
-              c_sum += f[j - 1] * s[k - j];
-            }
-            if (k > 1) {
-              s_sum += f[k - 1] * c[0];
-              c_sum += f[k - 1] * s[0];
-            }
-            s_sum += f[0] * c[k - 1];
-            c_sum += f[0] * s[k - 1];
-            sk = s_sum * reciprocal;
-            ck = -c_sum * reciprocal;
+            detail::sine_of_state(entry.f, s, c, k, sk, ck);
           } else {
             Lanes* ja = result + 2 * stride;
             ja[k] = Lanes(static_cast<double>(k)) * x[k];
-            Lanes s_sum = 0.0, c_sum = 0.0;
-            for (int j = 1; j <= std::min(k, entry.degree_a); ++j) {
-              s_sum += ja[j] * c[k - j];
-              c_sum += ja[j] * s[k - j];
-            }
-            sk = s_sum * reciprocal;
-            ck = -c_sum * reciprocal;
+            detail::sine_of_series(ja, entry.degree_a, s, c, k, sk, ck);
           }
           s[k] = sk;
           c[k] = ck;

@@ -206,9 +206,79 @@ void sin_and_cos(const Real& v, Real& s, Real& c) {
   }
 }
 
+// The recurrences of orders k >= 1, shared by TaylorVariable (which passes
+// its operands' newest coefficients as values, kept in registers) and the
+// pass over lanes (integrate/series_tape.cpp, which reads them from the
+// rows), so that both perform the same operations in the same order.
+
+// coefficient k of a · b: x, y the rows, xk, yk the coefficients k, da, db
+// the degrees; the products of older coefficients first, the newest
+// (a_k b_0 and a_0 b_k) last, the sums stopping at the degrees
+template <class Real>
+Real product_coefficient(const Real* x, const Real* y, const Real& xk, const Real& yk, int k,
+                         int da, int db) {
+  Real sum = 0;
+  for (int j = std::max(1, k - db); j <= std::min(k - 1, da); ++j) sum += x[j] * y[k - j];
+  if (k <= db) sum += x[0] * yk;
+  if (k <= da) sum += xk * y[0];
+  return sum;
+}
+
+// coefficient k of q = a / b: b_0 q_k = a_k − Σ_{j=1..k} b_j q_{k−j} (y b's
+// row, yk its coefficient k, db its degree; q the quotient's row)
+template <class Real>
+Real quotient_coefficient(const Real& ak, const Real* y, const Real& yk, const Real* q, int k,
+                          int db) {
+  Real sum = ak;
+  for (int j = 1; j <= std::min(k - 1, db); ++j) sum -= y[j] * q[k - j];
+  if (k <= db) sum -= yk * q[0];
+  return sum / y[0];
+}
+
+// coefficients k of sin a and cos a (s, c their rows), by s' = c a',
+// c' = −s a': k s_k = Σ_{j=1..k} j a_j c_{k−j}, k c_k = −Σ j a_j s_{k−j}.
+// a = a0 + a1 h (ωt): k s_k = a1 c_{k−1}, k c_k = −a1 s_{k−1}
+template <class Real>
+void sine_of_linear(const Real& a1, const Real* s, const Real* c, int k, Real& sk, Real& ck) {
+  sk = (a1 * c[k - 1]) * taylor_reciprocal<Real>(k);
+  ck = -(a1 * s[k - 1]) * taylor_reciprocal<Real>(k);
+}
+
+// a a state component: j a_j = f_{j−1}, its derivative's coefficient, read,
+// not computed; the newest terms last (j = 1: the previous order's c_{k−1},
+// s_{k−1}; j = k: f_{k−1})
+template <class Real>
+void sine_of_state(const Real* f, const Real* s, const Real* c, int k, Real& sk, Real& ck) {
+  Real s_sum = 0, c_sum = 0;
+  for (int j = 2; j < k; ++j) {
+    s_sum += f[j - 1] * c[k - j];
+    c_sum += f[j - 1] * s[k - j];
+  }
+  if (k > 1) {
+    s_sum += f[k - 1] * c[0];
+    c_sum += f[k - 1] * s[0];
+  }
+  s_sum += f[0] * c[k - 1];
+  c_sum += f[0] * s[k - 1];
+  sk = s_sum * taylor_reciprocal<Real>(k);
+  ck = -c_sum * taylor_reciprocal<Real>(k);
+}
+
+// any other a of degree `degree`: j a_j kept in a row of its own (ja, up to k)
+template <class Real>
+void sine_of_series(const Real* ja, int degree, const Real* s, const Real* c, int k, Real& sk,
+                    Real& ck) {
+  Real s_sum = 0, c_sum = 0;
+  for (int j = 1; j <= std::min(k, degree); ++j) {
+    s_sum += ja[j] * c[k - j];
+    c_sum += ja[j] * s[k - j];
+  }
+  sk = s_sum * taylor_reciprocal<Real>(k);
+  ck = -c_sum * taylor_reciprocal<Real>(k);
+}
+
 // sin a and cos a, computed together (two rows, and a third for j · a_j
-// where a is neither a state component nor linear in t):
-// s' = c a', c' = −s a': k s_k = Σ_{j=1..k} j a_j c_{k−j}, k c_k = −Σ j a_j s_{k−j}
+// where a is neither a state component nor linear in t)
 template <class Real>
 std::array<TaylorVariable<Real>, 2> sin_cos(const TaylorVariable<Real>& a) {
   TaylorEvaluation<Real>* evaluation = a.evaluation();
@@ -223,36 +293,12 @@ std::array<TaylorVariable<Real>, 2> sin_cos(const TaylorVariable<Real>& a) {
     sk = 0;
     ck = 0;
   } else if (a.degree() == 1) {
-    // a0 + a1 h (ωt): k s_k = a1 c_{k−1}, k c_k = −a1 s_{k−1}
-    const Real a1 = k == 1 ? a.value() : a.row()[1];
-    sk = (a1 * c[k - 1]) * taylor_reciprocal<Real>(k);
-    ck = -(a1 * s[k - 1]) * taylor_reciprocal<Real>(k);
+    sine_of_linear(k == 1 ? a.value() : a.row()[1], s, c, k, sk, ck);
+  } else if (a.rate() != nullptr) {
+    sine_of_state(a.rate(), s, c, k, sk, ck);
   } else {
-    Real s_sum = 0, c_sum = 0;
-    if (a.rate() != nullptr) {
-      // a state component: j a_j = f_{j−1}, its derivative's coefficient,
-      // read, not computed; the newest terms last (j = 1: the previous
-      // order's c_{k−1}, s_{k−1}; j = k: f_{k−1})
-      const Real* f = a.rate();
-      for (int j = 2; j < k; ++j) {
-        s_sum += f[j - 1] * c[k - j];
-        c_sum += f[j - 1] * s[k - j];
-      }
-      if (k > 1) {
-        s_sum += f[k - 1] * c[0];
-        c_sum += f[k - 1] * s[0];
-      }
-      s_sum += f[0] * c[k - 1];
-      c_sum += f[0] * s[k - 1];
-    } else {
-      ja[k] = k * a.value();
-      for (int j = 1; j <= std::min(k, a.degree()); ++j) {
-        s_sum += ja[j] * c[k - j];
-        c_sum += ja[j] * s[k - j];
-      }
-    }
-    sk = s_sum * taylor_reciprocal<Real>(k);
-    ck = -c_sum * taylor_reciprocal<Real>(k);
+    ja[k] = k * a.value();
+    sine_of_series(ja, a.degree(), s, c, k, sk, ck);
   }
   s[k] = sk;
   c[k] = ck;
@@ -303,8 +349,7 @@ TaylorVariable<Real> operator-(const TaylorVariable<Real>& a, const TaylorVariab
                                       std::max(a.degree(), b.degree()));
 }
 
-// coefficient k of a · b: the products of older coefficients first, the
-// newest (a_k b_0 and a_0 b_k) last, the sums stopping at the degrees
+// coefficient k of a · b (detail::product_coefficient)
 template <class Real>
 TaylorVariable<Real> operator*(const TaylorVariable<Real>& a, const TaylorVariable<Real>& b) {
   if (a.is_constant() && b.is_constant()) return constant_value(a.value() * b.value());
@@ -314,29 +359,22 @@ TaylorVariable<Real> operator*(const TaylorVariable<Real>& a, const TaylorVariab
   const int k = evaluation->order();
   const int degree = std::min(TaylorVariable<Real>::unbounded, a.degree() + b.degree());
   if (k == 0) return TaylorVariable<Real>::result(evaluation, a.value() * b.value(), degree);
-  const Real* x = a.row();
-  const Real* y = b.row();
-  Real sum = 0;
-  for (int j = std::max(1, k - b.degree()); j <= std::min(k - 1, a.degree()); ++j)
-    sum += x[j] * y[k - j];
-  if (k <= b.degree()) sum += x[0] * b.value();
-  if (k <= a.degree()) sum += a.value() * y[0];
-  return TaylorVariable<Real>::result(evaluation, sum, degree);
+  return TaylorVariable<Real>::result(
+      evaluation,
+      detail::product_coefficient(a.row(), b.row(), a.value(), b.value(), k, a.degree(), b.degree()),
+      degree);
 }
 
-// q = a / b: b_0 q_k = a_k − Σ_{j=1..k} b_j q_{k−j}
+// q = a / b (detail::quotient_coefficient)
 template <class Real>
 TaylorVariable<Real> operator/(const TaylorVariable<Real>& a, const TaylorVariable<Real>& b) {
   if (b.is_constant()) return a * TaylorVariable<Real>(1.0 / constant_value(b.value()));
   TaylorEvaluation<Real>* evaluation = b.evaluation();
   const int k = evaluation->order();
   Real* q = evaluation->take_row();
-  const Real* y = b.row();
-  Real sum = a.coefficient(k);
-  for (int j = 1; j <= std::min(k - 1, b.degree()); ++j) sum -= y[j] * q[k - j];
-  if (k >= 1 && k <= b.degree()) sum -= b.value() * q[0];
-  const Real b0 = k == 0 ? b.value() : y[0];
-  q[k] = sum / b0;
+  q[k] = k == 0 ? a.coefficient(0) / b.value()
+                : detail::quotient_coefficient(a.coefficient(k), b.row(), b.value(), q, k,
+                                               b.degree());
   const int degree = b.degree() == 0 ? a.degree() : TaylorVariable<Real>::unbounded;
   return {evaluation, q, q[k], degree};
 }
