@@ -32,10 +32,10 @@ struct LaneVector<8> {
   typedef double type __attribute__((vector_size(64)));
 };
 
-// Whether a batch makes passes over LaneNumber. On x86-64 the passes are
-// compiled for AVX2 alone (four lanes in one register) and chosen at run
-// time, so that the build runs on any x86-64: without AVX2 a batch
-// evaluates each lane in double, with the same results. Elsewhere always.
+// Whether the processor has AVX2, for which a pass over lanes
+// (integrate/series_tape.cpp) is compiled a second time (four lanes in one
+// register), chosen at run time so that the build runs on any x86-64:
+// without it the pass runs in two SSE2 registers, with the same results.
 inline bool lane_passes_available() {
 #if defined(__x86_64__) && defined(__GNUC__)
   return __builtin_cpu_supports("avx2");

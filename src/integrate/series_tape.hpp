@@ -63,7 +63,7 @@ struct TapeEntry {
   std::int16_t a = -1;       // the operands' rows; −1: a constant
   std::int16_t b = -1;
   std::int16_t rate = -1;    // sin_cos of a state component: the row of its derivative
-  std::int16_t unused = 0;
+  std::int16_t padding = 0;  // written, so that the bytes compare
   std::int32_t degree_a = 0;  // the operands' degrees (TaylorVariable::degree)
   std::int32_t degree_b = 0;
 };
@@ -83,7 +83,6 @@ class SeriesTape {
   // a new recording for `dimension` state components: rows 0..N−1 the
   // state, N..2N−1 its derivatives, 2N the time (TaylorSeries' layout)
   void start(int dimension) {
-    if (dimension > max_state) throw std::length_error("taylor: the state is too large for a tape");
     dimension_ = dimension;
     rows_taken_ = 2 * dimension + 1;
     entry_count_ = 0;

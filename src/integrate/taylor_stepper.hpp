@@ -36,7 +36,6 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -310,6 +309,10 @@ class TaylorStepper {
                                SeriesRhs{request.system, request.mode}, false);
     };
     if constexpr (HasTapeRhs<System> && std::is_same_v<Real, double>) {
+      if (count == 1) {  // no partner: nothing to record
+        evaluate_alone(*static_cast<const LaneRequest*>(requests[0]));
+        return;
+      }
       for (int i = 0; i < count; ++i) {
         const auto& request = *static_cast<const LaneRequest*>(requests[i]);
         const TaylorStepper& stepper = *request.stepper;
