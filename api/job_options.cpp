@@ -123,7 +123,7 @@ OptionSpec batch() {
           .help = "on: where the stepper is taylor, each thread runs its trajectories in the lanes "
                   "of a batch whose Taylor series are computed together; off: one at a time. The "
                   "files are the same",
-          .default_value = string_view("off"), .choices = {"on", "off"}};
+          .default_value = string_view("on"), .choices = {"on", "off"}};
 }
 
 OptionSpec resume(string_view help) {

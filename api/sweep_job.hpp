@@ -66,7 +66,7 @@ struct SweepJobOptions {
   // batch on each thread, their series computed together
   // (simulate/series_batch.hpp); off: one task at a time on each thread.
   // The records are the same either way.
-  std::string batch = "off";
+  std::string batch = "on";
 };
 
 struct SweepOutput {

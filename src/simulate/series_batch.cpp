@@ -7,7 +7,19 @@
 #include <utility>
 
 #include <boost/context/fiber.hpp>
+#include <boost/context/preallocated.hpp>
 #include <boost/context/protected_fixedsize_stack.hpp>
+
+#if defined(__SANITIZE_ADDRESS__)
+#define IMPACTLAB_ADDRESS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define IMPACTLAB_ADDRESS_SANITIZER 1
+#endif
+#endif
+#if defined(IMPACTLAB_ADDRESS_SANITIZER)
+#include <sanitizer/common_interface_defs.h>
+#endif
 
 #include <impactlab/integrate/series_tape.hpp>
 
@@ -22,6 +34,33 @@ namespace context = boost::context;
 // the record writers (a few tens of kB deep), with a guard page below
 constexpr std::size_t lane_stack_bytes = std::size_t{4} << 20;
 
+// The bounds of a stack: its lowest address and its size (bytes).
+struct StackBounds {
+  const void* bottom = nullptr;
+  std::size_t size = 0;
+};
+
+// AddressSanitizer keeps one stack per thread. Boost.Context's fibers switch
+// stacks without telling it, and an exception thrown on a lane's stack then
+// looks to it like a jump into another stack: it reports errors that are not
+// there. These two calls tell it of each switch, on both sides: the first
+// just before switching to the stack `to` (`fake_stack` null where the
+// stack left will never run again), the second just after arriving, with
+// the bounds of the stack left in `from` where it is wanted. Without the
+// sanitizer they do nothing.
+void before_stack_switch([[maybe_unused]] void** fake_stack, [[maybe_unused]] StackBounds to) {
+#if defined(IMPACTLAB_ADDRESS_SANITIZER)
+  __sanitizer_start_switch_fiber(fake_stack, to.bottom, to.size);
+#endif
+}
+
+void after_stack_switch([[maybe_unused]] void* fake_stack, [[maybe_unused]] StackBounds* from) {
+#if defined(IMPACTLAB_ADDRESS_SANITIZER)
+  __sanitizer_finish_switch_fiber(fake_stack, from != nullptr ? &from->bottom : nullptr,
+                                  from != nullptr ? &from->size : nullptr);
+#endif
+}
+
 // A lane: its fiber, the scheduler's fiber to switch back to, and its
 // pending request.
 class FiberLane final : public SeriesLane {
@@ -35,7 +74,9 @@ class FiberLane final : public SeriesLane {
     request.tape = tape;
     request.rows = rows;
     pending = &request;
+    before_stack_switch(&fake_stack, scheduler_stack);
     scheduler = std::move(scheduler).resume();
+    after_stack_switch(fake_stack, nullptr);
     if (request.failure) std::rethrow_exception(request.failure);
   }
 
@@ -46,6 +87,9 @@ class FiberLane final : public SeriesLane {
   SeriesLaneRows* rows = nullptr;  // the batch's
   bool finished = false;
   std::exception_ptr failure;
+  StackBounds stack;            // this lane's
+  StackBounds scheduler_stack;  // the scheduler's, learnt at the lane's start
+  void* fake_stack = nullptr;   // the sanitizer's, kept while the lane waits
 };
 
 // Evaluates the requests of one kind together; where that throws, each one
@@ -76,9 +120,13 @@ BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_
     FiberLane& lane = lanes[i];
     lane.tape = &tapes[static_cast<std::size_t>(i)];
     lane.rows = rows.get();
+    context::protected_fixedsize_stack stack_allocator(lane_stack_bytes);
+    const context::stack_context stack = stack_allocator.allocate();
+    lane.stack = {static_cast<const char*>(stack.sp) - stack.size, stack.size};
     lane.fiber = context::fiber(
-        std::allocator_arg, context::protected_fixedsize_stack(lane_stack_bytes),
+        std::allocator_arg, context::preallocated(stack.sp, stack.size, stack), stack_allocator,
         [&lane, &run_next_job](context::fiber&& scheduler) {
+          after_stack_switch(nullptr, &lane.scheduler_stack);
           lane.scheduler = std::move(scheduler);
           try {
             while (run_next_job(lane)) {
@@ -89,10 +137,12 @@ BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_
             lane.failure = std::current_exception();
           }
           lane.finished = true;
+          before_stack_switch(nullptr, lane.scheduler_stack);
           return std::move(lane.scheduler);
         });
   }
   BatchStatistics statistics;
+  void* scheduler_fake_stack = nullptr;
   std::array<SeriesRequest*, max_series_lanes> waiting{};
   std::array<SeriesRequest*, max_series_lanes> group{};
   for (;;) {
@@ -102,7 +152,9 @@ BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_
       FiberLane& lane = lanes[i];
       if (lane.finished) continue;
       lane.pending = nullptr;
+      before_stack_switch(&scheduler_fake_stack, lane.stack);
       lane.fiber = std::move(lane.fiber).resume();
+      after_stack_switch(scheduler_fake_stack, nullptr);
       if (!lane.finished) waiting[waiting_count++] = lane.pending;
     }
     if (waiting_count == 0) break;

@@ -362,8 +362,8 @@ TEST(Sweep, SerialAndThreadedRunsWriteIdenticalFiles) {
   EXPECT_EQ(classes, slurp(threaded_2d / "classes.csv"));
 }
 
-// Trajectories in the lanes of a batch (--batch on, with the Taylor
-// stepper; off by default) are the scalar runs to the last bit
+// Trajectories in the lanes of a batch (--batch on, the default with the
+// Taylor stepper) are the scalar runs to the last bit
 // (simulate/series_batch.hpp): a 1D sweep in chunks, a 2D map with its
 // Lyapunov exponents and a basins grid write the same files either way, and
 // meta.json says how many lanes ran.
@@ -396,6 +396,10 @@ TEST(Sweep, BatchOnAndOffWriteIdenticalFiles) {
   EXPECT_EQ(slurp(on_basins / "basins.csv"), slurp(off_basins / "basins.csv"));
   EXPECT_EQ(slurp(on_basins / "attractors.csv"), slurp(off_basins / "attractors.csv"));
   EXPECT_EQ(batch_width(on_basins), impactlab::default_batch_width);
+  // on by default
+  const auto default_basins = scratch / "default_basins";
+  ASSERT_EQ(run_command_line(basins + " --out " + default_basins.string()).status, 0);
+  EXPECT_EQ(batch_width(default_basins), impactlab::default_batch_width);
 
   // another stepper runs no batch
   const auto rk = scratch / "rk";

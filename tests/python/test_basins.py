@@ -100,14 +100,14 @@ def test_basins_are_cancelled_by_their_progress_callback():
 
 
 def test_batch_off_gives_the_batch_grid_and_says_its_width():
-    """batch=False (the default) runs the trajectories one at a time: the same grid as the
-    batch's lanes (the Taylor stepper on the pendulum), bit for bit; meta
-    records the lanes per thread."""
+    """batch=False runs the trajectories one at a time: the same grid as the
+    batch's lanes (the default with the Taylor stepper on the pendulum), bit
+    for bit; meta records the lanes per thread."""
     grid = dict(x="initial.theta=-0.04:0.04:4", y="initial.theta_dot=-0.5:0.5:3", transient=20,
                 points=8, V0=4.163)
     lanes = impactlab.basins("jin2003", batch=True, **grid)
     alone = impactlab.basins("jin2003", batch=False, **grid)
-    assert impactlab.basins("jin2003", **grid).meta["run"]["batch_width"] == 1  # off by default
+    assert impactlab.basins("jin2003", **grid).meta["run"]["batch_width"] == 16  # on by default
     assert lanes.meta["run"]["batch_width"] == 16
     assert alone.meta["run"]["batch_width"] == 1
     for column in ("attractor", "period", "impacts_per_period", "contact"):
