@@ -83,6 +83,15 @@ template <std::size_t N>
 ModelSystem<N> ModelFileBinding<N>::make_system(const Scene& scene) {
   const RuntimeOscillator* runtime = runtime_oscillator(scene.oscillator);
   auto model = std::static_pointer_cast<const CompiledModel>(runtime->data);
+  // the Taylor stepper runs the model's series programs, where it has them
+  if (!model->series_refusal.empty())
+    for (const std::string key : {"integrator.method", "integrator.classification_method"})
+      if (scene.text(key) == "taylor")
+        throw BadInput(key, "taylor",
+                       fmt::format("this model has no Taylor series ({}); the series are "
+                                   "written for sums, products, integer powers, sin, cos and "
+                                   "abs: choose rkf78, dopri5, rk8pd or bulirsch_stoer",
+                                   model->series_refusal));
   std::vector<double> p;
   for (const auto& parameter : model->parameters) p.push_back(scene.number(parameter.name));
   ModelSystem<N> probe(model, p);
@@ -152,12 +161,12 @@ void build_schema(RuntimeOscillator& oscillator, const CompiledModel& model) {
   schema.oscillator = oscillator.name;
   schema.main_coordinate = oscillator.keep(model.states[0]);
   schema.keys = common_keys();
-  // a model file has no closed-form flow, and no series right-hand side for
-  // the Taylor stepper: neither method is offered, for a run or a classification
+  // a model file has no closed-form flow: no exact method, for a run or a
+  // classification (taylor is refused when the system is made, for a model
+  // without series, with the reason)
   for (auto& key : schema.keys)
     if (key.key == "integrator.method" || key.key == "integrator.classification_method")
-      std::erase_if(key.choices,
-                    [](std::string_view method) { return method == "exact" || method == "taylor"; });
+      std::erase_if(key.choices, [](std::string_view method) { return method == "exact"; });
   schema.keys.push_back(accumulation_tolerance_key());
   for (const auto& parameter : model.parameters)
     schema.keys.push_back({.key = oscillator.keep(parameter.name),

@@ -255,6 +255,42 @@ bool numbers_are_finite_doubles(const GiNaC::ex& e) {
   return true;
 }
 
+// The series programs of the right-hand sides and the witnesses
+// (series_program.hpp), or none and the reason where one of them has an
+// operation without a series.
+void attach_series_programs(CompiledModel& model, const std::vector<KernelCode>& kernels,
+                            const KernelLayout& layout) {
+  const std::size_t n = model.states.size();
+  struct Need {
+    std::string what;
+    std::size_t kernel;
+    std::size_t outputs;
+  };
+  std::vector<Need> needs{{"the free right-hand side", layout.free_rhs, n}};
+  for (std::size_t k = 0; k < model.walls.size(); ++k) {
+    const std::string& wall = model.walls[k].name;
+    needs.push_back({"the gap to wall " + wall, layout.gap[k], 2});
+    needs.push_back({"the right-hand side at rest on wall " + wall, layout.stick_rhs[k], n});
+    needs.push_back({"the push on wall " + wall, layout.stick_force[k], 2});
+  }
+  for (const Need& need : needs) {
+    if (need.kernel == no_kernel) continue;
+    if (const std::string why = series_refusal(kernels[need.kernel], need.outputs); !why.empty()) {
+      model.series_refusal = fmt::format("{}: {}", need.what, why);
+      return;
+    }
+  }
+  auto program = [&](std::size_t kernel, std::size_t outputs) {
+    return kernel == no_kernel ? SeriesProgram{} : SeriesProgram(kernels[kernel], outputs);
+  };
+  model.free_rhs_series = program(layout.free_rhs, n);
+  for (std::size_t k = 0; k < model.walls.size(); ++k) {
+    model.gap_series.push_back(program(layout.gap[k], 2));
+    model.stick_rhs_series.push_back(program(layout.stick_rhs[k], n));
+    model.stick_force_series.push_back(program(layout.stick_force[k], 2));
+  }
+}
+
 // The most operations one kernel may take (kernel_code.hpp): each distinct
 // subexpression is computed once however often it is used, so this bounds
 // the C source and the compiler's work, while a chain of definitions that
@@ -439,6 +475,7 @@ std::shared_ptr<const CompiledModel> compile_model(const ModelDefinition& defini
   model->stick_force = kernel_list(layout.stick_force);
   model->stick_force_gradient = kernel_list(layout.stick_force_gradient);
   model->chatter = kernel_list(layout.chatter);
+  attach_series_programs(*model, kernels, layout);
   model->build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return model;

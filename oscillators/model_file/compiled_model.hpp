@@ -14,6 +14,7 @@
 #include <impactlab/oscillators/model_file/compile_cache.hpp>
 #include <impactlab/oscillators/model_file/model_definition.hpp>
 #include <impactlab/oscillators/model_file/model_kernels.hpp>
+#include <impactlab/oscillators/model_file/series_program.hpp>
 
 namespace impactlab {
 
@@ -58,6 +59,15 @@ class CompiledModel {
   // accumulation estimate (contact/accumulation.hpp), then the size of the
   // gap's terms (the sticking table's gap_scale; 0 where not given)
   std::vector<Kernel> chatter;
+  // --- the same over a number type, for the Taylor stepper (series_program.hpp):
+  // the right-hand sides (N) and the witnesses with their rates (h, ḣ; F, Ḟ).
+  // All empty where a kernel has an operation without a series:
+  // series_refusal then says which ---
+  SeriesProgram free_rhs_series;
+  std::vector<SeriesProgram> gap_series;          // per wall
+  std::vector<SeriesProgram> stick_rhs_series;    // per wall (empty without sticking)
+  std::vector<SeriesProgram> stick_force_series;  // per wall (empty without sticking)
+  std::string series_refusal;  // e.g. "the free right-hand side uses exp"; empty: all there
   // every free-flight expression as written (right-hand sides, witnesses,
   // restitutions, ω, max_step), for the check at the initial state
   Kernel written;

@@ -16,6 +16,9 @@
 //   resting on wall k, F falls through zero: release into free flight from
 //     the sticking state.
 // events.csv's q and qdot are the first two states.
+// The right-hand sides and witnesses run over doubles as the compiled
+// functions, and over any other number type (the Taylor stepper's series)
+// as the model's series programs (series_program.hpp).
 #pragma once
 
 #include <algorithm>
@@ -90,6 +93,17 @@ class ModelSystem {
     field(x.data(), t, p_.data(), dxdt.data());
   }
 
+  // The right-hand side over a number type other than double: the Taylor
+  // stepper's series, the batch's tapes, dual numbers (series_program.hpp).
+  // Only for a model without series_refusal: the scene offers no Taylor
+  // stepper for the others.
+  template <class Number>
+  void rhs(Mode mode, const std::array<Number, N>& x, std::array<Number, N>& dxdt,
+           const Number& t) const {
+    const std::size_t m = index(mode);
+    const SeriesProgram& field = m == 0 ? model_->free_rhs_series : model_->stick_rhs_series[m - 1];
+    field.run(x.data(), t, p_.data(), dxdt.data());
+  }
   [[nodiscard]] std::size_t witness_count(Mode mode) const {
     return index(mode) == 0 ? model_->walls.size() : 1;
   }
@@ -110,6 +124,18 @@ class ModelSystem {
     return {out[0], out[1]};
   }
 
+  // the same over a number type other than double (rhs, above)
+  template <class Number>
+  [[nodiscard]] BasicWitnessSample<Number> witness(Mode mode, std::size_t k,
+                                                   const std::array<Number, N>& x,
+                                                   const Number& t) const {
+    const std::size_t m = index(mode);
+    const SeriesProgram& witness =
+        m == 0 ? model_->gap_series[k] : model_->stick_force_series[m - 1];
+    std::array<Number, 2> out;
+    witness.run(x.data(), t, p_.data(), out.data());
+    return {out[0], out[1]};
+  }
   Transition<State, Mode> on_event(Mode mode, std::size_t k, CrossingKind crossing, const State& x,
                                    double t, EventLog& log) const {
     const std::size_t m = index(mode);

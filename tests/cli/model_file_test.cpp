@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "support/test_support.hpp"
 
@@ -172,6 +173,44 @@ TEST(ModelFileCli, LinearImpactModelFileGivesTheBuiltInSweepClassification) {
   // them apart
   EXPECT_GE(periodic, 25);
   EXPECT_GE(classes.size(), 4u);
+}
+
+// The Taylor stepper on a model file (its series programs,
+// oscillators/model_file/series_program.hpp): a 2D map in the lanes of a
+// batch writes the files of the scalar runs, byte for byte, and meta.json
+// says how many lanes ran; a model with an operation that has no series is
+// refused with exit 2, naming the key and the operation.
+TEST(ModelFileCli, TaylorRunsAModelFileInLanesAndRefusesOneWithoutSeries) {
+  const ScratchFolder scratch;
+  const fs::path cache = scratch / "cache";
+  const std::string map = "sweep " + examples +
+                          "linear_impact_model.toml --set integrator.method=taylor "
+                          "--param omega=1.6:2.8:4 --param sigma=0:0.3:3 --transient 20 "
+                          "--points 16 --quiet --out ";
+  for (const std::string batch : {"on", "off"}) {
+    const ProgramRun run = run_with_cache(map + (scratch / batch).string() + " --batch " + batch, cache);
+    ASSERT_EQ(run.status, 0) << run.err;
+  }
+  // with each point's largest Lyapunov exponent: the variational equations'
+  // series in lanes too
+  EXPECT_EQ(slurp(scratch / "on" / "classes.csv"), slurp(scratch / "off" / "classes.csv"));
+  EXPECT_EQ(split_lines(slurp(scratch / "on" / "classes.csv")).size(), 4u * 3u + 1u);
+  const auto width = [&](const std::string& batch) {
+    return nlohmann::json::parse(slurp(scratch / batch / "meta.json"))["run"]["batch_width"].get<int>();
+  };
+  EXPECT_GT(width("on"), 1);
+  EXPECT_EQ(width("off"), 1);
+
+  const fs::path file = scratch / "exponential.toml";
+  std::ofstream(file) << "[model]\nstates = [\"x\", \"v\"]\nforcing_frequency = \"1\"\n"
+                         "[model.rhs]\nx = \"v\"\nv = \"-exp(x) + cos(t)\"\n";
+  const ProgramRun refused = run_with_cache(
+      "simulate " + file.string() + " --set integrator.method=taylor --quiet --out " +
+          (scratch / "refused").string(),
+      cache);
+  EXPECT_TRUE(refused_naming(refused, "integrator.method"));
+  EXPECT_NE(refused.err.find("uses exp"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(scratch / "refused" / "events.csv"));
 }
 
 }  // namespace

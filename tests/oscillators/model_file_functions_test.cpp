@@ -3,7 +3,7 @@
 // table (model_expression.hpp). GiNaC's derivative of abs holds conjugate(),
 // which C lacks; the model's values are real, and the derivatives are written
 // so (abs(asin(x)), abs(acos(x)), abs(log(v)), abs(atan2(x, v)) once failed
-// with exit 1). A model file offers no Taylor integrator.
+// with exit 1). Taylor runs a model whose operations all have series.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -82,15 +82,24 @@ TEST(ModelFileFunctions, AbsOfFunctionsWithoutARealConjugateRuns) {
     expect_runs_both_ways(std::string("-x + ") + term);
 }
 
-TEST(ModelFileFunctions, AModelFileOffersNoTaylorIntegrator) {
+// Taylor runs a model whose operations all have series, and `scenes` lists
+// it; a model with one that has none (exp) is refused, naming the key and
+// the operation. `exact` is never offered: a model has no closed-form flow.
+TEST(ModelFileFunctions, TaylorRunsAModelWhoseOperationsHaveSeries) {
   const ScratchFolder scratch;
-  const fs::path path = scratch / "model.toml";
-  std::ofstream(path) << "[integrator]\nmethod = \"taylor\"\n" << model_text("-x");
   const std::vector<std::string> environment = {"IMPACTLAB_CACHE_DIR=" + (scratch / "cache").string()};
-  const auto run = impactlab::testing::run_impactlab(
-      {"simulate", path.string(), "--periods", "1", "--quiet", "--out", (scratch / "out").string()},
-      {.environment = environment});
-  EXPECT_TRUE(impactlab::testing::refused_naming(run, "integrator.method")) << run.err;
+  const auto simulate_with_taylor = [&](const std::string& v_equation, const std::string& label) {
+    const fs::path path = scratch / (label + ".toml");
+    std::ofstream(path) << "[integrator]\nmethod = \"taylor\"\n" << model_text(v_equation);
+    return impactlab::testing::run_impactlab({"simulate", path.string(), "--periods", "1",
+                                              "--quiet", "--out", (scratch / label).string()},
+                                             {.environment = environment});
+  };
+  const auto runs = simulate_with_taylor("-x + 0.1*sin(x)*abs(v)", "series");
+  EXPECT_EQ(runs.status, 0) << runs.err;
+  const auto refused = simulate_with_taylor("-x + 0.1*exp(x)", "no_series");
+  EXPECT_TRUE(impactlab::testing::refused_naming(refused, "integrator.method")) << refused.err;
+  EXPECT_NE(refused.err.find("uses exp"), std::string::npos) << refused.err;
   // `scenes` lists the methods a model file may use
   const fs::path plain = scratch / "plain.toml";
   std::ofstream(plain) << model_text("-x");
@@ -99,11 +108,12 @@ TEST(ModelFileFunctions, AModelFileOffersNoTaylorIntegrator) {
   const std::string methods = listed.out.substr(listed.out.find("integrator.method"));
   const std::string line = methods.substr(0, methods.find('\n'));
   EXPECT_NE(line.find("dopri5"), std::string::npos) << line;
-  EXPECT_EQ(line.find("taylor"), std::string::npos) << line;
+  EXPECT_NE(line.find("taylor"), std::string::npos) << line;
+  EXPECT_EQ(line.find("exact"), std::string::npos) << line;
   const std::string classification = listed.out.substr(listed.out.find("integrator.classification_method"));
   const std::string classification_line = classification.substr(0, classification.find('\n'));
   EXPECT_NE(classification_line.find("dopri5"), std::string::npos) << classification_line;
-  EXPECT_EQ(classification_line.find("taylor"), std::string::npos) << classification_line;
+  EXPECT_NE(classification_line.find("taylor"), std::string::npos) << classification_line;
   EXPECT_EQ(classification_line.find("exact"), std::string::npos) << classification_line;
 }
 

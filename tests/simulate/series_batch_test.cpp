@@ -20,6 +20,8 @@
 
 #include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
 #include <impactlab/oscillators/linear_impact/linear_impact.hpp>
+#include <impactlab/oscillators/model_file/compiled_model.hpp>
+#include <impactlab/oscillators/model_file/model_system.hpp>
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
 #include <impactlab/integrate/taylor_stepper.hpp>
 #include <impactlab/simulate/series_batch.hpp>
@@ -267,6 +269,40 @@ TEST(SeriesBatch, LanesOfDifferentParametersShareOnePassAndEqualTheScalarRuns) {
                     {0.01 * (i % 5), 0.2, 0.0}, PendulumWalls::Mode::free, forcing_periods(12)});
   const BatchStatistics statistics = expect_lanes_equal_alone(jobs, max_series_lanes);
   EXPECT_GT(2 * statistics.series_in_passes, statistics.lane_series);
+}
+
+// A model file's series (oscillators/model_file/series_program.hpp) in
+// lanes: the linear impact oscillator written as a model file, at stops on
+// both sides of the chatter (periodic impacts; chatter, sticking and
+// release), shares passes, and each lane equals its scalar run to the last
+// bit.
+TEST(SeriesBatch, ModelFileLanesEqualTheScalarRunsLaneForLane) {
+  CompileOptions options;
+  options.cache_directory = ::testing::TempDir() + "impactlab_series_batch_model_cache";
+  const auto model = compile_model(
+      read_model_file(std::string(IMPACTLAB_SOURCE_DIR) +
+                      "/oscillators/model_file/examples/linear_impact_model.toml"),
+      options);
+  ASSERT_TRUE(model->series_refusal.empty()) << model->series_refusal;
+  const auto system = [&](double sigma, double r, double omega) {
+    std::vector<double> p;
+    for (const auto& parameter : model->parameters)
+      p.push_back(parameter.name == "sigma" ? sigma
+                  : parameter.name == "r"   ? r
+                  : parameter.name == "omega" ? omega
+                                              : parameter.default_value);
+    return ModelSystem<2>(model, p);
+  };
+  std::vector<Trajectory<ModelSystem<2>>> jobs;
+  for (int i = 0; i < 8; ++i) {
+    const bool chatter = i % 2 == 1;
+    const double omega = chatter ? 0.5 : 2.0 + 0.05 * i;
+    jobs.push_back({system(chatter ? 0.0 : 0.1 * (i % 3), 0.5 + 0.05 * i, omega),
+                    {chatter ? -0.5 : 0.0, 0.0},
+                    ModelSystem<2>::free_mode,
+                    10 * 2 * pi / omega});
+  }
+  EXPECT_GT(expect_lanes_equal_alone(jobs, 8).series_in_passes, 0u);
 }
 
 // A job that throws stops its lane; the other lanes finish their jobs, and

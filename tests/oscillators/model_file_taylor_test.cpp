@@ -1,0 +1,220 @@
+// The Taylor stepper on model files (oscillators/model_file/series_program.hpp):
+// the linear impact oscillator written as a model file, integrated by its
+// series, gives the events of the built-in oscillator's closed-form flow,
+// through chatter, sticking and release; the Duffing oscillator with a stop
+// (a cube) those of a tight Runge–Kutta run; a model with an operation that
+// has no series says which, and the programs over doubles are the compiled
+// kernels.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <impactlab/integrate/stepper_dispatch.hpp>
+#include <impactlab/oscillators/linear_impact/linear_impact.hpp>
+#include <impactlab/oscillators/model_file/compiled_model.hpp>
+#include <impactlab/oscillators/model_file/model_system.hpp>
+#include <impactlab/simulate/flow.hpp>
+#include <impactlab/simulate/simulator.hpp>
+
+#include "support/test_support.hpp"
+
+namespace IMPACTLAB_TEST_FILE_SCOPE {
+
+using namespace impactlab;
+
+static_assert(HasSeriesRhs<ModelSystem<2>> && HasTapeRhs<ModelSystem<2>>);
+static_assert(HasSeriesRhs<ModelSystem<4>> && HasTapeRhs<ModelSystem<4>>);
+
+const std::string examples = std::string(IMPACTLAB_SOURCE_DIR) + "/oscillators/model_file/examples/";
+
+CompileOptions test_options() {
+  CompileOptions options;
+  options.cache_directory = ::testing::TempDir() + "impactlab_model_taylor_test";
+  return options;
+}
+
+std::shared_ptr<const CompiledModel> compiled_example(const std::string& file) {
+  return compile_model(read_model_file(examples + file), test_options());
+}
+
+std::shared_ptr<const CompiledModel> compiled_text(const std::string& text) {
+  const impactlab::testing::ScratchFolder scratch;
+  const std::string path = (scratch / "model.toml").string();
+  std::ofstream(path) << text;
+  return compile_model(read_model_file(path), test_options());
+}
+
+// The parameter values in the model's order, from name = value pairs.
+std::vector<double> values(const CompiledModel& model,
+                           const std::vector<std::pair<std::string, double>>& given) {
+  std::vector<double> p;
+  for (const auto& parameter : model.parameters) {
+    double value = parameter.default_value;
+    for (const auto& [name, v] : given)
+      if (name == parameter.name) value = v;
+    p.push_back(value);
+  }
+  return p;
+}
+
+template <class System>
+std::vector<EventRecord> run_events(const System& system, typename System::State x0,
+                                    const std::string& method, double rtol, double t_end) {
+  StepperSettings settings;
+  settings.rtol = rtol;
+  settings.atol = rtol / 100.0;
+  settings.max_step = system.max_step();
+  LoopOptions options;
+  options.location.grazing_tolerance = settings.atol;
+  EventLog log;
+  const auto result = with_flow<System>(method, settings, [&](auto& stepper) {
+    return simulate(system, stepper, x0, typename System::Mode{}, 0.0, t_end, options, log);
+  });
+  EXPECT_EQ(result.termination, Termination::completed) << method;
+  return log.records();
+}
+
+std::size_t count(const std::vector<EventRecord>& events, EventKind kind) {
+  return static_cast<std::size_t>(
+      std::count_if(events.begin(), events.end(), [&](const auto& e) { return e.kind == kind; }));
+}
+
+void expect_same_events(const std::vector<EventRecord>& expected,
+                        const std::vector<EventRecord>& actual, double tolerance) {
+  ASSERT_EQ(expected.size(), actual.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    SCOPED_TRACE("event " + std::to_string(i));
+    ASSERT_EQ(expected[i].kind, actual[i].kind);
+    ASSERT_EQ(expected[i].wall, actual[i].wall);
+    EXPECT_NEAR(expected[i].t, actual[i].t, tolerance);
+    EXPECT_NEAR(expected[i].qdot_after, actual[i].qdot_after, tolerance);
+  }
+}
+
+// Against the closed-form flow of the built-in oscillator (the `exact`
+// method: free flight solved in closed form, impacts located on it): 60
+// forcing periods of periodic impacting motion, and a low stop where the
+// impacts chatter, accumulate, and the mass rests on the stop until the
+// forcing pulls it away.
+TEST(ModelFileTaylor, LinearImpactGivesTheClosedFormEvents) {
+  const auto model = compiled_example("linear_impact_model.toml");
+  ASSERT_TRUE(model->series_refusal.empty()) << model->series_refusal;
+  {
+    const ModelSystem<2> from_file(model, values(*model, {}));
+    const LinearImpact built_in{LinearImpactParameters{}};
+    const double t_end = 60 * 2 * std::numbers::pi / 2.0;
+    const auto exact = run_events(built_in, {0.0, 0.0}, "exact", 1e-12, t_end);
+    const auto series = run_events(from_file, {0.0, 0.0}, "taylor", 1e-12, t_end);
+    EXPECT_GT(count(exact, EventKind::impact), 50u);
+    expect_same_events(exact, series, 1e-9);
+  }
+  {
+    LinearImpactParameters p;
+    p.sigma = 0.0;
+    p.r = 0.5;
+    p.omega = 0.5;
+    const ModelSystem<2> from_file(model,
+                                   values(*model, {{"sigma", 0.0}, {"r", 0.5}, {"omega", 0.5}}));
+    const LinearImpact built_in{p};
+    const double t_end = 20 * 2 * std::numbers::pi / p.omega;
+    const auto exact = run_events(built_in, {-0.5, 0.0}, "exact", 1e-12, t_end);
+    const auto series = run_events(from_file, {-0.5, 0.0}, "taylor", 1e-12, t_end);
+    EXPECT_GT(count(exact, EventKind::accumulation), 5u);
+    EXPECT_GT(count(exact, EventKind::contact_end), 5u);
+    expect_same_events(exact, series, 1e-8);
+  }
+}
+
+// A cubic spring (x^3, a power) has no closed form: against rkf78 at a
+// tolerance a hundred times tighter, an independent integrator.
+TEST(ModelFileTaylor, DuffingWithAStopGivesATightRungeKuttaRunsEvents) {
+  const auto model = compiled_example("duffing_stop.toml");
+  ASSERT_TRUE(model->series_refusal.empty()) << model->series_refusal;
+  const ModelSystem<2> system(model, values(*model, {}));
+  const double t_end = 40 * 2 * std::numbers::pi / system.forcing_frequency();
+  const auto reference = run_events(system, {0.0, 0.0}, "rkf78", 1e-14, t_end);
+  const auto series = run_events(system, {0.0, 0.0}, "taylor", 1e-12, t_end);
+  EXPECT_GT(count(reference, EventKind::impact), 20u);
+  expect_same_events(reference, series, 1e-8);
+}
+
+const std::string model_head = R"([model]
+states = ["x", "v"]
+forcing_frequency = "omega"
+[model.parameters]
+omega = 1.0
+[model.rhs]
+x = "v"
+)";
+
+// Each operation without a series is named, with the function it sits in;
+// integer powers up to the limit, sin, cos and abs have series.
+TEST(ModelFileTaylor, AnOperationWithoutASeriesIsNamed) {
+  struct Case {
+    std::string v_equation;
+    std::string refusal;  // a part of series_refusal; empty: none
+  };
+  for (const Case& c : std::vector<Case>{
+           {"-x^3 + cos(omega*t) - abs(v)*v + sin(x)/(1 + x^2)", ""},
+           {"-x^16 - x^(-2)", ""},
+           {"-exp(x)", "the free right-hand side: it uses exp"},
+           {"-sqrt(1 + x^2)", "it uses sqrt"},
+           {"-x^17", "not a constant integer from -16 to 16"},
+           {"-x^omega", "not a constant integer"},
+           {"-tanh(x)", "it uses tanh"}}) {
+    SCOPED_TRACE(c.v_equation);
+    const auto model = compiled_text(model_head + "v = \"" + c.v_equation + "\"\n");
+    if (c.refusal.empty()) {
+      EXPECT_EQ(model->series_refusal, "");
+      EXPECT_FALSE(model->free_rhs_series.empty());
+    } else {
+      EXPECT_NE(model->series_refusal.find(c.refusal), std::string::npos) << model->series_refusal;
+      EXPECT_TRUE(model->free_rhs_series.empty());
+    }
+  }
+  // a witness too
+  const auto walled = compiled_text(model_head + "v = \"-x\"\n[[model.walls]]\n"
+                                                 "witness = \"1 - exp(x)\"\n"
+                                                 "direction = \"falling\"\n"
+                                                 "reset = { velocity = \"v\", restitution = \"0.5\", "
+                                                 "position = \"x\" }\n");
+  EXPECT_NE(walled->series_refusal.find("the gap to wall"), std::string::npos)
+      << walled->series_refusal;
+}
+
+// Over doubles, a series program computes what the compiled kernel does, to
+// a few ulps (an integer power is a product here, pow in C).
+TEST(ModelFileTaylor, ProgramsOverDoublesAreTheCompiledKernels) {
+  const auto model = compiled_example("duffing_stop.toml");
+  ASSERT_TRUE(model->compiled) << model->slow_path_reason;
+  const ModelSystem<2> system(model, values(*model, {}));
+  const std::vector<double>& p = system.parameters().values;
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> uniform(-2.0, 2.0);
+  for (int trial = 0; trial < 100; ++trial) {
+    const std::array<double, 2> x{uniform(random), uniform(random)};
+    const double t = 5.0 * uniform(random);
+    double compiled[3], series[3];
+    model->free_rhs(x.data(), t, p.data(), compiled);
+    model->free_rhs_series.run(x.data(), t, p.data(), series);
+    for (int i = 0; i < 2; ++i)
+      EXPECT_NEAR(series[i], compiled[i], 1e-14 * (1.0 + std::fabs(compiled[i])));
+    model->gap[0](x.data(), t, p.data(), compiled);
+    model->gap_series[0].run(x.data(), t, p.data(), series);
+    for (int i = 0; i < 2; ++i)
+      EXPECT_NEAR(series[i], compiled[i], 1e-14 * (1.0 + std::fabs(compiled[i])));
+    model->stick_force[0](x.data(), t, p.data(), compiled);
+    model->stick_force_series[0].run(x.data(), t, p.data(), series);
+    for (int i = 0; i < 2; ++i)
+      EXPECT_NEAR(series[i], compiled[i], 1e-14 * (1.0 + std::fabs(compiled[i])));
+  }
+}
+
+}  // namespace IMPACTLAB_TEST_FILE_SCOPE
