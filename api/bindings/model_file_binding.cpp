@@ -88,9 +88,10 @@ ModelSystem<N> ModelFileBinding<N>::make_system(const Scene& scene) {
     for (const std::string key : {"integrator.method", "integrator.classification_method"})
       if (scene.text(key) == "taylor")
         throw BadInput(key, "taylor",
-                       fmt::format("this model has no Taylor series ({}); the series are "
-                                   "written for sums, products, integer powers, sin, cos and "
-                                   "abs: choose rkf78, dopri5, rk8pd or bulirsch_stoer",
+                       fmt::format("this model has no Taylor series ({}): the inverse "
+                                   "trigonometric functions and powers with a variable "
+                                   "exponent have none here; choose rkf78, dopri5, rk8pd or "
+                                   "bulirsch_stoer",
                                    model->series_refusal));
   std::vector<double> p;
   for (const auto& parameter : model->parameters) p.push_back(scene.number(parameter.name));

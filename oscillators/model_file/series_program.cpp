@@ -22,16 +22,18 @@ std::vector<bool> needed_operations(const KernelCode& code, std::size_t output_c
   return needed;
 }
 
-// the integer exponent of a power whose exponent is a constant integer of at
-// most max_exponent in size; 0 and false otherwise
-bool integer_exponent(const KernelCode& code, const KernelOperation& power, int& exponent) {
+// the exponent of a power, where it is a constant
+bool constant_exponent(const KernelCode& code, const KernelOperation& power, double& exponent) {
   if (power.operands.size() != 2) return false;
   const KernelOperation& operand = code.operations[power.operands[1]];
-  if (operand.kind != Kind::constant || operand.value != std::round(operand.value) ||
-      std::fabs(operand.value) > SeriesProgram::max_exponent)
-    return false;
-  exponent = static_cast<int>(operand.value);
+  if (operand.kind != Kind::constant) return false;
+  exponent = operand.value;
   return true;
+}
+
+// whether a constant exponent is an integer computed as products
+bool small_integer(double exponent) {
+  return exponent == std::round(exponent) && std::fabs(exponent) <= SeriesProgram::max_exponent;
 }
 
 // the steps an operation takes: a sum or product of n operands n − 1
@@ -62,15 +64,20 @@ std::string series_refusal(const KernelCode& code, std::size_t output_count) {
       case Kind::reciprocal:
       case Kind::sin:
       case Kind::cos:
+      case Kind::tan:
+      case Kind::exp:
+      case Kind::log:
+      case Kind::square_root:
+      case Kind::sinh:
+      case Kind::cosh:
+      case Kind::tanh:
       case Kind::abs: break;
       case Kind::power: {
-        int exponent = 0;
-        if (!integer_exponent(code, operation, exponent))
-          return fmt::format("it raises to a power that is not a constant integer from -{0} to {0}",
-                             SeriesProgram::max_exponent);
+        double exponent = 0.0;
+        if (!constant_exponent(code, operation, exponent))
+          return "it raises to a power whose exponent is not a constant";
         break;
       }
-      case Kind::square_root: return "it uses sqrt";
       case Kind::atan2: return "it uses atan2";
       default: return fmt::format("it uses {}", c_function_name(operation.kind));
     }
@@ -111,13 +118,23 @@ SeriesProgram::SeriesProgram(const KernelCode& code, std::size_t output_count) {
       case Kind::square: steps_.push_back({Operation::multiply, operand(0), operand(0)}); break;
       case Kind::reciprocal: steps_.push_back({Operation::reciprocal, operand(0)}); break;
       case Kind::power: {
-        int exponent = 0;
-        integer_exponent(code, operation, exponent);
-        steps_.push_back({Operation::power, operand(0), 0, 0.0, exponent});
+        double exponent = 0.0;
+        constant_exponent(code, operation, exponent);
+        if (small_integer(exponent))
+          steps_.push_back({Operation::integer_power, operand(0), 0, 0.0, static_cast<int>(exponent)});
+        else
+          steps_.push_back({Operation::real_power, operand(0), 0, exponent});
         break;
       }
       case Kind::sin: steps_.push_back({Operation::sin, operand(0)}); break;
       case Kind::cos: steps_.push_back({Operation::cos, operand(0)}); break;
+      case Kind::tan: steps_.push_back({Operation::tan, operand(0)}); break;
+      case Kind::exp: steps_.push_back({Operation::exp, operand(0)}); break;
+      case Kind::log: steps_.push_back({Operation::log, operand(0)}); break;
+      case Kind::square_root: steps_.push_back({Operation::sqrt, operand(0)}); break;
+      case Kind::sinh: steps_.push_back({Operation::sinh, operand(0)}); break;
+      case Kind::cosh: steps_.push_back({Operation::cosh, operand(0)}); break;
+      case Kind::tanh: steps_.push_back({Operation::tanh, operand(0)}); break;
       case Kind::abs: steps_.push_back({Operation::abs, operand(0)}); break;
       default: break;  // refused above
     }

@@ -8,9 +8,12 @@
 // and fabs.
 //
 // Only the operations whose series that arithmetic has: sums, products,
-// squares, reciprocals, powers with an integer exponent of at most
-// max_exponent in size, sin, cos and |·|. series_refusal says which other
-// operation a kernel holds; a model with one offers no Taylor stepper.
+// quotients, powers with a constant exponent (an integer of at most
+// max_exponent in size as products, any other by the power's own
+// recurrence), sin, cos, tan, exp, log, √, sinh, cosh, tanh and |·|.
+// series_refusal says which other operation a kernel holds (the inverse
+// trigonometric functions, a power whose exponent is not a constant); a
+// model with one offers no Taylor stepper.
 #pragma once
 
 #include <cstddef>
@@ -30,7 +33,7 @@ class SeriesProgram {
   // the most steps (leaves and operations) a program may take: its slots
   // are on the caller's stack, sized once, so that nothing is allocated
   static constexpr std::size_t max_steps = 512;
-  // the largest |n| of a power x^n
+  // the largest |n| of a power x^n computed as products
   static constexpr int max_exponent = 16;
 
   SeriesProgram() = default;
@@ -48,13 +51,14 @@ class SeriesProgram {
 
  private:
   enum class Operation : std::uint8_t {
-    constant, state, parameter, time, add, multiply, reciprocal, power, sin, cos, abs
+    constant, state, parameter, time, add, multiply, reciprocal,
+    integer_power, real_power, sin, cos, tan, exp, log, sqrt, sinh, cosh, tanh, abs
   };
   struct Step {
     Operation operation = Operation::constant;
     std::uint32_t a = 0, b = 0;  // operand slots, or the state's or parameter's index
-    double value = 0.0;          // the constant
-    int exponent = 0;            // the power's
+    double value = 0.0;          // the constant, or real_power's exponent
+    int exponent = 0;            // integer_power's
   };
 
   template <class Number>
@@ -88,8 +92,12 @@ void SeriesProgram::run(const Number* x, const Number& t, const double* p, Numbe
   alignas(Number) std::byte storage[max_steps * sizeof(Number)];
   Number* const slot = reinterpret_cast<Number*>(storage);
   using std::cos;
+  using std::exp;
   using std::fabs;
+  using std::log;
+  using std::pow;
   using std::sin;
+  using std::sqrt;
   for (std::size_t i = 0; i < steps_.size(); ++i) {
     const Step& step = steps_[i];
     Number* const value = slot + i;
@@ -101,11 +109,25 @@ void SeriesProgram::run(const Number* x, const Number& t, const double* p, Numbe
       case Operation::add: std::construct_at(value, slot[step.a] + slot[step.b]); break;
       case Operation::multiply: std::construct_at(value, slot[step.a] * slot[step.b]); break;
       case Operation::reciprocal: std::construct_at(value, Number(1.0) / slot[step.a]); break;
-      case Operation::power:
+      case Operation::integer_power:
         std::construct_at(value, integer_power(slot[step.a], step.exponent));
         break;
+      case Operation::real_power: std::construct_at(value, pow(slot[step.a], step.value)); break;
       case Operation::sin: std::construct_at(value, sin(slot[step.a])); break;
       case Operation::cos: std::construct_at(value, cos(slot[step.a])); break;
+      case Operation::tan: std::construct_at(value, sin(slot[step.a]) / cos(slot[step.a])); break;
+      case Operation::exp: std::construct_at(value, exp(slot[step.a])); break;
+      case Operation::log: std::construct_at(value, log(slot[step.a])); break;
+      case Operation::sqrt: std::construct_at(value, sqrt(slot[step.a])); break;
+      case Operation::sinh:
+        std::construct_at(value, (exp(slot[step.a]) - exp(-slot[step.a])) * 0.5);
+        break;
+      case Operation::cosh:
+        std::construct_at(value, (exp(slot[step.a]) + exp(-slot[step.a])) * 0.5);
+        break;
+      case Operation::tanh:  // 1 − 2 / (e^{2a} + 1): ±1 without overflow far out
+        std::construct_at(value, 1.0 - 2.0 / (exp(2.0 * slot[step.a]) + 1.0));
+        break;
       case Operation::abs: std::construct_at(value, fabs(slot[step.a])); break;
     }
   }

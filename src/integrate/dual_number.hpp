@@ -277,6 +277,46 @@ template <class Number, std::size_t Directions>
 Dual<Number, Directions> cos_phase(const Dual<Number, Directions>& a) {
   return cos(a);
 }
+// exp a = e + e Σ d_i ε_i, log a = log v + Σ (d_i / v) ε_i, √a = r + Σ
+// (d_i / 2r) ε_i, a^α = p + Σ (α p / v) d_i ε_i (v a's value, α a constant)
+template <class Number, std::size_t Directions>
+Dual<Number, Directions> exp(const Dual<Number, Directions>& a) {
+  using std::exp;
+  const Number value = exp(a.value());
+  return {value, detail::each_direction<Number, Directions>([&](std::size_t i) {
+            return detail::chain(value, a.derivative(i));
+          })};
+}
+template <class Number, std::size_t Directions>
+Dual<Number, Directions> log(const Dual<Number, Directions>& a) {
+  using std::log;
+  if (detail::all_known_zero(a.derivatives())) return Dual<Number, Directions>(log(a.value()));
+  const Number slope = Number(1.0) / a.value();
+  return {log(a.value()), detail::each_direction<Number, Directions>([&](std::size_t i) {
+            return detail::chain(slope, a.derivative(i));
+          })};
+}
+template <class Number, std::size_t Directions>
+Dual<Number, Directions> sqrt(const Dual<Number, Directions>& a) {
+  using std::sqrt;
+  const Number value = sqrt(a.value());
+  if (detail::all_known_zero(a.derivatives())) return Dual<Number, Directions>(value);
+  const Number slope = Number(0.5) / value;
+  return {value, detail::each_direction<Number, Directions>([&](std::size_t i) {
+            return detail::chain(slope, a.derivative(i));
+          })};
+}
+template <class Number, std::size_t Directions>
+Dual<Number, Directions> pow(const Dual<Number, Directions>& a, double alpha) {
+  using std::pow;
+  const Number value = pow(a.value(), alpha);
+  if (detail::all_known_zero(a.derivatives())) return Dual<Number, Directions>(value);
+  const Number slope = (alpha * value) / a.value();
+  return {value, detail::each_direction<Number, Directions>([&](std::size_t i) {
+            return detail::chain(slope, a.derivative(i));
+          })};
+}
+
 // the sign is piecewise constant: derivatives zero (the systems end a step
 // at each of its jumps)
 template <class Number, std::size_t Directions>

@@ -20,7 +20,7 @@ struct ResolvedEntry {
   const Lanes* x;  // operand a's row (sin_cos: its argument's), or nullptr: a constant
   const Lanes* y;  // operand b's row, or nullptr
   const Lanes* f;  // sin_cos of a state component: its derivative's row
-  Lanes constant;  // scale's factor, lane by lane
+  Lanes constant;  // scale's factor, power's exponent, lane by lane
 };
 
 // Orders 1..order of every operation of the tape, each recurrence written as
@@ -105,6 +105,21 @@ void replay_orders(const SeriesTape& tape, const std::array<Lanes, SeriesTape::m
           c[k] = ck;
           break;
         }
+        case TapeOperation::exp: {
+          Lanes* ja = result + stride;
+          ja[k] = Lanes(static_cast<double>(k)) * x[k];
+          result[k] = detail::exp_coefficient(ja, entry.degree_a, result, k);
+          break;
+        }
+        case TapeOperation::log:
+          result[k] = detail::log_coefficient(x, entry.degree_a, result, k);
+          break;
+        case TapeOperation::sqrt:
+          result[k] = detail::sqrt_coefficient(x[k], result, k);
+          break;
+        case TapeOperation::power:
+          result[k] = detail::power_coefficient(entry.constant, x, entry.degree_a, result, k);
+          break;
         case TapeOperation::sign:
           break;
       }

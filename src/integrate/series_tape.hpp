@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -44,6 +45,10 @@ enum class TapeOperation : std::uint8_t {
   divide,                  // a / b (a may be a constant: zero beyond order 0)
   sin_cos,                 // sin a and cos a, two rows (three: j a_j)
   sign,                    // sign a: constant over the step
+  exp,                     // exp a, two rows (the second: j a_j)
+  log,                     // log a
+  sqrt,                    // √a
+  power,                   // a^c, c a constant of the lane
 };
 
 // how sin_cos's recurrence runs, by its argument (TaylorVariable's sin_cos)
@@ -155,7 +160,7 @@ class SeriesTape {
   int output_count_ = 0;
   int sign_count_ = 0;
   std::array<TapeEntry, max_entries> entries_{};
-  std::array<double, max_entries> constants_{};  // scale's factor, per entry
+  std::array<double, max_entries> constants_{};  // scale's factor, power's exponent, per entry
   std::array<double, max_rows> coefficient0_{};
   std::array<std::int16_t, max_state> derivative_rows_{};
   std::array<std::int16_t, max_outputs> output_rows_{};
@@ -321,6 +326,37 @@ inline SineAndCosine<TapeVariable> sin_and_cos_of(const TapeVariable& a) {
 }
 inline TapeVariable sin_angle(const TapeVariable& a) { return sin(a); }
 inline TapeVariable cos_phase(const TapeVariable& a) { return cos(a); }
+
+// exp a, log a, √a and a^α: TaylorVariable's at order 0, recorded
+inline TapeVariable exp(const TapeVariable& a) {
+  using std::exp;
+  if (a.is_constant()) return exp(a.value());
+  SeriesTape* tape = a.tape();
+  TapeEntry& entry = detail::tape_entry(TapeOperation::exp, a);
+  const TapeVariable e = TapeVariable::result(entry, tape, exp(a.value()),
+                                              a.degree() == 0 ? 0 : TapeVariable::unbounded);
+  tape->take_row();  // j a_j
+  return e;
+}
+inline TapeVariable log(const TapeVariable& a) {
+  using std::log;
+  if (a.is_constant()) return log(a.value());
+  return TapeVariable::result(detail::tape_entry(TapeOperation::log, a), a.tape(), log(a.value()),
+                              a.degree() == 0 ? 0 : TapeVariable::unbounded);
+}
+inline TapeVariable sqrt(const TapeVariable& a) {
+  using std::sqrt;
+  if (a.is_constant()) return sqrt(a.value());
+  return TapeVariable::result(detail::tape_entry(TapeOperation::sqrt, a), a.tape(), sqrt(a.value()),
+                              a.degree() == 0 ? 0 : TapeVariable::unbounded);
+}
+inline TapeVariable pow(const TapeVariable& a, double alpha) {
+  using std::pow;
+  if (a.is_constant()) return pow(a.value(), alpha);
+  return TapeVariable::result(detail::tape_entry(TapeOperation::power, a, TapeVariable(), alpha),
+                              a.tape(), pow(a.value(), alpha),
+                              a.degree() == 0 ? 0 : TapeVariable::unbounded);
+}
 
 // TaylorVariable's sign at order 0 without the slope (a batch's evaluation:
 // a lane whose signs need their slope evaluates again alone)

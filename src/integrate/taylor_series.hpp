@@ -7,9 +7,10 @@
 // and whose lower coefficients sit in a row of the evaluation's storage.
 // Each arithmetic operation and elementary function computes its result's
 // coefficient k by the classical recurrences (Cauchy product, the quotient
-// rule, the coupled recurrence of sin and cos; Jorba & Zou 2005) and writes
-// it to the row of its place in the sequence of operations, which is the
-// same at every order; then the state's coefficient k + 1 = (coefficient k
+// rule, the coupled recurrence of sin and cos, those of exp, log, √ and
+// a^α from e' = e a', a l' = a', s² = a, a p' = α a' p; Jorba & Zou 2005)
+// and writes it to the row of its place in the sequence of operations, which
+// is the same at every order; then the state's coefficient k + 1 = (coefficient k
 // of f) / (k + 1). The compiler sees the whole right-hand side inlined at
 // each order, so the newest coefficients pass from one operation to the next
 // in registers and only the older ones are read from the rows (an earlier
@@ -277,6 +278,42 @@ void sine_of_series(const Real* ja, int degree, const Real* s, const Real* c, in
   ck = -c_sum * taylor_reciprocal<Real>(k);
 }
 
+// coefficient k of e = exp a, by e' = e a': k e_k = Σ_{j=1..k} j a_j e_{k−j}
+// (ja: j a_j, up to k; the sum stopping at a's degree)
+template <class Real>
+Real exp_coefficient(const Real* ja, int degree, const Real* e, int k) {
+  Real sum = 0;
+  for (int j = 1; j <= std::min(k, degree); ++j) sum += ja[j] * e[k - j];
+  return sum * taylor_reciprocal<Real>(k);
+}
+
+// coefficient k of l = log a, by a l' = a': a_0 l_k = a_k − (1/k)
+// Σ_{j=1..k−1} j l_j a_{k−j} (x a's row, up to k; l the logarithm's row)
+template <class Real>
+Real log_coefficient(const Real* x, int degree, const Real* l, int k) {
+  Real sum = 0;
+  for (int j = std::max(1, k - degree); j <= k - 1; ++j) sum += (Real(j) * l[j]) * x[k - j];
+  return (x[k] - sum * taylor_reciprocal<Real>(k)) / x[0];
+}
+
+// coefficient k of s = √a, by s² = a: 2 s_0 s_k = a_k − Σ_{j=1..k−1} s_j s_{k−j}
+template <class Real>
+Real sqrt_coefficient(const Real& ak, const Real* s, int k) {
+  Real sum = 0;
+  for (int j = 1; j <= k - 1; ++j) sum += s[j] * s[k - j];
+  return (ak - sum) / (Real(2) * s[0]);
+}
+
+// coefficient k of p = a^α (α a constant), by a p' = α a' p:
+// k a_0 p_k = Σ_{j=0..k−1} (α (k − j) − j) a_{k−j} p_j (x a's row, up to k)
+template <class Real>
+Real power_coefficient(const Real& alpha, const Real* x, int degree, const Real* p, int k) {
+  Real sum = 0;
+  for (int j = std::max(0, k - degree); j <= k - 1; ++j)
+    sum += ((alpha * Real(k - j) - Real(j)) * x[k - j]) * p[j];
+  return sum * taylor_reciprocal<Real>(k) / x[0];
+}
+
 // sin a and cos a, computed together (two rows, and a third for j · a_j
 // where a is neither a state component nor linear in t)
 template <class Real>
@@ -433,6 +470,59 @@ SineAndCosine<TaylorVariable<Real>> sin_and_cos_of(const TaylorVariable<Real>& a
     return {detail::constant_sin_cos(a.value())[0], detail::constant_sin_cos(a.value())[1]};
   const std::array<TaylorVariable<Real>, 2> pair = detail::sin_cos(a);
   return {pair[0], pair[1]};
+}
+
+// exp a (a second row for j a_j), log a, √a and a^α for a constant α: the
+// recurrences above; a quantity constant over the step (degree 0) gives one
+template <class Real>
+TaylorVariable<Real> exp(const TaylorVariable<Real>& a) {
+  using std::exp;
+  if (a.is_constant()) return constant_value(Real(exp(a.value())));
+  TaylorEvaluation<Real>* evaluation = a.evaluation();
+  const int k = evaluation->order();
+  Real* e = evaluation->take_row();
+  Real* ja = evaluation->take_row();
+  if (k == 0) {
+    e[0] = exp(a.value());
+  } else {
+    ja[k] = Real(k) * a.value();
+    e[k] = detail::exp_coefficient(ja, a.degree(), e, k);
+  }
+  return {evaluation, e, e[k], a.degree() == 0 ? 0 : TaylorVariable<Real>::unbounded};
+}
+
+template <class Real>
+TaylorVariable<Real> log(const TaylorVariable<Real>& a) {
+  using std::log;
+  if (a.is_constant()) return constant_value(Real(log(a.value())));
+  TaylorEvaluation<Real>* evaluation = a.evaluation();
+  const int k = evaluation->order();
+  Real* l = evaluation->take_row();
+  l[k] = k == 0 ? Real(log(a.value())) : detail::log_coefficient(a.row(), a.degree(), l, k);
+  return {evaluation, l, l[k], a.degree() == 0 ? 0 : TaylorVariable<Real>::unbounded};
+}
+
+template <class Real>
+TaylorVariable<Real> sqrt(const TaylorVariable<Real>& a) {
+  using std::sqrt;
+  if (a.is_constant()) return constant_value(Real(sqrt(a.value())));
+  TaylorEvaluation<Real>* evaluation = a.evaluation();
+  const int k = evaluation->order();
+  Real* r = evaluation->take_row();
+  r[k] = k == 0 ? Real(sqrt(a.value())) : detail::sqrt_coefficient(a.value(), r, k);
+  return {evaluation, r, r[k], a.degree() == 0 ? 0 : TaylorVariable<Real>::unbounded};
+}
+
+template <class Real>
+TaylorVariable<Real> pow(const TaylorVariable<Real>& a, double alpha) {
+  using std::pow;
+  if (a.is_constant()) return constant_value(Real(pow(a.value(), Real(alpha))));
+  TaylorEvaluation<Real>* evaluation = a.evaluation();
+  const int k = evaluation->order();
+  Real* p = evaluation->take_row();
+  p[k] = k == 0 ? Real(pow(a.value(), Real(alpha)))
+                : detail::power_coefficient(Real(alpha), a.row(), a.degree(), p, k);
+  return {evaluation, p, p[k], a.degree() == 0 ? 0 : TaylorVariable<Real>::unbounded};
 }
 
 // core/fast_trig.hpp's names: the same functions on a series

@@ -25,8 +25,9 @@ constexpr int order = 20;
 // and negation, constants that scale and shift, products with the time's
 // polynomial and of two series, quotients (a series by a series, a constant
 // by a series, a series by one constant over the step), sin and cos of a
-// state component, of ωt, of a product and of a sign, fabs, and outputs that
-// are a constant, the time and an operation.
+// state component, of ωt, of a product and of a sign, fabs, exp (of a
+// series, of a sign and of ωt), log, √, a power whose exponent is the
+// lane's own, and outputs that are a constant, the time and an operation.
 // `p` is a lane's parameter: the constants differ from lane to lane.
 struct EveryOperation {
   double p = 1.0;
@@ -34,7 +35,11 @@ struct EveryOperation {
   template <class X, class T, class Outputs>
   int operator()(const X& x, const T& t, X& dxdt, Outputs& outputs) const {
     using std::cos;
+    using std::exp;
+    using std::log;
+    using std::pow;
     using std::sin;
+    using std::sqrt;
     const auto wt = (2.0 * p) * t + 0.3;
     const auto s = sign(x[1] - 0.05);
     dxdt[0] = -(-x[1]);
@@ -46,7 +51,9 @@ struct EveryOperation {
     outputs[1] = 0.25 * p;
     outputs[2] = t;
     outputs[3] = 1.0 - x[1] * (3.0 - x[0]);
-    return 4;
+    outputs[4] = exp(0.3 * x[0]) * sqrt(2.0 + x[1] * x[1]) + exp(0.1 * s);
+    outputs[5] = log(3.0 + x[2]) + pow(1.5 + x[0] * x[0], 0.5 * p + 0.25) + exp(wt * 0.1);
+    return 6;
   }
 };
 

@@ -126,6 +126,43 @@ TEST(TaylorSeries, SinOfSeriesArgumentByCoupledRecurrence) {
   }
 }
 
+// exp, log, √ and constant powers of a state component (x' = 1, x(0) = 0,
+// so x = t with every degree of a state) and of the time itself (degree 1)
+// against their closed-form series: e^{1/2} 2^k / k!, (−1)^{k+1} / k, and
+// the binomial coefficients (α over k) of (1 + h)^α.
+TEST(TaylorSeries, ExpLogSqrtAndPowersMatchTheirClosedFormSeries) {
+  using V = TaylorVariable<double>;
+  const int order = 24;
+  const auto series = series_of<1>({0.0}, 0.0, order, [](const std::array<V, 1>& x, const V& t,
+                                                        std::array<V, 1>& dxdt, auto& outputs) {
+    dxdt[0] = V(1.0);
+    outputs[0] = exp(0.5 + 2.0 * x[0]);
+    outputs[1] = log(1.0 + x[0]);
+    outputs[2] = sqrt(1.0 + x[0]);
+    outputs[3] = pow(1.0 + x[0], 2.5);
+    outputs[4] = pow(1.0 + 0.5 * t, -1.5);
+    outputs[5] = exp(0.5 + 2.0 * t);
+    return 6;
+  });
+  const auto binomial = [](double alpha, int k) {
+    double c = 1.0;
+    for (int i = 0; i < k; ++i) c *= (alpha - i) / (i + 1);
+    return c;
+  };
+  for (int k = 0; k <= order; ++k) {
+    SCOPED_TRACE("order " + std::to_string(k));
+    const double tolerance = 1e-15 * (k + 1);
+    const double e = std::exp(0.5) * std::pow(2.0, k) / factorial(k);
+    EXPECT_NEAR(series.output(0)[k], e, tolerance * e);
+    EXPECT_NEAR(series.output(5)[k], e, tolerance * e);
+    EXPECT_NEAR(series.output(1)[k], k == 0 ? 0.0 : (k % 2 == 1 ? 1.0 : -1.0) / k, tolerance);
+    EXPECT_NEAR(series.output(2)[k], binomial(0.5, k), tolerance);
+    EXPECT_NEAR(series.output(3)[k], binomial(2.5, k), tolerance);
+    EXPECT_NEAR(series.output(4)[k], binomial(-1.5, k) * std::pow(0.5, k),
+                tolerance * std::fabs(binomial(-1.5, k)) * std::pow(0.5, k));
+  }
+}
+
 // More operations than the series has rows: a clear error, not an overrun
 TEST(TaylorSeries, TooManyOperationsAreRefused) {
   using V = TaylorVariable<double>;
