@@ -30,6 +30,8 @@
 #include <impactlab/oscillators/model_file/compiled_model.hpp>
 #include <impactlab/oscillators/model_file/model_system.hpp>
 
+#include "support/model_parameters.hpp"
+
 namespace IMPACTLAB_TEST_FILE_SCOPE {
 
 using namespace impactlab;
@@ -43,18 +45,7 @@ std::shared_ptr<const CompiledModel> compiled(const std::string& file) {
   return compile_model(read_model_file(examples + file), options);
 }
 
-// The parameter values in the model's order, from name = value pairs.
-std::vector<double> values(const CompiledModel& model,
-                           const std::vector<std::pair<std::string, double>>& given) {
-  std::vector<double> p;
-  for (const auto& parameter : model.parameters) {
-    double value = parameter.default_value;
-    for (const auto& [name, v] : given)
-      if (name == parameter.name) value = v;
-    p.push_back(value);
-  }
-  return p;
-}
+using impactlab::testing::model_parameter_values;
 
 StepperSettings settings_for(double max_step) {
   StepperSettings settings;
@@ -101,7 +92,7 @@ TEST(DuffingStop, WithoutTheCubicTermItIsTheLinearImpactOscillator) {
     p.omega = c.omega;
     const LinearImpact built_in{p};
     const ModelSystem<2> duffing(
-        model, values(*model, {{"beta", 0.0}, {"F", p.A}, {"zeta", p.zeta}, {"sigma", c.sigma},
+        model, model_parameter_values(*model, {{"beta", 0.0}, {"F", p.A}, {"zeta", p.zeta}, {"sigma", c.sigma},
                                {"r", c.r}, {"omega", c.omega}}));
     EXPECT_DOUBLE_EQ(duffing.max_step(), built_in.max_step());
     const double t_end = c.periods * two_pi / c.omega;
@@ -208,7 +199,7 @@ struct Sampler {
 TEST(DuffingStop, FarFromTheStopTheSteadyStateIsTheHarmonicBalanceSolution) {
   const auto model = compiled("duffing_stop.toml");
   const double zeta = 0.05, beta = 0.5, force = 0.1, omega = 1.5;
-  const ModelSystem<2> duffing(model, values(*model, {{"zeta", zeta}, {"beta", beta}, {"F", force},
+  const ModelSystem<2> duffing(model, model_parameter_values(*model, {{"zeta", zeta}, {"beta", beta}, {"F", force},
                                                       {"omega", omega}, {"sigma", 10.0}}));
   const double period = two_pi / omega;
   HarmonicBalance balance{zeta, beta, force, omega};
@@ -299,7 +290,7 @@ TEST(ImpactDamper, MomentumIsConservedAtEveryImpactAndEnergyAtRestitutionOne) {
   const auto model = compiled("impact_damper.toml");
   for (const double r : {0.6, 1.0}) {
     const double mu = 0.1;
-    const ModelSystem<4> damper(model, values(*model, {{"r", r}, {"mu", mu}, {"omega", 1.5}}));
+    const ModelSystem<4> damper(model, model_parameter_values(*model, {{"r", r}, {"mu", mu}, {"omega", 1.5}}));
     std::vector<ImpactRecorder<ModelSystem<4>>::Impact> impacts;
     const ImpactRecorder<ModelSystem<4>> recorder(damper, impacts);
     EventLog log;
@@ -369,7 +360,7 @@ std::vector<SymmetricOrbit> symmetric_orbits(double zeta, double force, double o
 TEST(ImpactDamper, TheAttractorAtOmegaOnePointFiveIsTheClosedFormSymmetricOrbit) {
   const auto model = compiled("impact_damper.toml");
   const double zeta = 0.02, force = 1.0, omega = 1.5, mu = 0.1, d = 2.0, r = 0.6;
-  const ModelSystem<4> damper(model, values(*model, {{"zeta", zeta}, {"F", force}, {"omega", omega},
+  const ModelSystem<4> damper(model, model_parameter_values(*model, {{"zeta", zeta}, {"F", force}, {"omega", omega},
                                                      {"mu", mu}, {"d", d}, {"r", r}}));
   const auto orbits = symmetric_orbits(zeta, force, omega, mu, d, r);
   // the orbit with the faster ball (the other one, U ≈ 0.17, is not reached)

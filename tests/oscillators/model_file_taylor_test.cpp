@@ -22,9 +22,9 @@
 #include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 #include <impactlab/oscillators/model_file/compiled_model.hpp>
 #include <impactlab/oscillators/model_file/model_system.hpp>
-#include <impactlab/simulate/flow.hpp>
 #include <impactlab/simulate/simulator.hpp>
 
+#include "support/model_parameters.hpp"
 #include "support/test_support.hpp"
 
 namespace IMPACTLAB_TEST_FILE_SCOPE {
@@ -53,33 +53,33 @@ std::shared_ptr<const CompiledModel> compiled_text(const std::string& text) {
   return compile_model(read_model_file(path), test_options());
 }
 
-// The parameter values in the model's order, from name = value pairs.
-std::vector<double> values(const CompiledModel& model,
-                           const std::vector<std::pair<std::string, double>>& given) {
-  std::vector<double> p;
-  for (const auto& parameter : model.parameters) {
-    double value = parameter.default_value;
-    for (const auto& [name, v] : given)
-      if (name == parameter.name) value = v;
-    p.push_back(value);
-  }
-  return p;
-}
+using impactlab::testing::model_parameter_values;
 
+// A run of `method` at rtol (atol and the grazing tolerance a hundredth of
+// it) from x0 in the free mode over [0, t_end], its events in `log`
 template <class System>
-std::vector<EventRecord> run_events(const System& system, typename System::State x0,
-                                    const std::string& method, double rtol, double t_end) {
+RunResult<typename System::State, typename System::Mode> run(const System& system,
+                                                            typename System::State x0,
+                                                            const std::string& method, double rtol,
+                                                            double t_end, EventLog& log) {
   StepperSettings settings;
   settings.rtol = rtol;
   settings.atol = rtol / 100.0;
   settings.max_step = system.max_step();
   LoopOptions options;
   options.location.grazing_tolerance = settings.atol;
-  EventLog log;
-  const auto result = with_flow<System>(method, settings, [&](auto& stepper) {
+  const auto result = with_stepper<System>(method, settings, [&](auto& stepper) {
     return simulate(system, stepper, x0, typename System::Mode{}, 0.0, t_end, options, log);
   });
   EXPECT_EQ(result.termination, Termination::completed) << method;
+  return result;
+}
+
+template <class System>
+std::vector<EventRecord> run_events(const System& system, typename System::State x0,
+                                    const std::string& method, double rtol, double t_end) {
+  EventLog log;
+  run(system, x0, method, rtol, t_end, log);
   return log.records();
 }
 
@@ -109,7 +109,7 @@ TEST(ModelFileTaylor, LinearImpactGivesTheClosedFormEvents) {
   const auto model = compiled_example("linear_impact_model.toml");
   ASSERT_TRUE(model->series_refusal.empty()) << model->series_refusal;
   {
-    const ModelSystem<2> from_file(model, values(*model, {}));
+    const ModelSystem<2> from_file(model, model_parameter_values(*model, {}));
     const LinearImpact built_in{LinearImpactParameters{}};
     const double t_end = 60 * 2 * std::numbers::pi / 2.0;
     const auto exact = run_events(built_in, {0.0, 0.0}, "exact", 1e-12, t_end);
@@ -123,7 +123,7 @@ TEST(ModelFileTaylor, LinearImpactGivesTheClosedFormEvents) {
     p.r = 0.5;
     p.omega = 0.5;
     const ModelSystem<2> from_file(model,
-                                   values(*model, {{"sigma", 0.0}, {"r", 0.5}, {"omega", 0.5}}));
+                                   model_parameter_values(*model, {{"sigma", 0.0}, {"r", 0.5}, {"omega", 0.5}}));
     const LinearImpact built_in{p};
     const double t_end = 20 * 2 * std::numbers::pi / p.omega;
     const auto exact = run_events(built_in, {-0.5, 0.0}, "exact", 1e-12, t_end);
@@ -139,7 +139,7 @@ TEST(ModelFileTaylor, LinearImpactGivesTheClosedFormEvents) {
 TEST(ModelFileTaylor, DuffingWithAStopGivesATightRungeKuttaRunsEvents) {
   const auto model = compiled_example("duffing_stop.toml");
   ASSERT_TRUE(model->series_refusal.empty()) << model->series_refusal;
-  const ModelSystem<2> system(model, values(*model, {}));
+  const ModelSystem<2> system(model, model_parameter_values(*model, {}));
   const double t_end = 40 * 2 * std::numbers::pi / system.forcing_frequency();
   const auto reference = run_events(system, {0.0, 0.0}, "rkf78", 1e-14, t_end);
   const auto series = run_events(system, {0.0, 0.0}, "taylor", 1e-12, t_end);
@@ -216,7 +216,7 @@ reset = { velocity = "v", restitution = "0.7", position = "x" }
 TEST(ModelFileTaylor, EveryFunctionWithASeriesGivesARungeKuttaRunsEventsAndJacobian) {
   const auto model = compiled_text(nonlinear_model);
   ASSERT_TRUE(model->series_refusal.empty()) << model->series_refusal;
-  const ModelSystem<2> system(model, values(*model, {}));
+  const ModelSystem<2> system(model, model_parameter_values(*model, {}));
   const double t_end = 30 * 2 * std::numbers::pi / system.forcing_frequency();
   const auto reference = run_events(system, {0.0, 0.0}, "rkf78", 1e-14, t_end);
   const auto series = run_events(system, {0.0, 0.0}, "taylor", 1e-12, t_end);
@@ -226,18 +226,9 @@ TEST(ModelFileTaylor, EveryFunctionWithASeriesGivesARungeKuttaRunsEventsAndJacob
   using Tangent = Variational<ModelSystem<2>>;
   const Tangent tangent(system);
   const auto fundamental = [&](const std::string& method, double rtol) {
-    StepperSettings settings;
-    settings.rtol = rtol;
-    settings.atol = rtol / 100.0;
-    settings.max_step = system.max_step();
-    LoopOptions options;
-    options.location.grazing_tolerance = settings.atol;
     EventLog log;
-    const auto result = with_stepper<Tangent>(method, settings, [&](auto& stepper) {
-      return simulate(tangent, stepper, tangent.start({0.1, 0.0}, ModelSystem<2>::free_mode),
-                      ModelSystem<2>::free_mode, 0.0, 4 * 2 * std::numbers::pi / 1.3, options, log);
-    });
-    EXPECT_EQ(result.termination, Termination::completed) << method;
+    const auto result = run(tangent, tangent.start({0.1, 0.0}, ModelSystem<2>::free_mode), method,
+                            rtol, 4 * 2 * std::numbers::pi / 1.3, log);
     EXPECT_GT(count(log.records(), EventKind::impact), 1u) << method;
     return Tangent::fundamental_matrix(result.state);
   };
@@ -254,7 +245,7 @@ TEST(ModelFileTaylor, EveryFunctionWithASeriesGivesARungeKuttaRunsEventsAndJacob
 TEST(ModelFileTaylor, ProgramsOverDoublesAreTheCompiledKernels) {
   const auto model = compiled_example("duffing_stop.toml");
   ASSERT_TRUE(model->compiled) << model->slow_path_reason;
-  const ModelSystem<2> system(model, values(*model, {}));
+  const ModelSystem<2> system(model, model_parameter_values(*model, {}));
   const std::vector<double>& p = system.parameters().values;
   std::mt19937_64 random(7);
   std::uniform_real_distribution<double> uniform(-2.0, 2.0);

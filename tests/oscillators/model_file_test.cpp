@@ -26,6 +26,7 @@
 #include <impactlab/oscillators/model_file/compiled_model.hpp>
 #include <impactlab/oscillators/model_file/model_system.hpp>
 
+#include "support/model_parameters.hpp"
 #include "support/test_support.hpp"
 
 namespace IMPACTLAB_TEST_FILE_SCOPE {
@@ -45,18 +46,7 @@ std::shared_ptr<const CompiledModel> compiled(const std::string& file,
   return compile_model(read_model_file(examples + file), options);
 }
 
-// The parameter values in the model's order, from name = value pairs.
-std::vector<double> values(const CompiledModel& model,
-                           const std::vector<std::pair<std::string, double>>& given) {
-  std::vector<double> p;
-  for (const auto& parameter : model.parameters) {
-    double value = parameter.default_value;
-    for (const auto& [name, v] : given)
-      if (name == parameter.name) value = v;
-    p.push_back(value);
-  }
-  return p;
-}
+using impactlab::testing::model_parameter_values;
 
 template <class System>
 std::vector<EventRecord> run_events(const System& system, typename System::State x0,
@@ -99,7 +89,7 @@ std::size_t count(const std::vector<EventRecord>& events, EventKind kind) {
 TEST(ModelFile, LinearImpactGivesTheBuiltInEvents) {
   const auto model = compiled("linear_impact_model.toml");
   EXPECT_TRUE(model->compiled) << model->slow_path_reason;
-  const ModelSystem<2> from_file(model, values(*model, {}), AccumulationTolerance{});
+  const ModelSystem<2> from_file(model, model_parameter_values(*model, {}), AccumulationTolerance{});
   const LinearImpact built_in{LinearImpactParameters{}};
   EXPECT_DOUBLE_EQ(from_file.max_step(), built_in.max_step());
   const double t_end = 60 * 2 * std::numbers::pi / 2.0;
@@ -117,7 +107,7 @@ TEST(ModelFile, LinearImpactChatterAndStickingMatchTheBuiltIn) {
   p.sigma = 0.0;
   p.r = 0.5;
   p.omega = 0.5;
-  const ModelSystem<2> from_file(model, values(*model, {{"sigma", 0.0}, {"r", 0.5}, {"omega", 0.5}}),
+  const ModelSystem<2> from_file(model, model_parameter_values(*model, {{"sigma", 0.0}, {"r", 0.5}, {"omega", 0.5}}),
                                  AccumulationTolerance{});
   const LinearImpact built_in{p};
   const double t_end = 20 * 2 * std::numbers::pi / p.omega;
@@ -137,7 +127,7 @@ TEST(ModelFile, LinearImpactChatterAndStickingMatchTheBuiltIn) {
 TEST(ModelFile, TheChatterCoefficientsAreThoseOfTheGapAcceleration) {
   const auto duffing = compiled("duffing_stop.toml");
   const std::vector<double> p =
-      values(*duffing, {{"zeta", 0.07}, {"beta", 0.5}, {"F", 1.3}, {"sigma", 0.4}});
+      model_parameter_values(*duffing, {{"zeta", 0.07}, {"beta", 0.5}, {"F", 1.3}, {"sigma", 0.4}});
   const double x[2] = {0.4, 0.3};
   double out[3];
   duffing->chatter[0](x, 0.9, p.data(), out);
@@ -147,14 +137,14 @@ TEST(ModelFile, TheChatterCoefficientsAreThoseOfTheGapAcceleration) {
   EXPECT_NEAR(out[2], 1.3 / std::sqrt(1.25 * 1.25 + 0.21 * 0.21), 1e-15);
 
   const auto ball = compiled("bouncing_ball_model.toml");
-  const std::vector<double> q = values(*ball, {});
+  const std::vector<double> q = model_parameter_values(*ball, {});
   ball->chatter[0](x, 0.9, q.data(), out);
   EXPECT_EQ(out[0], 0.0);
   EXPECT_EQ(out[1], 0.0);
   EXPECT_EQ(out[2], 0.0);  // no gap_scale given
 
   const auto linear = compiled("linear_impact_model.toml");
-  const std::vector<double> l = values(*linear, {{"zeta", 0.05}, {"omega", 0.5}, {"A", 1.0}});
+  const std::vector<double> l = model_parameter_values(*linear, {{"zeta", 0.05}, {"omega", 0.5}, {"A", 1.0}});
   linear->chatter[0](x, 0.9, l.data(), out);
   EXPECT_NEAR(out[0], 0.1, 1e-15);
   EXPECT_NEAR(out[1], -1.0, 1e-15);
@@ -180,7 +170,7 @@ TEST(ModelFile, FloquetMultipliersMatchTheBuiltIns) {
     const auto expected = orbit_of(LinearImpact{LinearImpactParameters{}}, {0.0, 0.0},
                                    LinearImpact::Mode::free, 2.0);
     const auto actual =
-        orbit_of(ModelSystem<2>(model, values(*model, {}), AccumulationTolerance{}), {0.0, 0.0}, ModelSystem<2>::free_mode, 2.0);
+        orbit_of(ModelSystem<2>(model, model_parameter_values(*model, {}), AccumulationTolerance{}), {0.0, 0.0}, ModelSystem<2>::free_mode, 2.0);
     ASSERT_TRUE(expected.converged && actual.converged);
     for (int i = 0; i < 2; ++i)
       EXPECT_LE(std::abs(expected.multipliers[i] - actual.multipliers[i]), 1e-10);
@@ -189,7 +179,7 @@ TEST(ModelFile, FloquetMultipliersMatchTheBuiltIns) {
     const auto model = compiled("bouncing_ball_model.toml");
     const auto expected = orbit_of(BouncingBall{BouncingBallParameters{}}, {0.05, 0.0},
                                    BouncingBall::Mode::free, 30.0);
-    const auto actual = orbit_of(ModelSystem<2>(model, values(*model, {}), AccumulationTolerance{}), {0.05, 0.0},
+    const auto actual = orbit_of(ModelSystem<2>(model, model_parameter_values(*model, {}), AccumulationTolerance{}), {0.05, 0.0},
                                  ModelSystem<2>::free_mode, 30.0);
     ASSERT_TRUE(expected.converged && actual.converged);
     for (int i = 0; i < 2; ++i)
@@ -208,7 +198,7 @@ TEST(ModelFile, BouncingBallChatterAndRidingGiveTheBuiltInSequence) {
     BouncingBallParameters p;
     p.r = r;
     const BouncingBall built_in{p};
-    const ModelSystem<2> from_file(model, values(*model, {{"r", r}}), AccumulationTolerance{});
+    const ModelSystem<2> from_file(model, model_parameter_values(*model, {{"r", r}}), AccumulationTolerance{});
     const double t_end = 40 * 2 * std::numbers::pi / p.omega;
     const auto expected = run_events(built_in, {0.05, 0.0}, BouncingBall::Mode::free, t_end);
     const auto actual = run_events(from_file, {0.05, 0.0}, ModelSystem<2>::free_mode, t_end);
@@ -245,9 +235,9 @@ TEST(ModelFile, TheCacheIsReusedAndTheSlowPathSaysSo) {
 
   // the interpreted evaluator gives the compiled code's events
   const double t_end = 30 * std::numbers::pi;
-  const auto fast_events = run_events(ModelSystem<2>(first, values(*first, {}), AccumulationTolerance{}), {0.0, 0.0},
+  const auto fast_events = run_events(ModelSystem<2>(first, model_parameter_values(*first, {}), AccumulationTolerance{}), {0.0, 0.0},
                                       ModelSystem<2>::free_mode, t_end);
-  const auto slow_events = run_events(ModelSystem<2>(slow, values(*slow, {}), AccumulationTolerance{}), {0.0, 0.0},
+  const auto slow_events = run_events(ModelSystem<2>(slow, model_parameter_values(*slow, {}), AccumulationTolerance{}), {0.0, 0.0},
                                       ModelSystem<2>::free_mode, t_end);
   expect_same_events(fast_events, slow_events, 1e-12);
 }
@@ -269,7 +259,7 @@ TEST(ModelFile, ACacheDirectoryWithShellSyntaxCompilesAndRunsNoCommand) {
   EXPECT_TRUE(std::filesystem::exists(model->library));
   EXPECT_FALSE(std::filesystem::exists(marker));
   // the loaded code is the model's: ẋ' = A cos ωt − 2ζẋ − x at the defaults
-  const std::vector<double> p = values(*model, {});
+  const std::vector<double> p = model_parameter_values(*model, {});
   const double x[2] = {0.3, -0.7}, t = 0.4;
   double rhs[2];
   model->free_rhs(x, t, p.data(), rhs);
@@ -316,7 +306,7 @@ std::string error_of(const std::string& text) {
   std::ofstream(path) << text;
   try {
     const auto model = compile_model(read_model_file(path), test_options());
-    check_initial_values(*model, {0.0, 0.0}, 0.0, values(*model, {}));
+    check_initial_values(*model, {0.0, 0.0}, 0.0, model_parameter_values(*model, {}));
   } catch (const BadInput& error) {
     const std::string message = error.what();
     EXPECT_EQ(message.find('\n'), std::string::npos);
