@@ -334,7 +334,7 @@ inline TapeVariable exp(const TapeVariable& a) {
   SeriesTape* tape = a.tape();
   TapeEntry& entry = detail::tape_entry(TapeOperation::exp, a);
   const TapeVariable e = TapeVariable::result(entry, tape, exp(a.value()),
-                                              a.degree() == 0 ? 0 : TapeVariable::unbounded);
+                                              detail::function_degree(a.degree()));
   tape->take_row();  // j a_j
   return e;
 }
@@ -342,20 +342,20 @@ inline TapeVariable log(const TapeVariable& a) {
   using std::log;
   if (a.is_constant()) return log(a.value());
   return TapeVariable::result(detail::tape_entry(TapeOperation::log, a), a.tape(), log(a.value()),
-                              a.degree() == 0 ? 0 : TapeVariable::unbounded);
+                              detail::function_degree(a.degree()));
 }
 inline TapeVariable sqrt(const TapeVariable& a) {
   using std::sqrt;
   if (a.is_constant()) return sqrt(a.value());
   return TapeVariable::result(detail::tape_entry(TapeOperation::sqrt, a), a.tape(), sqrt(a.value()),
-                              a.degree() == 0 ? 0 : TapeVariable::unbounded);
+                              detail::function_degree(a.degree()));
 }
 inline TapeVariable pow(const TapeVariable& a, double alpha) {
   using std::pow;
   if (a.is_constant()) return pow(a.value(), alpha);
   return TapeVariable::result(detail::tape_entry(TapeOperation::power, a, TapeVariable(), alpha),
                               a.tape(), pow(a.value(), alpha),
-                              a.degree() == 0 ? 0 : TapeVariable::unbounded);
+                              detail::function_degree(a.degree()));
 }
 
 // TaylorVariable's sign at order 0 without the slope (a batch's evaluation:

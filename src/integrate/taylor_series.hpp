@@ -472,6 +472,16 @@ SineAndCosine<TaylorVariable<Real>> sin_and_cos_of(const TaylorVariable<Real>& a
   return {pair[0], pair[1]};
 }
 
+namespace detail {
+
+// the degree of exp, log, √ or a power of a series of degree `degree`:
+// constant over the step where the argument is, not a polynomial otherwise
+constexpr int function_degree(int degree) {
+  return degree == 0 ? 0 : TaylorVariable<double>::unbounded;
+}
+
+}  // namespace detail
+
 // exp a (a second row for j a_j), log a, √a and a^α for a constant α: the
 // recurrences above; a quantity constant over the step (degree 0) gives one
 template <class Real>
@@ -488,7 +498,7 @@ TaylorVariable<Real> exp(const TaylorVariable<Real>& a) {
     ja[k] = Real(k) * a.value();
     e[k] = detail::exp_coefficient(ja, a.degree(), e, k);
   }
-  return {evaluation, e, e[k], a.degree() == 0 ? 0 : TaylorVariable<Real>::unbounded};
+  return {evaluation, e, e[k], detail::function_degree(a.degree())};
 }
 
 template <class Real>
@@ -499,7 +509,7 @@ TaylorVariable<Real> log(const TaylorVariable<Real>& a) {
   const int k = evaluation->order();
   Real* l = evaluation->take_row();
   l[k] = k == 0 ? Real(log(a.value())) : detail::log_coefficient(a.row(), a.degree(), l, k);
-  return {evaluation, l, l[k], a.degree() == 0 ? 0 : TaylorVariable<Real>::unbounded};
+  return {evaluation, l, l[k], detail::function_degree(a.degree())};
 }
 
 template <class Real>
@@ -510,7 +520,7 @@ TaylorVariable<Real> sqrt(const TaylorVariable<Real>& a) {
   const int k = evaluation->order();
   Real* r = evaluation->take_row();
   r[k] = k == 0 ? Real(sqrt(a.value())) : detail::sqrt_coefficient(a.value(), r, k);
-  return {evaluation, r, r[k], a.degree() == 0 ? 0 : TaylorVariable<Real>::unbounded};
+  return {evaluation, r, r[k], detail::function_degree(a.degree())};
 }
 
 template <class Real>
@@ -522,7 +532,7 @@ TaylorVariable<Real> pow(const TaylorVariable<Real>& a, double alpha) {
   Real* p = evaluation->take_row();
   p[k] = k == 0 ? Real(pow(a.value(), Real(alpha)))
                 : detail::power_coefficient(Real(alpha), a.row(), a.degree(), p, k);
-  return {evaluation, p, p[k], a.degree() == 0 ? 0 : TaylorVariable<Real>::unbounded};
+  return {evaluation, p, p[k], detail::function_degree(a.degree())};
 }
 
 // core/fast_trig.hpp's names: the same functions on a series

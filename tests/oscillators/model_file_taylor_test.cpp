@@ -200,15 +200,15 @@ forcing_frequency = "omega"
 omega = 1.3
 [model.rhs]
 x = "v"
-v = "1.5*cos(omega*t) - 0.1*v - x*sqrt(1 + x^2) - 0.2*tanh(3*v) + 0.05*exp(-x^2) + 0.1*(1 + x^2)^0.75 - 0.05*log(2 + v^2)"
+v = "1.5*cos(omega*t) - 0.1*v - x*sqrt(1 + x^2) - 0.2*tanh(3*v) + 0.05*exp(-x^2) + 0.1*(1 + x^2)^0.75 - 0.05*log(2 + v^2) + 0.02*tan(0.3*x)"
 [[model.walls]]
 witness = "0.8 - x"
 direction = "falling"
 reset = { velocity = "v", restitution = "0.7", position = "x" }
 )toml";
 
-// Every function with a series at once (√, tanh, exp, log, a real power),
-// against rkf78 at a tolerance a hundred times tighter: the events,
+// Every function with a series at once (√, tanh, exp, log, a real power,
+// tan), against rkf78 at a tolerance a hundred times tighter: the events,
 // and the fundamental matrix of the variational equations over impacts,
 // whose Taylor run differentiates the series programs as dual numbers
 // while rkf78 runs the model's compiled Jacobian: two independent
