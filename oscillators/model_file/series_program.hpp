@@ -18,10 +18,7 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <memory>
-#include <stdexcept>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include <impactlab/oscillators/model_file/kernel_code.hpp>
@@ -47,7 +44,7 @@ class SeriesProgram {
   // out[i] = output i at the state x (N numbers), the time t and the
   // parameters p (the model's order). std::logic_error for an empty program.
   template <class Number>
-  void run(const Number* x, const Number& t, const double* p, Number* out) const;
+  [[gnu::flatten]] void run(const Number* x, const Number& t, const double* p, Number* out) const;
 
  private:
   enum class Operation : std::uint8_t {
@@ -63,6 +60,12 @@ class SeriesProgram {
 
   template <class Number>
   static Number integer_power(const Number& base, int exponent);
+  // The functions other than sin, cos and |·|, called from run's loop: the
+  // loop has every other operation inlined (flattened, it is the Taylor
+  // stepper's hot path), and these, inlined too, made a dual number's loop
+  // ten times as long to compile (15 to 60 s per type).
+  template <class Number>
+  [[gnu::noinline]] static Number less_common_function(const Step& step, const Number& a);
 
   std::vector<Step> steps_;
   std::vector<std::uint32_t> outputs_;  // the slot of out[i]
@@ -73,65 +76,35 @@ class SeriesProgram {
 // not, as a phrase ("it uses exp").
 std::string series_refusal(const KernelCode& code, std::size_t output_count);
 
-template <class Number>
-Number SeriesProgram::integer_power(const Number& base, int exponent) {
-  if (exponent == 0) return Number(1.0);
-  const int count = exponent < 0 ? -exponent : exponent;
-  Number power = base;
-  for (int k = 1; k < count; ++k) power = power * base;
-  if (exponent < 0) return Number(1.0) / power;
-  return power;
-}
+// run is compiled once per number type, in series_program_series.cpp (doubles,
+// the Taylor stepper's series and their dual numbers) and
+// series_program_lanes.cpp (the batch's tapes and their dual numbers): its
+// switch over every operation, inlined into each system's flows, made those
+// units several times the cost of any other. A type not listed here fails to
+// link, naming it; add it to the list and to one of those units.
+template <class Real>
+class TaylorVariable;
+class TapeVariable;
+template <class Number, std::size_t Directions>
+class Dual;
 
-template <class Number>
-void SeriesProgram::run(const Number* x, const Number& t, const double* p, Number* out) const {
-  static_assert(std::is_trivially_destructible_v<Number>,
-                "the slots are constructed in place and never destroyed");
-  if (empty()) throw std::logic_error("SeriesProgram: run on a model without series");
-  // uninitialised storage: each slot is constructed by its step
-  alignas(Number) std::byte storage[max_steps * sizeof(Number)];
-  Number* const slot = reinterpret_cast<Number*>(storage);
-  using std::cos;
-  using std::exp;
-  using std::fabs;
-  using std::log;
-  using std::pow;
-  using std::sin;
-  using std::sqrt;
-  for (std::size_t i = 0; i < steps_.size(); ++i) {
-    const Step& step = steps_[i];
-    Number* const value = slot + i;
-    switch (step.operation) {
-      case Operation::constant: std::construct_at(value, step.value); break;
-      case Operation::state: std::construct_at(value, x[step.a]); break;
-      case Operation::parameter: std::construct_at(value, p[step.a]); break;
-      case Operation::time: std::construct_at(value, t); break;
-      case Operation::add: std::construct_at(value, slot[step.a] + slot[step.b]); break;
-      case Operation::multiply: std::construct_at(value, slot[step.a] * slot[step.b]); break;
-      case Operation::reciprocal: std::construct_at(value, Number(1.0) / slot[step.a]); break;
-      case Operation::integer_power:
-        std::construct_at(value, integer_power(slot[step.a], step.exponent));
-        break;
-      case Operation::real_power: std::construct_at(value, pow(slot[step.a], step.value)); break;
-      case Operation::sin: std::construct_at(value, sin(slot[step.a])); break;
-      case Operation::cos: std::construct_at(value, cos(slot[step.a])); break;
-      case Operation::tan: std::construct_at(value, sin(slot[step.a]) / cos(slot[step.a])); break;
-      case Operation::exp: std::construct_at(value, exp(slot[step.a])); break;
-      case Operation::log: std::construct_at(value, log(slot[step.a])); break;
-      case Operation::sqrt: std::construct_at(value, sqrt(slot[step.a])); break;
-      case Operation::sinh:
-        std::construct_at(value, (exp(slot[step.a]) - exp(-slot[step.a])) * 0.5);
-        break;
-      case Operation::cosh:
-        std::construct_at(value, (exp(slot[step.a]) + exp(-slot[step.a])) * 0.5);
-        break;
-      case Operation::tanh:  // 1 − 2 / (e^{2a} + 1): ±1 without overflow far out
-        std::construct_at(value, 1.0 - 2.0 / (exp(2.0 * slot[step.a]) + 1.0));
-        break;
-      case Operation::abs: std::construct_at(value, fabs(slot[step.a])); break;
-    }
-  }
-  for (std::size_t i = 0; i < outputs_.size(); ++i) out[i] = slot[outputs_[i]];
-}
+#define IMPACTLAB_SERIES_PROGRAM_NUMBER_TYPES(X) \
+  X(double)                                     \
+  X(TaylorVariable<double>)                     \
+  X(Dual<TaylorVariable<double>, 2>)            \
+  X(Dual<TaylorVariable<double>, 4>)
+
+#define IMPACTLAB_SERIES_PROGRAM_LANE_TYPES(X) \
+  X(TapeVariable)                              \
+  X(Dual<TapeVariable, 2>)                     \
+  X(Dual<TapeVariable, 4>)
+
+#define IMPACTLAB_SERIES_PROGRAM_RUN(EXTERN, ...)                                           \
+  EXTERN template void SeriesProgram::run<__VA_ARGS__>(const __VA_ARGS__*, const __VA_ARGS__&, \
+                                                       const double*, __VA_ARGS__*) const;
+#define IMPACTLAB_EXTERN_SERIES_PROGRAM_RUN(...) IMPACTLAB_SERIES_PROGRAM_RUN(extern, __VA_ARGS__)
+IMPACTLAB_SERIES_PROGRAM_NUMBER_TYPES(IMPACTLAB_EXTERN_SERIES_PROGRAM_RUN)
+IMPACTLAB_SERIES_PROGRAM_LANE_TYPES(IMPACTLAB_EXTERN_SERIES_PROGRAM_RUN)
+#undef IMPACTLAB_EXTERN_SERIES_PROGRAM_RUN
 
 }  // namespace impactlab
