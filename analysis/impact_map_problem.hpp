@@ -115,8 +115,8 @@ std::optional<WallImpact> first_wall_impact(const System& system,
 // from the variational run, which applies the start impact as its first
 // event); L projects onto the section: the perturbed orbit reaches the wall
 // δtⱼ = −∇h·δx / ḣ later, so δφ' = ω δtⱼ and δzₖ' = δzₖ + fₖ δtⱼ.
-template <HasJacobian System, class MakeSystem>
-ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::Mode flight_mode,
+template <HasJacobian System>
+ContinuationProblem impact_map_problem(SystemOfParameter<System> make_system, typename System::Mode flight_mode,
                                        const FlowSetup& setup, int wall, std::size_t witness,
                                        double q_guess, int period, int wall_impacts,
                                        double forcing_omega_at_start) {
@@ -126,7 +126,7 @@ ContinuationProblem impact_map_problem(MakeSystem make_system, typename System::
   constexpr std::size_t n = tangent_dimension_of<System>;
   constexpr int samples_per_period = 96;
   struct Shared {
-    MakeSystem make_system;
+    SystemOfParameter<System> make_system;
     Mode flight_mode;
     FlowSetup setup;
     int wall;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -36,10 +37,16 @@ double forcing_omega_of(const System& system) {
     return system.parameters().omega;
 }
 
+// The system at a value of the continued parameter. A function, not a
+// template parameter: each caller's lambda would compile the map problems
+// (and their grazing data) again for the same system.
+template <class System>
+using SystemOfParameter = std::function<System(double)>;
+
 // The problem for p ↦ make_system(p) (forcing_omega_of gives its forcing
 // frequency), section ωt ≡ phase, period n, from flight mode.
-template <HasJacobian System, class MakeSystem>
-ContinuationProblem stroboscopic_map_problem(MakeSystem make_system,
+template <HasJacobian System>
+ContinuationProblem stroboscopic_map_problem(SystemOfParameter<System> make_system,
                                              typename System::Mode flight_mode,
                                              const FlowSetup& setup, double phase, int period,
                                              double forcing_omega_at_start) {
@@ -49,7 +56,7 @@ ContinuationProblem stroboscopic_map_problem(MakeSystem make_system,
   constexpr std::size_t n = tangent_dimension_of<System>;  // the OrbitPoint's components
   constexpr int samples_per_period = 96;
   struct Shared {
-    MakeSystem make_system;
+    SystemOfParameter<System> make_system;
     Mode flight_mode;
     FlowSetup setup;
     double phase;

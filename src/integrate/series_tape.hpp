@@ -368,10 +368,10 @@ inline TapeVariable sign(const TapeVariable& a) {
 }
 inline TapeVariable fabs(const TapeVariable& a) { return sign(a) * a; }
 
-// Records the order-0 pass of `rhs` (TaylorSeries' contract: rhs(x, t, dxdt,
-// outputs) returns how many outputs it set) at (t0, x0) on `tape`.
+namespace detail {
+
 template <std::size_t N, class Rhs>
-[[gnu::flatten]] void record_series_tape(SeriesTape& tape, const double* x0, double t0, const Rhs& rhs) {
+void record_series_tape_pass(SeriesTape& tape, const double* x0, double t0, const Rhs& rhs) {
   static_assert(N <= SeriesTape::max_state);
   tape.start(static_cast<int>(N));
   std::array<TapeVariable, N> x, dxdt;
@@ -397,6 +397,30 @@ template <std::size_t N, class Rhs>
       tape.add_output(out.row(), false);
     }
   }
+}
+
+template <std::size_t N, class Rhs>
+[[gnu::flatten]] void record_series_tape_flattened(SeriesTape& tape, const double* x0, double t0,
+                                                   const Rhs& rhs) {
+  record_series_tape_pass<N>(tape, x0, t0, rhs);
+}
+
+// The most states whose recording has every operation inlined into it: the
+// larger systems (the rigid pendulum's variational equations, 14 states)
+// made the translation unit of their flows twice as long to compile with it;
+// their recordings call the operations instead.
+inline constexpr std::size_t flattened_tape_states = 8;
+
+}  // namespace detail
+
+// Records the order-0 pass of `rhs` (TaylorSeries' contract: rhs(x, t, dxdt,
+// outputs) returns how many outputs it set) at (t0, x0) on `tape`.
+template <std::size_t N, class Rhs>
+void record_series_tape(SeriesTape& tape, const double* x0, double t0, const Rhs& rhs) {
+  if constexpr (N <= detail::flattened_tape_states)
+    detail::record_series_tape_flattened<N>(tape, x0, t0, rhs);
+  else
+    detail::record_series_tape_pass<N>(tape, x0, t0, rhs);
 }
 
 // the trajectories of one pass
