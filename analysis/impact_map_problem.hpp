@@ -116,10 +116,10 @@ std::optional<WallImpact> first_wall_impact(const System& system,
 // event); L projects onto the section: the perturbed orbit reaches the wall
 // δtⱼ = −∇h·δx / ḣ later, so δφ' = ω δtⱼ and δzₖ' = δzₖ + fₖ δtⱼ.
 template <HasJacobian System>
-ContinuationProblem impact_map_problem(SystemOfParameter<System> make_system, typename System::Mode flight_mode,
-                                       const FlowSetup& setup, int wall, std::size_t witness,
-                                       double q_guess, int period, int wall_impacts,
-                                       double forcing_omega_at_start) {
+ContinuationProblem impact_map_problem(SystemOfParameter<System> make_system,
+                                       typename System::Mode flight_mode, const FlowSetup& setup,
+                                       int wall, std::size_t witness, double q_guess, int period,
+                                       int wall_impacts, double forcing_omega_at_start) {
   using Mode = typename System::Mode;
   using Decorated = DecoratedSystem<System>;
   using Tangent = Variational<Decorated>;

@@ -76,12 +76,12 @@ class SeriesProgram {
 // not, as a phrase ("it uses exp").
 std::string series_refusal(const KernelCode& code, std::size_t output_count);
 
-// run is compiled once per number type, in series_program_series.cpp (doubles,
-// the Taylor stepper's series and their dual numbers) and
-// series_program_lanes.cpp (the batch's tapes and their dual numbers): its
-// switch over every operation, inlined into each system's flows, made those
-// units several times the cost of any other. A type not listed here fails to
-// link, naming it; add it to the list and to one of those units.
+// run is defined in series_program_run.hpp and compiled once per number type
+// listed here, in series_program_series.cpp (doubles, the Taylor stepper's
+// series and their dual numbers) and series_program_lanes.cpp (the batch's
+// tapes and their dual numbers): its switch over every operation, inlined
+// into each system's flows, made those units several times the cost of any
+// other. A type not listed fails to link, naming it.
 template <class Real>
 class TaylorVariable;
 class TapeVariable;
@@ -99,12 +99,9 @@ class Dual;
   X(Dual<TapeVariable, 2>)                     \
   X(Dual<TapeVariable, 4>)
 
-#define IMPACTLAB_SERIES_PROGRAM_RUN(EXTERN, ...)                                           \
-  EXTERN template void SeriesProgram::run<__VA_ARGS__>(const __VA_ARGS__*, const __VA_ARGS__&, \
-                                                       const double*, __VA_ARGS__*) const;
-#define IMPACTLAB_EXTERN_SERIES_PROGRAM_RUN(...) IMPACTLAB_SERIES_PROGRAM_RUN(extern, __VA_ARGS__)
-IMPACTLAB_SERIES_PROGRAM_NUMBER_TYPES(IMPACTLAB_EXTERN_SERIES_PROGRAM_RUN)
-IMPACTLAB_SERIES_PROGRAM_LANE_TYPES(IMPACTLAB_EXTERN_SERIES_PROGRAM_RUN)
-#undef IMPACTLAB_EXTERN_SERIES_PROGRAM_RUN
+// the explicit instantiation of run for one number type
+#define IMPACTLAB_SERIES_PROGRAM_RUN(...)                                               \
+  template void SeriesProgram::run<__VA_ARGS__>(const __VA_ARGS__*, const __VA_ARGS__&, \
+                                                const double*, __VA_ARGS__*) const;
 
 }  // namespace impactlab
