@@ -1,7 +1,8 @@
 // The analyses run on a scene's system, whatever its oscillator: each visits
 // the scene's binding (api/visit_scene.hpp) and runs the generic analysis of
 // analysis/ on the system it builds. One translation unit per analysis
-// (api/<analysis>_of_scene.cpp), each compiled once for every binding.
+// (api/<analysis>_of_scene.cpp), each compiled once for every binding; the
+// continuation, too large for one unit, in parts (api/binding_parts.hpp).
 // api/scene_jobs.hpp adds the checks of the jobs' options on top.
 #pragma once
 
