@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 
 #include <impactlab/analysis/run_continuation.hpp>
 #include <impactlab/api/continuation_of_binding.hpp>
