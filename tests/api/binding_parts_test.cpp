@@ -32,7 +32,6 @@ template <std::size_t Parts>
 void expect_a_partition_by_index() {
   const std::vector<std::type_index> all = types_of(BuiltinBindings{});
   const auto parts = parts_of<Parts>(std::make_index_sequence<Parts>{});
-  ASSERT_EQ(parts.size(), Parts);
   for (std::size_t part = 0; part < Parts; ++part) {
     std::vector<std::type_index> expected;
     for (std::size_t i = part; i < all.size(); i += Parts) expected.push_back(all[i]);
