@@ -224,8 +224,9 @@ enum class CodimensionTwoType {
   grazing_period_doubling,  // on a grazing curve: the virtual orbit's multiplier through −1
   grazing_fold,             // on a grazing curve: the virtual orbit's multiplier through +1
   grazing_scenario_change,  // on a grazing curve: its dominant multiplier through a threshold
-                            // of the eigenvalue rule (1/4 or 2/3), where the predicted
-                            // scenario past the graze changes
+                            // of the eigenvalue rule (1/4 or 2/3), or the sign of an
+                            // impact's kick (K or an e_k) through zero, where the
+                            // predicted scenario past the graze changes
   cusp,                     // on a fold curve: the curve's tangent has no parameter component
                             // (the fold's quadratic coefficient is zero; two fold curves meet)
   resonance_1_1,            // on a Neimark–Sacker curve: the pair on the unit circle meets at +1

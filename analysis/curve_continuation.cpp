@@ -315,6 +315,11 @@ class CurveDriver {
 
   void accept(const Corrected& c, const Vector& tangent, double step) {
     if (!result_.curve.empty()) detect_codimension_two(z_, tangent_, step, c);
+    std::optional<GrazingNormalForm> form;
+    if (grazing_ && request_.normal_forms) {
+      form = normal_form_at(c.z);
+      if (!result_.curve.empty()) detect_kick_sign_change(z_, tangent_, step, form);
+    }
     if (request_.type == CurveType::fold && !result_.curve.empty())
       detect_cusp(z_, tangent_, step, tangent);
     double flip = std::numeric_limits<double>::quiet_NaN();
@@ -330,6 +335,7 @@ class CurveDriver {
     if (grazing_) window_center_ = c.z[tg_] * time_scale_;
     last_signature_ = c.at.orbit.signature;
     last_flip_coefficient_ = flip;
+    last_form_ = std::move(form);
     const auto watched = watched_conditions();
     for (std::size_t k = 0; k < watched.size(); ++k)
       last_tests_[k] = watched[k].function(c.at.orbit.monodromy);
@@ -539,7 +545,8 @@ class CurveDriver {
       const auto value = [&](const Corrected& c) {
         return watched[k].function(c.at.orbit.monodromy);
       };
-      if (auto point = locate(watched[k].type, watched[k].note, value, a, tangent, step, fa))
+      const auto keep = [&](const Corrected& c) { return keeps(watched[k].type, c); };
+      if (auto point = locate(watched[k].type, watched[k].note, value, keep, a, tangent, step, fa))
         result_.points.push_back(std::move(*point));
     }
   }
@@ -565,7 +572,8 @@ class CurveDriver {
       if (!t) throw std::runtime_error("no curve tangent");
       return parameter_part(*t).dot(reference);
     };
-    if (auto point = locate(CodimensionTwoType::cusp, "", value, a, tangent, step, fa))
+    const auto keep = [&](const Corrected& c) { return tangent_along_state(c, tangent); };
+    if (auto point = locate(CodimensionTwoType::cusp, "", value, keep, a, tangent, step, fa))
       result_.points.push_back(std::move(*point));
   }
 
@@ -636,19 +644,20 @@ class CurveDriver {
       if (!std::isfinite(kappa)) throw std::runtime_error("no flip coefficient");
       return kappa;
     };
-    if (auto point = locate(CodimensionTwoType::degenerate_period_doubling, "", value, a, tangent,
-                            step, fa))
+    const auto keep = [](const Corrected&) { return true; };
+    if (auto point = locate(CodimensionTwoType::degenerate_period_doubling, "", value, keep, a,
+                            tangent, step, fa))
       result_.points.push_back(std::move(*point));
   }
 
   // The root of a test function `value` of the corrected curve point on the
   // arclength from a (TOMS 748), each trial point corrected onto the curve;
-  // none at a located threshold of the eigenvalue rule where the rule does not
-  // apply (rule_applies).
-  template <class TestFunction>
-  std::optional<CodimensionTwoPoint> locate(CodimensionTwoType type, const char* note,
-                                            const TestFunction& value, const Vector& a,
-                                            const Vector& tangent, double step, double fa) {
+  // none where `keep` rejects the corrected point at the root.
+  template <class TestFunction, class Keep>
+  std::optional<CodimensionTwoPoint> locate(CodimensionTwoType type, const std::string& note,
+                                            const TestFunction& value, const Keep& keep,
+                                            const Vector& a, const Vector& tangent, double step,
+                                            double fa) {
     CodimensionTwoPoint point;
     point.type = type;
     point.note = note;
@@ -672,14 +681,7 @@ class CurveDriver {
       const auto bracket = boost::math::tools::toms748_solve(
           on_curve, 0.0, step, fa, fb, boost::math::tools::eps_tolerance<double>(42), iterations);
       on_curve(0.5 * (bracket.first + bracket.second));
-      if (type == CodimensionTwoType::grazing_scenario_change && !rule_applies(last->z))
-        return std::nullopt;
-      if (type == CodimensionTwoType::cusp && !tangent_along_state(*last, tangent))
-        return std::nullopt;
-      if (type == CodimensionTwoType::resonance_1_1 && !pair_at(last->at.orbit.monodromy, 1.0))
-        return std::nullopt;
-      if (type == CodimensionTwoType::resonance_1_2 && !pair_at(last->at.orbit.monodromy, -1.0))
-        return std::nullopt;
+      if (!keep(*last)) return std::nullopt;
       const CurvePoint at = point_of(*last);
       point.p1 = at.p1;
       point.p2 = at.p2;
@@ -718,24 +720,96 @@ class CurveDriver {
     return near >= 2;
   }
 
-  // Whether the eigenvalue rule decides the scenario at a located threshold
-  // of λ₁: its normal form there (the grazing orbit's local flow) has every
-  // kick gap e_k ≥ 0, λ₁ > 0 and K > 0, so that the rule is period adding,
-  // with or without chaos, or chaos, not a jump. Where the normal form cannot be
-  // formed the threshold is reported as it is.
-  bool rule_applies(const Vector& z) const {
+  // Whether a located point of `type` at c is one: a threshold of λ₁ where
+  // the eigenvalue rule applies (rule_applies), a resonance where two
+  // multipliers are at ±1 (pair_at); every other type as located.
+  bool keeps(CodimensionTwoType type, const Corrected& c) const {
+    switch (type) {
+      case CodimensionTwoType::grazing_scenario_change: return rule_applies(c.z);
+      case CodimensionTwoType::resonance_1_1: return pair_at(c.at.orbit.monodromy, 1.0);
+      case CodimensionTwoType::resonance_1_2: return pair_at(c.at.orbit.monodromy, -1.0);
+      default: return true;
+    }
+  }
+
+  // The linear part of the grazing orbit's normal form at the grazing curve's
+  // point z (linear_normal_form, from the orbit's local flow at its graze);
+  // none where the problem gives no local flow.
+  std::optional<GrazingNormalForm> normal_form_at(const Vector& z) const {
     const ContinuationProblem at = problem_.at(p2_of(z));
-    if (!at.grazing_flow) return true;
+    if (!at.grazing_flow) return std::nullopt;
     const double graze = z[tg_] * time_scale_;
-    const GrazingNormalForm form = grazing_normal_form(
+    return linear_normal_form(
         at.grazing_flow(state_of(z), p1_of(z), phase_,
                         ContactWindow{request_.graze_witness, graze - window_half_width_,
                                       graze + window_half_width_},
                         graze),
         p1_of(z));
-    if (!form.available) return true;
-    const GrazingScenario rule = eigenvalue_rule(form);
-    return rule != GrazingScenario::jump && rule != GrazingScenario::not_applicable;
+  }
+
+  // Whether the eigenvalue rule decides the scenario at a located threshold
+  // of λ₁: its normal form there has every kick gap e_k ≥ 0, λ₁ > 0 and
+  // K > 0, so that the rule is period adding, with or without chaos, or
+  // chaos, not a jump. Where the normal form cannot be formed the threshold
+  // is reported as it is.
+  bool rule_applies(const Vector& z) const {
+    const auto form = normal_form_at(z);
+    if (!form || !form->available) return true;
+    return form->rule != GrazingScenario::jump && form->rule != GrazingScenario::not_applicable;
+  }
+
+  // The signs of an impact's kick on the later gaps, which the eigenvalue
+  // rule reads beside λ₁: the least of K = C P₁ E (the dominant mode's share)
+  // and of e_k = C Nᵏ⁻¹ E (k = 1 … 24), over the largest |e_k|. Positive
+  // where none drives a later iterate into the wall; through zero the rule
+  // changes between jump and a local attractor (a degenerate normal form).
+  // NaN where the form is unavailable or K is not formed (λ₁ complex).
+  static double kick_margin(const GrazingNormalForm& form) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (!form.available || form.kick_gaps.empty()) return nan;
+    double largest = 0.0, least = INFINITY;
+    for (double e : form.kick_gaps) {
+      largest = std::max(largest, std::fabs(e));
+      least = std::min(least, e);
+    }
+    if (!(largest > 0.0)) return nan;
+    return std::min(least, form.dominant_product) / largest;
+  }
+
+  // Which of the kick's signs is the least (kick_margin): "K" or "e_k" with
+  // its k.
+  static std::string least_kick_term(const GrazingNormalForm& form) {
+    const auto least = std::min_element(form.kick_gaps.begin(), form.kick_gaps.end());
+    if (least == form.kick_gaps.end() || form.dominant_product <= *least) return "K";
+    return "e_" + std::to_string(1 + (least - form.kick_gaps.begin()));
+  }
+
+  // A degenerate normal form between the grazing curve's point a and the new
+  // point (reached from a by the arclength `step` along `tangent`, where the
+  // normal form is `next`): the kick margin changes sign and the rule with
+  // it, located as the watched conditions are; the note names the term at
+  // zero and the rule on either side.
+  void detect_kick_sign_change(const Vector& a, const Vector& tangent, double step,
+                               const std::optional<GrazingNormalForm>& next) {
+    if (!last_form_ || !next) return;
+    const double fa = kick_margin(*last_form_), fb = kick_margin(*next);
+    if (!(fa * fb < 0.0) || last_form_->rule == next->rule) return;
+    const GrazingNormalForm& positive = fa > 0.0 ? *last_form_ : *next;
+    const GrazingNormalForm& negative = fa > 0.0 ? *next : *last_form_;
+    const std::string term = least_kick_term(negative);
+    const std::string note = term + " = 0: " + std::string(to_string(positive.rule)) +
+                             " where " + term + " > 0, " + std::string(to_string(negative.rule)) +
+                             " where " + term + " < 0";
+    const auto value = [&](const Corrected& c) {
+      const auto form = normal_form_at(c.z);
+      const double margin = form ? kick_margin(*form) : std::numeric_limits<double>::quiet_NaN();
+      if (!std::isfinite(margin)) throw std::runtime_error("no normal form");
+      return margin;
+    };
+    const auto keep = [](const Corrected&) { return true; };
+    if (auto point = locate(CodimensionTwoType::grazing_scenario_change, note, value, keep, a,
+                            tangent, step, fa))
+      result_.points.push_back(std::move(*point));
   }
 
   // The fraction of the span between the section (moved by `shift_time`) and
@@ -830,6 +904,7 @@ class CurveDriver {
   double last_flip_coefficient_ = 0.0;    // a period-doubling curve: κ at the last point
   std::array<double, watched_on_grazing_.size()> last_tests_{};  // the watched conditions at the
                                                                 // last point
+  std::optional<GrazingNormalForm> last_form_;  // a grazing curve: the last point's normal form
   CurveResult result_;
 };
 

@@ -69,6 +69,7 @@ struct CurveRequest {
   int max_points = 5000;
   int max_newton_iterations = 12;
   double tolerance = 1e-11;          // |F| ≤ tolerance (1 + |x|)
+  bool normal_forms = true;          // grazing: the normal form's kick signs watched at each point
 };
 
 CurveResult continue_curve(const TwoParameterProblem& problem, const CurveRequest& request);

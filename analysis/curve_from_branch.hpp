@@ -67,6 +67,7 @@ bool continue_curve_of(const ContinuationJobResult& result, std::size_t index, C
   request.graze_witness = found->graze_witness;
   request.max_points = job.numerics.max_points;
   request.tolerance = job.numerics.tolerance;
+  request.normal_forms = job.numerics.normal_forms;
   // the branch's largest step, as a fraction of the first parameter's range
   if (job.numerics.max_step > 0.0) request.max_step = job.numerics.max_step / std::fabs(job.to - job.from);
   const auto scene_at = [scene, job](double p2) {
@@ -152,6 +153,7 @@ bool continue_curve_from_point(const CodimensionTwoPoint& point, CurveType throu
   request.graze_witness = point.graze_witness;
   request.max_points = job.numerics.max_points;
   request.tolerance = job.numerics.tolerance;
+  request.normal_forms = job.numerics.normal_forms;
   if (job.numerics.max_step > 0.0) request.max_step = job.numerics.max_step / std::fabs(job.to - job.from);
   TwoParameterProblem problem;
   problem.at = [scene, job, map_at, period](double p2) {

@@ -371,7 +371,7 @@ NormalFormAttractor normal_form_attractor(const GrazingNormalForm& form, double 
   return iterate<VectorXd, MatrixXd>(form, mu);
 }
 
-GrazingNormalForm grazing_normal_form(const GrazingLocalFlow& local, double parameter) {
+GrazingNormalForm linear_normal_form(const GrazingLocalFlow& local, double parameter) {
   GrazingNormalForm form;
   form.parameter = parameter;
   const auto fail = [&](const std::string& why) {
@@ -463,10 +463,16 @@ GrazingNormalForm grazing_normal_form(const GrazingLocalFlow& local, double para
     form.period_one_side = c1 > 0.0 ? form.impacting_side : -form.impacting_side;
   }
 
+  form.rule = form.further_touches.empty() ? eigenvalue_rule(form) : GrazingScenario::not_applicable;
+  return form;
+}
+
+GrazingNormalForm grazing_normal_form(const GrazingLocalFlow& local, double parameter) {
+  GrazingNormalForm form = linear_normal_form(local, parameter);
+  if (!form.available) return form;
   const bool orbit_stable = std::all_of(form.eigenvalues.begin(), form.eigenvalues.end(),
                                         [](const std::complex<double>& l) { return std::abs(l) < 1.0; });
   form.other_side = orbit_stable ? "non_impacting_orbit" : "unstable_non_impacting_orbit";
-  form.rule = form.further_touches.empty() ? eigenvalue_rule(form) : GrazingScenario::not_applicable;
   if (form.impacting_side == 0) {
     form.note = "degenerate: the virtual orbit's gap does not change with the parameter (g_mu = 0)";
     form.scenario = GrazingScenario::not_applicable;

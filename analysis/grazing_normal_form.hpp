@@ -147,6 +147,12 @@ struct GrazingNormalForm {
 // the note) where the ZDM is unavailable or the data are not finite.
 GrazingNormalForm grazing_normal_form(const GrazingLocalFlow& local, double parameter);
 
+// Its linear data and the eigenvalue rule only (the ZDM, N, M, C, d, E, g_μ,
+// the side, the period-1 slope, e_k, K and `rule`), without iterating the
+// map: no `scenario`, `other_side`, `attractors` or `period_sequence`. What
+// a curve watches at each of its points.
+GrazingNormalForm linear_normal_form(const GrazingLocalFlow& local, double parameter);
+
 // The maximal period-n orbit at μ.
 MaximalOrbit maximal_orbit(const GrazingNormalForm& form, int n, double mu);
 

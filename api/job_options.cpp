@@ -348,7 +348,8 @@ Options continue_options() {
        .default_value = ContinuationRequest{}.max_step, .lower = 0.0},
       {.name = "no_normal_forms", .type = OptionType::flag,
        .help = "skip the discontinuity map and normal form at each located grazing point "
-               "(grazing.json; docs/analysis.md)",
+               "(grazing.json), and the kick signs watched along a grazing curve "
+               "(docs/analysis.md)",
        .default_value = false},
       {.name = "plot", .type = OptionType::flag,
        .help = "draw continuation.png (scripts/plot_continuation.py): stable solid, unstable "

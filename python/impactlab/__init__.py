@@ -1029,7 +1029,8 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     at speed c sqrt|p - p_g|), period_one_speed_slope and period_one_side, and
     grazing is the list of grazing.json's entries (the map's and the normal
     form's coefficients, the scenario, the normal form's attractor at 25
-    distances); no_normal_forms=True skips them."""
+    distances); no_normal_forms=True skips them, and the kick signs a grazing
+    curve watches at each point."""
     loaded = scene(scene_ if scene_ is not None else "linear_impact", **keys)
     # NAME=FROM:TO is read by the scene API (continuation_job), as the CLI's
     for key, value in (("param", param), ("param2", param2), ("curve", curve),

@@ -25,6 +25,7 @@
 #include <array>
 #include <cmath>
 #include <complex>
+#include <fstream>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -1259,6 +1260,110 @@ TEST(CurveContinuation, GrazingScenarioChangesOfTheOverdampedOscillatorAtTheirCl
     ASSERT_TRUE(grazing[0].normal_form.has_value()) << "omega = " << omega;
     EXPECT_NEAR(grazing[0].parameter, omega, 1e-8 * omega);
     EXPECT_EQ(grazing[0].normal_form->rule, scenario) << "omega = " << omega;
+  }
+}
+
+// Where the grazing scenario changes through the sign of an impact's kick (a
+// degenerate normal form), on a model file written here: two unit masses on
+// ground springs 1 and 2, coupled by a spring κ, with mass-proportional
+// damping c = 5 (every mode overdamped, so every multiplier is real), the
+// first forced by F cos ωt and stopped at x = σ; the stop is a lever, so the
+// impact's change of ẋ, −(1 + r)ẋ, comes with −β times it on ẏ. The kick on
+// later gaps is the first mass's response to the velocity change ∝ (1, −β):
+// Σₘ φ₁ₘ (φ₁ₘ − β φ₂ₘ) gₘ(t), gₘ > 0 the overdamped modes' impulse responses,
+// φₘ the stiffness matrix's unit eigenvectors. The dominant multiplier is the
+// slower mode's, so K = C P₁ E vanishes where φ₁₁/φ₂₁ = β, and there only:
+// with (1 + κ − ω₁²)/κ = 1/β (ω₁² the smaller eigenvalue), κ = 2/3 for
+// β = 2. Below it K > 0 and every e_k > 0 (the faster mode's share stays
+// positive), so the rule is λ₁'s; above it K < 0: a jump. The graze is where
+// the harmonic response's amplitude |X₁(ω, κ)| reaches σ. The grazing curve
+// in (ω, κ) must locate the point at κ = 2/3 and the closed form's ω to
+// 1e-9, and nothing else; and the normal forms of grazing points located on
+// branches on either side must give the rules the note names.
+TEST(CurveContinuation, GrazingScenarioChangesWhereTheDominantModesKickVanishes) {
+  const impactlab::testing::ScratchFolder folder;
+  const std::string path = (folder / "lever_stop.toml").string();
+  std::ofstream(path) << R"(name = "lever_stop"
+description = "two coupled overdamped masses, a lever stop on the first"
+[initial]
+x = 0.0
+x_dot = 0.0
+y = 0.0
+y_dot = 0.0
+[integrator]
+method = "taylor"
+rtol = 1e-13
+atol = 1e-15
+[model]
+states = ["x", "x_dot", "y", "y_dot"]
+forcing_frequency = "omega"
+[model.parameters]
+c = { default = 5.0 }
+kappa = { default = 0.4 }
+beta = { default = 2.0 }
+F = { default = 1.0 }
+omega = { default = 3.0, min = 0.0, min_open = true }
+sigma = { default = 0.1 }
+r = { default = 0.8, min = 0.0, max = 1.0 }
+[model.rhs]
+x = "x_dot"
+x_dot = "F*cos(omega*t) - c*x_dot - (1 + kappa)*x + kappa*y"
+y = "y_dot"
+y_dot = "-c*y_dot - (2 + kappa)*y + kappa*x"
+[[model.walls]]
+name = "stop"
+side = 1
+witness = "sigma - x"
+direction = "falling"
+reset = { map = { x_dot = "-r*x_dot", y_dot = "y_dot + beta*(1 + r)*x_dot" } }
+)";
+  ASSERT_EQ(::setenv("IMPACTLAB_CACHE_DIR", (folder / "cache").c_str(), 1), 0);
+  const Scene scene = impactlab::load_scene(path);
+  ::unsetenv("IMPACTLAB_CACHE_DIR");
+  const double c = 5.0, sigma = 0.1;
+  const auto amplitude = [&](double omega, double kappa) {
+    const std::complex<double> damping(0.0, omega * c);
+    const std::complex<double> first = 1.0 + kappa - omega * omega + damping,
+                               second = 2.0 + kappa - omega * omega + damping;
+    return std::abs(second / (first * second - kappa * kappa));
+  };
+  const auto grazing_omega = [&](double kappa) {
+    return solve([&](double omega) { return amplitude(omega, kappa) - sigma; }, 1.0, 3.0);
+  };
+  const auto at_kappa = [&](double kappa) {
+    Scene at = scene;
+    at.values["kappa"] = kappa;
+    return at;
+  };
+  const auto result = impactlab::continue_orbit(
+      at_kappa(0.4), curve_job("omega", 3.0, 1.5, "kappa", 0.4, 1.0, CurveType::grazing));
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  EXPECT_EQ(result.curve.stop_reason, StopReason::end_of_range) << result.curve.stop_detail;
+  ASSERT_GE(result.curve.curve.size(), 5u);
+  for (const auto& point : result.curve.curve)
+    EXPECT_NEAR(point.p1, grazing_omega(point.p2), 1e-9) << "kappa = " << point.p2;
+  ASSERT_EQ(result.curve.points.size(), 1u);
+  const auto& point = result.curve.points[0];
+  EXPECT_EQ(point.type, impactlab::CodimensionTwoType::grazing_scenario_change);
+  EXPECT_TRUE(point.located) << point.note;
+  EXPECT_NEAR(point.p2, 2.0 / 3.0, 1e-9);
+  EXPECT_NEAR(point.p1, grazing_omega(2.0 / 3.0), 1e-9);
+  EXPECT_EQ(point.note, "K = 0: period_adding_with_chaos where K > 0, jump where K < 0");
+  // the rule at grazing points located on branches in ω on either side
+  const std::array<std::pair<double, impactlab::GrazingScenario>, 2> sides = {
+      std::pair{0.5, impactlab::GrazingScenario::period_adding_with_chaos},
+      std::pair{0.8, impactlab::GrazingScenario::jump}};
+  for (const auto& [kappa, scenario] : sides) {
+    ContinuationJob job = curve_job("omega", 3.0, 1.5, "", 0.0, 0.0, CurveType::grazing);
+    job.curve_type.reset();
+    const auto branch = impactlab::continue_orbit(at_kappa(kappa), job);
+    const auto grazing = points_of_type(branch.branches.at(0).result, BifurcationType::grazing);
+    ASSERT_EQ(grazing.size(), 1u) << "kappa = " << kappa;
+    ASSERT_TRUE(grazing[0].normal_form.has_value()) << "kappa = " << kappa;
+    EXPECT_NEAR(grazing[0].parameter, grazing_omega(kappa), 1e-8) << "kappa = " << kappa;
+    EXPECT_EQ(grazing[0].normal_form->rule, scenario) << "kappa = " << kappa;
+    EXPECT_EQ(grazing[0].normal_form->dominant_product > 0.0, kappa < 2.0 / 3.0)
+        << "kappa = " << kappa;
   }
 }
 
