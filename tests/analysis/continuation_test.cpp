@@ -40,6 +40,7 @@
 #include <impactlab/analysis/continuation_problem.hpp>
 #include <impactlab/analysis/curve_continuation.hpp>
 #include <impactlab/analysis/grazing_normal_form.hpp>
+#include <impactlab/analysis/impact_signature.hpp>
 #include <impactlab/analysis/periodic.hpp>
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/api/scene_jobs.hpp>
@@ -276,6 +277,63 @@ TEST(Continuation, LinearImpactBranchEndsAtTheGrazingWhereItIsBorn) {
   ASSERT_EQ(doublings.size(), 2u);
   EXPECT_NEAR(doublings[0].parameter, period_doubling(o, 1.1, 1.5), 1e-9);
   EXPECT_NEAR(doublings[1].parameter, period_doubling(o, 1.02, 1.05), 1e-9);
+}
+
+// The impact signature a branch keeps writes a chatter ending in contact
+// once: its count of resolved impacts before the accumulation is taken
+// depends on where the accumulation estimate takes over, not on a graze.
+TEST(ImpactSignature, AChatterEndingInContactIsOneImpactOnItsWall) {
+  using impactlab::walls_hit;
+  EXPECT_EQ(walls_hit("+1 +1 +1 +1 c+1"), "+1");
+  EXPECT_EQ(walls_hit("+1 +1 +1 c+1"), walls_hit("+1 +1 c+1"));
+  EXPECT_EQ(walls_hit("-1 +1 +1 +1 c+1 -1"), "-1 +1 -1");
+  EXPECT_EQ(walls_hit("+1 c+1"), "+1");
+  // impacts on another wall, or without a contact after them, are each kept
+  EXPECT_EQ(walls_hit("-1 -1 c+1"), "-1 -1");
+  EXPECT_EQ(walls_hit("+1 +1 +1"), "+1 +1 +1");
+  EXPECT_NE(walls_hit("+1 +1 c+1"), walls_hit("+1 +1"));
+}
+
+// A branch of chattering orbits of the linear impact oscillator (r = 0.5,
+// σ = 0.5: each period a flight, a chatter that accumulates on the stop, a
+// contact phase until the push A cos ωt − σ falls through zero) from ω = 0.3
+// to 0.4: the chatter's resolved impacts go from 13 to 12 on the way, and
+// the branch runs on through to the end of its range; at three of its
+// points the state is the stroboscopic point a plain run settles on (2000
+// forcing periods of transient), to 1e-8.
+TEST(Continuation, ABranchOfChatteringOrbitsRunsOnWhereItsResolvedImpactsChange) {
+  Scene scene = impactlab::load_scene("linear_impact");
+  scene.values["r"] = 0.5;
+  scene.values["sigma"] = 0.5;
+  const double phase = 3.14159;
+  ContinuationJob job = curve_job("omega", 0.3, 0.4, "", 0.0, 0.0, CurveType::grazing);
+  job.curve_type.reset();
+  job.phase = phase;
+  const auto result = impactlab::continue_orbit(scene, job);
+  const auto& branch = result.branches.at(0).result;
+  EXPECT_EQ(branch.stop_reason, StopReason::end_of_range) << branch.stop_detail;
+  ASSERT_GE(branch.branch.size(), 20u);
+  int fewest = 1000, most = 0;
+  for (const auto& point : branch.branch) {
+    EXPECT_EQ(point.contact_phases, 1) << "omega = " << point.parameter;
+    fewest = std::min(fewest, point.impacts);
+    most = std::max(most, point.impacts);
+  }
+  EXPECT_LT(fewest, most);
+  for (const std::size_t k : {std::size_t{0}, branch.branch.size() / 2, branch.branch.size() - 1}) {
+    const auto& point = branch.branch[k];
+    Scene at = scene;
+    at.values["omega"] = point.parameter;
+    impactlab::SectionRequest request;
+    request.section.phase = phase;
+    request.settle = false;
+    request.transient_periods = 2000;
+    request.points = 2;
+    const impactlab::SectionResult plain = impactlab::poincare(at, request);
+    ASSERT_EQ(plain.points.size(), 2u);
+    EXPECT_NEAR(plain.points.back().q, point.state[0], 1e-8) << "omega = " << point.parameter;
+    EXPECT_NEAR(plain.points.back().qdot, point.state[1], 1e-8) << "omega = " << point.parameter;
+  }
 }
 
 // σ = 0.2: the impact speed of the period-1 orbit falls to zero as ω rises,
