@@ -766,7 +766,8 @@ class CurveDriver {
   // NaN where the form is unavailable or K is not formed (λ₁ complex).
   static double kick_margin(const GrazingNormalForm& form) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    if (!form.available || form.kick_gaps.empty()) return nan;
+    if (!form.available || form.kick_gaps.empty() || !std::isfinite(form.dominant_product))
+      return nan;
     double largest = 0.0, least = INFINITY;
     for (double e : form.kick_gaps) {
       largest = std::max(largest, std::fabs(e));
