@@ -117,7 +117,7 @@ typename BranchCorrector<Size>::Correction BranchCorrector<Size>::correct(
     c.y = y;
     c.iterations = iteration;
     if (!c.orbit.completed) return c;
-    if (signature && walls_hit(c.orbit.signature) != walls_hit(*signature)) {
+    if (signature && !same_walls_hit(c.orbit.signature, *signature)) {
       c.signature_changed = true;
       return c;
     }

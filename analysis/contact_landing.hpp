@@ -2,8 +2,8 @@
 // continuation_problem.hpp): the instant a mass comes to rest on a wall
 // (the accumulation point of a chatter, or a plastic impact, r = 0, that
 // leaves it with zero normal speed), and the push into the wall on the mass
-// at rest there: the contact phase's own release witness, the normal force
-// per unit mass, evaluated at that instant. The contact phase that starts
+// at rest there: the contact phase's own release witness (the normal force
+// per unit mass; the pendulum's in N), evaluated at that instant. The contact phase that starts
 // there lasts while the push is positive; where it is not, the mass leaves
 // at once. The push is smooth in the state and the parameters on both sides
 // of zero, so its zero is the defining condition of a contact onset or end
@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <impactlab/analysis/continuation_problem.hpp>
 #include <impactlab/core/event_log.hpp>
@@ -31,13 +32,32 @@ concept HasStuckMode = requires {
   System::Mode::free;
 };
 
+// A system that says itself which events are landings and the push there
+// (the pendulum, whose contact phases are one mode per wall):
+// landing_push(event) is the contact phase's release witness at the event
+// where it is a landing, none where it is not.
+template <class System>
+concept HasLandingPush = requires(const System& system, const EventRecord& event) {
+  { system.landing_push(event) } -> std::convertible_to<std::optional<double>>;
+};
+
 // The landing among the records [begin, end) whose push on the mass at rest
 // is nearest zero, into result.landing_push and result.landing_time (since
-// t0, s); left NaN where the system has no stuck mode or the orbit no landing.
+// t0, s); left NaN where the system has neither a stuck mode nor
+// landing_push, or the orbit no landing.
 template <class System, class Records>
 void note_landing_push(const System& system, Records begin, Records end, double t0,
                        OrbitEvaluation& result) {
-  if constexpr (HasStuckMode<System>) {
+  const auto take = [&](double push, double t) {
+    if (!(std::fabs(push) < std::fabs(result.landing_push)) && std::isfinite(result.landing_push))
+      return;
+    result.landing_push = push;
+    result.landing_time = t - t0;
+  };
+  if constexpr (HasLandingPush<System>) {
+    for (auto event = begin; event != end; ++event)
+      if (const std::optional<double> push = system.landing_push(*event)) take(*push, event->t);
+  } else if constexpr (HasStuckMode<System>) {
     for (auto event = begin; event != end; ++event) {
       // a plastic impact leaves the mass at zero speed relative to the wall
       // (a fixed stop: q̇ = 0; a moving table: ẏ = ż)
@@ -52,11 +72,7 @@ void note_landing_push(const System& system, Records begin, Records end, double 
       // push of these systems depends on time alone)
       typename System::State rest{};
       rest[0] = event->q;
-      const double push = system.witness(System::Mode::stuck, 0, rest, event->t).value;
-      if (!(std::fabs(push) < std::fabs(result.landing_push)) && std::isfinite(result.landing_push))
-        continue;
-      result.landing_push = push;
-      result.landing_time = event->t - t0;
+      take(system.witness(System::Mode::stuck, 0, rest, event->t).value, event->t);
     }
   }
 }

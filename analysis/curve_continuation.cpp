@@ -374,7 +374,7 @@ class CurveDriver {
   // gone to zero), and c is an orbit of another family.
   bool grazes_between(const Corrected& c) const {
     return stops_at_grazes() && !result_.curve.empty() &&
-           walls_hit(c.at.orbit.signature) != walls_hit(last_signature_);
+           !same_walls_hit(c.at.orbit.signature, last_signature_);
   }
 
   // A solution of the system of the curve's condition and a graze: z = (x,

@@ -1,10 +1,10 @@
-// The walls an orbit hits, in order: its impact signature
-// (OrbitEvaluation::signature, "+1 +1 -1", "+1 c+1") without its contact
-// phases ("c+1"), which may appear or end along a branch or a curve without
-// stopping it, and with the impacts on a wall just before a contact phase
-// on it written once: a chatter ending in contact, whose count of resolved
-// impacts before the accumulation is taken changes from orbit to orbit
-// while the map stays smooth. A change of it is a grazing.
+// Whether two orbits hit the same walls in the same order: the comparison of
+// impact signatures (OrbitEvaluation::signature, "+1 +1 -1", "+1 c+1") that
+// a branch or a curve makes from point to point. A contact phase ("c+1") may
+// appear or end along it without stopping it, and a chatter ending in
+// contact may resolve more or fewer impacts before its accumulation is taken
+// (the count changes from orbit to orbit while the map stays smooth); any
+// other change is a grazing.
 #pragma once
 
 #include <cstddef>
@@ -13,29 +13,53 @@
 
 namespace impactlab {
 
-inline std::string walls_hit(const std::string& signature) {
-  std::vector<std::string> walls;
+// The signature's tokens, in order.
+inline std::vector<std::string> signature_tokens(const std::string& signature) {
+  std::vector<std::string> tokens;
   std::size_t begin = 0;
   while (begin < signature.size()) {
     std::size_t end = signature.find(' ', begin);
     if (end == std::string::npos) end = signature.size();
-    if (end > begin) {
-      std::string token = signature.substr(begin, end - begin);
-      if (token.front() != 'c') {
-        walls.push_back(std::move(token));
-      } else {
-        // the chatter landing in this contact phase: one token
-        const std::string wall = token.substr(1);
-        std::size_t run = 0;
-        while (run < walls.size() && walls[walls.size() - 1 - run] == wall) ++run;
-        if (run > 1) walls.resize(walls.size() - run + 1);
-      }
-    }
+    if (end > begin) tokens.push_back(signature.substr(begin, end - begin));
     begin = end + 1;
   }
-  std::string joined;
-  for (const std::string& wall : walls) joined += (joined.empty() ? "" : " ") + wall;
-  return joined;
+  return tokens;
+}
+
+inline std::string joined(const std::vector<std::string>& tokens) {
+  std::string text;
+  for (const std::string& token : tokens) text += (text.empty() ? "" : " ") + token;
+  return text;
+}
+
+// The walls an orbit hits, in order: the signature without its contact phases.
+inline std::string walls_hit(const std::string& signature) {
+  std::vector<std::string> walls;
+  for (std::string& token : signature_tokens(signature))
+    if (token.front() != 'c') walls.push_back(std::move(token));
+  return joined(walls);
+}
+
+// The signature with the impacts on a wall just before a contact phase on it
+// written once ("+1 +1 +1 c+1" → "+1 c+1"): the chatter landing in it.
+inline std::string chatter_collapsed(const std::string& signature) {
+  std::vector<std::string> kept;
+  for (std::string& token : signature_tokens(signature)) {
+    if (token.front() == 'c') {
+      const std::string wall = token.substr(1);
+      std::size_t run = 0;
+      while (run < kept.size() && kept[kept.size() - 1 - run] == wall) ++run;
+      if (run > 1) kept.resize(kept.size() - run + 1);
+    }
+    kept.push_back(std::move(token));
+  }
+  return joined(kept);
+}
+
+// The same walls in the same order, but for contact phases appearing or
+// ending, or a chatter's count of resolved impacts before its contact phase.
+inline bool same_walls_hit(const std::string& a, const std::string& b) {
+  return walls_hit(a) == walls_hit(b) || chatter_collapsed(a) == chatter_collapsed(b);
 }
 
 }  // namespace impactlab

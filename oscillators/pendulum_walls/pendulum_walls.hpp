@@ -135,6 +135,17 @@ class BasicPendulumWalls {
     return -p_.m * effective_gravity(t) * sin0_ / friction_denominator(Number(slip_sign));
   }
 
+  // The push into `event`'s wall on the bob at rest there, where the event
+  // is a landing (analysis/contact_landing.hpp): a chatter's accumulation
+  // point, or an impact that leaves the bob at rest on the wall (e_n = 0,
+  // or Model P's take-up); the contact phase's release witness there, the
+  // frictionless normal force (N), positive where the wall holds the bob.
+  [[nodiscard]] std::optional<double> landing_push(const EventRecord& event) const {
+    const bool at_rest = event.kind == EventKind::impact && event.qdot_after == 0.0;
+    if (event.kind != EventKind::accumulation && !at_rest) return std::nullopt;
+    return normal_force(event.t, 0.0);
+  }
+
   // E = ½ m l² θ̇² + m g l (1 − cos θ) (J), the free pendulum's energy at V0 = 0
   [[nodiscard]] double energy(const State& x) const {
     return 0.5 * p_.m * p_.l * p_.l * x[1] * x[1] + p_.m * p_.g * p_.l * (1.0 - std::cos(x[0]));

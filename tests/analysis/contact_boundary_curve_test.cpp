@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <boost/math/tools/roots.hpp>
 #include <gtest/gtest.h>
@@ -32,7 +33,9 @@
 #include <impactlab/analysis/section.hpp>
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
+#include <impactlab/core/event_log.hpp>
 #include <impactlab/io/bad_input.hpp>
+#include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
 
 #include "support/curve_job.hpp"
@@ -295,6 +298,74 @@ TEST(ContactBoundaryCurve, PendulumV0OmegaEqualToGIsFollowedOnItsClosedForm) {
     EXPECT_LE(nearest, 1e-8) << "omega = " << point.p2;
   }
   EXPECT_EQ(compared, 3);
+}
+
+// The pendulum's contact end with plastic walls (jin2003, e_n = 0), in
+// (V0, ω). Its symmetric period-2 orbit leaves each wall where the pivot's
+// effective gravity g_e = g − V0 ω cos ωt rises through zero (the contact
+// phase's release witness, the frictionless normal force −m g_e tan θ0,
+// falls through zero) and lands on the other; below the curve in V0 it lands
+// where the wall no longer holds it, and no contact phase remains. Checked
+// against plain runs of the same scene from the curve's states: each lands,
+// within its two periods, where g_e = 0 to 1e-9 of g (the push is a closed
+// form of the landing time); 1e-3 above the curve in V0 the run has contact
+// phases, 1e-3 below none.
+TEST(ContactBoundaryCurve, PendulumWithPlasticWallsEndsItsContactWhereItLandsAsTheWallLetsGo) {
+  Scene scene = impactlab::load_scene("jin2003");
+  scene.values["e_n"] = 0.0;
+  scene.values["V0"] = 2.0;
+  const double phase = 3.0, g = scene.number("g");
+  ContinuationJob job = curve_job("V0", 2.0, 1.3, "omega", 7.0, 6.6, CurveType::contact_end);
+  job.period = 2;
+  job.phase = phase;
+  const auto result = impactlab::continue_orbit(scene, job);
+  std::vector<impactlab::BifurcationPoint> ends;
+  for (const auto& point : result.branches.at(0).result.points)
+    if (point.type == BifurcationType::contact_end) ends.push_back(point);
+  ASSERT_EQ(ends.size(), 1u);
+  ASSERT_TRUE(result.has_curve) << result.curve_note;
+  const auto& curve = result.curve;
+  EXPECT_EQ(curve.stop_reason, StopReason::end_of_range) << curve.stop_detail;
+  ASSERT_GE(curve.curve.size(), 10u);
+  EXPECT_NEAR(curve.curve.front().p1, ends[0].parameter, 1e-9);
+  // a plain run of two periods from the section state at (V0, ω)
+  const auto run_from = [&](const auto& point, double v0, double periods) {
+    Scene at = scene;
+    at.values["V0"] = v0;
+    at.values["omega"] = point.p2;
+    at.values["initial.theta"] = point.state[0];
+    at.values["initial.theta_dot"] = point.state[1];
+    at.values["t0"] = phase / point.p2;
+    impactlab::RunRequest request;
+    request.periods = periods;
+    return impactlab::simulate(at, request);
+  };
+  for (std::size_t k = 0; k < curve.curve.size(); k += curve.curve.size() / 4) {
+    const auto& point = curve.curve[k];
+    const double v0 = point.p1, omega = point.p2;
+    const auto plain = run_from(point, v0, 2.0);
+    double nearest = INFINITY;
+    for (const impactlab::EventRecord& event : plain.events) {
+      const bool landing =
+          event.kind == impactlab::EventKind::accumulation ||
+          (event.kind == impactlab::EventKind::impact && event.qdot_after == 0.0);
+      if (landing)
+        nearest = std::min(nearest, std::fabs(g - v0 * omega * std::cos(omega * event.t)));
+    }
+    EXPECT_LE(nearest, 1e-9 * g) << "omega = " << omega;
+    for (const double offset : {1e-3, -1e-3}) {
+      const auto nearby = run_from(point, v0 + offset, 20.0);
+      const auto contacts = std::count_if(
+          nearby.events.begin(), nearby.events.end(), [&](const impactlab::EventRecord& event) {
+            return event.kind == impactlab::EventKind::contact_start &&
+                   event.t > nearby.t0 + 10.0 * 2.0 * std::numbers::pi / omega;
+          });
+      if (offset > 0.0)
+        EXPECT_GT(contacts, 0) << "omega = " << omega;
+      else
+        EXPECT_EQ(contacts, 0) << "omega = " << omega;
+    }
+  }
 }
 
 }  // namespace
