@@ -315,8 +315,12 @@ class CurveDriver {
 
   void accept(const Corrected& c, const Vector& tangent, double step) {
     if (!result_.curve.empty()) detect_codimension_two(z_, tangent_, step, c);
+    // the normal form only where λ₁ is real: with a complex pair the rule
+    // does not apply and K is not formed (the monodromy from the section and
+    // the one from the touch are similar: the same multipliers)
     std::optional<GrazingNormalForm> form;
-    if (grazing_ && request_.normal_forms) {
+    if (grazing_ && request_.normal_forms &&
+        std::isfinite(dominant_real_multiplier(c.at.orbit.monodromy))) {
       form = normal_form_at(c.z);
       if (!result_.curve.empty()) detect_kick_sign_change(z_, tangent_, step, form);
     }
