@@ -3,9 +3,9 @@
 // (the accumulation point of a chatter, or a plastic impact, r = 0, that
 // leaves it with zero normal speed), and the push into the wall on the mass
 // at rest there: the contact phase's own release witness (the normal force
-// per unit mass; the pendulum's in N), evaluated at that instant. The contact phase that starts
-// there lasts while the push is positive; where it is not, the mass leaves
-// at once. The push is smooth in the state and the parameters on both sides
+// per unit mass; the pendulum's in N), evaluated at that instant. The
+// contact phase that starts there lasts while the push is positive; where it
+// is not, the mass leaves at once. The push is smooth in the state and the parameters on both sides
 // of zero, so its zero is the defining condition of a contact onset or end
 // (the curves `contact_onset` and `contact_end`, curve_continuation.hpp):
 // the mass lands exactly where the push falls through zero, i.e. it returns
