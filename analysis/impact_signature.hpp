@@ -40,8 +40,11 @@ inline std::string walls_hit(const std::string& signature) {
   return joined(walls);
 }
 
-// The signature with the impacts on a wall just before a contact phase on it
-// written once ("+1 +1 +1 c+1" → "+1 c+1"): the chatter landing in it.
+// The signature with a chatter landing in a contact phase written as one
+// token: three or more impacts on a wall just before a contact phase on it
+// ("+1 +1 +1 c+1" → "+1… c+1"). Shorter runs are kept as they are: an impact
+// that leaves the wall before a plastic landing on it ("-1 -1 c-1") comes
+// and goes by a graze.
 inline std::string chatter_collapsed(const std::string& signature) {
   std::vector<std::string> kept;
   for (std::string& token : signature_tokens(signature)) {
@@ -49,7 +52,10 @@ inline std::string chatter_collapsed(const std::string& signature) {
       const std::string wall = token.substr(1);
       std::size_t run = 0;
       while (run < kept.size() && kept[kept.size() - 1 - run] == wall) ++run;
-      if (run > 1) kept.resize(kept.size() - run + 1);
+      if (run >= 3) {
+        kept.resize(kept.size() - run);
+        kept.push_back(wall + "…");
+      }
     }
     kept.push_back(std::move(token));
   }
@@ -57,7 +63,8 @@ inline std::string chatter_collapsed(const std::string& signature) {
 }
 
 // The same walls in the same order, but for contact phases appearing or
-// ending, or a chatter's count of resolved impacts before its contact phase.
+// ending, or a chatter's count (three or more) of resolved impacts before
+// its contact phase.
 inline bool same_walls_hit(const std::string& a, const std::string& b) {
   return walls_hit(a) == walls_hit(b) || chatter_collapsed(a) == chatter_collapsed(b);
 }
