@@ -13,6 +13,8 @@
 
 namespace impactlab {
 
+namespace detail {
+
 // The signature's tokens, in order.
 inline std::vector<std::string> signature_tokens(const std::string& signature) {
   std::vector<std::string> tokens;
@@ -32,12 +34,14 @@ inline std::string joined(const std::vector<std::string>& tokens) {
   return text;
 }
 
+}  // namespace detail
+
 // The walls an orbit hits, in order: the signature without its contact phases.
 inline std::string walls_hit(const std::string& signature) {
   std::vector<std::string> walls;
-  for (std::string& token : signature_tokens(signature))
+  for (std::string& token : detail::signature_tokens(signature))
     if (token.front() != 'c') walls.push_back(std::move(token));
-  return joined(walls);
+  return detail::joined(walls);
 }
 
 // The signature with a chatter landing in a contact phase written as one
@@ -47,7 +51,7 @@ inline std::string walls_hit(const std::string& signature) {
 // and goes by a graze.
 inline std::string chatter_collapsed(const std::string& signature) {
   std::vector<std::string> kept;
-  for (std::string& token : signature_tokens(signature)) {
+  for (std::string& token : detail::signature_tokens(signature)) {
     if (token.front() == 'c') {
       const std::string wall = token.substr(1);
       std::size_t run = 0;
@@ -59,7 +63,7 @@ inline std::string chatter_collapsed(const std::string& signature) {
     }
     kept.push_back(std::move(token));
   }
-  return joined(kept);
+  return detail::joined(kept);
 }
 
 // The same walls in the same order, but for contact phases appearing or
