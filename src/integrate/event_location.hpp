@@ -13,6 +13,11 @@
 //   touching zero within the grazing tolerance, the event is a grazing. This
 //   is what keeps a double root (a grazing contact) inside one step from
 //   being missed;
+// * a witness that leaves zero (just after its own event) makes a hop: its
+//   landing is bracketed past the hop's maximum, also where the hop is much
+//   shorter than the sub-interval and the state has gone past zero and back
+//   before the next sample (searched from the hop's length under the
+//   witness's acceleration at the start);
 // * a witness past zero by more than the tolerance with no crossing before
 //   it is reported as unresolved (the loop stops rather than let the state
 //   through).
@@ -212,17 +217,38 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
       const bool leaving_zero =
           i == 0 && witness_at_zero(left.value, left.rate, tl, options.grazing_tolerance) &&
           left.rate > 0.0;
-      if (leaving_zero && right.value <= 0.0) {
-        if (direction == TriggerDirection::either) return {};
-        // The right sample is past zero. Falling there, the hop's maximum is
+      if (leaving_zero && direction != TriggerDirection::either) {
+        double hi = tr;
+        WitnessSample at_hi = right;
+        if (right.value > 0.0) {
+          // Back on the armed side at tr: a hop much shorter than the
+          // interval (its length under the witness's acceleration at tl, a
+          // difference of rates, within a quarter of it) may have landed
+          // inside it, and the state gone past the wall and out again before
+          // tr (a chatter near the time its wall stops attracting). Samples
+          // from an eighth of that length on, each twice as far, to tr; the
+          // first past zero ends the hop's bracket.
+          const double offset = 1e-6 * (tr - tl);
+          const double acceleration = (rate_at(tl + offset) - left.rate) / offset;
+          if (!(acceleration < 0.0) || !(8.0 * left.rate / -acceleration < tr - tl)) return {};
+          bool landed = false;
+          for (double dt = 0.25 * left.rate / -acceleration; tl + dt < tr; dt *= 2.0) {
+            at_hi = witness_at(tl + dt);
+            if (at_hi.value <= 0.0) {
+              hi = tl + dt;
+              landed = true;
+              break;
+            }
+          }
+          if (!landed) return {};
+        }
+        // The right end `hi` is past zero. Falling there, the hop's maximum is
         // the root of the rate before it. Rising there, the witness also
-        // turned back inside (tl, tr) (a chatter rebound whose wall stopped
+        // turned back inside (tl, hi) (a chatter rebound whose wall stopped
         // attracting: the state went past the wall and out again), so the
         // interval is halved towards tl, keeping its right end past zero,
         // until the hop's falling flank is sampled, or a sample above zero
         // brackets the crossing after it.
-        double hi = tr;
-        WitnessSample at_hi = right;
         for (int halving = 0; halving <= 64; ++halving) {
           if (at_hi.rate < 0.0) {
             const double t_max = detail::bracketed_root(rate_at, tl, hi, left.rate, at_hi.rate);
@@ -241,6 +267,8 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
           hi = mid;
           at_hi = at_mid;
         }
+      } else if (leaving_zero && right.value <= 0.0) {
+        return {};
       } else if (left.value > 0.0 && right.value <= 0.0) {
         return {true, crossing_root(tl, tr, left.value, right.value), k, CrossingKind::crossing};
       } else if (left.value > 0.0 && right.value > 0.0 && left.rate < 0.0 && right.rate > 0.0 &&
@@ -260,13 +288,38 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
     auto violated = [&](const WitnessSample& w) {
       return direction != TriggerDirection::either && w.value < -options.grazing_tolerance;
     };
+    // whether a witness leaving zero at times[0] with rate `rate` may make a
+    // hop that lands, goes past zero and comes back before times[1]: its
+    // length under the acceleration there, 2 × rate / (−acceleration),
+    // within a quarter of the interval (a longer hop lands in a later
+    // interval, or stays past zero at times[1], where the scan sees it). The
+    // acceleration is a difference of rates on the scan's dense output,
+    // confirmed on state_at (a cheap scan's interpolant has the rate, not
+    // the acceleration, of the flow).
+    auto short_hop_possible = [&](double rate) {
+      if (direction == TriggerDirection::either) return false;
+      const double offset = 1e-6 * (times[1] - times[0]);
+      const auto lands_inside = [&](double later_rate) {
+        const double acceleration = (later_rate - rate) / offset;
+        return acceleration < 0.0 && 8.0 * rate / -acceleration < times[1] - times[0];
+      };
+      State x;
+      scan_at(times[0] + offset, x);
+      const double later =
+          detail::oriented(system.witness(mode, k, x, times[0] + offset), direction, either_sign)
+              .rate;
+      if (!lands_inside(later)) return false;
+      return !cheap_scan || lands_inside(rate_at(times[0] + offset));
+    };
     // whether two scan samples show one of classify's patterns (or a violation)
     auto classify_pattern = [&](int i, const WitnessSample& left, const WitnessSample& right) {
       if (violated(left) || violated(right)) return true;
       const bool leaving_zero =
           i == 0 && witness_at_zero(left.value, left.rate, times[0], options.grazing_tolerance) &&
           left.rate > 0.0;
-      if (leaving_zero) return right.value <= 0.0;
+      // leaving zero: a hop may land inside the interval even where the right
+      // sample is back on the armed side (classify looks for it)
+      if (leaving_zero) return right.value <= 0.0 || short_hop_possible(left.rate);
       if (!(left.value > 0.0)) return false;
       return right.value <= 0.0 || (left.rate < 0.0 && right.rate > 0.0 &&
                                     direction != TriggerDirection::either &&

@@ -23,6 +23,8 @@
 //   10^6 impacts         the period-1 bouncing ball: the count, no drift
 //   t = 0 and t_end      pendulum starting on a wall; ball resting on the
 //                        table at t0; pendulum impact exactly at t_end
+//   hops << a step       the linear oscillator's chatter where its stop is
+//                        about to let go
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -43,6 +45,8 @@
 #include <impactlab/oscillators/bouncing_ball/bouncing_ball.hpp>
 #include <impactlab/oscillators/linear_impact/linear_impact.hpp>
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
+
+#include "support/linear_impact_chatter.hpp"
 
 namespace impactlab {
 namespace IMPACTLAB_TEST_FILE_SCOPE {
@@ -608,6 +612,82 @@ TEST_P(HardCasePendulum, ImpactExactlyAtTheEndTimeIsLoggedOnce) {
   EXPECT_NEAR(r.events[0].t, t1, 1e-9);
   EXPECT_EQ(r.result.t, t1);
   EXPECT_NEAR(r.result.state[1], -p.e_n * speed(theta0), 1e-8);
+}
+
+// A chatter where its stop is about to let go: the linear impact oscillator
+// (ζ = 0.05, A = 1, σ = 0.5, r = 0.5) released from the stop where the push
+// A cos ωt − σ falls through zero, ω = 0.46319, 6e-5 below the onset of
+// complete chatter (analysis/chatter_onset.hpp). Its chatter in the next
+// interval of positive push follows the self-similar sequence that would
+// accumulate where the push vanishes, then leaves it and accumulates 0.03
+// before: its last hops, 1e-3 long and 1e-9 high, are far shorter than a
+// step, the push under them falls by a tenth over each, so the
+// accumulation estimate is refused and each is resolved. A hop that lands
+// and is missed lets the mass through the stop. Every impact must be the
+// long-double reference's (tests/support/linear_impact_chatter.hpp) to 1e-8
+// in time and 1e-8 of its speed (plus the floor that the gap's round-off
+// sets), down to speeds of 1e-5 at least; the mass
+// accumulates, rests and is released at the next zero of the push, and is
+// never past the stop by more than 1e-12.
+struct StopClearance {
+  double spacing, t0, sigma;
+  long index = 0;
+  double max_penetration = 0.0;
+  [[nodiscard]] double next_time() const { return t0 + static_cast<double>(index) * spacing; }
+  template <class S, class M>
+  void observe(double, const S& x, M) {
+    ++index;
+    max_penetration = std::max(max_penetration, x[0] - sigma);
+  }
+};
+
+TEST_P(HardCaseExactFlow, ChatterWhereTheStopLetsGoLosesNoHop) {
+  testing::ChatterParameters reference;
+  LinearImpactParameters p;
+  p.zeta = static_cast<double>(reference.zeta);
+  p.A = static_cast<double>(reference.amplitude);
+  p.sigma = static_cast<double>(reference.sigma);
+  p.r = static_cast<double>(reference.restitution);
+  p.omega = 0.46319;
+  const LinearImpact system(p);
+  const auto chatter = testing::reference_chatter(reference, p.omega, 40, true);
+  ASSERT_EQ(chatter.side, 1);
+  // from the release's flight 0.1 s on
+  const double t0 = static_cast<double>(chatter.release) + 0.1;
+  const auto start = testing::ChatterFlight(reference, p.omega, chatter.release, reference.sigma, 0.0L)
+                         .at(chatter.release + 0.1L);
+  const double next_release = static_cast<double>(chatter.next_release);
+  StopClearance clearance{1e-4, t0, p.sigma};
+  const auto r = run(system, GetParam(), {static_cast<double>(start[0]), static_cast<double>(start[1])},
+                     LinearImpact::Mode::free, t0, next_release + 1.0, 1e-12, 1e-12, LoopOptions{},
+                     clearance);
+  ASSERT_EQ(r.result.termination, Termination::completed);
+  // each impact is timed to the error of the gap over its speed, ρ/v (ρ = 8
+  // ulps of σ: the gap's round-off and, with bulirsch_stoer, up to 5 ulps
+  // of integration error at rtol 1e-12), and a timing error δ changes the
+  // later speeds by the push times δ: the speeds' floor in double precision
+  const double gap_roundoff = 8.0 * (std::nextafter(p.sigma, 1.0) - p.sigma);
+  double timing_floor = 0.0;
+  std::size_t k = 0;
+  for (; k < r.events.size() && r.events[k].kind == EventKind::impact; ++k) {
+    ASSERT_LT(k, chatter.impacts.size());
+    const auto& expected = chatter.impacts[k];
+    const double speed = static_cast<double>(expected.speed);
+    const double push = std::fabs(p.A * std::cos(p.omega * r.events[k].t) - p.sigma);
+    EXPECT_NEAR(r.events[k].t, static_cast<double>(expected.t), 1e-8) << "impact " << k;
+    EXPECT_NEAR(r.events[k].qdot_before, speed, 1e-8 * speed + 2.0 * push * timing_floor)
+        << "impact " << k;
+    timing_floor += gap_roundoff / speed;
+  }
+  ASSERT_GE(k, 1u);
+  EXPECT_LT(r.events[k - 1].qdot_before, 1e-5);
+  ASSERT_LT(k + 2, r.events.size());
+  EXPECT_EQ(r.events[k].kind, EventKind::accumulation);
+  EXPECT_LT(r.events[k].t, next_release);
+  EXPECT_EQ(r.events[k + 1].kind, EventKind::contact_start);
+  EXPECT_EQ(r.events[k + 2].kind, EventKind::contact_end);
+  EXPECT_NEAR(r.events[k + 2].t, next_release, 1e-9);
+  EXPECT_LT(clearance.max_penetration, 1e-12);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllSteppers, HardCaseExactFlow, ::testing::ValuesIn(all_steppers),
