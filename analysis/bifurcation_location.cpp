@@ -13,6 +13,8 @@
 #include <Eigen/LU>
 #include <boost/math/tools/roots.hpp>
 
+#include <impactlab/analysis/chatter_onset.hpp>
+
 namespace impactlab {
 
 namespace {
@@ -131,6 +133,13 @@ BifurcationPoint BifurcationLocator<Size>::locate_count_change(int OrbitEvaluati
   point.error_estimate = 0.5 * std::fabs(b.y[n] - a.y[n]) * scale;
   point.note = "detected between two branch points";
   if (!corrector_.request().locate) return point;
+  // a contact phase that a chatter lands in: it appears or ends where the
+  // chatter starts or stops completing (the landing push is not smooth there)
+  if (count == &OrbitEvaluation::contact_phases &&
+      (a.orbit.chatter_side != 0 || b.orbit.chatter_side != 0))
+    if (auto onset = chatter_onset_from(a.y, b.y,
+                                        count_change_note(count, a.orbit.*count, b.orbit.*count)))
+      return *onset;
   const Vec& tau = a.tangent;
   auto corrected_at = [&](double s) {
     const Vec predicted = a.y + s * tau;
@@ -201,6 +210,39 @@ BifurcationPoint BifurcationLocator<Size>::locate_count_change(int OrbitEvaluati
   } else {
     point.note = "detected; the corrector failed while locating it";
   }
+  return point;
+}
+
+template <int Size>
+std::optional<BifurcationPoint> BifurcationLocator<Size>::locate_chatter_onset(
+    const Node& a, double first_step) {
+  if (!(a.orbit.chatter_side > 0)) return std::nullopt;
+  return chatter_onset_from(a.y - 100.0 * first_step * a.tangent, a.y,
+                            "the chatter into contact stops completing");
+}
+
+// The onset of complete chatter near the points y0 and y1 of the branch
+// (solve_chatter_onset, chatter_onset.hpp), with `what` leading its note.
+template <int Size>
+std::optional<BifurcationPoint> BifurcationLocator<Size>::chatter_onset_from(
+    const Vec& y0, const Vec& y1, const std::string& what) {
+  const int n = corrector_.dimension();
+  const double scale = corrector_.scale();
+  const OrbitAt orbit_at = [&](const OrbitPoint& x, double p) {
+    return corrector_.evaluate(corrector_.point(x, p / scale), false, {});
+  };
+  const ChatterOnset onset = solve_chatter_onset(orbit_at, corrector_.state_of(y0), y0[n] * scale,
+                                                 corrector_.state_of(y1), y1[n] * scale);
+  if (!onset.found) return std::nullopt;
+  BifurcationPoint point;
+  point.type = BifurcationType::chatter_onset;
+  point.parameter = onset.parameter;
+  point.state = corrector_.reported_state(corrector_.point(onset.state, onset.parameter / scale));
+  point.multipliers = multipliers_of(onset.orbit);
+  point.error_estimate = onset.error_estimate;
+  point.located = true;
+  point.note = what + ": its impacts follow the self-similar chatter that accumulates where "
+                      "the push vanishes";
   return point;
 }
 

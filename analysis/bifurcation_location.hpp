@@ -8,12 +8,17 @@
 // points, each trial point corrected onto the branch; a parameter boundary
 // (ParameterBoundary) crossed, located at the root of its own function and
 // the orbit corrected there; a change of the number of contact phases,
-// located at the root of the landing push (contact_landing.hpp) where both
+// located where a chatter lands in the contact phase as the onset of
+// complete chatter (the root of the chatter's margin, chatter_onset.hpp),
+// else at the root of the landing push (contact_landing.hpp) where both
 // points land with pushes of opposite signs, otherwise (and a change of the
 // stick impacts) by bisection on the arclength down to a bracket of 1e-10
-// of the range in p.
+// of the range in p; the onset of complete chatter also where a branch ends
+// because its chatter no longer completes.
 #pragma once
 
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <impactlab/analysis/branch_corrector.hpp>
@@ -54,6 +59,11 @@ class BifurcationLocator {
   // on the friction cone's edge, ContinuationProblem::stick_forced_at).
   void detect_count_changes(const Node& a, const Node& b, double step,
                             std::vector<BifurcationPoint>& points);
+  // The onset of complete chatter ahead of node a, whose chatter into
+  // contact completes, where the branch ends because its chatter no longer
+  // does (solve_chatter_onset, chatter_onset.hpp, from a and a point
+  // 100 × `first_step` behind it). None where it does not converge.
+  std::optional<BifurcationPoint> locate_chatter_onset(const Node& a, double first_step);
 
  private:
   using Vec = typename Spaces<Size>::Vec;
@@ -64,6 +74,8 @@ class BifurcationLocator {
   // a count per orbit (contact phases, stick impacts) differs between a and b
   BifurcationPoint locate_count_change(int OrbitEvaluation::*count, const Node& a, const Node& b,
                                        double step);
+  std::optional<BifurcationPoint> chatter_onset_from(const Vec& y0, const Vec& y1,
+                                                     const std::string& what);
   std::optional<BifurcationPoint> locate_boundary(const ParameterBoundary& boundary,
                                                   const Node& a, const Node& b);
 

@@ -44,6 +44,7 @@ enum class BifurcationType {
   contact_end,      // the contact phases per orbit shrink
   stick_onset,      // an impact starts to stick: its impulse reaches the friction cone's edge
   stick_end,        // an impact stops sticking and slides
+  chatter_onset,    // a chatter into contact stops completing (chatter_onset.hpp)
   boundary,         // a ParameterBoundary crossed (its name: BifurcationPoint::boundary)
 };
 
@@ -70,6 +71,8 @@ enum class CurveType {
   contact_boundary, // a scene's parameter boundary of that name is zero (the pendulum's
                     // V0·ω = g: ParameterBoundary, continuation_problem.hpp)
   neimark_sacker,   // det M − 1 = 0 (N = 2), ∏ᵢ<ⱼ(λᵢλⱼ − 1) = 0 (N > 2)
+  chatter_onset,    // a chatter starts on the stable manifold of the self-similar
+                    // chatter that accumulates where the push vanishes (chatter_onset.hpp)
 };
 
 // The names points.csv, continuation.json and Python use.
@@ -84,6 +87,7 @@ constexpr std::string_view to_string(BifurcationType type) {
     case BifurcationType::contact_end: return "contact_end";
     case BifurcationType::stick_onset: return "stick_onset";
     case BifurcationType::stick_end: return "stick_end";
+    case BifurcationType::chatter_onset: return "chatter_onset";
     case BifurcationType::boundary: return "boundary";
   }
   return "unknown";
@@ -112,6 +116,7 @@ constexpr std::string_view to_string(CurveType type) {
     case CurveType::contact_end: return "contact_end";
     case CurveType::contact_boundary: return "contact_boundary";
     case CurveType::neimark_sacker: return "neimark_sacker";
+    case CurveType::chatter_onset: return "chatter_onset";
   }
   return "unknown";
 }
@@ -120,7 +125,8 @@ constexpr std::string_view to_string(CurveType type) {
 constexpr std::optional<CurveType> parse_curve_type(std::string_view text) {
   for (const CurveType type : {CurveType::fold, CurveType::period_doubling, CurveType::grazing,
                                CurveType::contact_onset, CurveType::contact_end,
-                               CurveType::contact_boundary, CurveType::neimark_sacker})
+                               CurveType::contact_boundary, CurveType::neimark_sacker,
+                               CurveType::chatter_onset})
     if (to_string(type) == text) return type;
   return std::nullopt;
 }
@@ -136,6 +142,7 @@ constexpr std::optional<CurveType> curve_type_of(BifurcationType type) {
     case BifurcationType::contact_onset: return CurveType::contact_onset;
     case BifurcationType::contact_end: return CurveType::contact_end;
     case BifurcationType::neimark_sacker: return CurveType::neimark_sacker;
+    case BifurcationType::chatter_onset: return CurveType::chatter_onset;
     default: return std::nullopt;
   }
 }

@@ -59,6 +59,17 @@ struct OrbitEvaluation {
   // NaN where the orbit lands nowhere or the system has no stuck mode
   double landing_push = std::numeric_limits<double>::quiet_NaN();
   double landing_time = std::numeric_limits<double>::quiet_NaN();
+  // the chatter whose margin to the onset of complete chatter is nearest
+  // zero (chatter_onset.hpp): that margin (> 0 complete, < 0 it escapes;
+  // NaN where no run resolves enough impacts), the difference between its
+  // two neighbouring indices, the margin at each index k that the run
+  // resolves, the real index K the margin is taken at, and the side of that
+  // chatter (+1 it accumulates, −1 it does not, 0 no chatter)
+  double chatter_margin = std::numeric_limits<double>::quiet_NaN();
+  double chatter_spread = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> chatter_margins;
+  double chatter_index = std::numeric_limits<double>::quiet_NaN();
+  int chatter_side = 0;
   double span = 0.0;                // nT (s)
   double omega = 0.0;               // forcing frequency (rad/s)
 };

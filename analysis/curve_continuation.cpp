@@ -16,6 +16,7 @@
 #include <boost/math/tools/toms748_solve.hpp>
 
 #include <impactlab/analysis/bifurcation_location.hpp>
+#include <impactlab/analysis/chatter_onset.hpp>
 #include <impactlab/analysis/dense_solve.hpp>
 #include <impactlab/analysis/floquet_multipliers.hpp>
 #include <impactlab/analysis/grazing_normal_form.hpp>
@@ -71,6 +72,7 @@ class CurveDriver {
     grazing_ = request.type == CurveType::grazing;
     contact_ = request.type == CurveType::contact_onset || request.type == CurveType::contact_end;
     boundary_ = request.type == CurveType::contact_boundary;
+    chatter_ = request.type == CurveType::chatter_onset;
     at_start_ = problem.at(request.from2);
     n_ = static_cast<int>(at_start_.dimension);
     p1_ = n_;
@@ -95,6 +97,7 @@ class CurveDriver {
     result_.type = request_.type;
     if (request_.state.size() != at_start_.dimension)
       return stop(StopReason::start_not_converged, "the start's state does not match the orbit's");
+    if (chatter_) return run_chatter_onset();
     Vector z = Vector::Zero(size_);
     for (int i = 0; i < n_; ++i) z[i] = request_.state[i];
     z[p1_] = request_.p1 / scale1_;
@@ -119,6 +122,10 @@ class CurveDriver {
       return stop(StopReason::start_not_converged,
                   "the orbit has no landing with a push on the mass at rest (a contact curve "
                   "needs a system with a stuck mode)");
+    if (chatter_ && start.at.orbit.completed && !std::isfinite(start.at.orbit.chatter_margin))
+      return stop(StopReason::start_not_converged,
+                  "the orbit has no chatter that resolves enough impacts for its margin to the "
+                  "onset (chatter_onset.hpp)");
     if (!start.converged)
       return stop(StopReason::start_not_converged, "Newton at the located point did not converge");
     const double direction2 = request_.to2 >= request_.from2 ? 1.0 : -1.0;
@@ -217,6 +224,9 @@ class CurveDriver {
     } else if (contact_) {
       // the push on the mass at rest at its landing (contact_landing.hpp)
       e.residual[n_] = e.orbit.landing_push;
+    } else if (chatter_) {
+      // the margin of its chatter to the self-similar one (chatter_onset.hpp)
+      e.residual[n_] = e.orbit.chatter_margin;
     } else if (boundary_) {
       // the scene's boundary, a function of the parameters alone
       const ParameterBoundary* boundary = boundary_of(at);
@@ -227,6 +237,74 @@ class CurveDriver {
     }
     e.completed = e.residual.allFinite();
     return e;
+  }
+
+  // The onset of complete chatter, followed in p₂ (solve_chatter_onset,
+  // chatter_onset.hpp, at each p₂): the map is not smooth at the onset, so
+  // no Newton on the orbit and no arclength; p₁ and the release flight's
+  // state are predicted from the last two points, and the step in p₂ halves
+  // where the solve fails. A curve that turns back in p₂ ends there.
+  CurveResult run_chatter_onset() {
+    const double direction2 = request_.to2 >= request_.from2 ? 1.0 : -1.0;
+    const double low1 = std::min(request_.from1, request_.to1);
+    const double high1 = std::max(request_.from1, request_.to1);
+    const auto solve_at = [&](double p2, const OrbitPoint& x, double p1) {
+      const ContinuationProblem at = problem_.at(p2);
+      const OrbitAt orbit_at = [&](const OrbitPoint& state, double p) {
+        ++result_.map_evaluations;
+        return at.evaluate(state, p, requested_phase_, false, {});
+      };
+      const double offset = 1e-6 * scale1_;
+      return solve_chatter_onset(orbit_at, x, p1 - offset, x, p1);
+    };
+    const auto accept_onset = [&](const ChatterOnset& onset, double p2, double step) {
+      CurvePoint point;
+      point.p1 = onset.parameter;
+      point.p2 = p2;
+      point.state = onset.state;
+      point.multipliers = multipliers_of(onset.orbit.monodromy);
+      point.impacts = onset.orbit.impacts;
+      point.newton_iterations = 0;  // no Newton: secant steps in p₁ alone
+      point.step = step;
+      result_.curve.push_back(std::move(point));
+    };
+    const ChatterOnset start = solve_at(request_.from2, request_.state, request_.p1);
+    if (!start.found)
+      return stop(StopReason::start_not_converged,
+                  "no onset of complete chatter at the located point: its chatter does not "
+                  "resolve enough impacts (chatter_onset.hpp)");
+    accept_onset(start, request_.from2, 0.0);
+    double h = h_initial_ * scale2_;
+    while (static_cast<int>(result_.curve.size()) < request_.max_points) {
+      const CurvePoint& last = result_.curve.back();
+      if (last.p1 < low1 || last.p1 > high1)
+        return stop(StopReason::left_range, "the curve left the first parameter's range");
+      const double remaining = (request_.to2 - last.p2) * direction2;
+      if (remaining <= 1e-12 * (1.0 + std::fabs(request_.to2))) return finish();
+      const double step = std::min(h, remaining);
+      const double p2 = remaining <= h ? request_.to2 : last.p2 + direction2 * step;
+      // the prediction: along the last two points
+      double p1 = last.p1;
+      OrbitPoint x = last.state;
+      if (result_.curve.size() >= 2) {
+        const CurvePoint& before = result_.curve[result_.curve.size() - 2];
+        const double fraction = (p2 - last.p2) / (last.p2 - before.p2);
+        p1 += (last.p1 - before.p1) * fraction;
+        for (std::size_t i = 0; i < x.size(); ++i) x[i] += (last.state[i] - before.state[i]) * fraction;
+      }
+      const ChatterOnset onset = solve_at(p2, x, p1);
+      if (onset.found) {
+        accept_onset(onset, p2, step / scale2_);
+        h = std::min(1.5 * h, h_max_ * scale2_);
+        continue;
+      }
+      h *= 0.5;
+      if (h < h_min_ * scale2_)
+        return stop(StopReason::branch_point,
+                    "step below the smallest: the onset of complete chatter is not found "
+                    "past this point");
+    }
+    return stop(StopReason::max_points, "the curve reached the point limit");
   }
 
   // The condition on the multipliers of a fold, period-doubling or
@@ -895,6 +973,7 @@ class CurveDriver {
   bool grazing_ = false;
   bool contact_ = false;                  // a contact onset or end: the landing push's zero
   bool boundary_ = false;                 // a scene's parameter boundary: its zero
+  bool chatter_ = false;                  // a chatter onset: its margin's zero
   int n_ = 2;                             // N: the state's components on the section
   int p1_ = 2, p2_ = 3, tg_ = 4;          // the indices of p₁, p₂ and t_g in z
   int size_ = 4;                          // unknowns: (x, p₁, p₂ [, t_g])

@@ -16,6 +16,7 @@
 #include <optional>
 #include <utility>
 
+#include <impactlab/analysis/chatter_onset.hpp>
 #include <impactlab/analysis/contact_landing.hpp>
 #include <impactlab/analysis/continuation_problem.hpp>
 #include <impactlab/analysis/decorated_system.hpp>
@@ -226,6 +227,10 @@ ContinuationProblem impact_map_problem(SystemOfParameter<System> make_system,
     note_landing_push(system, records.begin() + static_cast<std::ptrdiff_t>(impacts.first_record),
                       records.begin() + static_cast<std::ptrdiff_t>(impacts.stop_record), t0,
                       result);
+    note_chatter_margin(system,
+                        records.begin() + static_cast<std::ptrdiff_t>(impacts.first_record) + 1,
+                        records.begin() + static_cast<std::ptrdiff_t>(impacts.stop_record) + 1,
+                        t0 + 2.0 * span, result);
     // the slowest impact. With the section's own wall, only the target
     // impact (the section's own, one orbit on) is a grazing candidate: the
     // driver solves it on the stroboscopic map (problem.strobe); another

@@ -15,6 +15,7 @@
 #include <numbers>
 #include <optional>
 
+#include <impactlab/analysis/chatter_onset.hpp>
 #include <impactlab/analysis/contact_landing.hpp>
 #include <impactlab/analysis/continuation_problem.hpp>
 #include <impactlab/analysis/decorated_system.hpp>
@@ -110,6 +111,8 @@ ContinuationProblem stroboscopic_map_problem(SystemOfParameter<System> make_syst
         for (const auto& crossing : trace.crossings)
           if (crossing.t == record.t) result.stuck_witness = crossing.witness;
     note_landing_push(system, log.records().begin(), log.records().end(), t0, result);
+    note_chatter_margin(system, log.records().begin(), log.records().end(), t0 + 2.0 * span,
+                        result);
     for (const auto& crossing : trace.crossings) {
       if (crossing.speed < result.min_impact_speed) {
         result.min_impact_speed = crossing.speed;

@@ -54,7 +54,7 @@ ContinuationJob continuation_job(const ContinueOptions& options) {
   if (!options.curve.empty() && !curve_type)
     throw BadInput("curve", options.curve,
                    "expected fold, period_doubling, grazing, contact_onset, contact_end, "
-                   "contact_boundary or neimark_sacker");
+                   "contact_boundary, neimark_sacker or chatter_onset");
   check_whole("period", options.period);
   check_whole("max_points", options.max_points);
   const OptionSpec& transient = job_option("continue", "transient");

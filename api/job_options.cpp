@@ -313,11 +313,11 @@ Options continue_options() {
                "each doubled branch too); writes curve.csv"},
       {.name = "curve", .type = OptionType::text,
        .help = "fold|period_doubling|grazing|contact_onset|contact_end|contact_boundary|"
-               "neimark_sacker: the bifurcation or boundary (the pendulum's V0*omega = g) whose "
+               "neimark_sacker|chatter_onset: the bifurcation or boundary (the pendulum's V0*omega = g) whose "
                "curve `param2` follows (default: the first located fold, period doubling or grazing); a type "
                "the branch has no located point of is refused",
        .choices = {"fold", "period_doubling", "grazing", "contact_onset", "contact_end",
-                   "contact_boundary", "neimark_sacker"}},
+                   "contact_boundary", "neimark_sacker", "chatter_onset"}},
       {.name = "period", .type = OptionType::integer,
        .help = "n: the orbit's period in forcing periods", .default_value = 1.0, .lower = 1,
        .upper = 1000, .unit = "forcing periods"},

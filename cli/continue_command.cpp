@@ -230,7 +230,8 @@ int run_continue(const ContinueCommandOptions& command_options,
         {"points.csv",
          {{"type", "fold, branch_point, period_doubling, neimark_sacker, grazing, contact_onset, "
                   "contact_end, stick_onset, stick_end (an impact starts or stops sticking: the "
-                  "rigid pendulum's friction cone), contact_boundary (the pendulum's V0*omega = g)"},
+                  "rigid pendulum's friction cone), contact_boundary (the pendulum's V0*omega = g), "
+                  "chatter_onset (a chatter into contact stops completing)"},
           {"error_estimate", "bound on the error of the parameter value"},
           {"graze_time", "grazing: time after the section at which the wall is touched (0 "
                          "where the impact section's own impact grazes)"},
@@ -377,7 +378,7 @@ int run_continue(const ContinueCommandOptions& command_options,
                      "(--switch; doubled_curves)"},
           {"period", "forcing periods of that branch's orbit"},
           {"type", "the curve's type: fold, period_doubling, grazing, contact_onset, "
-                   "contact_end, contact_boundary or neimark_sacker"},
+                   "contact_end, contact_boundary, neimark_sacker or chatter_onset"},
           {"start", "branch: the curve starts at a point located on the branch; "
                     "grazing_period_doubling or grazing_fold: it runs through that "
                     "codimension-two point of the first curve (--switch; switched_curves), "

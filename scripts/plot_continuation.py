@@ -38,7 +38,8 @@ MARKERS = {"fold": ("s", "tab:green"), "branch_point": ("P", "tab:cyan"),
            "period_doubling": ("o", "tab:red"),
            "neimark_sacker": ("D", "tab:purple"), "grazing": ("*", "black"),
            "contact_onset": ("^", "tab:orange"), "contact_end": ("v", "tab:orange"),
-           "stick_onset": ("^", "tab:brown"), "stick_end": ("v", "tab:brown")}
+           "stick_onset": ("^", "tab:brown"), "stick_end": ("v", "tab:brown"),
+           "chatter_onset": ("D", "tab:pink")}
 # a scene's boundaries (contact_boundary, ...): points.csv's type is their name
 BOUNDARY_MARKER = ("X", "tab:olive")
 

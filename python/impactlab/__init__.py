@@ -997,7 +997,8 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     """Pseudo-arclength continuation of a period-n orbit in one scene key (the
     CLI's `continue`): branches (per branch: the columns of branch.csv, its
     period and why it stopped) and points (the rows of points.csv: folds,
-    period doublings, Neimark-Sacker, grazing points, contact onset and end).
+    period doublings, Neimark-Sacker, grazing points, contact onset and end,
+    chatter onset).
     section is strobe[:PHASE] or impact:WALL (WALL +1 or -1: the impact map,
     where q is the impact's forcing phase omega t mod 2 pi and qdot the rate
     just before it; start is then (phase, qdot)). The states and multipliers
@@ -1005,7 +1006,7 @@ def continue_(scene_=None, *, param, period=_default("continue", "period"),
     ...; multiplier1 ... multiplierN).
     param2="NAME=FROM:TO" (with curve= fold, period_doubling, grazing,
     contact_onset, contact_end, contact_boundary (the pendulum's
-    V0*omega = g) or neimark_sacker, a type the branch has no located point of
+    V0*omega = g), neimark_sacker or chatter_onset, a type the branch has no located point of
     raising ValueError naming curve; else the first located fold, period
     doubling or grazing) follows that bifurcation's curve in the
     plane of the two keys from the point the branch located (the CLI's
