@@ -30,11 +30,11 @@
 #include <impactlab/api/scene_jobs.hpp>
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/core/event_log.hpp>
-#include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
 
 #include "support/curve_job.hpp"
 #include "support/linear_impact_chatter.hpp"
+#include "support/pendulum_plain_run.hpp"
 
 namespace IMPACTLAB_TEST_FILE_SCOPE {
 
@@ -199,15 +199,8 @@ TEST(ChatterOnset, ThePendulumsChatterIntoContactStopsCompletingWherePlainRunsSa
   ASSERT_GE(curve.curve.size(), 5u);
   EXPECT_NEAR(curve.curve.front().p1, onset->parameter, 1e-9);
   const auto contact_phases = [&](const impactlab::CurvePoint& point, double v0) {
-    Scene at = scene;
-    at.values["V0"] = v0;
-    at.values["omega"] = point.p2;
-    at.values["initial.theta"] = point.state[0];
-    at.values["initial.theta_dot"] = point.state[1];
-    at.values["t0"] = phase / point.p2;
-    impactlab::RunRequest request;
-    request.periods = 2.0;
-    const auto run = impactlab::simulate(at, request);
+    const auto run =
+        impactlab::testing::pendulum_run_from(scene, point.state, v0, point.p2, phase, 2.0);
     return std::count_if(run.events.begin(), run.events.end(), [](const auto& event) {
       return event.kind == impactlab::EventKind::contact_start;
     });

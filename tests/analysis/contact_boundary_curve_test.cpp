@@ -39,6 +39,7 @@
 #include <impactlab/io/scene.hpp>
 
 #include "support/curve_job.hpp"
+#include "support/pendulum_plain_run.hpp"
 
 namespace IMPACTLAB_TEST_FILE_SCOPE {
 
@@ -328,17 +329,10 @@ TEST(ContactBoundaryCurve, PendulumWithPlasticWallsEndsItsContactWhereItLandsAsT
   EXPECT_EQ(curve.stop_reason, StopReason::end_of_range) << curve.stop_detail;
   ASSERT_GE(curve.curve.size(), 10u);
   EXPECT_NEAR(curve.curve.front().p1, ends[0].parameter, 1e-9);
-  // a plain run of two periods from the section state at (V0, ω)
+  // a plain run from the section state at (V0, ω)
   const auto run_from = [&](const auto& point, double v0, double periods) {
-    Scene at = scene;
-    at.values["V0"] = v0;
-    at.values["omega"] = point.p2;
-    at.values["initial.theta"] = point.state[0];
-    at.values["initial.theta_dot"] = point.state[1];
-    at.values["t0"] = phase / point.p2;
-    impactlab::RunRequest request;
-    request.periods = periods;
-    return impactlab::simulate(at, request);
+    return impactlab::testing::pendulum_run_from(scene, point.state, v0, point.p2, phase,
+                                                 periods);
   };
   for (std::size_t k = 0; k < curve.curve.size(); k += curve.curve.size() / 4) {
     const auto& point = curve.curve[k];
