@@ -213,14 +213,6 @@ BifurcationPoint BifurcationLocator<Size>::locate_count_change(int OrbitEvaluati
   return point;
 }
 
-template <int Size>
-std::optional<BifurcationPoint> BifurcationLocator<Size>::locate_chatter_onset(
-    const Node& a, double first_step) {
-  if (!(a.orbit.chatter_side > 0)) return std::nullopt;
-  return chatter_onset_from(a.y - 100.0 * first_step * a.tangent, a.y,
-                            "the chatter into contact stops completing");
-}
-
 // The onset of complete chatter near the points y0 and y1 of the branch
 // (solve_chatter_onset, chatter_onset.hpp), with `what` leading its note.
 template <int Size>

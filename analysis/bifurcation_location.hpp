@@ -13,8 +13,7 @@
 // else at the root of the landing push (contact_landing.hpp) where both
 // points land with pushes of opposite signs, otherwise (and a change of the
 // stick impacts) by bisection on the arclength down to a bracket of 1e-10
-// of the range in p; the onset of complete chatter also where a branch ends
-// because its chatter no longer completes.
+// of the range in p.
 #pragma once
 
 #include <optional>
@@ -59,11 +58,6 @@ class BifurcationLocator {
   // on the friction cone's edge, ContinuationProblem::stick_forced_at).
   void detect_count_changes(const Node& a, const Node& b, double step,
                             std::vector<BifurcationPoint>& points);
-  // The onset of complete chatter ahead of node a, whose chatter into
-  // contact completes, where the branch ends because its chatter no longer
-  // does (solve_chatter_onset, chatter_onset.hpp, from a and a point
-  // 100 × `first_step` behind it). None where it does not converge.
-  std::optional<BifurcationPoint> locate_chatter_onset(const Node& a, double first_step);
 
  private:
   using Vec = typename Spaces<Size>::Vec;

@@ -262,17 +262,10 @@ class BranchDriver {
       }
       if ((c.signature_changed || !c.converged) && end_at_grazing(h)) return finish();
       h *= 0.5;
-      if (h < steps_.smallest && c.signature_changed) {
-        // a chatter into contact that stops completing: its onset ends the branch
-        if (auto onset = locator_.locate_chatter_onset(nodes_.back(), steps_.smallest)) {
-          result_.points.push_back(*onset);
-          return stop(StopReason::signature_change,
-                      "chatter_onset: " + result_.points.back().note);
-        }
+      if (h < steps_.smallest && c.signature_changed)
         return stop(StopReason::signature_change,
                     "the impact signature changes from '" + signature_ + "' to '" +
                         c.orbit.signature + "'; no grazing point located");
-      }
       if (h < steps_.smallest) {
         // the corner of an impulse reaching the friction cone's edge
         if (forced_map_ && cross_corner(direction, nullptr, 0.0)) {

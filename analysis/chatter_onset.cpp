@@ -105,15 +105,12 @@ struct Iterate {
   OrbitEvaluation orbit;
 };
 
-std::optional<Iterate> release_flight(const OrbitAt& orbit_at, OrbitPoint x, double p,
-                                      int& evaluations) {
+std::optional<Iterate> release_flight(const OrbitAt& orbit_at, OrbitPoint x, double p) {
   OrbitEvaluation orbit = orbit_at(x, p);
-  ++evaluations;
   if (!orbit.completed) return std::nullopt;
   if (orbit.chatter_side > 0) {
     x = orbit.image;
     orbit = orbit_at(x, p);
-    ++evaluations;
     if (!orbit.completed) return std::nullopt;
   }
   return Iterate{std::move(x), p, std::move(orbit)};
@@ -146,8 +143,8 @@ OrbitPoint slope_between(const Iterate& a, const Iterate& b) {
 ChatterOnset solve_chatter_onset(const OrbitAt& orbit_at, const OrbitPoint& x0, double p0,
                                  const OrbitPoint& x1, double p1) {
   ChatterOnset onset;
-  const std::optional<Iterate> first = release_flight(orbit_at, x0, p0, onset.evaluations);
-  const std::optional<Iterate> second = release_flight(orbit_at, x1, p1, onset.evaluations);
+  const std::optional<Iterate> first = release_flight(orbit_at, x0, p0);
+  const std::optional<Iterate> second = release_flight(orbit_at, x1, p1);
   if (!first || !second || !std::isfinite(second->orbit.chatter_index) || first->p == second->p)
     return onset;
   Iterate previous = *first, current = *second;
@@ -164,7 +161,7 @@ ChatterOnset solve_chatter_onset(const OrbitAt& orbit_at, const OrbitPoint& x0, 
     // a second point `separation` from the last estimate
     if (std::fabs(previous.p - current.p) < 0.5 * separation) {
       const double p = current.p - separation;
-      const auto other = release_flight(orbit_at, extrapolated(current, dx_dp, p), p, onset.evaluations);
+      const auto other = release_flight(orbit_at, extrapolated(current, dx_dp, p), p);
       if (!other) return onset;
       previous = *other;
     }
@@ -177,7 +174,7 @@ ChatterOnset solve_chatter_onset(const OrbitAt& orbit_at, const OrbitPoint& x0, 
         break;
       }
       const double p = current.p - m1 * (current.p - previous.p) / (m1 - m0);
-      const auto next = release_flight(orbit_at, extrapolated(current, dx_dp, p), p, onset.evaluations);
+      const auto next = release_flight(orbit_at, extrapolated(current, dx_dp, p), p);
       if (!next) return onset;
       last_step = std::fabs(p - current.p);
       previous = std::move(current);

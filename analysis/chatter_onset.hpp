@@ -96,7 +96,6 @@ struct ChatterOnset {
   double parameter = 0.0;
   OrbitEvaluation orbit;    // the map evaluated there
   double error_estimate = 0.0;  // the last secant step and the margin's own error (p's unit)
-  int evaluations = 0;
 };
 
 // The onset of complete chatter in p near (x0, p0) and (x1, p1), two states
@@ -107,9 +106,10 @@ struct ChatterOnset {
 // iterates where it does not: x_r and the margin are smooth across the
 // onset, the map is not (its image past the onset departs from x_r like a
 // fractional power of the distance), so no Newton on the orbit is solved
-// there. The margin is linear only within about 10⁻⁴/μ^k of its root at
-// index k, so the root is refined index by index (k = 2, 4, …, then the
-// margin at K), by secant steps in p at each.
+// there. The margin at index k is linear only close to its root (a
+// departure from the manifold is amplified μ^k times by the k-th impact), so
+// the root is refined index by index (k = 2, 4, …, then the margin at K), by
+// secant steps in p at each.
 ChatterOnset solve_chatter_onset(const OrbitAt& orbit_at, const OrbitPoint& x0, double p0,
                                  const OrbitPoint& x1, double p1);
 

@@ -122,10 +122,6 @@ class CurveDriver {
       return stop(StopReason::start_not_converged,
                   "the orbit has no landing with a push on the mass at rest (a contact curve "
                   "needs a system with a stuck mode)");
-    if (chatter_ && start.at.orbit.completed && !std::isfinite(start.at.orbit.chatter_margin))
-      return stop(StopReason::start_not_converged,
-                  "the orbit has no chatter that resolves enough impacts for its margin to the "
-                  "onset (chatter_onset.hpp)");
     if (!start.converged)
       return stop(StopReason::start_not_converged, "Newton at the located point did not converge");
     const double direction2 = request_.to2 >= request_.from2 ? 1.0 : -1.0;
@@ -224,9 +220,6 @@ class CurveDriver {
     } else if (contact_) {
       // the push on the mass at rest at its landing (contact_landing.hpp)
       e.residual[n_] = e.orbit.landing_push;
-    } else if (chatter_) {
-      // the margin of its chatter to the self-similar one (chatter_onset.hpp)
-      e.residual[n_] = e.orbit.chatter_margin;
     } else if (boundary_) {
       // the scene's boundary, a function of the parameters alone
       const ParameterBoundary* boundary = boundary_of(at);

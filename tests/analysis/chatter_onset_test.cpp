@@ -151,11 +151,9 @@ TEST(ChatterOnset, TheBranchOfChatteringOrbitsEndsAtTheOnsetOfCompleteChatter) {
 }
 
 TEST(ChatterOnset, ItsCurveInOmegaAndSigmaLiesOnTheReference) {
-  ContinuationJob job = chattering_branch(3.14159);
-  job.second_parameter = "sigma";
-  job.second_from = 0.5;
-  job.second_to = 0.56;
-  job.curve_type = CurveType::chatter_onset;
+  ContinuationJob job =
+      impactlab::testing::curve_job("omega", 0.3, 0.5, "sigma", 0.5, 0.56, CurveType::chatter_onset);
+  job.phase = 3.14159;
   const auto result = impactlab::continue_orbit(chattering_scene(0.5), job);
   ASSERT_TRUE(result.has_curve) << result.curve_note;
   const auto& curve = result.curve;
