@@ -435,19 +435,30 @@ int run_sweep_command(const SweepOptions& options, const std::vector<std::string
   job.progress = [&progress](double fraction) { progress.update(fraction); };
   job.stop_after = options.stop_after;
   job.keep_points = keep_points;
-  const SweepOutput work = run_sweep(scene, target, plan, mine, job);
+  SweepOutput work = run_sweep(scene, target, plan, mine, job);
   // every line flushed and the file closed before rank 0 reads it back
   checkpoint.close();
   const double wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  // every rank's records to rank 0, which writes
-  std::string text;
-  for (const auto& records : work.records)
-    for (const auto& record : records) text += to_json_line(record) + '\n';
-  const std::vector<std::string> gathered = mpi.gather(text);
-  if (mpi.rank() != 0) return work.stopped ? exit_stopped_early : exit_done;
-  const std::map<RecordKey, SweepRecord> all = parse_records(gathered);
+  // every rank's records to rank 0, which writes; one rank keeps its own
+  // (to_json_line and from_json_line are each other's inverse, so the files
+  // are the same either way)
+  std::map<RecordKey, SweepRecord> all;
+  if (mpi.size() == 1) {
+    for (auto& records : work.records)
+      for (auto& record : records) {
+        const RecordKey key{record.task, record.position};
+        all.emplace(key, std::move(record));
+      }
+  } else {
+    std::string text;
+    for (const auto& records : work.records)
+      for (const auto& record : records) text += to_json_line(record) + '\n';
+    const std::vector<std::string> gathered = mpi.gather(text);
+    if (mpi.rank() != 0) return work.stopped ? exit_stopped_early : exit_done;
+    all = parse_records(gathered);
+  }
   if (all.size() < total_points) {
     std::cerr << fmt::format(
         "impactlab: sweep stopped after {} of {} points (checkpoint in {}); run again with "
