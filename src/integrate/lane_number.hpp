@@ -13,29 +13,15 @@
 
 namespace impactlab {
 
-// GCC's and Clang's vector extension for B doubles: a value the compiler
-// keeps in registers (two SSE2 registers for four doubles on any x86-64),
-// whose arithmetic is the IEEE operation lane by lane. (The attribute cannot
-// take a size that depends on a template parameter: one type per width.)
-template <int B>
-struct LaneVector;
-template <>
-struct LaneVector<2> {
-  typedef double type __attribute__((vector_size(16)));
-};
-template <>
-struct LaneVector<4> {
-  typedef double type __attribute__((vector_size(32)));
-};
-template <>
-struct LaneVector<8> {
-  typedef double type __attribute__((vector_size(64)));
-};
+// GCC's and Clang's vector extension for four doubles: a value the compiler
+// keeps in registers (one AVX register, or two SSE2 registers on any
+// x86-64), whose arithmetic is the IEEE operation lane by lane.
+using LaneQuad = double __attribute__((vector_size(32)));
 
 // Whether the processor has AVX2, for which a pass over lanes
 // (integrate/series_tape.cpp) is compiled a second time (four lanes in one
 // register), chosen at run time so that the build runs on any x86-64:
-// without it the pass runs in two SSE2 registers, with the same results.
+// without it the pass runs in SSE2 registers, with the same results.
 inline bool lane_passes_available() {
 #if defined(__x86_64__) && defined(__GNUC__)
   return __builtin_cpu_supports("avx2");
@@ -44,22 +30,56 @@ inline bool lane_passes_available() {
 #endif
 }
 
+// B lanes (a multiple of four) as B/4 quads: each operation is B/4
+// independent vector operations, so that where one chain of recurrences
+// waits on the latency of the one before, the others fill the ports. (A
+// single vector of eight doubles would not do: without AVX-512 GCC splits
+// it through memory.)
+// Aligned to a quad's 32 bytes: GCC aligns a vector of four doubles to 16
+// bytes where AVX is off, as in the default build, and to 32 inside a
+// function compiled for AVX2, which then moves it with aligned loads and
+// stores.
 template <int B>
-struct LaneNumber {
+struct alignas(32) LaneNumber {
+  static_assert(B > 0 && B % 4 == 0, "lanes come in quads");
   static constexpr int width = B;
-  using Vector = typename LaneVector<B>::type;
-  Vector lane;
+  static constexpr int quads = B / 4;
+  LaneQuad quad[quads];
 
   LaneNumber() = default;
   LaneNumber(double value) {  // NOLINT(google-explicit-constructor): a constant in every lane
-    for (int i = 0; i < B; ++i) lane[i] = value;
+    for (int q = 0; q < quads; ++q)
+      for (int i = 0; i < 4; ++i) quad[q][i] = value;
   }
 
-  friend LaneNumber operator+(const LaneNumber& a, const LaneNumber& b) { return from(a.lane + b.lane); }
-  friend LaneNumber operator-(const LaneNumber& a, const LaneNumber& b) { return from(a.lane - b.lane); }
-  friend LaneNumber operator*(const LaneNumber& a, const LaneNumber& b) { return from(a.lane * b.lane); }
-  friend LaneNumber operator/(const LaneNumber& a, const LaneNumber& b) { return from(a.lane / b.lane); }
-  friend LaneNumber operator-(const LaneNumber& a) { return from(-a.lane); }
+  [[nodiscard]] double lane(int i) const { return quad[i / 4][i % 4]; }
+  void set_lane(int i, double value) { quad[i / 4][i % 4] = value; }
+
+  friend LaneNumber operator+(const LaneNumber& a, const LaneNumber& b) {
+    LaneNumber r;
+    for (int q = 0; q < quads; ++q) r.quad[q] = a.quad[q] + b.quad[q];
+    return r;
+  }
+  friend LaneNumber operator-(const LaneNumber& a, const LaneNumber& b) {
+    LaneNumber r;
+    for (int q = 0; q < quads; ++q) r.quad[q] = a.quad[q] - b.quad[q];
+    return r;
+  }
+  friend LaneNumber operator*(const LaneNumber& a, const LaneNumber& b) {
+    LaneNumber r;
+    for (int q = 0; q < quads; ++q) r.quad[q] = a.quad[q] * b.quad[q];
+    return r;
+  }
+  friend LaneNumber operator/(const LaneNumber& a, const LaneNumber& b) {
+    LaneNumber r;
+    for (int q = 0; q < quads; ++q) r.quad[q] = a.quad[q] / b.quad[q];
+    return r;
+  }
+  friend LaneNumber operator-(const LaneNumber& a) {
+    LaneNumber r;
+    for (int q = 0; q < quads; ++q) r.quad[q] = -a.quad[q];
+    return r;
+  }
   LaneNumber& operator+=(const LaneNumber& b) { return *this = *this + b; }
   LaneNumber& operator-=(const LaneNumber& b) { return *this = *this - b; }
   LaneNumber& operator*=(const LaneNumber& b) { return *this = *this * b; }
@@ -67,14 +87,7 @@ struct LaneNumber {
 
   friend LaneNumber fabs(const LaneNumber& a) {
     LaneNumber r;
-    for (int i = 0; i < B; ++i) r.lane[i] = std::fabs(a.lane[i]);
-    return r;
-  }
-
- private:
-  static LaneNumber from(const Vector& v) {
-    LaneNumber r;
-    r.lane = v;
+    for (int i = 0; i < B; ++i) r.set_lane(i, std::fabs(a.lane(i)));
     return r;
   }
 };
@@ -88,7 +101,7 @@ inline constexpr bool is_lane_number<LaneNumber<B>> = true;
 template <class Real>
 double constant_value(const Real& value) {
   if constexpr (is_lane_number<Real>)
-    return value.lane[0];
+    return value.lane(0);
   else
     return static_cast<double>(value);
 }

@@ -25,6 +25,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <new>
 #include <stdexcept>
 
 #include <impactlab/integrate/lane_number.hpp>
@@ -423,16 +424,51 @@ void record_series_tape(SeriesTape& tape, const double* x0, double t0, const Rhs
     detail::record_series_tape_pass<N>(tape, x0, t0, rhs);
 }
 
-// the trajectories of one pass
-inline constexpr int tape_lane_width = 4;
-using TapeLaneNumber = LaneNumber<tape_lane_width>;
+// the most trajectories of one pass: two quads of lanes, so that two
+// independent chains of each recurrence run side by side; a pass of at most
+// four runs one quad (docs/performance.md, "Many trajectories at once")
+inline constexpr int tape_lane_width = 8;
 
-// The coefficients of a pass: rows × orders, one lane per trajectory.
-struct SeriesLaneRows {
-  std::array<TapeLaneNumber, SeriesTape::max_rows * SeriesTape::stride> rows;
-  [[nodiscard]] double coefficient(int row, int k, int lane) const {
-    return rows[row * SeriesTape::stride + k].lane[lane];
+// The coefficients of a pass: rows × orders, one lane per trajectory, as
+// LaneNumber<4 · quads> (the pass's width).
+class SeriesLaneRows {
+ public:
+  static constexpr int size = SeriesTape::max_rows * SeriesTape::stride;
+
+  // the rows of a pass of `quads` quads, to be written
+  template <int Quads>
+  LaneNumber<4 * Quads>* start_pass() {
+    static_assert(Quads >= 1 && 4 * Quads <= tape_lane_width);
+    quads_ = Quads;
+    return std::launder(reinterpret_cast<LaneNumber<4 * Quads>*>(storage_));
   }
+  [[nodiscard]] double coefficient(int row, int k, int lane) const {
+    const int index = row * SeriesTape::stride + k;
+    if (quads_ == 1) return rows<1>()[index].lane(lane);
+    return rows<2>()[index].lane(lane);
+  }
+  // lane `lane`'s coefficients 0..order of `row`, into `to`
+  void copy_lane(int row, int order, int lane, double* to) const {
+    const int index = row * SeriesTape::stride;
+    if (quads_ == 1) {
+      const LaneNumber<4>* from = rows<1>() + index;
+      for (int k = 0; k <= order; ++k) to[k] = from[k].lane(lane);
+    } else {
+      const LaneNumber<8>* from = rows<2>() + index;
+      for (int k = 0; k <= order; ++k) to[k] = from[k].lane(lane);
+    }
+  }
+
+ private:
+  static_assert(tape_lane_width == 8, "coefficient() reads passes of one or two quads");
+  template <int Quads>
+  [[nodiscard]] const LaneNumber<4 * Quads>* rows() const {
+    return std::launder(reinterpret_cast<const LaneNumber<4 * Quads>*>(storage_));
+  }
+  int quads_ = 0;
+  // room for the widest pass; each pass's numbers begin their lifetime in
+  // it (an array of bytes gives them storage)
+  alignas(LaneNumber<tape_lane_width>) std::byte storage_[size * sizeof(LaneNumber<tape_lane_width>)];
 };
 
 // The coefficients 0..order of every row of `count` (1..tape_lane_width)

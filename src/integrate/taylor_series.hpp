@@ -681,10 +681,7 @@ class TaylorSeries {
       if (detail::near_zero(a0, a1) && detail::sign_of(a1) != detail::sign_of(a0))
         needs_slope_ = true;
     }
-    auto copy_row = [&](int r) {
-      Real* to = row(static_cast<std::size_t>(r));
-      for (int k = 0; k <= order; ++k) to[k] = lanes.coefficient(r, k, lane);
-    };
+    auto copy_row = [&](int r) { lanes.copy_lane(r, order, lane, row(static_cast<std::size_t>(r))); };
     if (needs_slope_) {
       for (int r = 0; r < tape.rows_taken(); ++r) copy_row(r);
     } else {

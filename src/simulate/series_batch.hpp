@@ -27,9 +27,9 @@ namespace impactlab {
 
 // the lanes a batch runs by default: the most it may, so that as many
 // requests as possible wait together and the passes over lanes fill
-// (a pass takes four; with 4 lanes a 2D map's Lyapunov runs, a phase that
-// only some lanes are in at a time, were mostly evaluated alone:
-// docs/performance.md)
+// (a pass takes up to eight, integrate/series_tape.hpp; when passes took
+// four, a batch of 4 lanes evaluated a 2D map's Lyapunov runs, a phase that
+// only some lanes are in at a time, mostly alone: docs/performance.md)
 inline constexpr int default_batch_width = max_series_lanes;
 
 // How full the batch ran: how many series it evaluated, in how many

@@ -102,10 +102,13 @@ void expect_lanes_equal_alone(const std::array<Lane, tape_lane_width>& lanes, in
   }
 }
 
-TEST(SeriesTape, FourLanesOfDifferentConstantsEqualTheSeriesOfDoubleBitForBit) {
+TEST(SeriesTape, AFullPassOfDifferentConstantsEqualsTheSeriesOfDoubleBitForBit) {
+  static_assert(tape_lane_width == 8);
   const std::array<Lane, tape_lane_width> lanes = {
-      Lane{{0.3, 0.2, -0.1}, 0.0, {1.0}}, Lane{{-0.7, 1.1, 0.4}, 2.5, {0.35}},
-      Lane{{1.2, -0.4, 0.0}, 10.0, {2.75}}, Lane{{0.01, 0.06, 3.0}, 0.125, {-1.5}}};
+      Lane{{0.3, 0.2, -0.1}, 0.0, {1.0}},     Lane{{-0.7, 1.1, 0.4}, 2.5, {0.35}},
+      Lane{{1.2, -0.4, 0.0}, 10.0, {2.75}},   Lane{{0.01, 0.06, 3.0}, 0.125, {-1.5}},
+      Lane{{-0.2, 0.9, 1.3}, 7.0, {0.8}},     Lane{{0.45, -1.6, -0.3}, 1.75, {1.25}},
+      Lane{{2.1, 0.33, 0.05}, 4.5, {-0.6}},   Lane{{-1.05, -0.02, 2.2}, 0.5, {3.1}}};
   expect_lanes_equal_alone(lanes, tape_lane_width);
   // the coefficients are not trivial: the series of x1 reaches order 20
   const auto series = alone(lanes[1]);
@@ -113,9 +116,13 @@ TEST(SeriesTape, FourLanesOfDifferentConstantsEqualTheSeriesOfDoubleBitForBit) {
 }
 
 TEST(SeriesTape, APassOfFewerLanesThanItsWidthEqualsTheSeriesOfDouble) {
-  const std::array<Lane, tape_lane_width> lanes = {Lane{{0.3, 0.2, -0.1}, 1.0, {1.5}},
-                                                   Lane{{0.5, -0.9, 0.7}, 3.0, {0.5}}};
+  const std::array<Lane, tape_lane_width> lanes = {
+      Lane{{0.3, 0.2, -0.1}, 1.0, {1.5}},   Lane{{0.5, -0.9, 0.7}, 3.0, {0.5}},
+      Lane{{-0.6, 0.4, 0.9}, 2.0, {1.1}},   Lane{{0.15, 1.3, -0.4}, 6.0, {2.2}},
+      Lane{{1.4, -0.25, 0.35}, 0.75, {0.9}}};
   expect_lanes_equal_alone(lanes, 2);
+  // lanes in the second quad, the spare ones repeating the first lane
+  expect_lanes_equal_alone(lanes, 5);
 }
 
 // A sign whose argument starts at a zero it is leaving: the lane says so, as
