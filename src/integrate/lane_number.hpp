@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstring>
 #include <type_traits>
 
 namespace impactlab {
@@ -48,8 +49,11 @@ struct alignas(32) LaneNumber {
 
   LaneNumber() = default;
   LaneNumber(double value) {  // NOLINT(google-explicit-constructor): a constant in every lane
-    for (int q = 0; q < quads; ++q)
-      for (int i = 0; i < 4; ++i) quad[q][i] = value;
+    // copied in as bytes: assigned lane by lane, or as a vector's braces,
+    // GCC built a zero from halves with the register form of vmovq
+    // (66 0F D6), which valgrind cannot run
+    const double lanes[4] = {value, value, value, value};
+    for (int q = 0; q < quads; ++q) std::memcpy(&quad[q], lanes, sizeof lanes);
   }
 
   [[nodiscard]] double lane(int i) const { return quad[i / 4][i % 4]; }
