@@ -26,8 +26,8 @@ namespace impactlab {
 // Σ_{j=0..degree} c_j h^j by Horner's scheme in h² on the even and the odd
 // coefficients: two independent chains of half the length (a Taylor step's
 // end state and every evaluation of a root refinement wait for it)
-template <class Real>
-Real polynomial_at(const Real* c, int degree, const Real& h) {
+template <class Coefficients, class Real>
+Real polynomial_at(const Coefficients& c, int degree, const Real& h) {
   const Real h2 = h * h;
   Real even = 0, odd = 0;
   int j = degree;

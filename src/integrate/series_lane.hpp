@@ -13,7 +13,7 @@
 namespace impactlab {
 
 class SeriesTape;
-struct SeriesLaneRows;
+class SeriesLaneRowsPool;
 
 // the most lanes one batch evaluates together
 inline constexpr int max_series_lanes = 16;
@@ -31,11 +31,11 @@ struct SeriesRequest {
   // lanes with others (BatchStatistics::series_in_passes)
   bool in_pass = false;
   // set by the lane before `evaluate` runs: the lane's tape for the
-  // request's order-0 recording, and the batch's rows for a pass over lanes
-  // (integrate/series_tape.hpp); made once per batch, so that nothing is
-  // allocated while the lanes step
+  // request's order-0 recording, and the batch's rows for its passes over
+  // lanes (integrate/series_tape.hpp); made once per batch, so that nothing
+  // is allocated while the lanes step
   SeriesTape* tape = nullptr;
-  SeriesLaneRows* rows = nullptr;
+  SeriesLaneRowsPool* row_pool = nullptr;
 };
 
 // A lane of a batch, as its steppers see it.

@@ -25,10 +25,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <new>
 #include <stdexcept>
 
 #include <impactlab/integrate/lane_number.hpp>
+#include <impactlab/integrate/series_lane.hpp>
 #include <impactlab/integrate/taylor_series.hpp>
 
 namespace impactlab {
@@ -447,6 +449,15 @@ class SeriesLaneRows {
     if (quads_ == 1) return rows<1>()[index].lane(lane);
     return rows<2>()[index].lane(lane);
   }
+  // lane `lane`'s coefficient 0 of `row`, where its coefficient k lies
+  // k · lane_stride() doubles further on: for a stepper that reads its
+  // coefficients where the pass wrote them (a quad's lanes are its
+  // elements, each quad right after the one before)
+  [[nodiscard]] const double* lane_coefficients(int row, int lane) const {
+    return reinterpret_cast<const double*>(storage_) +
+           static_cast<std::ptrdiff_t>(row) * SeriesTape::stride * lane_stride() + lane;
+  }
+  [[nodiscard]] int lane_stride() const { return 4 * quads_; }
   // lane `lane`'s coefficients 0..order of `row`, into `to`
   void copy_lane(int row, int order, int lane, double* to) const {
     const int index = row * SeriesTape::stride;
@@ -469,6 +480,31 @@ class SeriesLaneRows {
   // room for the widest pass; each pass's numbers begin their lifetime in
   // it (an array of bytes gives them storage)
   alignas(LaneNumber<tape_lane_width>) std::byte storage_[size * sizeof(LaneNumber<tape_lane_width>)];
+};
+
+// The rows of the passes of one round of a batch (simulate/series_batch.hpp),
+// each pass's its own: a stepper reads its coefficients where its pass wrote
+// them, until its next request, when the batch starts the next round.
+// Made once per batch; nothing is allocated while the lanes step.
+class SeriesLaneRowsPool {
+ public:
+  // a pass has two lanes at least
+  static constexpr int capacity = max_series_lanes / 2;
+
+  SeriesLaneRowsPool() : rows_(std::make_unique_for_overwrite<SeriesLaneRows[]>(capacity)) {}
+
+  // rows for the next pass of this round
+  SeriesLaneRows& take() {
+    if (taken_ == capacity) throw std::logic_error("series: more passes in a round than lanes allow");
+    return rows_[taken_++];
+  }
+  // every lane has posted its next request: the rows of the last round are
+  // no longer read
+  void start_round() { taken_ = 0; }
+
+ private:
+  std::unique_ptr<SeriesLaneRows[]> rows_;
+  int taken_ = 0;
 };
 
 // The coefficients 0..order of every row of `count` (1..tape_lane_width)

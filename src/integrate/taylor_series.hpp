@@ -665,6 +665,18 @@ class TaylorSeries {
   }
 
  public:
+  // Whether lane `lane` of a pass over lanes has a sign that needs its
+  // slope (signs_need_slope).
+  template <class Tape, class LaneRows>
+  static bool lane_needs_slope(const LaneRows& lanes, const Tape& tape, int lane) {
+    for (int i = 0; i < tape.sign_count(); ++i) {
+      const double a0 = lanes.coefficient(tape.sign_row(i), 0, lane);
+      const double a1 = lanes.coefficient(tape.sign_row(i), 1, lane);
+      if (detail::near_zero(a0, a1) && detail::sign_of(a1) != detail::sign_of(a0)) return true;
+    }
+    return false;
+  }
+
   // This series' coefficients from lane `lane` of a pass over lanes
   // (integrate/series_tape.hpp: `lanes` computed from `tape`, this series'
   // own order-0 recording, with others that record the same operations):
@@ -674,13 +686,7 @@ class TaylorSeries {
   template <class Tape, class LaneRows>
   void take_lane(const LaneRows& lanes, const Tape& tape, int lane, int order) {
     static_assert(std::is_same_v<Real, double>);
-    needs_slope_ = false;
-    for (int i = 0; i < tape.sign_count(); ++i) {
-      const double a0 = lanes.coefficient(tape.sign_row(i), 0, lane);
-      const double a1 = lanes.coefficient(tape.sign_row(i), 1, lane);
-      if (detail::near_zero(a0, a1) && detail::sign_of(a1) != detail::sign_of(a0))
-        needs_slope_ = true;
-    }
+    needs_slope_ = lane_needs_slope(lanes, tape, lane);
     auto copy_row = [&](int r) { lanes.copy_lane(r, order, lane, row(static_cast<std::size_t>(r))); };
     if (needs_slope_) {
       for (int r = 0; r < tape.rows_taken(); ++r) copy_row(r);

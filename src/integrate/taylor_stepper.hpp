@@ -139,7 +139,7 @@ class TaylorStepper {
     t_old_double_ = t_double_;
     evaluate(*rhs.system, rhs.mode, false);
     *rhs.evaluations += static_cast<std::uint64_t>(order_ + 1);
-    if (series_.needs_slope()) {
+    if (needs_slope_) {
       evaluate(*rhs.system, rhs.mode, true);
       *rhs.evaluations += static_cast<std::uint64_t>(order_ + 1);
     }
@@ -155,14 +155,14 @@ class TaylorStepper {
     const double scale = group_scale[0];  // the mechanical state's
     // ρ = min_j min_rows (s_row / |c_j|)^{1/j} = min_j (max_rows |c_j| / s_row)^{−1/j}
     std::array<double, 2> ratio = {0.0, 0.0};  // orders p − 1 and p
-    auto bound_by = [&](const Real* c, double row_scale) {
+    auto bound_by = [&](const Coefficients& c, double row_scale) {
       for (int j = 0; j < 2; ++j)
         ratio[j] = std::max(ratio[j], std::fabs(static_cast<double>(c[order_ - 1 + j])) / row_scale);
     };
     for (std::size_t i = 0; i < dimension; ++i)
-      bound_by(series_.state(i), group_scale[scale_group[i]]);
-    for (int k = 0; k < series_.output_count(); ++k) {
-      const Real* w = series_.output(k);
+      bound_by(state_coefficients(i), group_scale[scale_group[i]]);
+    for (int k = 0; k < output_count_; ++k) {
+      const Coefficients w = output_coefficients(k);
       // (the mechanical state's scale, or the witness's own size where larger: a
       // witness whose higher coefficients are the state's, such as a gap,
       // does not shorten the step)
@@ -232,7 +232,7 @@ class TaylorStepper {
       for (int j = 1; j <= order_; ++j) powers[j] = powers[j - 1] * h_end;
     }
     for (std::size_t k = 0; k < system.witness_count(mode); ++k) {
-      const Real* w = series_.output(static_cast<int>(k));
+      const Coefficients w = output_coefficients(static_cast<int>(k));
       const TriggerDirection direction = system.trigger_direction(mode, k);
       // orientation: the trigger is a fall through zero; an `either` witness
       // is oriented so that its starting side (or the side it leaves zero
@@ -307,6 +307,7 @@ class TaylorStepper {
       TaylorStepper& stepper = *request.stepper;
       stepper.series_.evaluate(stepper.x_old_.data(), stepper.t_old_, stepper.order_,
                                SeriesRhs{request.system, request.mode}, false);
+      stepper.read_own_series();
     };
     if constexpr (HasTapeRhs<System> && std::is_same_v<Real, double>) {
       if (count == 1) {  // no partner: nothing to record
@@ -349,16 +350,33 @@ class TaylorStepper {
   }
 
   // the series of `count` (2..tape_lane_width) recorded requests in one pass
-  // over lanes; then each stepper's own
+  // over lanes, into rows of the batch's that stay until the lanes' next
+  // requests: each stepper reads its coefficients there (a strided copy
+  // into each stepper's own rows was a tenth of a basins grid's time); a
+  // lane whose signs need their slope takes every row, since evaluating
+  // again with the slope reads the rows it leaves
   static void evaluate_pass(const std::array<LaneRequest*, tape_lane_width>& members, int count) {
     std::array<const SeriesTape*, tape_lane_width> tapes{};
     for (int lane = 0; lane < count; ++lane) tapes[lane] = members[lane]->tape;
-    SeriesLaneRows& rows = *members[0]->rows;
+    SeriesLaneRows& rows = members[0]->row_pool->take();
     replay_series_tapes(tapes, count, members[0]->stepper->order_, rows);
     for (int lane = 0; lane < count; ++lane) {
       TaylorStepper& stepper = *members[lane]->stepper;
-      stepper.series_.take_lane(rows, *tapes[lane], lane, stepper.order_);
+      const SeriesTape& tape = *tapes[lane];
       members[lane]->in_pass = true;
+      if (Series::lane_needs_slope(rows, tape, lane)) {
+        stepper.series_.take_lane(rows, tape, lane, stepper.order_);
+        stepper.read_own_series();
+        continue;
+      }
+      stepper.needs_slope_ = false;
+      stepper.reads_pass_ = true;
+      const int stride = rows.lane_stride();
+      for (std::size_t i = 0; i < dimension; ++i)
+        stepper.pass_state_[i] = {rows.lane_coefficients(static_cast<int>(i), lane), stride};
+      stepper.output_count_ = tape.output_count();
+      for (int j = 0; j < tape.output_count(); ++j)
+        stepper.pass_outputs_[j] = {rows.lane_coefficients(tape.output_row(j), lane), stride};
     }
   }
 
@@ -379,11 +397,34 @@ class TaylorStepper {
     }
     SeriesRhs rhs{&system, mode};
     series_.evaluate(x_old_.data(), t_old_, order_, rhs, signs_from_slope);
+    read_own_series();
+  }
+
+  // the coefficients are this stepper's own series'
+  void read_own_series() {
+    reads_pass_ = false;
+    needs_slope_ = series_.needs_slope();
+    output_count_ = series_.output_count();
+  }
+
+  // One row's coefficients 0..order where they lie: the stepper's own
+  // series (stride 1), or its lane of a pass (one coefficient every
+  // pass-width doubles).
+  struct Coefficients {
+    const Real* first = nullptr;
+    int stride = 1;
+    const Real& operator[](int j) const { return first[static_cast<std::ptrdiff_t>(j) * stride]; }
+  };
+  [[nodiscard]] Coefficients state_coefficients(std::size_t i) const {
+    return reads_pass_ ? pass_state_[i] : Coefficients{series_.state(i), 1};
+  }
+  [[nodiscard]] Coefficients output_coefficients(int k) const {
+    return reads_pass_ ? pass_outputs_[k] : Coefficients{series_.output(k), 1};
   }
 
   // the polynomial at h (s past the step's start)
   void evaluate_state(const Real& h, RealState& x) const {
-    for (std::size_t i = 0; i < dimension; ++i) x[i] = polynomial_at(series_.state(i), order_, h);
+    for (std::size_t i = 0; i < dimension; ++i) x[i] = polynomial_at(state_coefficients(i), order_, h);
   }
 
   // The first event of the oriented witness polynomial g on [lo, hi] (h
@@ -450,6 +491,13 @@ class TaylorStepper {
   double scale_floor_;  // atol / rtol (state units)
   using Series = TaylorSeries<Real, dimension>;
   Series series_;
+  // where the last step's coefficients are read (read_own_series,
+  // evaluate_pass): a pass's rows stay until this stepper's next request
+  bool reads_pass_ = false;
+  bool needs_slope_ = false;
+  int output_count_ = 0;
+  std::array<Coefficients, dimension> pass_state_{};
+  std::array<Coefficients, Series::max_outputs> pass_outputs_{};
   RealState x_{}, x_old_{};             // the step's end and start
   Real t_ = 0, t_old_ = 0, step_ = 0;   // s
   State x_double_{}, x_old_double_{};   // the same, rounded, as the loop sees them

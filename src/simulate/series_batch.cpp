@@ -72,7 +72,7 @@ class FiberLane final : public SeriesLane {
 
   void compute(SeriesRequest& request) override {
     request.tape = tape;
-    request.rows = rows;
+    request.row_pool = row_pool;
     pending = &request;
     before_stack_switch(&fake_stack, scheduler_stack);
     scheduler = std::move(scheduler).resume();
@@ -84,7 +84,7 @@ class FiberLane final : public SeriesLane {
   context::fiber scheduler;  // the scheduler's, resumed by this lane
   SeriesRequest* pending = nullptr;
   SeriesTape* tape = nullptr;      // this lane's
-  SeriesLaneRows* rows = nullptr;  // the batch's
+  SeriesLaneRowsPool* row_pool = nullptr;  // the batch's
   bool finished = false;
   std::exception_ptr failure;
   StackBounds stack;            // this lane's
@@ -115,11 +115,11 @@ BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_
     throw std::invalid_argument("run_in_lanes: the width must be from 1 to max_series_lanes");
   std::array<FiberLane, max_series_lanes> lanes;
   const auto tapes = std::make_unique<SeriesTape[]>(static_cast<std::size_t>(width));
-  const auto rows = std::make_unique_for_overwrite<SeriesLaneRows>();
+  const auto row_pool = std::make_unique<SeriesLaneRowsPool>();
   for (int i = 0; i < width; ++i) {
     FiberLane& lane = lanes[i];
     lane.tape = &tapes[static_cast<std::size_t>(i)];
-    lane.rows = rows.get();
+    lane.row_pool = row_pool.get();
     context::protected_fixedsize_stack stack_allocator(lane_stack_bytes);
     const context::stack_context stack = stack_allocator.allocate();
     lane.stack = {static_cast<const char*>(stack.sp) - stack.size, stack.size};
@@ -158,6 +158,7 @@ BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_
       if (!lane.finished) waiting[waiting_count++] = lane.pending;
     }
     if (waiting_count == 0) break;
+    row_pool->start_round();
     // the requests of each kind (steppers of one type) together, in lane order
     for (int i = 0; i < waiting_count; ++i) {
       if (waiting[i] == nullptr) continue;

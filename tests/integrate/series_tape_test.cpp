@@ -7,6 +7,7 @@
 #include <bit>
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -99,6 +100,18 @@ void expect_lanes_equal_alone(const std::array<Lane, tape_lane_width>& lanes, in
         EXPECT_EQ(bits(taken->output(j)[k]), bits(expected->output(j)[k]))
             << "output " << j << " order " << k;
     }
+    // the same coefficients read in place, as a stepper in a batch reads them
+    const int stride = rows->lane_stride();
+    for (int k = 0; k <= order; ++k) {
+      for (std::size_t c = 0; c < dimension; ++c)
+        EXPECT_EQ(bits(rows->lane_coefficients(static_cast<int>(c), i)[k * stride]),
+                  bits(expected->state(c)[k]))
+            << "state " << c << " order " << k << " in place";
+      for (int j = 0; j < expected->output_count(); ++j)
+        EXPECT_EQ(bits(rows->lane_coefficients(tapes[i]->output_row(j), i)[k * stride]),
+                  bits(expected->output(j)[k]))
+            << "output " << j << " order " << k << " in place";
+    }
   }
 }
 
@@ -145,6 +158,21 @@ TEST(SeriesTape, TapesDifferWhereTheOperationsDoNotWhereOnlyTheirValuesDo) {
   EXPECT_TRUE(a.same_operations(b));
   EXPECT_FALSE(a.same_operations(c));
   EXPECT_FALSE(c.same_operations(a));
+}
+
+// Each pass of a round takes rows of its own, which stay until the round
+// ends; a round has room for a pass of two lanes from every pair of lanes.
+TEST(SeriesTape, EachPassOfARoundHasRowsOfItsOwnUntilTheNextRound) {
+  SeriesLaneRowsPool pool;
+  std::array<const SeriesLaneRows*, SeriesLaneRowsPool::capacity> taken{};
+  for (int i = 0; i < SeriesLaneRowsPool::capacity; ++i) {
+    taken[i] = &pool.take();
+    for (int j = 0; j < i; ++j) EXPECT_NE(taken[i], taken[j]) << "passes " << i << " and " << j;
+  }
+  EXPECT_EQ(2 * SeriesLaneRowsPool::capacity, max_series_lanes);
+  EXPECT_THROW(pool.take(), std::logic_error);
+  pool.start_round();
+  EXPECT_EQ(&pool.take(), taken[0]);
 }
 
 }  // namespace
