@@ -680,25 +680,19 @@ class TaylorSeries {
   // This series' coefficients from lane `lane` of a pass over lanes
   // (integrate/series_tape.hpp: `lanes` computed from `tape`, this series'
   // own order-0 recording, with others that record the same operations):
-  // its state's and outputs' rows, and whether its signs need their slope,
-  // as evaluate() would have left them; and where they do, every row
-  // (evaluating again with the slope reads the previous evaluation's rows).
+  // every row, and whether its signs need their slope, as evaluate() would
+  // have left them (evaluating again with the slope reads the previous
+  // evaluation's rows: a batch's stepper takes its lane only then, and
+  // otherwise reads it in place).
   template <class Tape, class LaneRows>
   void take_lane(const LaneRows& lanes, const Tape& tape, int lane, int order) {
     static_assert(std::is_same_v<Real, double>);
     needs_slope_ = lane_needs_slope(lanes, tape, lane);
-    auto copy_row = [&](int r) { lanes.copy_lane(r, order, lane, row(static_cast<std::size_t>(r))); };
-    if (needs_slope_) {
-      for (int r = 0; r < tape.rows_taken(); ++r) copy_row(r);
-    } else {
-      for (std::size_t i = 0; i < N; ++i) copy_row(static_cast<int>(i));
-    }
+    for (int r = 0; r < tape.rows_taken(); ++r)
+      lanes.copy_lane(r, order, lane, row(static_cast<std::size_t>(r)));
     output_count_ = tape.output_count();
-    for (int j = 0; j < output_count_; ++j) {
-      const int r = tape.output_row(j);
-      if (!needs_slope_) copy_row(r);
-      output_rows_[j] = row(static_cast<std::size_t>(r));
-    }
+    for (int j = 0; j < output_count_; ++j)
+      output_rows_[j] = row(static_cast<std::size_t>(tape.output_row(j)));
   }
 
  private:

@@ -161,7 +161,7 @@ TEST(SeriesTape, TapesDifferWhereTheOperationsDoNotWhereOnlyTheirValuesDo) {
 }
 
 // Each pass of a round takes rows of its own, which stay until the round
-// ends; a round has room for a pass of two lanes from every pair of lanes.
+// ends; past its capacity the pool refuses.
 TEST(SeriesTape, EachPassOfARoundHasRowsOfItsOwnUntilTheNextRound) {
   SeriesLaneRowsPool pool;
   std::array<const SeriesLaneRows*, SeriesLaneRowsPool::capacity> taken{};
@@ -169,7 +169,6 @@ TEST(SeriesTape, EachPassOfARoundHasRowsOfItsOwnUntilTheNextRound) {
     taken[i] = &pool.take();
     for (int j = 0; j < i; ++j) EXPECT_NE(taken[i], taken[j]) << "passes " << i << " and " << j;
   }
-  EXPECT_EQ(2 * SeriesLaneRowsPool::capacity, max_series_lanes);
   EXPECT_THROW(pool.take(), std::logic_error);
   pool.start_round();
   EXPECT_EQ(&pool.take(), taken[0]);
