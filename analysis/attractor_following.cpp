@@ -5,11 +5,11 @@
 #include <limits>
 #include <tuple>
 
+#include <impactlab/platform/not_a_number.hpp>
+
 namespace impactlab {
 
 namespace {
-
-constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
 
 // the record's last `period` section points, from the canonical (the
 // lexicographically smallest) one on, in time order

@@ -8,11 +8,11 @@
 #include <stdexcept>
 #include <string>
 
+#include <impactlab/platform/not_a_number.hpp>
+
 namespace impactlab {
 
 namespace {
-
-constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
 
 // −Σ p ln p of the labels of one box (nats)
 double gibbs_entropy(const std::map<int, int>& counts, int total) {

@@ -5,6 +5,8 @@
 
 #include <Eigen/Core>
 
+#include <impactlab/analysis/eigen_vector_conversions.hpp>
+
 namespace impactlab {
 
 namespace {
@@ -21,12 +23,6 @@ Eigen::MatrixXd matrix(const MonodromyMatrix& m, std::size_t n) {
     for (std::size_t j = 0; j < n; ++j) a(i, j) = m.at(i).at(j);
   return a;
 }
-
-Eigen::VectorXd vector(const std::vector<double>& v) {
-  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
-}
-
-std::vector<double> values(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
 
 }  // namespace
 
@@ -51,8 +47,8 @@ DiscontinuityMap discontinuity_map(const GrazingTouch& local) {
 
   // u: ∇h·u = 0, ∇ḣ·u = 1, of least norm (unique for N = 2)
   Eigen::MatrixXd rows(2, n);
-  rows.row(0) = vector(local.gap_gradient).transpose();
-  rows.row(1) = vector(local.rate_gradient).transpose();
+  rows.row(0) = to_eigen(local.gap_gradient).transpose();
+  rows.row(1) = to_eigen(local.rate_gradient).transpose();
   const Eigen::Matrix2d gram = rows * rows.transpose();
   const double determinant = gram(0, 0) * gram(1, 1) - gram(0, 1) * gram(1, 0);
   if (!(determinant > 1e-14 * gram(0, 0) * gram(1, 1)))
@@ -66,9 +62,9 @@ DiscontinuityMap discontinuity_map(const GrazingTouch& local) {
   const Eigen::VectorXd w = (g - Eigen::MatrixXd::Identity(n, n)) * u;
   const Eigen::VectorXd leading = -std::sqrt(2.0 * a) * w;
   const Eigen::VectorXd next = 2.0 * j * w - (2.0 * local.gap_jerk / (3.0 * a)) * w;
-  map.jump = values(w);
-  map.leading = values(leading);
-  map.next = values(next);
+  map.jump = to_values(w);
+  map.leading = to_values(leading);
+  map.next = to_values(next);
   if (!finite(map.jump) || !finite(map.next)) return fail("the reset's jump is not finite");
   map.available = true;
   return map;

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include <impactlab/analysis/dense_solve.hpp>
+#include <impactlab/analysis/eigen_vector_conversions.hpp>
 
 namespace impactlab {
 
@@ -31,12 +32,6 @@ MonodromyMatrix rows_of(const MatrixXd& a) {
   return m;
 }
 
-VectorXd vector(const std::vector<double>& v) {
-  return Eigen::Map<const VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
-}
-
-std::vector<double> values(const VectorXd& v) { return {v.data(), v.data() + v.size()}; }
-
 // x with A x = b (full pivoting; non-finite where A is singular)
 VectorXd solve(const MatrixXd& a, const VectorXd& b) { return full_pivot_lu_solve(a, b); }
 
@@ -47,9 +42,9 @@ struct Pieces {
   double d = 0.0, a = 0.0;
   explicit Pieces(const GrazingNormalForm& form)
       : n(matrix(form.linear)),
-        m(vector(form.parameter_vector)),
-        c(vector(form.gap_gradient)),
-        e(vector(form.root_vector)),
+        m(to_eigen(form.parameter_vector)),
+        c(to_eigen(form.gap_gradient)),
+        e(to_eigen(form.root_vector)),
         d(form.gap_parameter),
         a(form.map.gap_acceleration) {}
   [[nodiscard]] Eigen::Index size() const { return n.rows(); }
@@ -99,7 +94,7 @@ MaximalOrbit maximal_orbit(const GrazingNormalForm& form, int n, double mu) {
   orbit.root = s;
   orbit.impact_speed = std::sqrt(2.0 * p.a) * s;
   const VectorXd start = p.virtual_fixed_point(mu) + kick * s;
-  orbit.state = values(start);
+  orbit.state = to_values(start);
   // the n − 1 iterations after the impact stay clear of the wall
   VectorXd x = p.n * start + p.m * mu + p.e * s;
   orbit.admissible = true;
@@ -413,18 +408,18 @@ GrazingNormalForm linear_normal_form(const GrazingLocalFlow& local, double param
   for (const GrazingSegment& segment : local.segments) {
     const MatrixXd flow = matrix(segment.flow);
     linear = flow * linear;
-    m = flow * m + vector(segment.parameter_derivative);
+    m = flow * m + to_eigen(segment.parameter_derivative);
     if (local.touches.size() > 1) {
       form.segment_flows.push_back(segment.flow);
       form.segment_parameter_vectors.push_back(segment.parameter_derivative);
     }
   }
-  const VectorXd e = linear * vector(form.map.leading);
+  const VectorXd e = linear * to_eigen(form.map.leading);
   form.linear = rows_of(linear);
-  form.parameter_vector = values(m);
+  form.parameter_vector = to_values(m);
   form.gap_gradient = first.gap_gradient;
   form.gap_parameter = first.gap_parameter_derivative;
-  form.root_vector = values(e);
+  form.root_vector = to_values(e);
   if (!linear.allFinite() || !m.allFinite() || !e.allFinite() ||
       !std::isfinite(form.gap_parameter))
     return fail("the virtual orbit's flow or parameter derivatives are not finite");
@@ -433,7 +428,7 @@ GrazingNormalForm linear_normal_form(const GrazingLocalFlow& local, double param
 
   // the virtual fixed point's gap per unit μ, and the side it penetrates on
   const MatrixXd identity = MatrixXd::Identity(n, n);
-  const VectorXd c = vector(form.gap_gradient);
+  const VectorXd c = to_eigen(form.gap_gradient);
   form.gap_per_parameter = c.dot(solve(identity - linear, m)) + form.gap_parameter;
   const double a = form.map.gap_acceleration;
   form.root_coefficient = std::sqrt(2.0 * a * std::fabs(form.gap_per_parameter));
@@ -448,8 +443,8 @@ GrazingNormalForm linear_normal_form(const GrazingLocalFlow& local, double param
   // K = C P₁ E for a real dominant eigenvalue: (C v)(wᵀ E)/(wᵀ v)
   const std::complex<double> lambda1 = form.eigenvalues.front();
   if (std::fabs(lambda1.imag()) <= 1e-12 * (1.0 + std::abs(lambda1))) {
-    const VectorXd v = vector(eigenvector_for(form.linear, lambda1.real()));
-    const VectorXd w = vector(eigenvector_for(rows_of(linear.transpose()), lambda1.real()));
+    const VectorXd v = to_eigen(eigenvector_for(form.linear, lambda1.real()));
+    const VectorXd w = to_eigen(eigenvector_for(rows_of(linear.transpose()), lambda1.real()));
     const double overlap = w.dot(v);
     if (std::fabs(overlap) > 1e-12) form.dominant_product = c.dot(v) * w.dot(e) / overlap;
   }

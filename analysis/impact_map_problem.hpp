@@ -71,7 +71,7 @@ std::optional<typename System::State> state_on_wall(const System& system,
 
 // the first n components of a state: its part on the tangent space
 template <std::size_t n, class State>
-OrbitPoint tangent_part(const State& x) {
+OrbitPoint tangent_orbit_point(const State& x) {
   return OrbitPoint(x.begin(), x.begin() + n);
 }
 
@@ -95,7 +95,7 @@ std::optional<WallImpact> first_wall_impact(const System& system,
         return simulate(stopping, stepper, x, mode, t0, t_end, loop_options(setup), log);
       });
   if (!impacts.stopped) return std::nullopt;
-  return WallImpact{impacts.stop_time, tangent_part<tangent_dimension_of<System>>(run.state),
+  return WallImpact{impacts.stop_time, tangent_orbit_point<tangent_dimension_of<System>>(run.state),
                     impacts.stop_witness};
 }
 
@@ -210,7 +210,7 @@ ContinuationProblem impact_map_problem(SystemOfParameter<System> make_system,
     for (const auto& row :
          multiply(onto_section, multiply(Tangent::fundamental_matrix(run.state), to_start)))
       result.monodromy.emplace_back(row.begin(), row.end());
-    result.image = tangent_part<n>(end);
+    result.image = tangent_orbit_point<n>(end);
     result.image[0] = x[0] + omega * (t1 - t0) - 2.0 * std::numbers::pi * shared->period;
     result.completed = std::all_of(result.image.begin(), result.image.end(),
                                    [](double v) { return std::isfinite(v); });
@@ -271,7 +271,7 @@ ContinuationProblem impact_map_problem(SystemOfParameter<System> make_system,
     sample.completed = true;
     sample.value = h.value;
     sample.rate = h.rate;
-    sample.state = tangent_part<tangent_dimension_of<System>>(run.state);
+    sample.state = tangent_orbit_point<tangent_dimension_of<System>>(run.state);
     return sample;
   };
   problem.transport = [](const OrbitPoint&, double, double, double) -> std::optional<OrbitPoint> {
@@ -304,7 +304,7 @@ ContinuationProblem impact_map_problem(SystemOfParameter<System> make_system,
         });
     if (run.termination != Termination::completed || run.mode != shared->flight_mode)
       return std::nullopt;
-    return tangent_part<tangent_dimension_of<System>>(run.state);
+    return tangent_orbit_point<tangent_dimension_of<System>>(run.state);
   };
   return problem;
 }

@@ -13,6 +13,7 @@
 #include <impactlab/api/scene_loading.hpp>
 #include <impactlab/api/system_jobs.hpp>
 #include <impactlab/io/bad_input.hpp>
+#include <impactlab/platform/sample_median.hpp>
 
 namespace impactlab {
 
@@ -46,13 +47,6 @@ std::vector<ContactInterval> contact_intervals(const RunOutput& output) {
   }
   if (open) intervals.push_back(current);
   return intervals;
-}
-
-double median(std::vector<double> values) {
-  if (values.empty()) return NAN;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 }  // namespace
@@ -192,7 +186,7 @@ nlohmann::json comparison_numbers(const Comparison& comparison) {
         {"wall_time_s", run.output.wall_time},
         {"section_points", run.output.samples.size()},
         {"sticking_impacts", sticking},
-        {"tangential_ratio_median", ratios.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(ratios))},
+        {"tangential_ratio_median", ratios.empty() ? nlohmann::json(nullptr) : nlohmann::json(upper_median(ratios))},
         {"radius_m", run.scene.values.contains("radius") ? run.scene.number("radius") : 0.0},
         {"spin", run.scene.values.contains("spin") ? run.scene.text("spin") : ""},
     };

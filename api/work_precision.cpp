@@ -15,6 +15,7 @@
 #include <impactlab/simulate/simulator.hpp>
 #include <impactlab/integrate/taylor_stepper.hpp>
 #include <impactlab/oscillators/pendulum_walls/pendulum_walls.hpp>
+#include <impactlab/platform/sample_median.hpp>
 
 namespace impactlab {
 
@@ -40,12 +41,6 @@ double thread_cpu_seconds() {
   timespec now{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
   return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 }  // namespace

@@ -88,6 +88,4 @@ std::string utc_now() {
   return text;
 }
 
-nlohmann::json scene_record(const Scene& scene) { return impactlab::scene_record(scene); }
-
 }  // namespace impactlab::cli

@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <impactlab/api/scene_record.hpp>
 #include <impactlab/io/run_output.hpp>
 #include <impactlab/io/scene.hpp>
 
@@ -96,8 +97,5 @@ class ProgressBar {
 
 // Current UTC time, ISO 8601 (for created_utc in meta files).
 std::string utc_now();
-
-// The scene's source, oscillator and every key with its value and unit.
-nlohmann::json scene_record(const Scene& scene);
 
 }  // namespace impactlab::cli

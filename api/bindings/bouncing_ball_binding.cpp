@@ -7,7 +7,7 @@ namespace impactlab {
 
 namespace {
 
-SceneSchema make_schema() {
+SceneSchema make_bouncing_ball_schema() {
   SceneSchema schema{"bouncing_ball", "y", common_keys()};
   const double inf = 1e308;
   std::vector<KeySpec> own = {
@@ -32,7 +32,7 @@ SceneSchema make_schema() {
 }  // namespace
 
 const SceneSchema& bouncing_ball_schema() {
-  static const SceneSchema instance = make_schema();
+  static const SceneSchema instance = make_bouncing_ball_schema();
   return instance;
 }
 

@@ -7,7 +7,7 @@ namespace impactlab {
 
 namespace {
 
-SceneSchema make_schema() {
+SceneSchema make_linear_impact_schema() {
   SceneSchema schema{"linear_impact", "x", common_keys()};
   const double inf = 1e308;
   std::vector<KeySpec> own = {
@@ -33,7 +33,7 @@ SceneSchema make_schema() {
 }  // namespace
 
 const SceneSchema& linear_impact_schema() {
-  static const SceneSchema instance = make_schema();
+  static const SceneSchema instance = make_linear_impact_schema();
   return instance;
 }
 

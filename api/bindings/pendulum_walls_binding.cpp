@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include <impactlab/io/bad_input.hpp>
+#include <impactlab/platform/sample_median.hpp>
 #include <impactlab/oscillators/pendulum_walls/sliding_impact.hpp>
 
 namespace impactlab {
@@ -20,7 +21,7 @@ namespace {
 // (sliding_impact.hpp) and by the rigid-body model's stick impulse
 // (rigid_pendulum_walls.hpp), not by Model N; only the rigid-body model
 // reads radius and spin (rigid_pendulum_parameters).
-SceneSchema make_schema() {
+SceneSchema make_pendulum_walls_schema() {
   SceneSchema schema{"pendulum_walls", "theta", common_keys(), "model"};
   const double inf = 1e308;
   std::vector<KeySpec> own = {
@@ -61,17 +62,10 @@ SceneSchema make_schema() {
   return schema;
 }
 
-double median(std::vector<double> values) {
-  if (values.empty()) return NAN;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
 }  // namespace
 
 const SceneSchema& pendulum_walls_schema() {
-  static const SceneSchema instance = make_schema();
+  static const SceneSchema instance = make_pendulum_walls_schema();
   return instance;
 }
 
@@ -132,10 +126,10 @@ void RigidPendulumRunTally::add_to(RunOutput& output) const {
       {"forcing_period_s", forcing_period_},
       {"friction_work_J", friction_work_},
       {"tangential_ratio_impacts", ratios_.size()},
-      {"tangential_ratio_median", median(ratios_)},
+      {"tangential_ratio_median", upper_median(ratios_)},
       {"tangential_ratio_min", ratios_.empty() ? NAN : *lowest},
       {"tangential_ratio_max", ratios_.empty() ? NAN : *highest},
-      {"emergent_e_t_median", -median(ratios_)},
+      {"emergent_e_t_median", -upper_median(ratios_)},
   };
 }
 
