@@ -7,8 +7,8 @@
 #include <numbers>
 
 #include <impactlab/io/bad_input.hpp>
-#include <impactlab/platform/sample_median.hpp>
 #include <impactlab/oscillators/pendulum_walls/sliding_impact.hpp>
+#include <impactlab/platform/sample_median.hpp>
 
 namespace impactlab {
 
