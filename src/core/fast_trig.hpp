@@ -1,6 +1,6 @@
-// sin and cos for right-hand sides evaluated millions of times: the cosine
-// of a forcing phase ωt that grows without bound over a run, and the sine of
-// an angle bounded by the walls.
+// sin and cos for right-hand sides and witnesses evaluated millions of
+// times: the cosine and sine of a forcing phase ωt that grows without bound
+// over a run, and the sine of an angle bounded by the walls.
 //
 // glibc's cos takes its argument-reduction path for |x| > 2.43 (about 98
 // instructions per call with its rounding-mode guard in a callgrind profile
@@ -74,9 +74,21 @@ inline double cos_phase(double x) {
   }
 }
 
+// sin x for a phase x = ωt (rad) of any size: sin_cos_phase's sine, bit for bit
+inline double sin_phase(double x) {
+  if (!(std::fabs(x) < phase_reduction_limit)) return std::sin(x);
+  double r = 0.0;
+  switch (reduce_phase(x, r)) {
+    case 0: return sin_quarter(r);
+    case 1: return cos_quarter(r);
+    case 2: return -sin_quarter(r);
+    default: return -cos_quarter(r);
+  }
+}
+
 // sin x and cos x together, for any x (rad): one reduction for both (the
 // order-0 coefficients of a Taylor series' sin/cos pair); the cosine is
-// cos_phase's, bit for bit
+// cos_phase's and the sine sin_phase's, bit for bit
 inline void sin_cos_phase(double x, double& s, double& c) {
   if (!(std::fabs(x) < phase_reduction_limit)) {
     s = std::sin(x);
@@ -108,6 +120,15 @@ inline SineAndCosine<double> sin_and_cos_of(double x) {
   SineAndCosine<double> result{};
   sin_cos_phase(x, result.sine, result.cosine);
   return result;
+}
+
+// sin_phase over a number type with a sin of its own (a series or dual
+// number, integrate/, whose headers give cos_phase likewise), for a
+// right-hand side or a witness written once over a number type
+template <class Number>
+Number sin_phase(const Number& x) {
+  using std::sin;
+  return sin(x);
 }
 
 // sin θ (rad), by the series where |θ| <= π/4

@@ -55,7 +55,7 @@ TEST(FastTrig, SinOfAnAngleIsWithinOneUlp) {
 
 // sin_cos_phase: both within a few ulps of sinl/cosl over phases and angles
 // (the Taylor stepper's order-0 coefficients of sin θ and of cos ωt), its
-// cosine cos_phase's bit for bit
+// cosine cos_phase's and its sine sin_phase's bit for bit
 TEST(FastTrig, SinAndCosTogetherAreWithinThreeUlps) {
   std::mt19937_64 generator(20261125);
   std::uniform_real_distribution<double> phase(-2e4, 2e4);
@@ -66,6 +66,7 @@ TEST(FastTrig, SinAndCosTogetherAreWithinThreeUlps) {
     worst_sin = std::max(worst_sin, ulps(s, sinl(static_cast<long double>(x))));
     worst_cos = std::max(worst_cos, ulps(c, cosl(static_cast<long double>(x))));
     EXPECT_EQ(c, impactlab::cos_phase(x)) << x;
+    EXPECT_EQ(s, impactlab::sin_phase(x)) << x;
   };
   for (int i = 0; i < 200000; ++i) check(phase(generator));
   for (long k = -20000; k <= 20000; k += 7)
@@ -88,6 +89,7 @@ TEST(FastTrig, SinAndCosTogetherAreWithinThreeUlps) {
 TEST(FastTrig, OutsideTheFastRangesTheLibraryIsUsed) {
   for (double theta : {0.8, -1.2, 1.5, 3.0}) EXPECT_EQ(impactlab::sin_angle(theta), std::sin(theta));
   for (double x : {2e6, -5e7, 1e15}) EXPECT_EQ(impactlab::cos_phase(x), std::cos(x));
+  for (double x : {2e6, -5e7, 1e15}) EXPECT_EQ(impactlab::sin_phase(x), std::sin(x));
 }
 
 }  // namespace
