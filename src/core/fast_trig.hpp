@@ -122,15 +122,6 @@ inline SineAndCosine<double> sin_and_cos_of(double x) {
   return result;
 }
 
-// sin_phase over a number type with a sin of its own (a series or dual
-// number, integrate/, whose headers give cos_phase likewise), for a
-// right-hand side or a witness written once over a number type
-template <class Number>
-Number sin_phase(const Number& x) {
-  using std::sin;
-  return sin(x);
-}
-
 // sin θ (rad), by the series where |θ| <= π/4
 inline double sin_angle(double theta) {
   return std::fabs(theta) <= 0.25 * std::numbers::pi ? sin_quarter(theta) : std::sin(theta);

@@ -2,8 +2,8 @@
 // (ε_i ε_j = 0) carries a value and its derivatives along `Directions`
 // directions through the same arithmetic and elementary functions a
 // right-hand side written over a number type calls unqualified
-// (core/fast_trig.hpp's sin_angle and cos_phase, core/sign.hpp's sign, fabs,
-// sin, cos). The value is computed once for all the directions, and each
+// (core/fast_trig.hpp's sin_angle, cos_phase and sin_phase, core/sign.hpp's
+// sign, fabs, sin, cos). The value is computed once for all the directions, and each
 // direction's derivative by the same operations as a one-direction number
 // seeded with that direction alone would use (the same results, bit for bit).
 //
@@ -266,9 +266,9 @@ Dual<Number, Directions> cos(const Dual<Number, Directions>& a) {
           })};
 }
 // core/fast_trig.hpp's names: sin and cos above, whose double values are
-// fast_trig's (sin_cos_phase: the cosine is cos_phase's bit for bit, the
-// sine sin_angle's for |θ| <= π/4 and within a few ulps of it beyond); on a
-// series all four are the same functions
+// fast_trig's (sin_cos_phase: the cosine is cos_phase's and the sine
+// sin_phase's bit for bit, the sine sin_angle's for |θ| <= π/4 and within a
+// few ulps of it beyond); on a series all five are the same functions
 template <class Number, std::size_t Directions>
 Dual<Number, Directions> sin_angle(const Dual<Number, Directions>& a) {
   return sin(a);
@@ -276,6 +276,10 @@ Dual<Number, Directions> sin_angle(const Dual<Number, Directions>& a) {
 template <class Number, std::size_t Directions>
 Dual<Number, Directions> cos_phase(const Dual<Number, Directions>& a) {
   return cos(a);
+}
+template <class Number, std::size_t Directions>
+Dual<Number, Directions> sin_phase(const Dual<Number, Directions>& a) {
+  return sin(a);
 }
 // exp a = e + e Σ d_i ε_i, log a = log v + Σ (d_i / v) ε_i, √a = r + Σ
 // (d_i / 2r) ε_i, a^α = p + Σ (α p / v) d_i ε_i (v a's value, α a constant)

@@ -329,6 +329,7 @@ inline SineAndCosine<TapeVariable> sin_and_cos_of(const TapeVariable& a) {
 }
 inline TapeVariable sin_angle(const TapeVariable& a) { return sin(a); }
 inline TapeVariable cos_phase(const TapeVariable& a) { return cos(a); }
+inline TapeVariable sin_phase(const TapeVariable& a) { return sin(a); }
 
 // exp a, log a, √a and a^α: TaylorVariable's at order 0, recorded
 inline TapeVariable exp(const TapeVariable& a) {

@@ -540,6 +540,8 @@ template <class Real>
 TaylorVariable<Real> sin_angle(const TaylorVariable<Real>& a) { return sin(a); }
 template <class Real>
 TaylorVariable<Real> cos_phase(const TaylorVariable<Real>& a) { return cos(a); }
+template <class Real>
+TaylorVariable<Real> sin_phase(const TaylorVariable<Real>& a) { return sin(a); }
 
 // The sign of a (−1, 0, +1), constant over a step: the systems end a step at
 // every zero of a quantity whose sign they use (slip reversals are events).
