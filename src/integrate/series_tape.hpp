@@ -99,13 +99,11 @@ class SeriesTape {
   }
 
   int take_row() {
-    if (rows_taken_ == max_rows)
-      throw std::length_error("taylor: the right-hand side has more operations than the series holds");
+    if (rows_taken_ == max_rows) throw_too_many_operations();
     return rows_taken_++;
   }
   TapeEntry& add_entry(TapeOperation operation, double constant = 0.0) {
-    if (entry_count_ == max_entries)
-      throw std::length_error("taylor: the right-hand side has more operations than the series holds");
+    if (entry_count_ == max_entries) throw_too_many_operations();
     constants_[entry_count_] = constant;
     TapeEntry& entry = entries_[entry_count_++];
     entry = TapeEntry{};
