@@ -1,12 +1,14 @@
 // The flows (simulate/flow.hpp) that the analyses of this folder run for a
 // system S: S itself, S decorated (analysis/decorated_system.hpp: a crossing
 // section, suppressed contacts, a stop at a wall impact, each switched on at
-// run time), and the variational equations of the decorated S. A binding
-// compiles them once, in its own translation unit, with the one line that
-// fits its system:
+// run time), and the variational equations of the decorated S. S's own flows
+// run as S decorated with nothing switched on, which is S number for number,
+// so that the event loop is compiled for S once, not twice
+// (simulate/flow_engines.hpp, FlowRunner). A binding compiles them once, in
+// its own translation unit, with the one line that fits its system:
 //
-//   IMPACTLAB_SIMULATION_FLOW_ENGINES(S)  simulate only
-//   IMPACTLAB_SECTION_FLOW_ENGINES(S)     and sections, sweeps, basins (no Jacobians)
+//   IMPACTLAB_SIMULATION_FLOW_ENGINES(S)  simulate, sections, sweeps, basins
+//   IMPACTLAB_SECTION_FLOW_ENGINES(S)     the same (no Jacobians)
 //   IMPACTLAB_TANGENT_FLOW_ENGINES(S)     and Lyapunov exponents, periodic orbits,
 //                                         continuation (S has Jacobians)
 //
@@ -15,8 +17,7 @@
 // series above all) spreads them over a few units with the lines
 // IMPACTLAB_TANGENT_FLOW_ENGINES is made of:
 //
-//   IMPACTLAB_SIMULATION_FLOW_ENGINES(S)   S
-//   IMPACTLAB_DECORATED_FLOW_ENGINES(S)    S decorated
+//   IMPACTLAB_SIMULATION_FLOW_ENGINES(S)   S and S decorated
 //   IMPACTLAB_VARIATIONAL_FLOW_ENGINES(S)  its variational equations
 //
 // and can take one stepper's engine of the variational equations further,
@@ -33,17 +34,18 @@
 #include <impactlab/analysis/variational.hpp>
 #include <impactlab/simulate/flow_engines.hpp>
 
-#define IMPACTLAB_SIMULATION_FLOW_ENGINES(...) IMPACTLAB_FLOW_ENGINES(__VA_ARGS__)
-
-#define IMPACTLAB_DECORATED_FLOW_ENGINES(...) \
-  IMPACTLAB_FLOW_ENGINES(::impactlab::DecoratedSystem<__VA_ARGS__>)
+#define IMPACTLAB_SIMULATION_FLOW_ENGINES(...)                                       \
+  IMPACTLAB_FLOW_ENGINES(::impactlab::DecoratedSystem<__VA_ARGS__>);                   \
+  template <>                                                                        \
+  struct impactlab::FlowRunner<__VA_ARGS__> {                                        \
+    using type = ::impactlab::DecoratedSystem<__VA_ARGS__>;                          \
+  };                                                                                 \
+  IMPACTLAB_FLOW_ENGINES(__VA_ARGS__)
 
 #define IMPACTLAB_VARIATIONAL_FLOW_ENGINES(...) \
   IMPACTLAB_FLOW_ENGINES(::impactlab::Variational<::impactlab::DecoratedSystem<__VA_ARGS__>>)
 
-#define IMPACTLAB_SECTION_FLOW_ENGINES(...)       \
-  IMPACTLAB_SIMULATION_FLOW_ENGINES(__VA_ARGS__); \
-  IMPACTLAB_DECORATED_FLOW_ENGINES(__VA_ARGS__)
+#define IMPACTLAB_SECTION_FLOW_ENGINES(...) IMPACTLAB_SIMULATION_FLOW_ENGINES(__VA_ARGS__)
 
 #define IMPACTLAB_TANGENT_FLOW_ENGINES(...)    \
   IMPACTLAB_SECTION_FLOW_ENGINES(__VA_ARGS__); \

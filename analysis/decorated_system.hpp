@@ -82,18 +82,22 @@ class DecoratedSystem {
   static constexpr std::size_t tangent_dimension = tangent_dimension_of<Base>;
   static constexpr ErrorScaleGroupsOf<Base> error_scale_groups = error_scale_groups_of<Base>();
 
-  explicit DecoratedSystem(const Base& base) : base_(base) {}
+  // a view of `base`, which outlives it: a decorated system is made for a
+  // run or an analysis, often once per run, and copies nothing
+  explicit DecoratedSystem(const Base& base) : base_(&base) {}
 
   // points: where the crossings go (the caller's)
   DecoratedSystem& with_crossing_section(const SectionSpec& section, SectionPoints& points) {
     section_ = section;
     points_ = &points;
+    decorated_ = true;
     return *this;
   }
   // trace: where the crossings in flight mode go, or null
   DecoratedSystem& with_suppressed_contacts(Mode flight_mode, const ContactWindow& window,
                                             CrossingTrace* trace) {
     suppressing_ = true;
+    decorated_ = true;
     flight_mode_ = flight_mode;
     window_ = window;
     crossings_ = trace;
@@ -103,15 +107,16 @@ class DecoratedSystem {
     stop_wall_ = wall;
     stop_target_ = target;
     wall_impacts_ = &trace;
+    decorated_ = true;
     return *this;
   }
 
-  [[nodiscard]] const Base& base() const { return base_; }
-  [[nodiscard]] double max_step() const { return base_.max_step(); }
+  [[nodiscard]] const Base& base() const { return *base_; }
+  [[nodiscard]] double max_step() const { return base_->max_step(); }
   [[nodiscard]] std::vector<std::string_view> state_names() const
     requires HasStateNames<Base>
   {
-    return base_.state_names();
+    return base_->state_names();
   }
 
   // over the base's number types (a series type runs through it where it
@@ -120,18 +125,18 @@ class DecoratedSystem {
     requires requires(const Base& base, Mode mode, const Vector& x, Vector& dxdt,
                       const Number& t) { base.rhs(mode, x, dxdt, t); }
   void rhs(Mode mode, const Vector& x, Vector& dxdt, const Number& t) const {
-    base_.rhs(mode, x, dxdt, t);
+    base_->rhs(mode, x, dxdt, t);
   }
 
   [[nodiscard]] std::size_t witness_count(Mode mode) const {
-    return base_.witness_count(mode) + (points_ ? 1 : 0);
+    return base_->witness_count(mode) + (points_ ? 1 : 0);
   }
   [[nodiscard]] TriggerDirection trigger_direction(Mode mode, std::size_t k) const {
     // every crossing of the section is an event (a one-sided trigger would
     // count the state left on its far side as a missed root); on_event keeps
     // the wanted ones
     if (is_section_witness(mode, k)) return TriggerDirection::either;
-    return base_.trigger_direction(mode, k);
+    return base_->trigger_direction(mode, k);
   }
 
   [[nodiscard]] bool suppressed(Mode mode, std::size_t k, double t) const {
@@ -140,9 +145,10 @@ class DecoratedSystem {
   }
 
   [[nodiscard]] WitnessSample witness(Mode mode, std::size_t k, const State& x, double t) const {
+    if (!decorated_) return base_->witness(mode, k, x, t);
     if (is_section_witness(mode, k)) return section_witness(mode, x, t);
     if (suppressed(mode, k, t)) return {1.0, 0.0};
-    return base_.witness(mode, k, x, t);
+    return base_->witness(mode, k, x, t);
   }
   // Over a series type: the window's ends end the Taylor stepper's steps
   // (witness_switch_after), so each step lies inside the window or outside
@@ -153,12 +159,15 @@ class DecoratedSystem {
                      const Number& t) { base.witness(mode, k, x, t); }
   [[nodiscard]] auto witness(Mode mode, std::size_t k, const Vector& x, const Number& t) const
       -> BasicWitnessSample<Number> {
-    if constexpr (requires(Vector& dxdt) { base_.rhs(mode, x, dxdt, t); }) {
+    // one test per witness and order where nothing is switched on (the
+    // system's own flows run so)
+    if (!decorated_) return base_->witness(mode, k, x, t);
+    if constexpr (requires(Vector& dxdt) { base_->rhs(mode, x, dxdt, t); }) {
       if (is_section_witness(mode, k)) return section_witness(mode, x, t);
     }
     const double start = start_value(t);
     if (suppressed(mode, k, start) && start != window_.to) return {Number(1.0), Number(0.0)};
-    return base_.witness(mode, k, x, t);
+    return base_->witness(mode, k, x, t);
   }
 
   // the first end of the suppression window after t (s), or +∞
@@ -180,11 +189,11 @@ class DecoratedSystem {
     }
     if (crossings_ && crossing == CrossingKind::crossing && mode == flight_mode_)
       crossings_->crossings.push_back(
-          {t, static_cast<int>(k), std::fabs(base_.witness(mode, k, x, t).rate)});
-    if (wall_impacts_ == nullptr) return base_.on_event(mode, k, crossing, x, t, log);
+          {t, static_cast<int>(k), std::fabs(base_->witness(mode, k, x, t).rate)});
+    if (wall_impacts_ == nullptr) return base_->on_event(mode, k, crossing, x, t, log);
     // the records the base's event adds: is one of them an impact with the wall?
     const std::size_t before = log.records().size();
-    auto after = base_.on_event(mode, k, crossing, x, t, log);
+    auto after = base_->on_event(mode, k, crossing, x, t, log);
     const auto& records = log.records();
     for (std::size_t j = before; j < records.size(); ++j) {
       if (records[j].kind != EventKind::impact || records[j].wall != stop_wall_) continue;
@@ -206,7 +215,7 @@ class DecoratedSystem {
   void exact_flow(Mode mode, const State& x0, double t0, double t, State& x) const
     requires HasExactFlow<Base>
   {
-    base_.exact_flow(mode, x0, t0, t, x);
+    base_->exact_flow(mode, x0, t0, t, x);
   }
 
   // the Jacobians of the base's witnesses (the section's witness has none:
@@ -214,7 +223,7 @@ class DecoratedSystem {
   void jacobian(Mode mode, const State& x, double t, TangentMatrixOf<tangent_dimension>& j) const
     requires HasJacobian<Base>
   {
-    base_.jacobian(mode, x, t, j);
+    base_->jacobian(mode, x, t, j);
   }
   [[nodiscard]] TangentVectorOf<tangent_dimension> witness_gradient(Mode mode, std::size_t k,
                                                                     const State& x,
@@ -222,14 +231,14 @@ class DecoratedSystem {
     requires HasJacobian<Base>
   {
     if (suppressed(mode, k, t)) return {};
-    return base_.witness_gradient(mode, k, x, t);
+    return base_->witness_gradient(mode, k, x, t);
   }
   [[nodiscard]] ResetJacobianOf<tangent_dimension> reset_jacobian(
       Mode mode, std::size_t k, CrossingKind crossing, const State& x, double t,
       const Transition<State, Mode>& after) const
     requires HasJacobian<Base>
   {
-    auto jacobian = base_.reset_jacobian(mode, k, crossing, x, t, after);
+    auto jacobian = base_->reset_jacobian(mode, k, crossing, x, t, after);
     if (crossings_ && jacobian.one_sided && mode == flight_mode_)
       crossings_->one_sided_witness = static_cast<int>(k);
     return jacobian;
@@ -237,29 +246,31 @@ class DecoratedSystem {
   [[nodiscard]] bool pinned(Mode mode) const
     requires HasJacobian<Base>
   {
-    return base_.pinned(mode);
+    return base_->pinned(mode);
   }
   [[nodiscard]] TangentVectorOf<tangent_dimension> pinned_components(Mode mode) const
     requires HasJacobian<Base> && requires(const Base& base) { base.pinned_components(mode); }
   {
-    return base_.pinned_components(mode);
+    return base_->pinned_components(mode);
   }
 
  private:
   [[nodiscard]] bool is_section_witness(Mode mode, std::size_t k) const {
-    return points_ != nullptr && k == base_.witness_count(mode);
+    return points_ != nullptr && k == base_->witness_count(mode);
   }
   // x[component] − c, its rate from the vector field (over the base's number types)
   template <class Vector, class Number>
   [[nodiscard]] BasicWitnessSample<Number> section_witness(Mode mode, const Vector& x,
                                                            const Number& t) const {
     Vector dxdt;
-    base_.rhs(mode, x, dxdt, t);
+    base_->rhs(mode, x, dxdt, t);
     const std::size_t component = section_.kind == SectionKind::q_crossing ? 0 : 1;
     return {x[component] - section_.level, dxdt[component]};
   }
 
-  Base base_;
+  const Base* base_;
+  // whether anything is switched on
+  bool decorated_ = false;
   // the crossing section, where points_ is set
   SectionSpec section_{};
   SectionPoints* points_ = nullptr;

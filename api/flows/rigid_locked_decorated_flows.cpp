@@ -1,6 +1,7 @@
-// The decorated flows of the pendulum's rigid-body model with the spin locked
-// (rigid_locked_flows.cpp says why they have a unit of their own).
+// The flows of the pendulum's rigid-body model with the spin locked and of the
+// decorated model, which runs them both (rigid_locked_flows.cpp says why they
+// have a unit of their own).
 #include <impactlab/analysis/analysis_flows.hpp>
 #include <impactlab/oscillators/pendulum_walls/rigid_pendulum_spin.hpp>
 
-IMPACTLAB_DECORATED_FLOW_ENGINES(impactlab::LockedSpinPendulum);
+IMPACTLAB_SIMULATION_FLOW_ENGINES(impactlab::LockedSpinPendulum);

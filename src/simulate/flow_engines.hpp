@@ -8,6 +8,8 @@
 
 #include <memory>
 #include <string_view>
+#include <type_traits>
+#include <utility>
 
 #include <impactlab/integrate/stepper_dispatch.hpp>
 #include <impactlab/simulate/dense_output_stepper.hpp>
@@ -39,7 +41,42 @@ class SteppedFlowEngine final : public FlowEngine<System> {
   Stepper stepper_;
 };
 
+// The flows of System run by the engine of Runner, a view of it made for
+// each run (Runner(system)) with the same states, modes and events.
+template <HybridSystem System, HybridSystem Runner>
+class ForwardingFlowEngine final : public FlowEngine<System> {
+  static_assert(std::is_same_v<typename Runner::State, typename System::State> &&
+                std::is_same_v<typename Runner::Mode, typename System::Mode>);
+
+ public:
+  using State = typename System::State;
+  using Mode = typename System::Mode;
+
+  explicit ForwardingFlowEngine(std::unique_ptr<FlowEngine<Runner>> runner)
+      : runner_(std::move(runner)) {}
+
+  RunResult<State, Mode> run(const System& system, const State& x, Mode mode, double t0,
+                             double t_end, const LoopOptions& options, EventLog& log,
+                             ObserverRef<State, Mode> observer) override {
+    return runner_->run(Runner(system), x, mode, t0, t_end, options, log, observer);
+  }
+
+ private:
+  std::unique_ptr<FlowEngine<Runner>> runner_;
+};
+
 }  // namespace detail
+
+// The system type whose engines run System's flows: System itself, or a view
+// of it with the same flows, number for number, whose engines the program
+// compiles anyway, so that System's own are not compiled again. A
+// specialization names the view before System's engines are instantiated
+// (analysis/analysis_flows.hpp: a system runs as its DecoratedSystem with
+// nothing switched on).
+template <HybridSystem System>
+struct FlowRunner {
+  using type = System;
+};
 
 // The event loop bound to one stepper of with_stepper_type's table for
 // System: one engine, compiled where a macro below names the pair.
@@ -53,10 +90,15 @@ std::unique_ptr<FlowEngine<System>> make_stepped_flow_engine(const StepperSettin
 template <HybridSystem System>
 std::unique_ptr<FlowEngine<System>> make_flow_engine(std::string_view method,
                                                      const StepperSettings& settings) {
-  return with_stepper_type<System>(
-      method, [&]<class Stepper>() -> std::unique_ptr<FlowEngine<System>> {
-        return make_stepped_flow_engine<System, Stepper>(settings);
-      });
+  using Runner = typename FlowRunner<System>::type;
+  if constexpr (!std::is_same_v<Runner, System>)
+    return std::make_unique<detail::ForwardingFlowEngine<System, Runner>>(
+        make_flow_engine<Runner>(method, settings));
+  else
+    return with_stepper_type<System>(
+        method, [&]<class Stepper>() -> std::unique_ptr<FlowEngine<System>> {
+          return make_stepped_flow_engine<System, Stepper>(settings);
+        });
 }
 
 }  // namespace impactlab

@@ -77,10 +77,12 @@ Run run(const System& system, const typename System::State& x0, typename System:
     return impactlab::simulate(system, stepper, x0, mode, 0.0, t_end, options, log);
   };
   // the library compiles the loop for the systems its analyses run
-  // (analysis/analysis_flows.hpp); the undecorated variational system is not
-  // one of them, so the loop is compiled here for it alone
+  // (analysis/analysis_flows.hpp), and runs an undecorated system's flows as
+  // its decorated system's; the loop is compiled here for the undecorated
+  // systems alone, so that the two runs compared are two compiled loops
   const auto result = [&] {
-    if constexpr (std::is_same_v<System, Variational<LinearImpact>>)
+    if constexpr (std::is_same_v<System, Variational<LinearImpact>> ||
+                  std::is_same_v<System, PendulumWalls>)
       return impactlab::with_stepper<System>(method, settings, simulate_with);
     else
       return impactlab::with_flow<System>(method, settings, simulate_with);
