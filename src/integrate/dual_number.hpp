@@ -3,9 +3,10 @@
 // directions through the same arithmetic and elementary functions a
 // right-hand side written over a number type calls unqualified
 // (core/fast_trig.hpp's sin_angle, cos_phase and sin_phase, core/sign.hpp's
-// sign, fabs, sin, cos). The value is computed once for all the directions, and each
-// direction's derivative by the same operations as a one-direction number
-// seeded with that direction alone would use (the same results, bit for bit).
+// sign, fabs, sin, cos). The value is computed once for all the directions,
+// and each direction's derivative by the same operations as a one-direction
+// number seeded with that direction alone would use (the same results, bit
+// for bit).
 //
 // Number is double, or the Taylor series' number type TaylorVariable
 // (integrate/taylor_series.hpp): Dual<TaylorVariable, N> computes the series
