@@ -1,5 +1,6 @@
 // One event-loop run of a system with the stepper a scene names, chosen at
-// run time but compiled once per (system, stepper) pair.
+// run time: each stepper compiled once per system, and the loop once per
+// system (it drives the steppers through simulate/stepper_view.hpp).
 //
 // A Flow<System> owns one stepper of the named method (as a with_stepper
 // scope does) and runs simulate() with it; it may run several stretches in a
@@ -8,8 +9,8 @@
 // the translation units that instantiate them (IMPACTLAB_FLOW_ENGINES): code
 // that only runs flows includes this light header and never instantiates
 // the loop itself, so an analysis compiles once per system, not once per
-// system and stepper. The cost is one indirect call per run, and one per
-// step to ask the observer for its next time.
+// system and stepper. The cost is one indirect call per run, one per step to
+// ask the observer for its next time, and the stepper view's few per step.
 #pragma once
 
 #include <cmath>

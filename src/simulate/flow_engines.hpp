@@ -15,15 +15,19 @@
 #include <impactlab/simulate/dense_output_stepper.hpp>
 #include <impactlab/simulate/flow.hpp>
 #include <impactlab/simulate/simulator.hpp>
+#include <impactlab/simulate/stepper_view.hpp>
 
 namespace impactlab {
 
 namespace detail {
 
+// The loop on a SteppingView of the stepper, so that one loop serves every
+// stepper of the system (simulate/stepper_view.hpp).
 template <HybridSystem System, class Stepper>
 class SteppedFlowEngine final : public FlowEngine<System> {
   static_assert(DenseOutputStepper<Stepper, System>,
                 "every stepper the event loop drives is a dense-output stepper");
+  static_assert(DenseOutputStepper<SteppingView<System>, System>);
 
  public:
   using State = typename System::State;
@@ -34,11 +38,12 @@ class SteppedFlowEngine final : public FlowEngine<System> {
   RunResult<State, Mode> run(const System& system, const State& x, Mode mode, double t0,
                              double t_end, const LoopOptions& options, EventLog& log,
                              ObserverRef<State, Mode> observer) override {
-    return simulate(system, stepper_, x, mode, t0, t_end, options, log, observer);
+    SteppingView<System>& stepper = stepper_;
+    return simulate(system, stepper, x, mode, t0, t_end, options, log, observer);
   }
 
  private:
-  Stepper stepper_;
+  SteppingViewOf<System, Stepper> stepper_;
 };
 
 // The flows of System run by the engine of Runner, a view of it made for

@@ -28,6 +28,7 @@
 #include <impactlab/core/hybrid_system.hpp>
 #include <impactlab/integrate/event_location.hpp>
 #include <impactlab/integrate/stepper_settings.hpp>
+#include <impactlab/simulate/dense_output_stepper.hpp>
 #include <impactlab/simulate/termination.hpp>
 
 namespace impactlab {
@@ -225,13 +226,16 @@ RunResult<typename System::State, typename System::Mode> simulate(
     // a stepper whose dense output is a polynomial locates events on it
     // itself (integrate/taylor_stepper.hpp); the others are scanned
     const LocatedEvent event = [&] {
-      if constexpr (requires { stepper.locate_first_event(system, rhs.mode, ta, tb, location,
-                                                          just_grazed); })
+      if constexpr (AlwaysLocatesItsOwnEvents<Stepper, System>) {
         return stepper.locate_first_event(system, rhs.mode, ta, tb, location, just_grazed);
-      else
+      } else {
+        if constexpr (LocatesItsOwnEvents<Stepper, System>)
+          if (stepper.locates_own_events())
+            return stepper.locate_first_event(system, rhs.mode, ta, tb, location, just_grazed);
         return locate_first_event(system, rhs.mode, ta, tb, stepper.previous_state(), x_end,
-                                  state_at, scan_at, Stepper::has_cheap_scan, location,
+                                  state_at, scan_at, scans_cheaply(stepper), location,
                                   just_grazed);
+      }
     }();
     just_grazed = no_witness;
     if (!event.found) {
@@ -252,7 +256,7 @@ RunResult<typename System::State, typename System::Mode> simulate(
     // its own step re-taken to the event time with one Newton correction
     State xe;
     double te = event.t;
-    if constexpr (Stepper::has_polish) {
+    if (polishes(stepper)) {
       stepper.polish_state(rhs, te, xe);
       const WitnessSample w = system.witness(rhs.mode, event.witness, xe, te);
       if (event.kind == CrossingKind::crossing && w.rate != 0.0) {
