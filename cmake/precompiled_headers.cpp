@@ -1,0 +1,2 @@
+// The unit that builds the library's precompiled header, which every layer
+// reuses (CMakeLists.txt); it has no code of its own.
