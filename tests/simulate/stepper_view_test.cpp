@@ -60,8 +60,6 @@ TEST_P(StepperView, ReportsTheFlagsAndRunsTheLoopOfTheStepperItself) {
     SteppingView<LinearImpact>& view = owned;
     EXPECT_EQ(view.scans_cheaply(), Stepper::has_cheap_scan);
     EXPECT_EQ(view.polishes(), Stepper::has_polish);
-    EXPECT_EQ(view.locates_own_events(),
-              (impactlab::LocatesItsOwnEvents<Stepper, LinearImpact>));
     EXPECT_EQ(view.locates_own_events(), GetParam() == "taylor");
     if (!view.locates_own_events())
       EXPECT_THROW((void)view.locate_first_event(system, LinearImpact::Mode::free, 0.0, 1.0, {}, 0),
