@@ -25,16 +25,16 @@
 // below the integrator's own accuracy. Steppers without a continuous
 // extension scan on a cheap interpolant first and redo the scan on their own
 // re-taken steps only where it shows one of these patterns.
+//
+// The scan itself is compiled once, in event_location.cpp: it reads the
+// system's witnesses through StepWitnesses, one virtual call per witness
+// value, and only the sampling of the states below is compiled per system.
 #pragma once
 
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <cstdint>
 #include <limits>
-#include <utility>
-
-#include <boost/math/tools/roots.hpp>
 
 #include <impactlab/core/hybrid_system.hpp>
 #include <impactlab/platform/function_ref.hpp>
@@ -70,42 +70,37 @@ struct LocatedEvent {
   CrossingKind kind = CrossingKind::crossing;
 };
 
-namespace detail {
+// The scan's sample times across one step: times[0] = ta, times[n] = tb, and
+// n equal sub-intervals between, at most max_intervals of them.
+struct ScanSamples {
+  static constexpr int max_intervals = 16;
+  int n = 1;
+  std::array<double, max_intervals + 1> times;
 
-// The witness as seen by a falling trigger: a rising trigger is the falling
-// trigger of the negated witness.
-inline WitnessSample oriented(WitnessSample w, TriggerDirection direction, double sign_of_either) {
-  const double s = direction == TriggerDirection::rising ? -1.0
-                   : direction == TriggerDirection::either ? sign_of_either
-                                                           : 1.0;
-  return {s * w.value, s * w.rate};
-}
-
-// Full-precision bracketing: stop when the bracket is a few ulps wide.
-struct TimeTolerance {
-  bool operator()(double a, double b) const {
-    return std::fabs(b - a) <= 4.0 * std::numeric_limits<double>::epsilon() *
-                                   std::max(std::fabs(a), std::fabs(b));
-  }
+  ScanSamples(double ta, double tb, const EventLocationOptions& options);
 };
 
-// Root of f on [a, b] with f(a) > 0 >= f(b) (or the reverse), by TOMS 748.
-template <class F>
-double bracketed_root(F&& f, double a, double b, double fa, double fb) {
-  if (fb == 0.0) return b;
-  if (fa == 0.0) return a;
-  // a bracket with no double inside (a time so large that its spacing is the
-  // step, t0 = 1e15 s): the event is at its triggered end, to time resolution
-  if (!(a < b) || std::nextafter(a, b) == b) return b;
-  std::uintmax_t max_iterations = 100;
-  const auto bracket = boost::math::tools::toms748_solve(f, a, b, fa, fb, TimeTolerance{},
-                                                         max_iterations);
-  // the endpoint on the triggered side: the event has happened there
-  const double f_second = f(bracket.second);
-  return (f_second <= 0.0) == (fb <= 0.0) ? bracket.second : bracket.first;
-}
+// The witnesses of one mode over one step, as the scan reads them.
+class StepWitnesses {
+ public:
+  [[nodiscard]] virtual std::size_t count() const = 0;
+  [[nodiscard]] virtual TriggerDirection direction(std::size_t k) const = 0;
+  // witness k on the state of the scan's sample i (0 ≤ i ≤ n)
+  [[nodiscard]] virtual WitnessSample on_sample(std::size_t k, int i) const = 0;
+  // witness k on the stepper's dense output at t
+  [[nodiscard]] virtual WitnessSample on_state_at(std::size_t k, double t) const = 0;
+  // witness k on the stepper's cheap interpolant at t (the scan's samples)
+  [[nodiscard]] virtual WitnessSample on_scan_at(std::size_t k, double t) const = 0;
 
-}  // namespace detail
+ protected:
+  ~StepWitnesses() = default;
+};
+
+// The earliest event among the witnesses, on the samples of the step (see
+// the header comment and the template below).
+LocatedEvent locate_first_event(const StepWitnesses& witnesses, const ScanSamples& samples,
+                                bool cheap_scan, const EventLocationOptions& options,
+                                std::size_t just_grazed);
 
 // Finds the earliest event of `mode` in [ta, tb]. `state_at(t, x)` is the
 // stepper's dense output; `scan_at(t, x)` a cheaper interpolant for the
@@ -127,244 +122,61 @@ LocatedEvent locate_first_event(const System& system, typename System::Mode mode
                                 const EventLocationOptions& options,
                                 std::size_t just_grazed = static_cast<std::size_t>(-1)) {
   using State = typename System::State;
-  constexpr int max_samples = 16;
-  const double longest = options.max_step / std::max(options.samples_per_max_step, 1);
-  const int n = std::isfinite(longest)
-                    ? static_cast<int>(std::clamp(std::ceil((tb - ta) / longest), 1.0,
-                                                  static_cast<double>(max_samples)))
-                    : max_samples;
-  const std::size_t witness_count = system.witness_count(mode);
+  using Mode = typename System::Mode;
+  const ScanSamples samples(ta, tb, options);
 
   // states at the sample times, shared by every witness
   // filled up to n below (no zero-initialisation: this runs once per step)
-  std::array<double, max_samples + 1> times;
-  std::array<State, max_samples + 1> states;
-  for (int i = 0; i <= n; ++i) {
-    times[i] = i == n ? tb : ta + (tb - ta) * static_cast<double>(i) / n;
+  std::array<State, ScanSamples::max_intervals + 1> states;
+  for (int i = 0; i <= samples.n; ++i) {
     if (i == 0)
       states[i] = x_start;
-    else if (i == n)
+    else if (i == samples.n)
       states[i] = x_end;
     else
-      scan_at(times[i], states[i]);
+      scan_at(samples.times[i], states[i]);
   }
 
-  LocatedEvent best;
-  for (std::size_t k = 0; k < witness_count; ++k) {
-    const TriggerDirection direction = system.trigger_direction(mode, k);
-    const WitnessSample first = system.witness(mode, k, states[0], times[0]);
-    // an `either` witness is oriented so that its starting side is the armed
-    // one; starting at zero (just after its own event) the side it moves to is
-    const double start_side =
-        witness_at_zero(first.value, first.rate, times[0], options.grazing_tolerance)
-            ? first.rate
-            : first.value;
-    const double either_sign = start_side >= 0.0 ? 1.0 : -1.0;
-    auto sample = [&](int i) {
-      return detail::oriented(system.witness(mode, k, states[i], times[i]), direction,
-                              either_sign);
-    };
-    auto witness_at = [&](double t) {
-      State x;
-      state_at(t, x);
-      return detail::oriented(system.witness(mode, k, x, t), direction, either_sign);
-    };
-    auto value_at = [&](double t) { return witness_at(t).value; };
-    auto rate_at = [&](double t) { return witness_at(t).rate; };
+  class Witnesses final : public StepWitnesses {
+   public:
+    Witnesses(const System& system, Mode mode, const ScanSamples& samples,
+              const std::array<State, ScanSamples::max_intervals + 1>& states,
+              FunctionRef<void(double, State&)> state_at, FunctionRef<void(double, State&)> scan_at)
+        : system_(system),
+          mode_(mode),
+          samples_(samples),
+          states_(states),
+          state_at_(state_at),
+          scan_at_(scan_at) {}
 
-    // A simple crossing in [tl, tr] (f(tl) > 0 >= f(tr) on state_at). With a
-    // cheap scan the root of the interpolant is found first and Newton's
-    // method on state_at (value and rate from one evaluation) finishes it;
-    // TOMS 748 on state_at is the fallback, and the only method otherwise.
-    auto crossing_root = [&](double tl, double tr, double fl, double fr) {
-      if (cheap_scan) {
-        auto scan_value = [&](double t) {
-          State x;
-          scan_at(t, x);
-          return detail::oriented(system.witness(mode, k, x, t), direction, either_sign).value;
-        };
-        const double hl = scan_value(tl), hr = scan_value(tr);
-        double t = hl > 0.0 && hr <= 0.0 ? detail::bracketed_root(scan_value, tl, tr, hl, hr)
-                                         : 0.5 * (tl + tr);
-        for (int iteration = 0; iteration < 6; ++iteration) {
-          State x;
-          state_at(t, x);
-          const WitnessSample w =
-              detail::oriented(system.witness(mode, k, x, t), direction, either_sign);
-          if (w.value == 0.0) return t;
-          if (!(w.rate < 0.0)) break;
-          const double next = t - w.value / w.rate;
-          if (!(next >= tl && next <= tr)) break;
-          // converged: keep the evaluated time (within a few ulps of next),
-          // whose state the stepper still holds
-          if (std::fabs(next - t) <= 4.0 * std::numeric_limits<double>::epsilon() * std::fabs(t))
-            return t;
-          t = next;
-        }
-      }
-      return detail::bracketed_root(value_at, tl, tr, fl, fr);
-    };
+    [[nodiscard]] std::size_t count() const override { return system_.witness_count(mode_); }
+    [[nodiscard]] TriggerDirection direction(std::size_t k) const override {
+      return system_.trigger_direction(mode_, k);
+    }
+    [[nodiscard]] WitnessSample on_sample(std::size_t k, int i) const override {
+      return system_.witness(mode_, k, states_[i], samples_.times[i]);
+    }
+    [[nodiscard]] WitnessSample on_state_at(std::size_t k, double t) const override {
+      State x;
+      state_at_(t, x);
+      return system_.witness(mode_, k, x, t);
+    }
+    [[nodiscard]] WitnessSample on_scan_at(std::size_t k, double t) const override {
+      State x;
+      scan_at_(t, x);
+      return system_.witness(mode_, k, x, t);
+    }
 
-    // The event pattern between two samples, if any, refined on state_at.
-    // Its bracket ends must be samples of state_at itself: TOMS 748 needs a
-    // sign change of the function it refines.
-    auto classify = [&](int i, const WitnessSample& left,
-                        const WitnessSample& right) -> LocatedEvent {
-      const double tl = times[i], tr = times[i + 1];
-      // a witness that starts at zero moving to its armed side (just after
-      // its own event) and is back on the trigger side at the next sample has
-      // made a hop: its maximum lies between, the crossing after that maximum
-      const bool leaving_zero =
-          i == 0 && witness_at_zero(left.value, left.rate, tl, options.grazing_tolerance) &&
-          left.rate > 0.0;
-      if (leaving_zero && direction != TriggerDirection::either) {
-        double hi = tr;
-        WitnessSample at_hi = right;
-        if (right.value > 0.0) {
-          // Back on the armed side at tr: a hop much shorter than the
-          // interval (its length under the witness's acceleration at tl, a
-          // difference of rates, within a quarter of it) may have landed
-          // inside it, and the state gone past the wall and out again before
-          // tr (a chatter near the time its wall stops attracting). Samples
-          // from an eighth of that length on, each twice as far, to tr; the
-          // first past zero ends the hop's bracket.
-          const double offset = 1e-6 * (tr - tl);
-          const double acceleration = (rate_at(tl + offset) - left.rate) / offset;
-          if (!(acceleration < 0.0) || !(8.0 * left.rate / -acceleration < tr - tl)) return {};
-          bool landed = false;
-          for (double dt = 0.25 * left.rate / -acceleration; tl + dt < tr; dt *= 2.0) {
-            at_hi = witness_at(tl + dt);
-            if (at_hi.value <= 0.0) {
-              hi = tl + dt;
-              landed = true;
-              break;
-            }
-          }
-          if (!landed) return {};
-        }
-        // The right end `hi` is past zero. Falling there, the hop's maximum is
-        // the root of the rate before it. Rising there, the witness also
-        // turned back inside (tl, hi) (a chatter rebound whose wall stopped
-        // attracting: the state went past the wall and out again), so the
-        // interval is halved towards tl, keeping its right end past zero,
-        // until the hop's falling flank is sampled, or a sample above zero
-        // brackets the crossing after it.
-        for (int halving = 0; halving <= 64; ++halving) {
-          if (at_hi.rate < 0.0) {
-            const double t_max = detail::bracketed_root(rate_at, tl, hi, left.rate, at_hi.rate);
-            const double v_max = value_at(t_max);
-            if (v_max > 0.0)
-              return {true, detail::bracketed_root(value_at, t_max, hi, v_max, at_hi.value), k,
-                      CrossingKind::crossing};
-            return {};
-          }
-          const double mid = 0.5 * (tl + hi);
-          if (!(mid > tl && mid < hi)) return {};
-          const WitnessSample at_mid = witness_at(mid);
-          if (at_mid.value > 0.0)
-            return {true, detail::bracketed_root(value_at, mid, hi, at_mid.value, at_hi.value), k,
-                    CrossingKind::crossing};
-          hi = mid;
-          at_hi = at_mid;
-        }
-      } else if (leaving_zero && right.value <= 0.0) {
-        return {};
-      } else if (left.value > 0.0 && right.value <= 0.0) {
-        return {true, crossing_root(tl, tr, left.value, right.value), k, CrossingKind::crossing};
-      } else if (left.value > 0.0 && right.value > 0.0 && left.rate < 0.0 && right.rate > 0.0 &&
-                 direction != TriggerDirection::either && !(i == 0 && k == just_grazed)) {
-        // a minimum of the oriented witness lies inside (tl, tr)
-        const double t_min = detail::bracketed_root(
-            [&](double t) { return -rate_at(t); }, tl, tr, -left.rate, -right.rate);
-        const double v_min = value_at(t_min);
-        if (v_min <= -options.grazing_tolerance)
-          return {true, detail::bracketed_root(value_at, tl, t_min, left.value, v_min), k,
-                  CrossingKind::crossing};
-        if (v_min <= options.grazing_tolerance) return {true, t_min, k, CrossingKind::grazing};
-      }
-      return {};
-    };
-    // a sample past zero by more than the tolerance, on the trigger side
-    auto violated = [&](const WitnessSample& w) {
-      return direction != TriggerDirection::either && w.value < -options.grazing_tolerance;
-    };
-    // whether a witness leaving zero at times[0] with rate `rate` may make a
-    // hop that lands, goes past zero and comes back before times[1]: its
-    // length under the acceleration there, 2 × rate / (−acceleration),
-    // within a quarter of the interval (a longer hop lands in a later
-    // interval, or stays past zero at times[1], where the scan sees it). The
-    // acceleration is a difference of rates on the scan's dense output,
-    // confirmed on state_at (a cheap scan's interpolant has the rate, not
-    // the acceleration, of the flow).
-    auto short_hop_possible = [&](double rate) {
-      if (direction == TriggerDirection::either) return false;
-      const double offset = 1e-6 * (times[1] - times[0]);
-      const auto lands_inside = [&](double later_rate) {
-        const double acceleration = (later_rate - rate) / offset;
-        return acceleration < 0.0 && 8.0 * rate / -acceleration < times[1] - times[0];
-      };
-      State x;
-      scan_at(times[0] + offset, x);
-      const double later =
-          detail::oriented(system.witness(mode, k, x, times[0] + offset), direction, either_sign)
-              .rate;
-      if (!lands_inside(later)) return false;
-      return !cheap_scan || lands_inside(rate_at(times[0] + offset));
-    };
-    // whether two scan samples show one of classify's patterns (or a violation)
-    auto classify_pattern = [&](int i, const WitnessSample& left, const WitnessSample& right) {
-      if (violated(left) || violated(right)) return true;
-      const bool leaving_zero =
-          i == 0 && witness_at_zero(left.value, left.rate, times[0], options.grazing_tolerance) &&
-          left.rate > 0.0;
-      // leaving zero: a hop may land inside the interval even where the right
-      // sample is back on the armed side (classify looks for it)
-      if (leaving_zero) return right.value <= 0.0 || short_hop_possible(left.rate);
-      if (!(left.value > 0.0)) return false;
-      return right.value <= 0.0 || (left.rate < 0.0 && right.rate > 0.0 &&
-                                    direction != TriggerDirection::either &&
-                                    !(i == 0 && k == just_grazed));
-    };
-    // a sample of state_at (the scan's interior samples may come from scan_at)
-    auto refined_sample = [&](int i) {
-      if (i == 0 || i == n) return sample(i);
-      State x;
-      state_at(times[i], x);
-      return detail::oriented(system.witness(mode, k, x, times[i]), direction, either_sign);
-    };
-    // A cheap scan only decides whether this witness needs the accurate one:
-    // where it shows any pattern, every sample of the step is taken again
-    // from state_at and classified, so an interpolant's error can cost time
-    // but never an event that the accurate samples show.
-    bool needs_accurate_scan = !cheap_scan;
-    if (cheap_scan) {
-      WitnessSample left = sample(0);
-      for (int i = 0; i < n && !needs_accurate_scan; ++i) {
-        const WitnessSample right = sample(i + 1);
-        needs_accurate_scan = classify_pattern(i, left, right);
-        left = right;
-      }
-    }
-    if (!needs_accurate_scan) continue;
-    WitnessSample left = refined_sample(0);
-    for (int i = 0; i < n; ++i) {
-      const WitnessSample right = cheap_scan ? refined_sample(i + 1) : sample(i + 1);
-      if (best.found && times[i] >= best.t) break;
-      if (classify_pattern(i, left, right)) {
-        LocatedEvent candidate = classify(i, left, right);
-        // past zero without a crossing: the last sample still on the armed
-        // side (or the step's start) is where the run can be trusted up to
-        if (!candidate.found && (violated(left) || violated(right)))
-          candidate = {true, times[i], k, CrossingKind::unresolved};
-        if (candidate.found) {
-          if (!best.found || candidate.t < best.t) best = candidate;
-          break;
-        }
-      }
-      left = right;
-    }
-  }
-  return best;
+   private:
+    const System& system_;
+    Mode mode_;
+    const ScanSamples& samples_;
+    const std::array<State, ScanSamples::max_intervals + 1>& states_;
+    FunctionRef<void(double, State&)> state_at_;
+    FunctionRef<void(double, State&)> scan_at_;
+  };
+  const Witnesses witnesses(system, mode, samples, states, state_at, scan_at);
+  return locate_first_event(witnesses, samples, cheap_scan, options, just_grazed);
 }
 
 }  // namespace impactlab

@@ -5,7 +5,9 @@
 // The event locator's coarse scan of a step only has to find where to look,
 // so it uses the cubic Hermite interpolant of the step's end states and
 // derivatives (which GSL's evolve has already computed: no evaluation), and
-// every refinement uses the re-taken step.
+// every refinement uses the re-taken step. The right-hand side is a view
+// (integrate/state_rhs.hpp), so that the stepper is compiled once per state
+// type, in gsl_rk8pd.cpp for the states of integrate/state_dimensions.hpp.
 #pragma once
 
 #include <algorithm>
@@ -17,6 +19,8 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 
+#include <impactlab/integrate/state_dimensions.hpp>
+#include <impactlab/integrate/state_rhs.hpp>
 #include <impactlab/integrate/step_record.hpp>
 #include <impactlab/integrate/stepper_settings.hpp>
 
@@ -37,21 +41,11 @@ class GslRk8pd {
   };
 
   // GSL calls the right-hand side through a C function pointer with the
-  // bound mode's functor as its parameter block.
-  template <class Rhs>
-  static int gsl_rhs(double t, const double y[], double dydt[], void* params) {
-    const auto& rhs = *static_cast<const Rhs*>(params);
-    State x;
-    std::copy_n(y, dimension, x.begin());
-    State dxdt;
-    rhs(x, dxdt, t);
-    std::copy_n(dxdt.begin(), dimension, dydt);
-    return GSL_SUCCESS;
-  }
+  // right-hand side's view as its parameter block.
+  static int gsl_rhs(double t, const double y[], double dydt[], void* params);
 
-  template <class Rhs>
-  gsl_odeiv2_system bind(const Rhs& rhs) const {
-    return gsl_odeiv2_system{&gsl_rhs<Rhs>, nullptr, dimension,
+  gsl_odeiv2_system bind(const StateRhs<State>& rhs) const {
+    return gsl_odeiv2_system{&gsl_rhs, nullptr, dimension,
                              const_cast<void*>(static_cast<const void*>(&rhs))};
   }
 
@@ -60,61 +54,19 @@ class GslRk8pd {
   static constexpr bool has_cheap_scan = true;  // scan_state cheaper than state_at
   static constexpr bool has_polish = false;
 
-  explicit GslRk8pd(const StepperSettings& settings)
-      : settings_(settings),
-        step_gsl_(gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, dimension)),
-        restep_(gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, dimension)),
-        control_(gsl_odeiv2_control_standard_new(settings.atol, settings.rtol, 1.0, 0.0)),
-        evolve_(gsl_odeiv2_evolve_alloc(dimension)) {
-    if (!step_gsl_ || !restep_ || !control_ || !evolve_)
-      throw std::runtime_error("rk8pd: GSL allocation failed");
-  }
+  explicit GslRk8pd(const StepperSettings& settings);
 
-  template <class Rhs>
-  void initialize(const Rhs&, const State& x, double t, double dt) {
-    step_.x = x;
-    step_.t = t;
-    dt_ = std::min(dt, settings_.max_step);
-    gsl_odeiv2_evolve_reset(evolve_.get());
-    gsl_odeiv2_step_reset(step_gsl_.get());
-  }
+  void initialize(StateRhs<State> rhs, const State& x, double t, double dt);
 
-  template <class Rhs>
-  void do_step(const Rhs& rhs, double t_limit) {
-    step_.begin_step();
-    gsl_odeiv2_system system = bind(rhs);
-    const double t_stop = std::min(t_limit, step_.t_old + settings_.max_step);
-    double t = step_.t_old;
-    const int status = gsl_odeiv2_evolve_apply(evolve_.get(), control_.get(), step_gsl_.get(),
-                                               &system, &t, t_stop, &dt_, step_.x.data());
-    if (status != GSL_SUCCESS)
-      throw std::runtime_error("rk8pd: gsl_odeiv2_evolve_apply failed: " +
-                               std::string(gsl_strerror(status)));
-    step_.t = t;
-    dt_ = std::min(dt_, settings_.max_step);
-    // the derivatives at both ends of the accepted step, as evolve computed them
-    std::copy_n(evolve_->dydt_in, dimension, step_.dxdt_old.begin());
-    std::copy_n(evolve_->dydt_out, dimension, step_.dxdt.begin());
-  }
+  void do_step(StateRhs<State> rhs, double t_limit);
 
   // The state at t inside the last step: the rk8pd step re-taken from the
-  // step's start (needs the functor of the last step).
-  template <class Rhs>
-  void state_at(const Rhs& rhs, double t, State& x) {
-    step_.state_at(t, x, [&](State& out) {
-      gsl_odeiv2_system system = bind(rhs);
-      out = step_.x_old;
-      State error;
-      gsl_odeiv2_step_apply(restep_.get(), step_.t_old, t - step_.t_old, out.data(),
-                            error.data(), step_.dxdt_old.data(), nullptr, &system);
-    });
-  }
+  // step's start (needs the right-hand side of the last step).
+  void state_at(StateRhs<State> rhs, double t, State& x);
 
-  template <class Rhs>
-  void polish_state(const Rhs& rhs, double t, State& x) { state_at(rhs, t, x); }
+  void polish_state(StateRhs<State> rhs, double t, State& x) { state_at(rhs, t, x); }
 
-  template <class Rhs>
-  void scan_state(const Rhs&, double t, State& x) const { step_.interpolate(t, x); }
+  void scan_state(StateRhs<State>, double t, State& x) const { step_.interpolate(t, x); }
 
   [[nodiscard]] double previous_time() const { return step_.t_old; }
   [[nodiscard]] double current_time() const { return step_.t; }
@@ -130,5 +82,69 @@ class GslRk8pd {
   StepRecord<State> step_;
   double dt_ = 0.0;  // carried step size (s)
 };
+
+template <class State>
+int GslRk8pd<State>::gsl_rhs(double t, const double y[], double dydt[], void* params) {
+  const auto& rhs = *static_cast<const StateRhs<State>*>(params);
+  State x;
+  std::copy_n(y, dimension, x.begin());
+  State dxdt;
+  rhs(x, dxdt, t);
+  std::copy_n(dxdt.begin(), dimension, dydt);
+  return GSL_SUCCESS;
+}
+
+template <class State>
+GslRk8pd<State>::GslRk8pd(const StepperSettings& settings)
+    : settings_(settings),
+      step_gsl_(gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, dimension)),
+      restep_(gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, dimension)),
+      control_(gsl_odeiv2_control_standard_new(settings.atol, settings.rtol, 1.0, 0.0)),
+      evolve_(gsl_odeiv2_evolve_alloc(dimension)) {
+  if (!step_gsl_ || !restep_ || !control_ || !evolve_)
+    throw std::runtime_error("rk8pd: GSL allocation failed");
+}
+
+template <class State>
+void GslRk8pd<State>::initialize(StateRhs<State>, const State& x, double t, double dt) {
+  step_.x = x;
+  step_.t = t;
+  dt_ = std::min(dt, settings_.max_step);
+  gsl_odeiv2_evolve_reset(evolve_.get());
+  gsl_odeiv2_step_reset(step_gsl_.get());
+}
+
+template <class State>
+void GslRk8pd<State>::do_step(StateRhs<State> rhs, double t_limit) {
+  step_.begin_step();
+  gsl_odeiv2_system system = bind(rhs);
+  const double t_stop = std::min(t_limit, step_.t_old + settings_.max_step);
+  double t = step_.t_old;
+  const int status = gsl_odeiv2_evolve_apply(evolve_.get(), control_.get(), step_gsl_.get(),
+                                             &system, &t, t_stop, &dt_, step_.x.data());
+  if (status != GSL_SUCCESS)
+    throw std::runtime_error("rk8pd: gsl_odeiv2_evolve_apply failed: " +
+                             std::string(gsl_strerror(status)));
+  step_.t = t;
+  dt_ = std::min(dt_, settings_.max_step);
+  // the derivatives at both ends of the accepted step, as evolve computed them
+  std::copy_n(evolve_->dydt_in, dimension, step_.dxdt_old.begin());
+  std::copy_n(evolve_->dydt_out, dimension, step_.dxdt.begin());
+}
+
+template <class State>
+void GslRk8pd<State>::state_at(StateRhs<State> rhs, double t, State& x) {
+  step_.state_at(t, x, [&](State& out) {
+    gsl_odeiv2_system system = bind(rhs);
+    out = step_.x_old;
+    State error;
+    gsl_odeiv2_step_apply(restep_.get(), step_.t_old, t - step_.t_old, out.data(), error.data(),
+                          step_.dxdt_old.data(), nullptr, &system);
+  });
+}
+
+#define IMPACTLAB_DECLARE_RK8PD(N) extern template class GslRk8pd<std::array<double, N>>;
+IMPACTLAB_FOR_EACH_STATE_DIMENSION(IMPACTLAB_DECLARE_RK8PD)
+#undef IMPACTLAB_DECLARE_RK8PD
 
 }  // namespace impactlab

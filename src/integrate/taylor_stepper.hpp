@@ -25,8 +25,8 @@
 // through zero) satisfies min(g_0, g_0 + g_1 h) − Σ_{j≥2} |g_j| h^j > the
 // grazing tolerance cannot hold an event and is skipped at the cost of one
 // sum. In the others,
-// the critical points of g are isolated rigorously (integrate/
-// polynomial_roots.hpp); on each monotone piece a crossing is bracketed by
+// the critical points of g are isolated rigorously (integrate/polynomial_event.hpp on
+// integrate/polynomial_roots.hpp); on each monotone piece a crossing is bracketed by
 // the sign of g at its ends and refined by TOMS 748 on the polynomial; a
 // minimum within the grazing tolerance is a grazing. No sampling and no
 // re-taken step: the event loop needs no max_step cap for this stepper.
@@ -45,7 +45,7 @@
 #include <impactlab/core/error_scale_groups.hpp>
 #include <impactlab/core/hybrid_system.hpp>
 #include <impactlab/integrate/event_location.hpp>
-#include <impactlab/integrate/polynomial_roots.hpp>
+#include <impactlab/integrate/polynomial_event.hpp>
 #include <impactlab/integrate/series_lane.hpp>
 #include <impactlab/integrate/series_tape.hpp>
 #include <impactlab/integrate/stepper_settings.hpp>
@@ -257,8 +257,8 @@ class TaylorStepper {
       std::array<Real, taylor_max_order + 1> g{};
       for (int j = 0; j <= order_; ++j) g[j] = s * w[j];
       const LocatedEvent candidate =
-          first_event(g, h_start, h_limit, tolerance, direction != TriggerDirection::either,
-                      k == just_grazed, k);
+          first_polynomial_event(g, order_, t_old_, h_start, h_limit, tolerance,
+                                 direction != TriggerDirection::either, k == just_grazed, k);
       if (candidate.found && (!best.found || candidate.t < best.t)) best = candidate;
     }
     return best;
@@ -425,62 +425,6 @@ class TaylorStepper {
   // the polynomial at h (s past the step's start)
   void evaluate_state(const Real& h, RealState& x) const {
     for (std::size_t i = 0; i < dimension; ++i) x[i] = polynomial_at(state_coefficients(i), order_, h);
-  }
-
-  // The first event of the oriented witness polynomial g on [lo, hi] (h
-  // past the step's start): a fall through zero from the armed side, or a
-  // minimum within the grazing tolerance; `one_sided`: a violation (below
-  // −tolerance without a crossing) is unresolved.
-  LocatedEvent first_event(const std::array<Real, taylor_max_order + 1>& g, const Real& lo,
-                           const Real& hi, double tolerance, bool one_sided, bool just_grazed,
-                           std::size_t k) const {
-    using std::fabs;
-    // monotone: |g'(h)| >= |g1| − Σ_{j≥2} j |g_j| h^{j−1} > 0 on [0, hi], so g
-    // has no critical point there (sign_changes would find the same empty
-    // set by re-expanding g' at the centre, at O(p²)): the step that leaves
-    // a wall after an impact, whose witness starts at zero
-    bool monotone = false;
-    if (lo == 0) {
-      Real slope_reach = 0, power = hi;  // power = hi^{j−1}
-      for (int j = 2; j <= order_; ++j) {
-        slope_reach += j * fabs(g[j]) * power;
-        power *= hi;
-      }
-      monotone = fabs(g[1]) > slope_reach;
-    }
-    const PolynomialRoots<taylor_max_order, Real> poly(g.data(), order_, fabs(t_old_));
-    auto at = [&](const Real& h) { return static_cast<double>(t_old_ + h); };
-    const auto critical =
-        monotone ? typename PolynomialRoots<taylor_max_order, Real>::Points{}
-                 : poly.sign_changes(1, lo, hi);
-    const Real g_lo = poly.value(0, lo);
-    const Real slope_lo = poly.value(1, lo);
-    const bool leaving_zero = at_zero(g_lo, slope_lo, tolerance) && slope_lo > 0;
-    Real u = lo;
-    for (int i = 0; i <= critical.count; ++i) {
-      const Real v = i < critical.count ? critical.points[i] : hi;
-      const Real gu = poly.value(0, u), gv = poly.value(0, v);
-      const bool falling = poly.value(1, (u + v) / 2) < 0;
-      const bool armed = gu > 0 || (u == lo && leaving_zero);
-      const bool interior_minimum = falling && v < hi;
-      if (!armed) {
-        if (one_sided && (gu < -tolerance || gv < -tolerance))
-          return {true, at(u), k, CrossingKind::unresolved};
-      } else if (falling && !(u == lo && just_grazed && gv > -tolerance)) {
-        if (gv <= 0.0) {
-          // a dip below zero by less than the tolerance to a minimum inside
-          // the step touches the wall: a grazing, as in event_location.hpp
-          if (interior_minimum && gv > -tolerance && one_sided)
-            return {true, at(v), k, CrossingKind::grazing};
-          return {true, std::min(at(poly.root(0, u, v, true)), at(hi)), k,
-                  CrossingKind::crossing};
-        }
-        if (interior_minimum && gv <= tolerance && one_sided)
-          return {true, at(v), k, CrossingKind::grazing};
-      }
-      u = v;
-    }
-    return {};
   }
 
   static constexpr ErrorScaleGroupsOf<System> scale_group = error_scale_groups_of<System>();
