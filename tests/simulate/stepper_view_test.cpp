@@ -61,9 +61,10 @@ TEST_P(StepperView, ReportsTheFlagsAndRunsTheLoopOfTheStepperItself) {
     EXPECT_EQ(view.scans_cheaply(), Stepper::has_cheap_scan);
     EXPECT_EQ(view.polishes(), Stepper::has_polish);
     EXPECT_EQ(view.locates_own_events(), GetParam() == "taylor");
-    if (!view.locates_own_events())
+    if (!view.locates_own_events()) {
       EXPECT_THROW((void)view.locate_first_event(system, LinearImpact::Mode::free, 0.0, 1.0, {}, 0),
                    std::logic_error);
+    }
 
     const LoopRun direct = run(system, stepper);
     const LoopRun viewed = run(system, view);
