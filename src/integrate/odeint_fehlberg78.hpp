@@ -12,6 +12,7 @@
 
 #include <boost/numeric/odeint.hpp>
 
+#include <impactlab/integrate/state_dimensions.hpp>
 #include <impactlab/integrate/step_record.hpp>
 #include <impactlab/integrate/step_to_limit.hpp>
 #include <impactlab/integrate/stepper_settings.hpp>
@@ -86,28 +87,11 @@ OdeintFehlberg78<State>::OdeintFehlberg78(const StepperSettings& settings)
       controlled_(typename Controlled::error_checker_type(settings.atol, settings.rtol),
                   typename Controlled::step_adjuster_type(settings.max_step)) {}
 
-// the constructor for the states of the oscillators, {q, q̇}, {θ, θ̇, W_f},
-// Model P's {θ, θ̇, W_f, θ̇_release}, the rigid pendulum's {θ, θ̇, φ̇, φ, W_f},
-// and the variational states (6 and 7 components, the rigid pendulum's 9
-// and 14, and a four-state model file's 20, analysis/variational.hpp),
-// is compiled in odeint_fehlberg78.cpp only (the rest stays inline)
-extern template OdeintFehlberg78<std::array<double, 2>>::OdeintFehlberg78(
-    const StepperSettings&);
-extern template OdeintFehlberg78<std::array<double, 3>>::OdeintFehlberg78(
-    const StepperSettings&);
-extern template OdeintFehlberg78<std::array<double, 4>>::OdeintFehlberg78(
-    const StepperSettings&);
-extern template OdeintFehlberg78<std::array<double, 5>>::OdeintFehlberg78(
-    const StepperSettings&);
-extern template OdeintFehlberg78<std::array<double, 6>>::OdeintFehlberg78(
-    const StepperSettings&);
-extern template OdeintFehlberg78<std::array<double, 7>>::OdeintFehlberg78(
-    const StepperSettings&);
-extern template OdeintFehlberg78<std::array<double, 9>>::OdeintFehlberg78(
-    const StepperSettings&);
-extern template OdeintFehlberg78<std::array<double, 14>>::OdeintFehlberg78(
-    const StepperSettings&);
-extern template OdeintFehlberg78<std::array<double, 20>>::OdeintFehlberg78(
-    const StepperSettings&);
+// the constructor for the states of integrate/state_dimensions.hpp is
+// compiled in odeint_fehlberg78.cpp only (the rest stays inline)
+#define IMPACTLAB_DECLARE_FEHLBERG78(N) \
+  extern template OdeintFehlberg78<std::array<double, N>>::OdeintFehlberg78(const StepperSettings&);
+IMPACTLAB_FOR_EACH_STATE_DIMENSION(IMPACTLAB_DECLARE_FEHLBERG78)
+#undef IMPACTLAB_DECLARE_FEHLBERG78
 
 }  // namespace impactlab
