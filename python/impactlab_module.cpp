@@ -6,9 +6,12 @@
 // there cancels the job and comes out of the call unchanged.
 #include <cxxabi.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <cstddef>
 #include <exception>
 #include <map>
 #include <memory>
@@ -158,35 +161,48 @@ struct EventRow {
   EventExtension extension;
 };
 
+// One column of the events array: its NumPy format, its offset in EventRow
+// and its size (bytes).
+struct EventField {
+  const char* format;
+  std::size_t offset;
+  std::size_t size;
+};
+
+// Every column's field, by events.csv's column name.
+const std::map<std::string_view, EventField>& event_fields() {
+  constexpr std::size_t event = offsetof(EventRow, event), extension = offsetof(EventRow, extension);
+  static const std::map<std::string_view, EventField> fields = {
+      {"t", {"<f8", event + offsetof(EventRecord, t), 8}},
+      {"kind", {"u1", event + offsetof(EventRecord, kind), 1}},
+      {"wall", {"<i4", event + offsetof(EventRecord, wall), 4}},
+      {"q", {"<f8", event + offsetof(EventRecord, q), 8}},
+      {"qdot_before", {"<f8", event + offsetof(EventRecord, qdot_before), 8}},
+      {"qdot_after", {"<f8", event + offsetof(EventRecord, qdot_after), 8}},
+      {"normal_impulse", {"<f8", event + offsetof(EventRecord, normal_impulse), 8}},
+      {"tangential_velocity", {"<f8", event + offsetof(EventRecord, tangential_velocity), 8}},
+      {"normal_force", {"<f8", event + offsetof(EventRecord, normal_force), 8}},
+      {"friction_work", {"<f8", event + offsetof(EventRecord, friction_work), 8}},
+      {"instantaneous_residual",
+       {"<f8", extension + offsetof(EventExtension, instantaneous_residual), 8}},
+      {"sliding_residual", {"<f8", extension + offsetof(EventExtension, sliding_residual), 8}},
+      {"tangential_velocity_after",
+       {"<f8", event + offsetof(EventRecord, tangential_velocity_after), 8}},
+      {"accumulation_error", {"<f8", event + offsetof(EventRecord, accumulation_error), 8}}};
+  static_assert(sizeof(EventKind) == 1 && sizeof(int) == 4);
+  return fields;
+}
+
 // The structured dtype of EventRow, field by field at its C++ offsets, for
 // the columns of a run's events.csv (the core's and its model's own), so that
 // the event log is one array (the rows copied once, with their extensions).
 py::dtype event_dtype(const EventColumns& columns) {
-  const std::size_t event = offsetof(EventRow, event), extension = offsetof(EventRow, extension);
-  // every field's format and offset, by events.csv's column name
-  const std::map<std::string_view, std::pair<const char*, std::size_t>> fields = {
-      {"t", {"<f8", event + offsetof(EventRecord, t)}},
-      {"kind", {"u1", event + offsetof(EventRecord, kind)}},
-      {"wall", {"<i4", event + offsetof(EventRecord, wall)}},
-      {"q", {"<f8", event + offsetof(EventRecord, q)}},
-      {"qdot_before", {"<f8", event + offsetof(EventRecord, qdot_before)}},
-      {"qdot_after", {"<f8", event + offsetof(EventRecord, qdot_after)}},
-      {"normal_impulse", {"<f8", event + offsetof(EventRecord, normal_impulse)}},
-      {"tangential_velocity", {"<f8", event + offsetof(EventRecord, tangential_velocity)}},
-      {"normal_force", {"<f8", event + offsetof(EventRecord, normal_force)}},
-      {"friction_work", {"<f8", event + offsetof(EventRecord, friction_work)}},
-      {"instantaneous_residual",
-       {"<f8", extension + offsetof(EventExtension, instantaneous_residual)}},
-      {"sliding_residual", {"<f8", extension + offsetof(EventExtension, sliding_residual)}},
-      {"tangential_velocity_after",
-       {"<f8", event + offsetof(EventRecord, tangential_velocity_after)}},
-      {"accumulation_error", {"<f8", event + offsetof(EventRecord, accumulation_error)}}};
   py::list names, formats, offsets;
   for (const std::string_view name : columns.names()) {
-    const auto& [format, offset] = fields.at(name);
+    const EventField& field = event_fields().at(name);
     names.append(py::str(std::string(name)));
-    formats.append(format);
-    offsets.append(offset);
+    formats.append(field.format);
+    offsets.append(field.offset);
   }
   py::dict spec;
   spec["names"] = names;
@@ -197,14 +213,26 @@ py::dtype event_dtype(const EventColumns& columns) {
 }
 
 // The events of a run of `scene`, each with its extension, in `columns` (the
-// run's events.csv's, RunOutput::event_columns).
+// run's events.csv's, RunOutput::event_columns). The bytes of a row that no
+// column reads (the structs' padding, the fields this run's files do not
+// have) are zero, so that the array's bytes, and what NumPy saves of them,
+// are the same for the same run.
 py::array event_array(const std::vector<EventRecord>& events, const EventColumns& columns,
                       const Scene& scene) {
   const EventExtender extender = event_extender(scene);
+  std::array<bool, sizeof(EventRow)> read{};
+  for (const std::string_view name : columns.names()) {
+    const EventField& field = event_fields().at(name);
+    std::fill_n(read.begin() + static_cast<std::ptrdiff_t>(field.offset), field.size, true);
+  }
   auto* owner = new std::vector<EventRow>();
   owner->reserve(events.size());
-  for (const EventRecord& event : events)
+  for (const EventRecord& event : events) {
     owner->push_back({event, extender ? extender(event) : EventExtension{}});
+    auto* bytes = reinterpret_cast<unsigned char*>(&owner->back());
+    for (std::size_t b = 0; b < read.size(); ++b)
+      if (!read[b]) bytes[b] = 0;
+  }
   py::capsule base(owner,
                    [](void* pointer) { delete static_cast<std::vector<EventRow>*>(pointer); });
   return py::array(event_dtype(columns), {static_cast<py::ssize_t>(owner->size())},
