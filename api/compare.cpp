@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <set>
 
 #include <fmt/format.h>
@@ -80,7 +79,7 @@ Comparison compare_models(const Scene& scene, const std::vector<std::string>& mo
   if (!scene.values.contains("model"))
     throw BadInput("oscillator", scene.oscillator, "this oscillator has no `model` key to compare");
   Comparison comparison;
-  comparison.period = 2.0 * std::numbers::pi / scene.number("omega");
+  comparison.period = scene.forcing_period();
   request.sample_step = comparison.period;
   request.keep_events = true;
   for (const auto& model : models) {

@@ -4,7 +4,6 @@
 #include <cctype>
 #include <cmath>
 #include <map>
-#include <numbers>
 
 #include <fmt/format.h>
 
@@ -67,14 +66,6 @@ std::string text_option(const json& options, const char* name, std::size_t longe
   std::string text = options.at(name).get<std::string>();
   if (text.size() > longest) throw BadInput(name, text, "too long");
   return text;
-}
-
-// 2π/ω, the forcing period the views count in (BadInput where the scene has no omega)
-double forcing_period(const Scene& scene) {
-  if (!scene.values.contains("omega"))
-    throw BadInput("scene", scene.name,
-                   "this scene has no forcing frequency omega to count periods by");
-  return 2.0 * std::numbers::pi / scene.number("omega");
 }
 
 // one key as `--set` and Python spell it, where `scene` differs from `base`
@@ -325,7 +316,7 @@ Scene orbit_scene(const Scene& scene, const OrbitView& view) {
 json run_trajectory(const Scene& scene, const TrajectoryView& view, const ExploreProgress& report) {
   RunRequest request;
   request.periods = view.periods;
-  request.sample_step = forcing_period(scene) / view.samples_per_period;
+  request.sample_step = scene.forcing_period() / view.samples_per_period;
   // the impacts alone are kept, as many as the samples at most
   ImpactCollector impacts(static_cast<std::size_t>(view.periods * view.samples_per_period) + 1);
   request.keep_events = false;
@@ -356,7 +347,8 @@ json run_trajectory(const Scene& scene, const TrajectoryView& view, const Explor
 }
 
 json run_section(const Scene& scene, const SectionView& view, const ExploreProgress& report) {
-  forcing_period(scene);
+  // a strobe counts in forcing periods: a scene without omega is refused here
+  static_cast<void>(scene.forcing_period());
   SectionRequest request = strobe_request(view.transient, view.points);
   // a report per forcing period (per point of the record): a superseded run ends at the next
   request.progress = report.progress;
@@ -427,7 +419,7 @@ json run_orbit(const Scene& scene, const OrbitView& view, const ExploreProgress&
   if (coordinates_set == 2) {
     RunRequest request;
     request.periods = found.request.period;
-    request.sample_step = forcing_period(at) / 256.0;
+    request.sample_step = at.forcing_period() / 256.0;
     request.keep_events = false;
     out["orbit"] = point_columns(simulate(start, request).samples);
   }
@@ -449,7 +441,7 @@ ExploreExport explore_export(const std::string& view_kind, const json& options,
   const std::vector<Assignment> changed = changed_keys(base, scene);
   if (view_kind == "trajectory") {
     const TrajectoryView view = trajectory_view(options, limits);
-    const std::string sample = exact(forcing_period(scene) / view.samples_per_period);
+    const std::string sample = exact(scene.forcing_period() / view.samples_per_period);
     out.commands.push_back(command_words(
         "simulate", scene_source, changed, {"--periods", exact(view.periods), "--sample", sample}));
     out.python_calls.push_back(python_call(

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <exception>
 #include <mutex>
-#include <numbers>
 
 #include <fmt/format.h>
 
@@ -35,8 +34,6 @@ Scene with_values(const Scene& scene, std::string_view model, double V0, double 
   apply_override(changed, fmt::format("omega={:.17g}", omega));
   return changed;
 }
-
-double forcing_period(const Scene& scene) { return 2.0 * std::numbers::pi / scene.number("omega"); }
 
 // the impact at `i` started a sliding phase: a contact phase begins at the
 // same instant on the same wall
@@ -215,7 +212,7 @@ Jin2003Results reproduce_jin2003(const Scene& scene, const Jin2003Settings& sett
   // the later of the models' transients, on a forcing-period boundary
   const Scene history_base =
       with_values(scene, settings.models.front(), settings.V0_of_history, settings.omega_of_history);
-  const double period = forcing_period(history_base);
+  const double period = history_base.forcing_period();
   const double sample_step = period / 2000.0;
   std::vector<RunOutput> histories(settings.models.size());
   double steady_from = 0.0;

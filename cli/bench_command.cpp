@@ -94,10 +94,6 @@ BenchPlan plan_for(bool quick) {
           1e6};
 }
 
-double forcing_period_of(const Scene& scene) {
-  return 2.0 * std::numbers::pi / scene.number("omega");
-}
-
 // The bouncing ball's built-in scene is dropped from rest and chatters into
 // riding every period; the bench starts it on its period-1 orbit instead
 // (one impact per table period T: impact phase cos φ = gT(1 − r)/(2Aω(1 + r)),
@@ -226,7 +222,7 @@ int run_bench(const BenchOptions& options, const std::vector<std::string>& comma
     CaseResult result{bench_case, load_scene(bench_case.scene), 0.0, {}, {}};
     for (const auto& assignment : bench_case.assignments) apply_override(result.scene, assignment);
     if (result.scene.oscillator == "bouncing_ball") start_on_period_one_orbit(result.scene);
-    result.forcing_period = forcing_period_of(result.scene);
+    result.forcing_period = result.scene.forcing_period();
     const double t_reference =
         result.scene.number("t0") + plan.reference_periods * result.forcing_period;
     result.reference = bench_reference(result.scene, t_reference, plan.max_reference_impacts);

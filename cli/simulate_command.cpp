@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
-#include <numbers>
 #include <optional>
 
 #include <fmt/format.h>
@@ -32,7 +31,7 @@ double plot_sample_step(const Scene& scene, const RunRequest& request) {
     throw BadInput("plot", "(given)",
                    "give --sample DT as well: this scene has no forcing frequency omega to "
                    "sample the picture by");
-  const double period = 2.0 * std::numbers::pi / scene.number("omega");
+  const double period = scene.forcing_period();
   const double span =
       request.periods > 0.0 ? request.periods * period : request.t_end - scene.number("t0");
   return std::max(period / 64.0, span / 20000.0);

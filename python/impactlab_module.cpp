@@ -15,7 +15,6 @@
 #include <exception>
 #include <map>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -743,7 +742,7 @@ py::dict bench_binding(const Scene& scene, std::vector<std::string> methods,
   for (double rtol : rtols)
     if (!(rtol > 0.0 && rtol < 1.0)) throw BadInput("rtols", std::to_string(rtol), "expected 0 < rtol < 1");
   if (repetitions < 1) throw BadInput("repetitions", std::to_string(repetitions), "expected >= 1");
-  const double forcing_period = 2.0 * std::numbers::pi / scene.number("omega");
+  const double forcing_period = scene.forcing_period();
   ProgressRelay relay(std::move(progress));
   py::dict out;
   std::vector<std::string> method_column;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <numbers>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -103,6 +104,12 @@ std::string read_scene_text(std::string_view name_or_path) {
 }  // namespace
 
 double Scene::number(const std::string& key) const { return std::get<double>(values.at(key)); }
+
+double Scene::forcing_period() const {
+  if (!values.contains("omega"))
+    throw BadInput("scene", name, "this scene has no forcing frequency omega to count periods by");
+  return 2.0 * std::numbers::pi / number("omega");
+}
 
 const std::string& Scene::text(const std::string& key) const {
   return std::get<std::string>(values.at(key));

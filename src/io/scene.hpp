@@ -63,6 +63,9 @@ struct Scene {
 
   [[nodiscard]] double number(const std::string& key) const;
   [[nodiscard]] const std::string& text(const std::string& key) const;
+  // 2π/ω, the forcing period runs and views count in (s); BadInput where
+  // the scene has no forcing frequency omega
+  [[nodiscard]] double forcing_period() const;
 };
 
 // Default resource limits of a run (scene keys limits.max_steps and
