@@ -603,7 +603,9 @@ class TaylorSeries {
 
   template <class Rhs>
   void evaluate(const Real* x0, const Real& t0, int order, Rhs&& rhs, bool signs_from_slope = false) {
-    if constexpr (std::is_same_v<Real, double>) {
+    if constexpr (std::is_same_v<Real, double> && N > pre_states) {
+      evaluate_inlined_without_pre(x0, t0, order, rhs, signs_from_slope);
+    } else if constexpr (std::is_same_v<Real, double>) {
       evaluate_inlined(x0, t0, order, rhs, signs_from_slope);
     } else {
       evaluate_orders(x0, t0, order, rhs, signs_from_slope);
@@ -625,6 +627,20 @@ class TaylorSeries {
   template <class Rhs>
   [[gnu::flatten]] void evaluate_inlined(const Real* x0, const Real& t0, int order, Rhs& rhs,
                                          bool signs_from_slope) {
+    evaluate_orders(x0, t0, order, rhs, signs_from_slope);
+  }
+
+  // The same with more than eight states (the variational equations), but
+  // without GCC's partial redundancy elimination and code hoisting: over
+  // the loop whose body is such a system's whole right-hand side, those two
+  // passes took about half of the compile time of its flows' unit, the
+  // longest of the build (docs/performance.md, "The tangent series compiled
+  // without partial redundancy elimination"). An attribute, not the unit's
+  // flags: those of the precompiled headers would override them.
+  static constexpr std::size_t pre_states = 8;
+  template <class Rhs>
+  [[gnu::flatten, gnu::optimize("no-tree-pre", "no-code-hoisting")]] void evaluate_inlined_without_pre(
+      const Real* x0, const Real& t0, int order, Rhs& rhs, bool signs_from_slope) {
     evaluate_orders(x0, t0, order, rhs, signs_from_slope);
   }
 
