@@ -34,6 +34,15 @@
 #include <impactlab/core/fast_trig.hpp>
 #include <impactlab/integrate/lane_number.hpp>
 
+// GCC's per-function options that leave out partial redundancy elimination
+// and code hoisting (TaylorSeries::evaluate_inlined_without_pre); other
+// compilers have no such attribute and compile the function as the others
+#if defined(__GNUC__) && !defined(__clang__)
+#define IMPACTLAB_WITHOUT_PRE gnu::optimize("no-tree-pre", "no-code-hoisting")
+#else
+#define IMPACTLAB_WITHOUT_PRE
+#endif
+
 namespace impactlab {
 
 // the highest order of a series (the Taylor stepper's orders stay below it)
@@ -603,7 +612,7 @@ class TaylorSeries {
 
   template <class Rhs>
   void evaluate(const Real* x0, const Real& t0, int order, Rhs&& rhs, bool signs_from_slope = false) {
-    if constexpr (std::is_same_v<Real, double> && N > pre_states) {
+    if constexpr (std::is_same_v<Real, double> && N > most_states_with_pre) {
       evaluate_inlined_without_pre(x0, t0, order, rhs, signs_from_slope);
     } else if constexpr (std::is_same_v<Real, double>) {
       evaluate_inlined(x0, t0, order, rhs, signs_from_slope);
@@ -637,9 +646,9 @@ class TaylorSeries {
   // longest of the build (docs/performance.md, "The tangent series compiled
   // without partial redundancy elimination"). An attribute, not the unit's
   // flags: those of the precompiled headers would override them.
-  static constexpr std::size_t pre_states = 8;
+  static constexpr std::size_t most_states_with_pre = 8;
   template <class Rhs>
-  [[gnu::flatten, gnu::optimize("no-tree-pre", "no-code-hoisting")]] void evaluate_inlined_without_pre(
+  [[gnu::flatten, IMPACTLAB_WITHOUT_PRE]] void evaluate_inlined_without_pre(
       const Real* x0, const Real& t0, int order, Rhs& rhs, bool signs_from_slope) {
     evaluate_orders(x0, t0, order, rhs, signs_from_slope);
   }
