@@ -44,35 +44,45 @@ LocatedEvent first_polynomial_event(const std::array<Real, taylor_max_order + 1>
   }
   const PolynomialRoots<taylor_max_order, Real> poly(g.data(), order, fabs(t_start));
   auto at = [&](const Real& h) { return static_cast<double>(t_start + h); };
-  const auto critical = monotone ? typename PolynomialRoots<taylor_max_order, Real>::Points{}
-                                 : poly.sign_changes(1, lo, hi);
   const Real g_lo = poly.value(0, lo);
   const Real slope_lo = poly.value(1, lo);
   const bool leaving_zero = witness_at_zero(g_lo, slope_lo, t_start, tolerance) && slope_lo > 0;
+  // g's monotone pieces [u, v], v the next critical point or hi, in
+  // increasing order until one holds the event: the critical points past
+  // it are not refined
+  LocatedEvent first{};
   Real u = lo;
-  for (int i = 0; i <= critical.count; ++i) {
-    const Real v = i < critical.count ? critical.points[i] : hi;
+  auto holds_the_event = [&](const Real& v) {
     const Real gu = poly.value(0, u), gv = poly.value(0, v);
     const bool falling = poly.value(1, (u + v) / 2) < 0;
     const bool armed = gu > 0 || (u == lo && leaving_zero);
     const bool interior_minimum = falling && v < hi;
     if (!armed) {
-      if (one_sided && (gu < -tolerance || gv < -tolerance))
-        return {true, at(u), k, CrossingKind::unresolved};
+      if (one_sided && (gu < -tolerance || gv < -tolerance)) {
+        first = {true, at(u), k, CrossingKind::unresolved};
+        return true;
+      }
     } else if (falling && !(u == lo && just_grazed && gv > -tolerance)) {
       if (gv <= 0.0) {
         // a dip below zero by less than the tolerance to a minimum inside
         // the step touches the wall: a grazing, as in event_location.hpp
         if (interior_minimum && gv > -tolerance && one_sided)
-          return {true, at(v), k, CrossingKind::grazing};
-        return {true, std::min(at(poly.root(0, u, v, true)), at(hi)), k, CrossingKind::crossing};
+          first = {true, at(v), k, CrossingKind::grazing};
+        else
+          first = {true, std::min(at(poly.root(0, u, v, true)), at(hi)), k, CrossingKind::crossing};
+        return true;
       }
-      if (interior_minimum && gv <= tolerance && one_sided)
-        return {true, at(v), k, CrossingKind::grazing};
+      if (interior_minimum && gv <= tolerance && one_sided) {
+        first = {true, at(v), k, CrossingKind::grazing};
+        return true;
+      }
     }
     u = v;
-  }
-  return {};
+    return false;
+  };
+  const bool found = !monotone && poly.visit_sign_changes(1, lo, hi, holds_the_event);
+  if (!found) holds_the_event(hi);
+  return first;
 }
 
 extern template LocatedEvent first_polynomial_event<double>(

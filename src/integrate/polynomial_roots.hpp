@@ -71,14 +71,28 @@ class PolynomialRoots {
 
   // The sign changes of P⁽ᵐ⁾ in (lo, hi), in increasing order.
   [[nodiscard]] Points sign_changes(int m, const Real& lo, const Real& hi) const {
-    using std::fabs;
     Points out;
-    if (m >= degree_ || !(hi > lo)) return out;  // a constant has none
+    visit_sign_changes(m, lo, hi, [&out](const Real& point) {
+      out.push(point);
+      return false;
+    });
+    return out;
+  }
+
+  // The points of sign_changes(m, lo, hi), the same numbers, each handed
+  // to `visit` as soon as it is refined, in increasing order; visit(point)
+  // returns true to stop, and the points after it are not refined. Returns
+  // whether `visit` stopped.
+  template <class Visit>
+  bool visit_sign_changes(int m, const Real& lo, const Real& hi, Visit&& visit) const {
+    using std::fabs;
+    if (m >= degree_ || !(hi > lo)) return false;  // a constant has none
     const int n = degree_ - m;
     differentiate(m);
-    // re-expansion at the centre by repeated synthetic division
+    // re-expansion at the centre by repeated synthetic division (e_0..e_n
+    // set, the rest never read)
     const Real centre = (lo + hi) / 2, radius = (hi - lo) / 2;
-    std::array<Real, max_degree + 1> e{};
+    std::array<Real, max_degree + 1> e;
     for (int j = 0; j <= n; ++j) e[j] = derivative_[m][j];
     for (int i = 0; i < n; ++i)
       for (int j = n - 1; j >= i; --j) e[j] += centre * e[j + 1];
@@ -88,19 +102,16 @@ class PolynomialRoots {
       power *= radius;
       value_bound += fabs(e[j]) * power;
     }
-    if (fabs(e[0]) > value_bound) return out;
-    if (fabs(e[1]) > slope_bound) {
-      add_root_if_sign_change(m, lo, hi, out);
-      return out;
-    }
+    if (fabs(e[0]) > value_bound) return false;
+    if (fabs(e[1]) > slope_bound) return visit_root_if_sign_change(m, lo, hi, visit);
     const Points inner = sign_changes(m + 1, lo, hi);
     Real left = lo;
     for (int i = 0; i <= inner.count; ++i) {
       const Real right = i < inner.count ? inner.points[i] : hi;
-      add_root_if_sign_change(m, left, right, out);
+      if (visit_root_if_sign_change(m, left, right, visit)) return true;
       left = right;
     }
-    return out;
+    return false;
   }
 
   // The root of P⁽ᵐ⁾ in [lo, hi] where its end values differ in sign, to a
@@ -123,9 +134,13 @@ class PolynomialRoots {
   }
 
  private:
-  void add_root_if_sign_change(int m, const Real& lo, const Real& hi, Points& out) const {
+  // visit(the root of P⁽ᵐ⁾ in [lo, hi]) where its end values differ in
+  // sign; false (not stopped) where they do not
+  template <class Visit>
+  bool visit_root_if_sign_change(int m, const Real& lo, const Real& hi, Visit& visit) const {
     const Real f_lo = value(m, lo), f_hi = value(m, hi);
-    if ((f_lo < 0 && f_hi > 0) || (f_lo > 0 && f_hi < 0)) out.push(root(m, lo, hi, false));
+    if ((f_lo < 0 && f_hi > 0) || (f_lo > 0 && f_hi < 0)) return visit(root(m, lo, hi, false));
+    return false;
   }
 
   // derivative m's coefficients, d_m[j] = c_{j+m} (j+m)! / j!, computed

@@ -13,6 +13,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -213,6 +214,32 @@ TEST(PolynomialRoots, AllRootsOfAProductInOrder) {
   // the coefficients carry round-off, amplified ~1e4 times by these
   // clustered roots (Wilkinson)
   for (int r = 1; r <= 9; ++r) EXPECT_NEAR(roots.points[r - 1], 0.1 * r, 1e-10) << r;
+}
+
+// Visiting the roots stops where the visitor says, after the same numbers
+// sign_changes gives, in the same order
+TEST(PolynomialRoots, VisitingStopsAfterTheSameLeadingRoots) {
+  std::array<double, 10> c{};
+  c[0] = 1.0;
+  for (int r = 1; r <= 9; ++r)
+    for (int j = r; j >= 0; --j) c[j] = (j > 0 ? c[j - 1] : 0.0) - 0.1 * r * c[j];
+  const PolynomialRoots<12> p(c.data(), 9, 1.0);
+  const auto all = p.sign_changes(0, 0.0, 0.95);
+  ASSERT_EQ(all.count, 9);
+  std::vector<double> seen;
+  const bool stopped = p.visit_sign_changes(0, 0.0, 0.95, [&seen](double root) {
+    seen.push_back(root);
+    return seen.size() == 3;
+  });
+  EXPECT_TRUE(stopped);
+  ASSERT_EQ(seen.size(), 3U);
+  for (std::size_t i = 0; i < seen.size(); ++i) EXPECT_EQ(seen[i], all.points[i]) << i;
+  seen.clear();
+  EXPECT_FALSE(p.visit_sign_changes(0, 0.0, 0.95, [&seen](double root) {
+    seen.push_back(root);
+    return false;
+  }));
+  EXPECT_EQ(seen.size(), 9U);
 }
 
 // Free flight of the damped, forced linear oscillator against its closed-form
