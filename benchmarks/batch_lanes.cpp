@@ -71,8 +71,9 @@ BENCHMARK(BM_MapWithLyapunovExponents)->Arg(0)->Arg(1)->Unit(benchmark::kMillise
 // The series alone, at the order of jin2003's tolerance (rtol 1e-12: 22), of
 // a forced pendulum between two walls, θ'' = −0.01 θ' − (9.81 − 10.5 cos 7t)
 // sin θ / 0.7 with the walls' witnesses 0.3 ∓ θ, in the form of the
-// steppers' right-hand sides: where the time of a batch goes when the series
-// cost nothing (docs/performance.md, "What 3× would take").
+// steppers' right-hand sides; a third state of zero rate stands for the
+// pendulum's third state (its friction work, constant in flight): what a
+// batch saves on the series (docs/performance.md, "What 3× would take").
 struct ForcedPendulumSeriesRhs {
   template <class Variables, class Time, class Outputs>
   int operator()(const Variables& x, const Time& t, Variables& dxdt, Outputs& witnesses) const {

@@ -200,14 +200,20 @@ TEST(PolynomialRoots, CloseRootPairIsSeparatedAndNearMissIsNot) {
   EXPECT_NEAR(critical.points[0], 0.5, 1e-15);
 }
 
-// a degree-9 polynomial with roots at 0.1, 0.2, ..., 0.9: all nine found
-TEST(PolynomialRoots, AllRootsOfAProductInOrder) {
+// the coefficients of the degree-9 polynomial (h − 0.1)(h − 0.2)…(h − 0.9)
+std::array<double, 10> product_with_roots_at_tenths() {
   std::array<double, 10> c{};
   c[0] = 1.0;
   for (int r = 1; r <= 9; ++r) {
     // multiply by (h − r/10)
     for (int j = r; j >= 0; --j) c[j] = (j > 0 ? c[j - 1] : 0.0) - 0.1 * r * c[j];
   }
+  return c;
+}
+
+// a degree-9 polynomial with roots at 0.1, 0.2, ..., 0.9: all nine found
+TEST(PolynomialRoots, AllRootsOfAProductInOrder) {
+  const std::array<double, 10> c = product_with_roots_at_tenths();
   const PolynomialRoots<12> p(c.data(), 9, 1.0);
   const auto roots = p.sign_changes(0, 0.0, 0.95);
   ASSERT_EQ(roots.count, 9);
@@ -219,10 +225,7 @@ TEST(PolynomialRoots, AllRootsOfAProductInOrder) {
 // Visiting the roots stops where the visitor says, after the same numbers
 // sign_changes gives, in the same order
 TEST(PolynomialRoots, VisitingStopsAfterTheSameLeadingRoots) {
-  std::array<double, 10> c{};
-  c[0] = 1.0;
-  for (int r = 1; r <= 9; ++r)
-    for (int j = r; j >= 0; --j) c[j] = (j > 0 ? c[j - 1] : 0.0) - 0.1 * r * c[j];
+  const std::array<double, 10> c = product_with_roots_at_tenths();
   const PolynomialRoots<12> p(c.data(), 9, 1.0);
   const auto all = p.sign_changes(0, 0.0, 0.95);
   ASSERT_EQ(all.count, 9);
