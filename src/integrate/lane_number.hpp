@@ -96,6 +96,64 @@ struct alignas(32) LaneNumber {
   }
 };
 
+// Lane-by-lane comparisons of B lanes: all bits set in a lane where it
+// holds, none where not (GCC's and Clang's vector comparisons).
+using LaneQuadMask = long __attribute__((vector_size(32)));
+
+template <int B>
+struct alignas(32) LaneMask {
+  LaneQuadMask quad[B / 4];
+
+  friend LaneMask operator&(const LaneMask& a, const LaneMask& b) {
+    LaneMask r;
+    for (int q = 0; q < B / 4; ++q) r.quad[q] = a.quad[q] & b.quad[q];
+    return r;
+  }
+  friend LaneMask operator|(const LaneMask& a, const LaneMask& b) {
+    LaneMask r;
+    for (int q = 0; q < B / 4; ++q) r.quad[q] = a.quad[q] | b.quad[q];
+    return r;
+  }
+  friend LaneMask operator!(const LaneMask& a) {
+    LaneMask r;
+    for (int q = 0; q < B / 4; ++q) r.quad[q] = ~a.quad[q];
+    return r;
+  }
+  // where a and b agree
+  friend LaneMask operator==(const LaneMask& a, const LaneMask& b) {
+    LaneMask r;
+    for (int q = 0; q < B / 4; ++q) r.quad[q] = a.quad[q] == b.quad[q];
+    return r;
+  }
+  // whether the comparison holds in any lane
+  friend bool any_lane(const LaneMask& a) {
+    for (int i = 0; i < B; ++i)
+      if (a.quad[i / 4][i % 4] != 0) return true;
+    return false;
+  }
+};
+
+#define IMPACTLAB_LANE_COMPARISON(op)                                             \
+  template <int B>                                                              \
+  LaneMask<B> operator op(const LaneNumber<B>& a, const LaneNumber<B>& b) {     \
+    LaneMask<B> r;                                                              \
+    for (int q = 0; q < B / 4; ++q) r.quad[q] = a.quad[q] op b.quad[q];         \
+    return r;                                                                   \
+  }
+IMPACTLAB_LANE_COMPARISON(<)
+IMPACTLAB_LANE_COMPARISON(>)
+IMPACTLAB_LANE_COMPARISON(<=)
+IMPACTLAB_LANE_COMPARISON(==)
+#undef IMPACTLAB_LANE_COMPARISON
+
+// a where the mask holds, b where not, lane by lane
+template <int B>
+LaneNumber<B> select(const LaneMask<B>& mask, const LaneNumber<B>& a, const LaneNumber<B>& b) {
+  LaneNumber<B> r;
+  for (int q = 0; q < B / 4; ++q) r.quad[q] = mask.quad[q] ? a.quad[q] : b.quad[q];
+  return r;
+}
+
 template <class T>
 inline constexpr bool is_lane_number = false;
 template <int B>

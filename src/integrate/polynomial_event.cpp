@@ -5,6 +5,6 @@ namespace impactlab {
 
 template LocatedEvent first_polynomial_event<double>(
     const std::array<double, taylor_max_order + 1>&, int, const double&, const double&,
-    const double&, double, bool, bool, std::size_t);
+    const double&, double, bool, bool, std::size_t, SeriesLane*);
 
 }  // namespace impactlab

@@ -22,12 +22,13 @@ namespace impactlab {
 // `one_sided`: a violation (below −tolerance without a crossing) is
 // unresolved; `just_grazed`: the witness's grazing was the event at lo.
 // The event's time is t_start + h rounded to double; `k` names the witness
-// in the result.
+// in the result; `lane`: the batch lane the stepper runs in, which refines
+// the roots with other lanes' (integrate/series_lane.hpp), or none.
 template <class Real>
 LocatedEvent first_polynomial_event(const std::array<Real, taylor_max_order + 1>& g, int order,
                                     const Real& t_start, const Real& lo, const Real& hi,
                                     double tolerance, bool one_sided, bool just_grazed,
-                                    std::size_t k) {
+                                    std::size_t k, SeriesLane* lane) {
   using std::fabs;
   // monotone: |g'(h)| >= |g1| − Σ_{j≥2} j |g_j| h^{j−1} > 0 on [0, hi], so g
   // has no critical point there (sign_changes would find the same empty
@@ -42,7 +43,7 @@ LocatedEvent first_polynomial_event(const std::array<Real, taylor_max_order + 1>
     }
     monotone = fabs(g[1]) > slope_reach;
   }
-  const PolynomialRoots<taylor_max_order, Real> poly(g.data(), order, fabs(t_start));
+  const PolynomialRoots<taylor_max_order, Real> poly(g.data(), order, fabs(t_start), lane);
   auto at = [&](const Real& h) { return static_cast<double>(t_start + h); };
   const Real g_lo = poly.value(0, lo);
   const Real slope_lo = poly.value(1, lo);
@@ -87,6 +88,6 @@ LocatedEvent first_polynomial_event(const std::array<Real, taylor_max_order + 1>
 
 extern template LocatedEvent first_polynomial_event<double>(
     const std::array<double, taylor_max_order + 1>&, int, const double&, const double&,
-    const double&, double, bool, bool, std::size_t);
+    const double&, double, bool, bool, std::size_t, SeriesLane*);
 
 }  // namespace impactlab

@@ -5,7 +5,8 @@
 // re-expanded at c (e_j = P⁽ᵐ⁺ʲ⁾(c) / j!). Then
 // * |e_0| > Σ_{j≥1} |e_j| r^j: P⁽ᵐ⁾ has no zero on the interval;
 // * |e_1| > Σ_{j≥2} j |e_j| r^{j−1}: P⁽ᵐ⁺¹⁾ has none, P⁽ᵐ⁾ is monotone and has
-//   a root exactly where its end values differ in sign (TOMS 748 finds it);
+//   a root exactly where its end values differ in sign (safeguarded Newton
+//   finds it: integrate/monotone_root.hpp);
 // * otherwise the sign changes of P⁽ᵐ⁺¹⁾ split the interval into pieces on
 //   which P⁽ᵐ⁾ is monotone. The recursion ends: P⁽ᵈᵉᵍʳᵉᵉ⁾ is a constant.
 // No sampling: a root pair closer than any sampling grid (a grazing dip) is
@@ -16,10 +17,11 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <cstdint>
-#include <limits>
 
-#include <boost/math/tools/roots.hpp>
+#include <type_traits>
+
+#include <impactlab/integrate/monotone_root.hpp>
+#include <impactlab/integrate/series_lane.hpp>
 
 namespace impactlab {
 
@@ -56,9 +58,10 @@ class PolynomialRoots {
   using Points = PointList<capacity, Real>;
 
   // p: coefficients c_0..c_degree of P(h) = Σ c_j h^j; t_scale: the size of
-  // the absolute time at h (s), for the root's stopping tolerance
-  PolynomialRoots(const Real* p, int degree, const Real& t_scale)
-      : degree_(degree), t_scale_(t_scale) {
+  // the absolute time at h (s), for the root's stopping tolerance; lane: the
+  // batch lane that refines the roots (integrate/series_lane.hpp), or none
+  PolynomialRoots(const Real* p, int degree, const Real& t_scale, SeriesLane* lane = nullptr)
+      : degree_(degree), t_scale_(t_scale), lane_(lane) {
     for (int j = 0; j <= degree; ++j) derivative_[0][j] = p[j];
   }
 
@@ -114,23 +117,30 @@ class PolynomialRoots {
     return false;
   }
 
-  // The root of P⁽ᵐ⁾ in [lo, hi] where its end values differ in sign, to a
-  // few ulps of the absolute time; the end on `side`'s sign (the bracket end
-  // where P⁽ᵐ⁾ has the sign of P⁽ᵐ⁾(hi)) when `towards_hi`.
+  // The root of P⁽ᵐ⁾ in [lo, hi], where it is monotone and its end values
+  // differ in sign, to a few ulps of the absolute time
+  // (integrate/monotone_root.hpp); the end on P⁽ᵐ⁾(hi)'s side of the final
+  // bracket when `towards_hi`. In a batch lane, refined together with the
+  // other lanes' roots of the same round, to the same bits.
   [[nodiscard]] Real root(int m, const Real& lo, const Real& hi, bool towards_hi) const {
-    using std::fabs;
     const Real f_lo = value(m, lo), f_hi = value(m, hi);
     if (f_hi == 0) return hi;
     if (f_lo == 0) return lo;
-    auto f = [&](const Real& h) { return value(m, h); };
-    const Real scale = t_scale_;
-    auto tolerance = [scale](const Real& a, const Real& b) {
-      return fabs(b - a) <= 4 * std::numeric_limits<Real>::epsilon() * (scale + fabs(b));
-    };
-    std::uintmax_t iterations = 100;
-    const auto bracket = boost::math::tools::toms748_solve(f, lo, hi, f_lo, f_hi, tolerance, iterations);
-    if (!towards_hi) return (bracket.first + bracket.second) / 2;
-    return (f(bracket.second) > 0) == (f_hi > 0) ? bracket.second : bracket.first;
+    differentiate(m + 1);
+    const MonotoneRootProblem<Real> problem{derivative_[m].data(), derivative_[m + 1].data(),
+                                            degree_ - m, lo, hi, f_lo, f_hi, t_scale_,
+                                            towards_hi};
+    if constexpr (std::is_same_v<Real, double> && max_degree <= taylor_max_order) {
+      if (lane_ != nullptr) {
+        RootRequest request;
+        request.evaluate = &evaluate_root_requests;
+        request.before_series = true;
+        request.problem = problem;
+        lane_->compute(request);
+        return request.root;
+      }
+    }
+    return refine_monotone_root(problem);
   }
 
  private:
@@ -161,6 +171,7 @@ class PolynomialRoots {
   mutable std::size_t ready_ = 0;
   int degree_;
   Real t_scale_;
+  SeriesLane* lane_;
 };
 
 }  // namespace impactlab

@@ -3,9 +3,11 @@
 // itself, the stepper posts a request and waits; the batch gathers the
 // requests of all its lanes and evaluates them (together, in passes over
 // lanes, where their operations agree: integrate/series_tape.hpp), then
-// hands each lane its coefficients back. Everything else a step does (its size,
-// the exclusion test and root isolation on the witness polynomials, the
-// events) stays in the lane, in the scalar stepper's own code.
+// hands each lane its coefficients back. The roots that the isolation on the
+// witness polynomials refines are requested likewise, and refined in lanes
+// together (integrate/monotone_root.hpp). Everything else a step does (its
+// size, the exclusion test, the isolation's bounds, the events) stays in the
+// lane, in the scalar stepper's own code.
 #pragma once
 
 #include <exception>
@@ -18,7 +20,8 @@ class SeriesLaneRowsPool;
 // the most lanes one batch evaluates together
 inline constexpr int max_series_lanes = 16;
 
-// One stepper's request for the series at the start of its step. `evaluate`
+// One stepper's request for the series at the start of its step (or, where
+// `before_series`, for another computation the lanes share). `evaluate`
 // computes `count` requests that share it (they come from steppers of one
 // type) together, and writes each one's coefficients into its stepper.
 struct SeriesRequest {
@@ -30,6 +33,11 @@ struct SeriesRequest {
   // set by `evaluate` where this request's series came from a pass over
   // lanes with others (BatchStatistics::series_in_passes)
   bool in_pass = false;
+  // a request that is not for a series (a root's refinement:
+  // integrate/monotone_root.hpp): the batch answers these first, and the
+  // lanes that made them run on to their next request, so that the series
+  // requests still wait together and fill the passes
+  bool before_series = false;
   // set by the lane before `evaluate` runs: the lane's tape for the
   // request's order-0 recording, and the batch's rows for its passes over
   // lanes (integrate/series_tape.hpp); made once per batch, so that nothing

@@ -27,8 +27,10 @@
 // sum. In the others,
 // the critical points of g are isolated rigorously (integrate/polynomial_event.hpp on
 // integrate/polynomial_roots.hpp); on each monotone piece a crossing is bracketed by
-// the sign of g at its ends and refined by TOMS 748 on the polynomial; a
-// minimum within the grazing tolerance is a grazing. No sampling and no
+// the sign of g at its ends and refined by safeguarded Newton on the
+// polynomial (integrate/monotone_root.hpp; in a batch lane, together with
+// the other lanes' roots); a minimum within the grazing tolerance is a
+// grazing. No sampling and no
 // re-taken step: the event loop needs no max_step cap for this stepper.
 #pragma once
 
@@ -258,7 +260,8 @@ class TaylorStepper {
       for (int j = 0; j <= order_; ++j) g[j] = s * w[j];
       const LocatedEvent candidate =
           first_polynomial_event(g, order_, t_old_, h_start, h_limit, tolerance,
-                                 direction != TriggerDirection::either, k == just_grazed, k);
+                                 direction != TriggerDirection::either, k == just_grazed, k,
+                                 settings_.series_lane);
       if (candidate.found && (!best.found || candidate.t < best.t)) best = candidate;
     }
     return best;

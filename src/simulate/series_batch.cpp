@@ -144,21 +144,37 @@ BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_
   BatchStatistics statistics;
   void* scheduler_fake_stack = nullptr;
   std::array<SeriesRequest*, max_series_lanes> waiting{};
+  std::array<int, max_series_lanes> waiting_lane{};
   std::array<SeriesRequest*, max_series_lanes> group{};
   for (;;) {
-    // every lane runs up to its next request or to its end
+    // every lane whose request was answered (or that has not started) runs
+    // up to its next request or to its end
     int waiting_count = 0;
+    bool any_before_series = false;
     for (int i = 0; i < width; ++i) {
       FiberLane& lane = lanes[i];
       if (lane.finished) continue;
-      lane.pending = nullptr;
-      before_stack_switch(&scheduler_fake_stack, lane.stack);
-      lane.fiber = std::move(lane.fiber).resume();
-      after_stack_switch(scheduler_fake_stack, nullptr);
-      if (!lane.finished) waiting[waiting_count++] = lane.pending;
+      if (lane.pending == nullptr) {
+        before_stack_switch(&scheduler_fake_stack, lane.stack);
+        lane.fiber = std::move(lane.fiber).resume();
+        after_stack_switch(scheduler_fake_stack, nullptr);
+        if (lane.finished) continue;
+      }
+      waiting_lane[waiting_count] = i;
+      waiting[waiting_count++] = lane.pending;
+      any_before_series = any_before_series || lane.pending->before_series;
     }
     if (waiting_count == 0) break;
-    row_pool->start_round();
+    // the requests that come before the series alone, while there are any
+    // (their lanes run on to their next request in the next round); once
+    // every lane waits for its series, the rows of the last series round
+    // are free
+    if (any_before_series) {
+      for (int i = 0; i < waiting_count; ++i)
+        if (!waiting[i]->before_series) waiting[i] = nullptr;
+    } else {
+      row_pool->start_round();
+    }
     // the requests of each kind (steppers of one type) together, in lane order
     for (int i = 0; i < waiting_count; ++i) {
       if (waiting[i] == nullptr) continue;
@@ -168,8 +184,14 @@ BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_
         if (waiting[j] != nullptr && waiting[j]->evaluate == kind) {
           group[count++] = waiting[j];
           waiting[j] = nullptr;
+          lanes[waiting_lane[j]].pending = nullptr;  // answered: runs on next round
         }
       evaluate_group(group.data(), count);
+      if (any_before_series) {
+        ++statistics.early_evaluations;
+        statistics.early_requests += static_cast<std::uint64_t>(count);
+        continue;
+      }
       ++statistics.evaluations;
       statistics.lane_series += static_cast<std::uint64_t>(count);
       for (int j = 0; j < count; ++j)

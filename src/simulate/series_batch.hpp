@@ -9,7 +9,10 @@
 // order-0 tapes record the same operations: integrate/series_tape.hpp,
 // TaylorStepper's evaluate_requests), and resumes each lane with its own
 // coefficients; the lane then finishes its step alone, in the scalar
-// stepper's own code: step size, exclusion test, root isolation, events.
+// stepper's own code: step size, exclusion test, root isolation, events. The
+// roots the isolation refines are requests too, answered before any series
+// (SeriesRequest::before_series), the roots of the lanes that ask in one
+// round refined together (integrate/monotone_root.hpp).
 // A lane whose job ends takes the next job at once, so no lane waits for
 // the slowest. Each lane's run is the scalar run of its job, to the last bit.
 //
@@ -36,10 +39,15 @@ inline constexpr int default_batch_width = max_series_lanes;
 // evaluations together (lane_series / evaluations: the mean lanes per
 // evaluation, at most the width), and how many of them in passes over lanes
 // (integrate/series_tape.hpp) rather than alone.
+// The requests that come before the series (SeriesRequest::before_series:
+// roots' refinements) are counted apart: `early_requests` of them in
+// `early_evaluations` evaluations together.
 struct BatchStatistics {
   std::uint64_t evaluations = 0;
   std::uint64_t lane_series = 0;
   std::uint64_t series_in_passes = 0;
+  std::uint64_t early_evaluations = 0;
+  std::uint64_t early_requests = 0;
 };
 
 // Calls run_next_job(lane) in each of `width` lanes (1 <= width <=

@@ -262,6 +262,7 @@ TEST(SeriesBatch, LanesOfOneSystemInOnePassEqualTheScalarRunsLaneForLane) {
 // so they share passes over lanes, each with its own constants; each still
 // equals its scalar run to the last bit. Most of their series come from
 // passes: with sixteen lanes waiting, partners in the same mode are found.
+// Their event times' roots are refined in lanes together, to the same bits.
 TEST(SeriesBatch, LanesOfDifferentParametersShareOnePassAndEqualTheScalarRuns) {
   std::vector<Trajectory<PendulumWalls>> jobs;
   for (int i = 0; i < 12; ++i)
@@ -269,6 +270,8 @@ TEST(SeriesBatch, LanesOfDifferentParametersShareOnePassAndEqualTheScalarRuns) {
                     {0.01 * (i % 5), 0.2, 0.0}, PendulumWalls::Mode::free, forcing_periods(12)});
   const BatchStatistics statistics = expect_lanes_equal_alone(jobs, max_series_lanes);
   EXPECT_GT(2 * statistics.series_in_passes, statistics.lane_series);
+  // and their impacts' roots were refined several at a time
+  EXPECT_GT(statistics.early_requests, statistics.early_evaluations);
 }
 
 // A model file's series (oscillators/model_file/series_program.hpp) in

@@ -1,0 +1,165 @@
+// The root of a polynomial on an interval where it is monotone and its end
+// values differ in sign: a Taylor step's event time, or a critical point
+// that splits a witness polynomial into monotone pieces
+// (integrate/polynomial_roots.hpp).
+//
+// Newton's iteration on the polynomial and its derivative, kept inside the
+// bracket [a, b] of the sign change: each iterate replaces the end of its
+// sign; an iterate outside the bracket, or a step not under half the step
+// before the last, is replaced by the bracket's midpoint (the safeguard of
+// Numerical Recipes' rtsafe). Once Newton's step is under half the
+// tolerance, the next iterate goes past the Newton point by half the
+// tolerance, so that it lands beyond the root and closes the bracket from
+// the other side. The iteration ends when the bracket is within the
+// tolerance, |b − a| ≤ 4 ε (s + |b|), s the size of the absolute time.
+//
+// It is written once over a number type V whose comparisons give masks:
+// double (masks are bool), or LaneNumber (integrate/lane_number.hpp: masks
+// are LaneMask), where each lane runs its own iteration in lockstep with the
+// others and a lane whose bracket has closed keeps its values. A
+// lane's iterates are then those of the same problem solved alone in
+// double, to the last bit: the same IEEE operations in the same order (no
+// FMA: the build is ISO C++20, -ffp-contract=off). So a batch lane that has
+// its roots refined with other lanes' (integrate/series_lane.hpp) gets the
+// scalar stepper's event times.
+#pragma once
+
+#include <cstddef>
+#include <limits>
+
+#include <impactlab/integrate/series_lane.hpp>
+#include <impactlab/integrate/taylor_series.hpp>
+
+namespace impactlab {
+
+// the most Newton or bisection steps a refinement takes (it needs about
+// five; bisection alone would need about sixty to reach the tolerance)
+inline constexpr int monotone_root_iterations = 100;
+
+namespace detail {
+
+// a where the mask holds, b where not (for double; LaneNumber's lane by
+// lane: integrate/lane_number.hpp)
+template <class Real>
+Real select(bool mask, const Real& a, const Real& b) {
+  return mask ? a : b;
+}
+
+inline bool any_lane(bool mask) { return mask; }
+
+// |v| by a comparison, the same expression for every number type (so a lane
+// and a double agree on every bit, the sign of a zero included)
+template <class V>
+V magnitude(const V& v, const V& zero) {
+  return select(v < zero, -v, v);
+}
+
+// Σ_{j=0..degree} c_j x^j, in the operation order of polynomial_at
+// (integrate/polynomial_roots.hpp): Horner's scheme in x² on the even and
+// the odd coefficients
+template <class V>
+V polynomial_value(const V* c, int degree, const V& x, const V& zero) {
+  const V x2 = x * x;
+  V even = zero, odd = zero;
+  int j = degree;
+  if (j % 2 == 0) even = c[j--];
+  for (; j >= 1; j -= 2) {
+    odd = odd * x2 + c[j];
+    even = even * x2 + c[j - 1];
+  }
+  return even + x * odd;
+}
+
+// The bracket [a, b] (fa, fb: P there, nonzero, of opposite signs) narrowed
+// to the tolerance around P's root, as the header says; p: P's coefficients
+// to `degree`, dp: P′'s to degree − 1; `zero`, `half`, `four_epsilon`: those
+// constants as V. Where an iterate hits P = 0 exactly, a = b = that iterate.
+template <class V>
+void narrow_monotone_bracket(const V* p, const V* dp, int degree, V& a, V& b, const V& f_a,
+                             const V& f_b, const V& scale, const V& zero, const V& half,
+                             const V& four_epsilon) {
+  auto size = [&zero](const V& v) { return magnitude(v, zero); };
+  auto tolerance_at = [&](const V& end) { return four_epsilon * (scale + size(end)); };
+  auto closed = [&](const V& lo, const V& hi) { return size(hi - lo) <= tolerance_at(hi); };
+  auto active = !closed(a, b);
+  if (!any_lane(active)) return;
+  // first iterate: where the chord through the ends crosses zero
+  V fa = f_a;
+  V x = a - fa * (b - a) / (f_b - fa);
+  x = select((x > a) & (x < b), x, (a + b) * half);
+  V step = b - a, step_before = b - a;
+  for (int iteration = 0; iteration < monotone_root_iterations && any_lane(active); ++iteration) {
+    const V fx = polynomial_value(p, degree, x, zero);
+    const V slope = polynomial_value(dp, degree - 1, x, zero);
+    const auto hit = active & (fx == zero);
+    const auto same_side = (fx > zero) == (fa > zero);
+    const auto replaces_a = active & !hit & same_side;
+    const auto replaces_b = active & !hit & !same_side;
+    a = select(replaces_a | hit, x, a);
+    fa = select(replaces_a, fx, fa);
+    b = select(replaces_b | hit, x, b);
+    active = active & !hit & !closed(a, b);
+    const V newton_step = fx / slope;
+    const V newton = x - newton_step;
+    // past the Newton point by half the tolerance once its step is smaller
+    const V margin = tolerance_at(x) * half;
+    const V newton_size = size(newton_step);
+    const auto converged = newton_size <= margin;
+    const V past = select(newton_step > zero, newton - margin, newton + margin);
+    const V candidate = select(converged, past, newton);
+    const auto accepted = (candidate > a) & (candidate < b) &
+                          (newton_size + newton_size <= size(step_before)) &
+                          (candidate == candidate);
+    const V next = select(accepted, candidate, (a + b) * half);
+    step_before = select(active, step, step_before);
+    step = select(active, next - x, step);
+    x = select(active, next, x);
+  }
+}
+
+}  // namespace detail
+
+// One root problem: P(h) = Σ p_j h^j on [lo, hi], monotone there, with
+// P(lo) = f_lo and P(hi) = f_hi nonzero and of opposite signs; dp: P′'s
+// coefficients (degree − 1); t_scale: the size of the absolute time (s) for
+// the tolerance. The answer: the bracket's end on f_hi's side where
+// `towards_hi` (the event time at or just past the crossing), else the
+// bracket's midpoint.
+template <class Real>
+struct MonotoneRootProblem {
+  const Real* p = nullptr;
+  const Real* dp = nullptr;
+  int degree = 0;
+  Real lo{}, hi{}, f_lo{}, f_hi{};
+  Real t_scale{};
+  bool towards_hi = false;
+};
+
+// The root of one problem, in Real.
+template <class Real>
+Real refine_monotone_root(const MonotoneRootProblem<Real>& problem) {
+  Real a = problem.lo, b = problem.hi;
+  detail::narrow_monotone_bracket<Real>(problem.p, problem.dp, problem.degree, a, b, problem.f_lo,
+                                        problem.f_hi, problem.t_scale, Real(0), Real(0.5),
+                                        Real(4 * std::numeric_limits<Real>::epsilon()));
+  return problem.towards_hi ? b : (a + b) * Real(0.5);
+}
+
+// The roots of `count` problems of degree at most taylor_max_order, up to
+// eight at a time in LaneNumber's lanes (AVX2 registers where the processor
+// has them); each root is refine_monotone_root's for that problem alone, to
+// the last bit.
+void refine_monotone_roots(const MonotoneRootProblem<double>* const* problems, int count,
+                           double* roots);
+
+// A batch lane's request for one root (integrate/series_lane.hpp): the
+// batch refines the roots that its lanes ask for in the same round together.
+struct RootRequest : SeriesRequest {
+  MonotoneRootProblem<double> problem;
+  double root = 0.0;
+};
+
+// The evaluation of `count` RootRequests (SeriesRequest::evaluate).
+void evaluate_root_requests(SeriesRequest* const* requests, int count);
+
+}  // namespace impactlab
