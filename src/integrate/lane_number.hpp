@@ -89,6 +89,11 @@ struct alignas(32) LaneNumber {
   LaneNumber& operator*=(const LaneNumber& b) { return *this = *this * b; }
   LaneNumber& operator/=(const LaneNumber& b) { return *this = *this / b; }
 
+  friend LaneNumber sqrt(const LaneNumber& a) {
+    LaneNumber r;
+    for (int i = 0; i < B; ++i) r.set_lane(i, std::sqrt(a.lane(i)));
+    return r;
+  }
   friend LaneNumber fabs(const LaneNumber& a) {
     LaneNumber r;
     for (int i = 0; i < B; ++i) r.set_lane(i, std::fabs(a.lane(i)));

@@ -20,6 +20,7 @@ struct LaneProblems {
   using Lanes = LaneNumber<B>;
   std::array<Lanes, taylor_max_order + 1> p;
   std::array<Lanes, taylor_max_order + 1> dp;
+  std::array<Lanes, taylor_max_order + 1> ddp;
   int degree = 0;
   Lanes lo, hi, f_lo, f_hi, t_scale;
 };
@@ -29,7 +30,8 @@ void narrow_lanes(const LaneProblems<B>& q, LaneNumber<B>& a, LaneNumber<B>& b) 
   using Lanes = LaneNumber<B>;
   a = q.lo;
   b = q.hi;
-  detail::narrow_monotone_bracket<Lanes>(q.p.data(), q.dp.data(), q.degree, a, b, q.f_lo, q.f_hi,
+  detail::narrow_monotone_bracket<Lanes>(q.p.data(), q.dp.data(), q.ddp.data(), q.degree, a, b,
+                                         q.f_lo, q.f_hi,
                                          q.t_scale, Lanes(0.0), Lanes(0.5),
                                          Lanes(4 * std::numeric_limits<double>::epsilon()));
 }
@@ -67,6 +69,7 @@ void refine_in_lanes(const MonotoneRootProblem<double>* const* problems, int cou
   for (int j = 0; j <= q.degree; ++j) {
     q.p[j] = gather([j](const Problem& one) { return j <= one.degree ? one.p[j] : 0.0; });
     q.dp[j] = gather([j](const Problem& one) { return j < one.degree ? one.dp[j] : 0.0; });
+    q.ddp[j] = gather([j](const Problem& one) { return j + 1 < one.degree ? one.ddp[j] : 0.0; });
   }
   q.lo = gather([](const Problem& one) { return one.lo; });
   q.hi = gather([](const Problem& one) { return one.hi; });

@@ -3,37 +3,45 @@
 // that splits a witness polynomial into monotone pieces
 // (integrate/polynomial_roots.hpp).
 //
-// Newton's iteration on the polynomial and its derivative, kept inside the
-// bracket [a, b] of the sign change: each iterate replaces the end of its
-// sign; an iterate outside the bracket, or a step not under half the step
-// before the last, is replaced by the bracket's midpoint (the safeguard of
-// Numerical Recipes' rtsafe). Once Newton's step is under half the
-// tolerance, the next iterate goes past the Newton point by half the
-// tolerance, so that it lands beyond the root and closes the bracket from
-// the other side. The iteration ends when the bracket is within the
+// Each step goes to the root nearest the iterate x of the polynomial's
+// quadratic model there, d = −2 P / (P′ + sign(P′) √(P′² − 2 P P″)) (Euler's
+// method: Newton's step −P/P′ where the model has no root), kept inside
+// the bracket [a, b] of the sign change: each iterate replaces the end of
+// its sign; an iterate outside the bracket, or a step not under half the
+// step before the last, is replaced by the bracket's midpoint (the
+// safeguard of Numerical Recipes' rtsafe). Newton's step alone would crawl
+// where a step starts far out on a parabola (a chatter's crossing, just
+// past the apex the bracket starts at: the steps halve, 10 to 17 of them
+// on a 40 × 40 map's roots); the quadratic model lands there at once.
+// Once the step is under half the tolerance, the next iterate goes past the
+// model's root by half the tolerance, so that it lands beyond the root and
+// closes the bracket from the other side (or halfway to the bracket's end,
+// where that is nearer). The iteration ends when the bracket is within the
 // tolerance, |b − a| ≤ 4 ε (s + |b|), s the size of the absolute time.
 //
 // It is written once over a number type V whose comparisons give masks:
 // double (masks are bool), or LaneNumber (integrate/lane_number.hpp: masks
 // are LaneMask), where each lane runs its own iteration in lockstep with the
-// others and a lane whose bracket has closed keeps its values. A
-// lane's iterates are then those of the same problem solved alone in
-// double, to the last bit: the same IEEE operations in the same order (no
+// others and a lane whose bracket has closed keeps its values. A lane's
+// iterates are then those of the same problem solved alone in double, to
+// the last bit: the same IEEE operations in the same order (no
 // FMA: the build is ISO C++20, -ffp-contract=off). So a batch lane that has
 // its roots refined with other lanes' (integrate/series_lane.hpp) gets the
 // scalar stepper's event times.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <limits>
 
+#include <impactlab/integrate/polynomial_at.hpp>
 #include <impactlab/integrate/series_lane.hpp>
 #include <impactlab/integrate/taylor_series.hpp>
 
 namespace impactlab {
 
-// the most Newton or bisection steps a refinement takes (it needs about
-// five; bisection alone would need about sixty to reach the tolerance)
+// the most steps a refinement takes (it needs about four; bisection alone
+// would need about sixty to reach the tolerance)
 inline constexpr int monotone_root_iterations = 100;
 
 namespace detail {
@@ -54,30 +62,17 @@ V magnitude(const V& v, const V& zero) {
   return select(v < zero, -v, v);
 }
 
-// Σ_{j=0..degree} c_j x^j, in the operation order of polynomial_at
-// (integrate/polynomial_roots.hpp): Horner's scheme in x² on the even and
-// the odd coefficients
+// The bracket [a, b] (f_a, f_b: P there, nonzero, of opposite signs)
+// narrowed to the tolerance around P's root, as the header says; p: P's
+// coefficients to `degree`, dp: P′'s to degree − 1, ddp: P″'s to
+// degree − 2; scale: the size of the absolute time (s); `zero`, `half`,
+// `four_epsilon`: those constants as V. Where an iterate hits P = 0
+// exactly, a = b = that iterate.
 template <class V>
-V polynomial_value(const V* c, int degree, const V& x, const V& zero) {
-  const V x2 = x * x;
-  V even = zero, odd = zero;
-  int j = degree;
-  if (j % 2 == 0) even = c[j--];
-  for (; j >= 1; j -= 2) {
-    odd = odd * x2 + c[j];
-    even = even * x2 + c[j - 1];
-  }
-  return even + x * odd;
-}
-
-// The bracket [a, b] (fa, fb: P there, nonzero, of opposite signs) narrowed
-// to the tolerance around P's root, as the header says; p: P's coefficients
-// to `degree`, dp: P′'s to degree − 1; `zero`, `half`, `four_epsilon`: those
-// constants as V. Where an iterate hits P = 0 exactly, a = b = that iterate.
-template <class V>
-void narrow_monotone_bracket(const V* p, const V* dp, int degree, V& a, V& b, const V& f_a,
-                             const V& f_b, const V& scale, const V& zero, const V& half,
-                             const V& four_epsilon) {
+void narrow_monotone_bracket(const V* p, const V* dp, const V* ddp, int degree, V& a, V& b,
+                             const V& f_a, const V& f_b, const V& scale, const V& zero,
+                             const V& half, const V& four_epsilon) {
+  using std::sqrt;
   auto size = [&zero](const V& v) { return magnitude(v, zero); };
   auto tolerance_at = [&](const V& end) { return four_epsilon * (scale + size(end)); };
   auto closed = [&](const V& lo, const V& hi) { return size(hi - lo) <= tolerance_at(hi); };
@@ -89,8 +84,9 @@ void narrow_monotone_bracket(const V* p, const V* dp, int degree, V& a, V& b, co
   x = select((x > a) & (x < b), x, (a + b) * half);
   V step = b - a, step_before = b - a;
   for (int iteration = 0; iteration < monotone_root_iterations && any_lane(active); ++iteration) {
-    const V fx = polynomial_value(p, degree, x, zero);
-    const V slope = polynomial_value(dp, degree - 1, x, zero);
+    const V fx = polynomial_at(p, degree, x);
+    const V slope = polynomial_at(dp, degree - 1, x);
+    const V curvature = polynomial_at(ddp, degree - 2, x);
     const auto hit = active & (fx == zero);
     const auto same_side = (fx > zero) == (fa > zero);
     const auto replaces_a = active & !hit & same_side;
@@ -99,16 +95,26 @@ void narrow_monotone_bracket(const V* p, const V* dp, int degree, V& a, V& b, co
     fa = select(replaces_a, fx, fa);
     b = select(replaces_b | hit, x, b);
     active = active & !hit & !closed(a, b);
-    const V newton_step = fx / slope;
-    const V newton = x - newton_step;
-    // past the Newton point by half the tolerance once its step is smaller
+    // the quadratic model's root nearest x (x − model_step)
+    const V twice_fx = fx + fx;
+    const V discriminant = slope * slope - twice_fx * curvature;
+    const auto model_has_root = discriminant > zero;
+    const V root_of_discriminant = sqrt(select(model_has_root, discriminant, zero));
+    const V denominator = slope + select(slope < zero, -root_of_discriminant, root_of_discriminant);
+    const V model_step = select(model_has_root, twice_fx / denominator, fx / slope);
+    const V model_root = x - model_step;
+    // past the model's root by half the tolerance once its step is smaller
+    // (halfway to the bracket's end where that end is nearer)
     const V margin = tolerance_at(x) * half;
-    const V newton_size = size(newton_step);
-    const auto converged = newton_size <= margin;
-    const V past = select(newton_step > zero, newton - margin, newton + margin);
-    const V candidate = select(converged, past, newton);
+    const V step_size = size(model_step);
+    const auto converged = step_size <= margin;
+    const V past_by_margin = select(model_step > zero, model_root - margin, model_root + margin);
+    const V past_end = select(model_step > zero, (model_root + a) * half, (model_root + b) * half);
+    const auto margin_inside = (past_by_margin > a) & (past_by_margin < b);
+    const V past = select(margin_inside, past_by_margin, past_end);
+    const V candidate = select(converged, past, model_root);
     const auto accepted = (candidate > a) & (candidate < b) &
-                          (newton_size + newton_size <= size(step_before)) &
+                          (step_size + step_size <= size(step_before)) &
                           (candidate == candidate);
     const V next = select(accepted, candidate, (a + b) * half);
     step_before = select(active, step, step_before);
@@ -120,15 +126,16 @@ void narrow_monotone_bracket(const V* p, const V* dp, int degree, V& a, V& b, co
 }  // namespace detail
 
 // One root problem: P(h) = Σ p_j h^j on [lo, hi], monotone there, with
-// P(lo) = f_lo and P(hi) = f_hi nonzero and of opposite signs; dp: P′'s
-// coefficients (degree − 1); t_scale: the size of the absolute time (s) for
-// the tolerance. The answer: the bracket's end on f_hi's side where
-// `towards_hi` (the event time at or just past the crossing), else the
-// bracket's midpoint.
+// P(lo) = f_lo and P(hi) = f_hi nonzero and of opposite signs; dp, ddp: P′'s
+// and P″'s coefficients (degree − 1, degree − 2; ddp unread below degree 2);
+// t_scale: the size of the absolute time (s) for the tolerance. The
+// answer: the bracket's end on f_hi's side where `towards_hi` (the event
+// time at or just past the crossing), else the bracket's midpoint.
 template <class Real>
 struct MonotoneRootProblem {
   const Real* p = nullptr;
   const Real* dp = nullptr;
+  const Real* ddp = nullptr;
   int degree = 0;
   Real lo{}, hi{}, f_lo{}, f_hi{};
   Real t_scale{};
@@ -139,9 +146,9 @@ struct MonotoneRootProblem {
 template <class Real>
 Real refine_monotone_root(const MonotoneRootProblem<Real>& problem) {
   Real a = problem.lo, b = problem.hi;
-  detail::narrow_monotone_bracket<Real>(problem.p, problem.dp, problem.degree, a, b, problem.f_lo,
-                                        problem.f_hi, problem.t_scale, Real(0), Real(0.5),
-                                        Real(4 * std::numeric_limits<Real>::epsilon()));
+  detail::narrow_monotone_bracket<Real>(problem.p, problem.dp, problem.ddp, problem.degree, a, b,
+                                        problem.f_lo, problem.f_hi, problem.t_scale, Real(0),
+                                        Real(0.5), Real(4 * std::numeric_limits<Real>::epsilon()));
   return problem.towards_hi ? b : (a + b) * Real(0.5);
 }
 

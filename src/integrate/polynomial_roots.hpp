@@ -21,25 +21,10 @@
 #include <type_traits>
 
 #include <impactlab/integrate/monotone_root.hpp>
+#include <impactlab/integrate/polynomial_at.hpp>
 #include <impactlab/integrate/series_lane.hpp>
 
 namespace impactlab {
-
-// Σ_{j=0..degree} c_j h^j by Horner's scheme in h² on the even and the odd
-// coefficients: two independent chains of half the length (a Taylor step's
-// end state and every evaluation of a root refinement wait for it)
-template <class Coefficients, class Real>
-Real polynomial_at(const Coefficients& c, int degree, const Real& h) {
-  const Real h2 = h * h;
-  Real even = 0, odd = 0;
-  int j = degree;
-  if (j % 2 == 0) even = c[j--];
-  for (; j >= 1; j -= 2) {
-    odd = odd * h2 + c[j];
-    even = even * h2 + c[j - 1];
-  }
-  return even + h * odd;
-}
 
 // up to `capacity` sorted points in an interval
 template <int capacity, class Real = double>
@@ -126,10 +111,11 @@ class PolynomialRoots {
     const Real f_lo = value(m, lo), f_hi = value(m, hi);
     if (f_hi == 0) return hi;
     if (f_lo == 0) return lo;
-    differentiate(m + 1);
-    const MonotoneRootProblem<Real> problem{derivative_[m].data(), derivative_[m + 1].data(),
-                                            degree_ - m, lo, hi, f_lo, f_hi, t_scale_,
-                                            towards_hi};
+    differentiate(m + 2);
+    const MonotoneRootProblem<Real> problem{
+        derivative_[m].data(), derivative_[m + 1].data(),
+        derivative_[std::min(m + 2, max_degree)].data(),  // unread where m + 2 > the degree
+        degree_ - m, lo, hi, f_lo, f_hi, t_scale_, towards_hi};
     if constexpr (std::is_same_v<Real, double> && max_degree <= taylor_max_order) {
       if (lane_ != nullptr) {
         RootRequest request;

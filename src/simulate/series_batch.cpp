@@ -83,6 +83,7 @@ class FiberLane final : public SeriesLane {
   context::fiber fiber;      // this lane's, resumed by the scheduler
   context::fiber scheduler;  // the scheduler's, resumed by this lane
   SeriesRequest* pending = nullptr;
+  int rounds_deferred = 0;  // series rounds its pending request has waited for a partner
   SeriesTape* tape = nullptr;      // this lane's
   SeriesLaneRowsPool* row_pool = nullptr;  // the batch's
   bool finished = false;
@@ -108,11 +109,41 @@ void evaluate_group(SeriesRequest* const* requests, int count) {
   }
 }
 
+// A series request alone of its kind in a round, while other kinds share
+// one, waits (its lane does not run) for up to `wait_rounds` series rounds
+// in a row, for another lane to ask for a series of its kind. Its waiting[]
+// entry is cleared.
+void defer_lone_requests(SeriesRequest** waiting, const int* waiting_lane, int count,
+                         FiberLane* lanes, int wait_rounds) {
+  bool one_kind = true;  // the common case: nothing is alone
+  for (int i = 1; i < count && one_kind; ++i)
+    one_kind = waiting[i]->evaluate == waiting[0]->evaluate;
+  if (one_kind) return;
+  std::array<int, max_series_lanes> same_kind{};
+  bool any_shared = false;
+  for (int i = 0; i < count; ++i) {
+    for (int j = 0; j < count; ++j)
+      if (waiting[j]->evaluate == waiting[i]->evaluate) ++same_kind[i];
+    any_shared = any_shared || same_kind[i] > 1;
+  }
+  if (!any_shared) return;
+  for (int i = 0; i < count; ++i) {
+    FiberLane& lane = lanes[waiting_lane[i]];
+    if (same_kind[i] == 1 && lane.rounds_deferred < wait_rounds) {
+      ++lane.rounds_deferred;
+      waiting[i] = nullptr;
+    }
+  }
+}
+
 }  // namespace
 
-BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_next_job) {
+BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_next_job,
+                             int lone_wait_rounds) {
   if (width < 1 || width > max_series_lanes)
     throw std::invalid_argument("run_in_lanes: the width must be from 1 to max_series_lanes");
+  if (lone_wait_rounds < 0)
+    throw std::invalid_argument("run_in_lanes: lone_wait_rounds must not be negative");
   std::array<FiberLane, max_series_lanes> lanes;
   const auto tapes = std::make_unique<SeriesTape[]>(static_cast<std::size_t>(width));
   const auto row_pool = std::make_unique<SeriesLaneRowsPool>();
@@ -174,6 +205,8 @@ BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_
         if (!waiting[i]->before_series) waiting[i] = nullptr;
     } else {
       row_pool->start_round();
+      defer_lone_requests(waiting.data(), waiting_lane.data(), waiting_count, lanes.data(),
+                          lone_wait_rounds);
     }
     // the requests of each kind (steppers of one type) together, in lane order
     for (int i = 0; i < waiting_count; ++i) {
@@ -185,6 +218,7 @@ BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_
           group[count++] = waiting[j];
           waiting[j] = nullptr;
           lanes[waiting_lane[j]].pending = nullptr;  // answered: runs on next round
+          lanes[waiting_lane[j]].rounds_deferred = 0;
         }
       evaluate_group(group.data(), count);
       if (any_before_series) {

@@ -35,6 +35,12 @@ namespace impactlab {
 // only some lanes are in at a time, mostly alone: docs/performance.md)
 inline constexpr int default_batch_width = max_series_lanes;
 
+// the rounds a lone series request waits for a partner by default
+// (run_in_lanes): on a 2D map with Lyapunov exponents, 32 rounds ran 8.7 %
+// fewer instructions than none and 8 rounds 7.6 % (docs/performance.md,
+// "a lone series waits for a partner")
+inline constexpr int default_lone_wait_rounds = 32;
+
 // How full the batch ran: how many series it evaluated, in how many
 // evaluations together (lane_series / evaluations: the mean lanes per
 // evaluation, at most the width), and how many of them in passes over lanes
@@ -57,6 +63,16 @@ struct BatchStatistics {
 // rethrows the first exception a lane's run_next_job threw (that lane stops
 // taking jobs; the others finish theirs). The fibers' stacks are made once
 // per call: nothing is allocated while the lanes step.
-BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_next_job);
+//
+// A lane whose series request is the only one of its kind (steppers of its
+// type) in a round, while other lanes' requests share theirs, waits for up
+// to `lone_wait_rounds` rounds in a row (its lane does not run meanwhile)
+// for another lane to ask for a series of its kind: a series alone costs
+// several times a lane of a pass, and a lane that starts a phase of its
+// own (a 2D map's point reaching its Lyapunov run, the variational
+// system's steps) is then soon joined by the next. Waiting changes no
+// lane's numbers, only the order in which the lanes run; 0: no waiting.
+BatchStatistics run_in_lanes(int width, FunctionRef<bool(SeriesLane& lane)> run_next_job,
+                             int lone_wait_rounds = default_lone_wait_rounds);
 
 }  // namespace impactlab

@@ -26,18 +26,21 @@ using Precise = boost::multiprecision::cpp_bin_float_50;
 struct HeldProblem {
   std::array<double, taylor_max_order + 1> p{};
   std::array<double, taylor_max_order + 1> dp{};
+  std::array<double, taylor_max_order + 1> ddp{};
   MonotoneRootProblem<double> problem;
 
   void point_into_self() {
     problem.p = p.data();
     problem.dp = dp.data();
+    problem.ddp = ddp.data();
   }
 };
 
-// A problem held in `held`: P(h) = c0 + s h + Σ_{j≥2} c_j h^j on [lo, hi] ⊂ [0, 1], with Σ j |c_j| < 1/2
-// for j ≥ 2, so that |P′| > 1/2 there: monotone, falling (s = −1) or rising;
-// c0 puts its root at a random point inside. The degree is 1..22, the size
-// of the time 0, 1 or 1000 s.
+// A problem held in `held`: P(h) = c0 + s h + Σ_{j≥2} c_j h^j on
+// [lo, hi] ⊂ [0, 1], with |c_j| ≤ 1/(2 j³), so that Σ_{j≥2} j |c_j| < 1/3
+// and |P′| > 2/3 there: monotone, falling (s = −1) or rising; c0 puts its
+// root at a random point inside. The degree is 1..22, the size of the time
+// 0, 1 or 1000 s.
 void fill_random_problem(std::mt19937_64& random, HeldProblem& held) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   held = HeldProblem{};
@@ -50,6 +53,7 @@ void fill_random_problem(std::mt19937_64& random, HeldProblem& held) {
   const double root = lo + (hi - lo) * (0.02 + 0.96 * unit(random));
   held.p[0] = -polynomial_at(held.p, degree, root);
   for (int j = 0; j < degree; ++j) held.dp[j] = held.p[j + 1] * (j + 1);
+  for (int j = 0; j + 1 < degree; ++j) held.ddp[j] = held.dp[j + 1] * (j + 1);
   const std::array<double, 3> scales = {0.0, 1.0, 1000.0};
   held.problem.degree = degree;
   held.problem.lo = lo;
@@ -82,7 +86,7 @@ Precise precise_root(const HeldProblem& held) {
 
 // Within the tolerance of the true root of its coefficients, 4 ε (s + |h|)
 // wide, plus the double polynomial's own round-off near the root (its
-// value's error, about 1e-16 · Σ|c_j|, over its slope, at least 1/2); and
+// value's error, about 1e-16 · Σ|c_j|, over its slope, at least 2/3); and
 // the end past the crossing has P on f_hi's side (or zero) in double.
 TEST(MonotoneRoot, WithinTheToleranceOfA50DigitRoot) {
   std::mt19937_64 random(20261202);
@@ -106,14 +110,51 @@ TEST(MonotoneRoot, WithinTheToleranceOfA50DigitRoot) {
   }
 }
 
+// A chatter's crossing: the bracket starts at the witness's apex, where its
+// slope is zero, and the root lies a small way past it (the
+// witness after a slow rebound, g(h) = δ − c (h − u)² + small higher terms
+// on [u, 1/4]): within the tolerance of the 50-digit root, for apexes and
+// rebounds over six decades.
+TEST(MonotoneRoot, AChattersCrossingJustPastTheApex) {
+  const double epsilon = std::numeric_limits<double>::epsilon();
+  for (const double apex : {1e-6, 1e-4, 1e-2}) {
+    for (const double rebound : {1e-12, 1e-9, 1e-6}) {
+      HeldProblem held;
+      const int degree = 12;
+      // δ − 0.2 (h − u)² + 0.01 h³ …: expanded in h
+      held.p[0] = rebound - 0.2 * apex * apex;
+      held.p[1] = 0.4 * apex;
+      held.p[2] = -0.2;
+      for (int j = 3; j <= degree; ++j) held.p[j] = 0.01 / (j * j);
+      for (int j = 0; j < degree; ++j) held.dp[j] = held.p[j + 1] * (j + 1);
+      for (int j = 0; j + 1 < degree; ++j) held.ddp[j] = held.dp[j + 1] * (j + 1);
+      held.problem.degree = degree;
+      held.problem.lo = apex;
+      held.problem.hi = 0.25;
+      held.problem.f_lo = polynomial_at(held.p, degree, apex);
+      held.problem.f_hi = polynomial_at(held.p, degree, 0.25);
+      held.problem.t_scale = 2.0;
+      held.problem.towards_hi = true;
+      held.point_into_self();
+      ASSERT_GT(held.problem.f_lo, 0.0);
+      ASSERT_LT(held.problem.f_hi, 0.0);
+      const double root = refine_monotone_root(held.problem);
+      const double reference = static_cast<double>(precise_root(held));
+      EXPECT_LE(std::fabs(root - reference), 4 * epsilon * (2.0 + root) + 8 * epsilon)
+          << "apex " << apex << ", rebound " << rebound;
+      EXPECT_LE(polynomial_at(held.p, degree, root), 0.0) << apex << " " << rebound;
+    }
+  }
+}
+
 // A root that an iterate hits exactly is returned exactly: P(h) = h − 1/2,
 // whose chord through the ends of [0, 1] crosses zero at 1/2.
 TEST(MonotoneRoot, AnExactZeroIsTheRoot) {
   const std::array<double, 2> p = {-0.5, 1.0};
   const std::array<double, 1> dp = {1.0};
   for (const bool towards_hi : {false, true}) {
-    const MonotoneRootProblem<double> problem{p.data(), dp.data(), 1, 0.0, 1.0, -0.5, 0.5, 1.0,
-                                              towards_hi};
+    const MonotoneRootProblem<double> problem{p.data(), dp.data(), nullptr, 1, 0.0, 1.0, -0.5, 0.5,
+                                              1.0, towards_hi};
     EXPECT_EQ(refine_monotone_root(problem), 0.5);
   }
 }

@@ -202,16 +202,24 @@ TEST(SeriesBatch, BallChatteringToRestAndStickingEqualsTheScalarRunsLaneForLane)
   expect_lanes_equal_alone(jobs, 4);
 }
 
+// the pendulum at V0 (m/s) from a small swing, for `periods` forcing periods
+Trajectory<PendulumWalls> swinging(double V0, double periods) {
+  return {pendulum(V0), {0.0, 0.1, 0.0}, PendulumWalls::Mode::free, forcing_periods(periods)};
+}
+
+// a ball of restitution 0.05 dropped from 5 cm, for t_end (s)
+Trajectory<BouncingBall> bouncing(double t_end) {
+  BouncingBallParameters ball_parameters;
+  ball_parameters.r = 0.05;
+  return {BouncingBall(ball_parameters), {0.05, 0.0}, BouncingBall::Mode{}, t_end};
+}
+
 // Steppers of two system types in lanes at the same time: the batch
 // evaluates each type's requests together, and each lane still equals its
 // scalar run.
 TEST(SeriesBatch, LanesOfDifferentSystemsEqualTheScalarRuns) {
-  const Trajectory<PendulumWalls> swing{pendulum(4.163), {0.0, 0.1, 0.0},
-                                        PendulumWalls::Mode::free, forcing_periods(10)};
-  BouncingBallParameters ball_parameters;
-  ball_parameters.r = 0.05;
-  const Trajectory<BouncingBall> bounce{BouncingBall(ball_parameters), {0.05, 0.0},
-                                        BouncingBall::Mode{}, 2.0};
+  const Trajectory<PendulumWalls> swing = swinging(4.163, 10);
+  const Trajectory<BouncingBall> bounce = bouncing(2.0);
   const auto swing_alone = run_one(swing, nullptr);
   const auto bounce_alone = run_one(bounce, nullptr);
   std::vector<Outcome<PendulumWalls>> swings(3);
@@ -230,6 +238,45 @@ TEST(SeriesBatch, LanesOfDifferentSystemsEqualTheScalarRuns) {
   for (const auto& run : bounces) expect_same_run(run, bounce_alone);
   EXPECT_EQ(statistics.lane_series,
             3 * (swing_alone.result.counters.steps + bounce_alone.result.counters.steps));
+}
+
+// A lane whose series are the only ones of their kind waits for a partner
+// (run_in_lanes' lone_wait_rounds): two pendulums share three lanes with a
+// ball, the second ball starting when a pendulum ends. Waiting, the first
+// ball's steps run mostly beside the second's, so more series come from
+// passes than without waiting; every lane still equals its scalar run, and
+// the lone ball finishes.
+TEST(SeriesBatch, ALoneKindWaitsForAPartnerAndStillEqualsTheScalarRuns) {
+  const Trajectory<PendulumWalls> swing = swinging(1.5, 8);
+  const Trajectory<BouncingBall> bounce = bouncing(6.0);
+  const auto swing_alone = run_one(swing, nullptr);
+  const auto bounce_alone = run_one(bounce, nullptr);
+  auto run_batch = [&](int wait_rounds) {
+    std::vector<Outcome<PendulumWalls>> swings(2);
+    std::vector<Outcome<BouncingBall>> bounces(2);
+    int next = 0;
+    const BatchStatistics statistics = run_in_lanes(
+        3,
+        [&](SeriesLane& lane) {
+          if (next == 4) return false;
+          const int i = next++;
+          if (i == 0 || i == 1)
+            swings[static_cast<std::size_t>(i)] = run_one(swing, &lane);
+          else
+            bounces[static_cast<std::size_t>(i - 2)] = run_one(bounce, &lane);
+          return true;
+        },
+        wait_rounds);
+    for (const auto& run : swings) expect_same_run(run, swing_alone);
+    for (const auto& run : bounces) expect_same_run(run, bounce_alone);
+    EXPECT_EQ(statistics.lane_series,
+              2 * (swing_alone.result.counters.steps + bounce_alone.result.counters.steps));
+    return statistics;
+  };
+  const BatchStatistics without = run_batch(0);
+  const BatchStatistics waiting = run_batch(default_lone_wait_rounds);
+  EXPECT_GT(waiting.series_in_passes, without.series_in_passes);
+  EXPECT_THROW(run_in_lanes(2, [](SeriesLane&) { return false; }, -1), std::invalid_argument);
 }
 
 // Lanes of one system (a basin grid's initial states) are evaluated in
