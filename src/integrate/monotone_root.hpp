@@ -40,8 +40,9 @@
 
 namespace impactlab {
 
-// the most steps a refinement takes (it needs about four; bisection alone
-// would need about sixty to reach the tolerance)
+// the most steps a refinement takes (Newton's steps alone took 4 to 6 for
+// most roots of a 2D map, 51 at most; bisection alone would need about
+// sixty to reach the tolerance)
 inline constexpr int monotone_root_iterations = 100;
 
 namespace detail {
