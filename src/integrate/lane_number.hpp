@@ -19,6 +19,10 @@ namespace impactlab {
 // x86-64), whose arithmetic is the IEEE operation lane by lane.
 using LaneQuad = double __attribute__((vector_size(32)));
 
+// Four lanes' bits as integers: a comparison's mask (all bits set where it
+// holds), or a quad's bits for a bitwise operation.
+using LaneQuadMask = long __attribute__((vector_size(32)));
+
 // Whether the processor has AVX2, for which a pass over lanes
 // (integrate/series_tape.cpp) is compiled a second time (four lanes in one
 // register), chosen at run time so that the build runs on any x86-64:
@@ -94,16 +98,20 @@ struct alignas(32) LaneNumber {
     for (int i = 0; i < B; ++i) r.set_lane(i, std::sqrt(a.lane(i)));
     return r;
   }
+  // the sign bit cleared, as std::fabs does (bit for bit, a NaN's too)
   friend LaneNumber fabs(const LaneNumber& a) {
+    constexpr long all_but_sign = ~(1L << 63);
+    const LaneQuadMask keep = {all_but_sign, all_but_sign, all_but_sign, all_but_sign};
     LaneNumber r;
-    for (int i = 0; i < B; ++i) r.set_lane(i, std::fabs(a.lane(i)));
+    for (int q = 0; q < quads; ++q)
+      r.quad[q] = reinterpret_cast<LaneQuad>(reinterpret_cast<LaneQuadMask>(a.quad[q]) & keep);
     return r;
   }
 };
 
 // Lane-by-lane comparisons of B lanes: all bits set in a lane where it
-// holds, none where not (GCC's and Clang's vector comparisons).
-using LaneQuadMask = long __attribute__((vector_size(32)));
+// holds, none where not (GCC's and Clang's vector comparisons); LaneQuadMask
+// (above) holds four of them.
 
 template <int B>
 struct alignas(32) LaneMask {

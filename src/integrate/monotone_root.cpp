@@ -31,8 +31,7 @@ void narrow_lanes(const LaneProblems<B>& q, LaneNumber<B>& a, LaneNumber<B>& b) 
   a = q.lo;
   b = q.hi;
   detail::narrow_monotone_bracket<Lanes>(q.p.data(), q.dp.data(), q.ddp.data(), q.degree, a, b,
-                                         q.f_lo, q.f_hi,
-                                         q.t_scale, Lanes(0.0), Lanes(0.5),
+                                         q.f_lo, q.f_hi, q.t_scale, Lanes(0.0), Lanes(0.5),
                                          Lanes(4 * std::numeric_limits<double>::epsilon()));
 }
 
@@ -66,11 +65,22 @@ void refine_in_lanes(const MonotoneRootProblem<double>* const* problems, int cou
     return number;
   };
   using Problem = MonotoneRootProblem<double>;
-  for (int j = 0; j <= q.degree; ++j) {
-    q.p[j] = gather([j](const Problem& one) { return j <= one.degree ? one.p[j] : 0.0; });
-    q.dp[j] = gather([j](const Problem& one) { return j < one.degree ? one.dp[j] : 0.0; });
-    q.ddp[j] = gather([j](const Problem& one) { return j + 1 < one.degree ? one.ddp[j] : 0.0; });
+  // the coefficients lane by lane into the lanes' layout (coefficient j of
+  // lane l at j·B + l), then copied whole
+  std::array<double, (taylor_max_order + 1) * B> coefficients;
+  for (int lane = 0; lane < B; ++lane) {
+    const Problem& one = problem(lane);
+    for (int j = 0; j <= q.degree; ++j)
+      coefficients[j * B + lane] = j <= one.degree ? one.p[j] : 0.0;
   }
+  static_assert(sizeof(Lanes) == B * sizeof(double));
+  std::memcpy(q.p.data(), coefficients.data(), (q.degree + 1) * sizeof(Lanes));
+  // the derivatives as the problems hold them (MonotoneRootProblem), each
+  // product the same IEEE multiplication in its lane; zero past a lane's
+  // degree, as the padding of p
+  for (int j = 0; j < q.degree; ++j) q.dp[j] = q.p[j + 1] * Lanes(static_cast<double>(j + 1));
+  for (int j = 0; j + 1 < q.degree; ++j)
+    q.ddp[j] = q.dp[j + 1] * Lanes(static_cast<double>(j + 1));
   q.lo = gather([](const Problem& one) { return one.lo; });
   q.hi = gather([](const Problem& one) { return one.hi; });
   q.f_lo = gather([](const Problem& one) { return one.f_lo; });
@@ -110,7 +120,6 @@ void evaluate_root_requests(SeriesRequest* const* requests, int count) {
   for (int i = 0; i < count; ++i) {
     auto* request = static_cast<RootRequest*>(requests[i]);
     request->root = roots[i];
-    request->in_pass = count > 1;
   }
 }
 

@@ -40,9 +40,9 @@
 
 namespace impactlab {
 
-// the most steps a refinement takes (Newton's steps alone took 4 to 6 for
-// most roots of a 2D map, 51 at most; bisection alone would need about
-// sixty to reach the tolerance)
+// the most steps a refinement takes: a cap above the about sixty steps that
+// bisection alone needs to reach the tolerance from a step's length (the
+// safeguard falls back on bisection wherever the model's steps stop halving)
 inline constexpr int monotone_root_iterations = 100;
 
 namespace detail {
@@ -56,13 +56,6 @@ Real select(bool mask, const Real& a, const Real& b) {
 
 inline bool any_lane(bool mask) { return mask; }
 
-// |v| by a comparison, the same expression for every number type (so a lane
-// and a double agree on every bit, the sign of a zero included)
-template <class V>
-V magnitude(const V& v, const V& zero) {
-  return select(v < zero, -v, v);
-}
-
 // The bracket [a, b] (f_a, f_b: P there, nonzero, of opposite signs)
 // narrowed to the tolerance around P's root, as the header says; p: P's
 // coefficients to `degree`, dp: P′'s to degree − 1, ddp: P″'s to
@@ -73,8 +66,9 @@ template <class V>
 void narrow_monotone_bracket(const V* p, const V* dp, const V* ddp, int degree, V& a, V& b,
                              const V& f_a, const V& f_b, const V& scale, const V& zero,
                              const V& half, const V& four_epsilon) {
+  using std::fabs;
   using std::sqrt;
-  auto size = [&zero](const V& v) { return magnitude(v, zero); };
+  auto size = [](const V& v) { return fabs(v); };
   auto tolerance_at = [&](const V& end) { return four_epsilon * (scale + size(end)); };
   auto closed = [&](const V& lo, const V& hi) { return size(hi - lo) <= tolerance_at(hi); };
   auto active = !closed(a, b);
@@ -128,7 +122,9 @@ void narrow_monotone_bracket(const V* p, const V* dp, const V* ddp, int degree, 
 
 // One root problem: P(h) = Σ p_j h^j on [lo, hi], monotone there, with
 // P(lo) = f_lo and P(hi) = f_hi nonzero and of opposite signs; dp, ddp: P′'s
-// and P″'s coefficients (degree − 1, degree − 2; ddp unread below degree 2);
+// and P″'s coefficients (degree − 1, degree − 2; ddp unread below degree 2),
+// each rounded as dp_j = p_{j+1} · (j + 1) and ddp_j = dp_{j+1} · (j + 1)
+// in double (refine_monotone_roots derives them so from p in its lanes);
 // t_scale: the size of the absolute time (s) for the tolerance. The
 // answer: the bracket's end on f_hi's side where `towards_hi` (the event
 // time at or just past the crossing), else the bracket's midpoint.

@@ -52,9 +52,9 @@ LocatedEvent first_polynomial_event(const std::array<Real, taylor_max_order + 1>
   // increasing order until one holds the event: the critical points past
   // it are not refined
   LocatedEvent first{};
-  Real u = lo;
+  Real u = lo, gu = g_lo;  // the piece's start, and g there
   auto holds_the_event = [&](const Real& v) {
-    const Real gu = poly.value(0, u), gv = poly.value(0, v);
+    const Real gv = poly.value(0, v);
     const bool falling = poly.value(1, (u + v) / 2) < 0;
     const bool armed = gu > 0 || (u == lo && leaving_zero);
     const bool interior_minimum = falling && v < hi;
@@ -70,7 +70,8 @@ LocatedEvent first_polynomial_event(const std::array<Real, taylor_max_order + 1>
         if (interior_minimum && gv > -tolerance && one_sided)
           first = {true, at(v), k, CrossingKind::grazing};
         else
-          first = {true, std::min(at(poly.root(0, u, v, true)), at(hi)), k, CrossingKind::crossing};
+          first = {true, std::min(at(poly.root(0, u, v, gu, gv, true)), at(hi)), k,
+                   CrossingKind::crossing};
         return true;
       }
       if (interior_minimum && gv <= tolerance && one_sided) {
@@ -79,6 +80,7 @@ LocatedEvent first_polynomial_event(const std::array<Real, taylor_max_order + 1>
       }
     }
     u = v;
+    gu = gv;
     return false;
   };
   const bool found = !monotone && poly.visit_sign_changes(1, lo, hi, holds_the_event);

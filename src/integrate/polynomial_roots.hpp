@@ -91,13 +91,16 @@ class PolynomialRoots {
       value_bound += fabs(e[j]) * power;
     }
     if (fabs(e[0]) > value_bound) return false;
-    if (fabs(e[1]) > slope_bound) return visit_root_if_sign_change(m, lo, hi, visit);
+    if (fabs(e[1]) > slope_bound)
+      return visit_root_if_sign_change(m, lo, hi, value(m, lo), value(m, hi), visit);
     const Points inner = sign_changes(m + 1, lo, hi);
-    Real left = lo;
+    Real left = lo, f_left = value(m, lo);
     for (int i = 0; i <= inner.count; ++i) {
       const Real right = i < inner.count ? inner.points[i] : hi;
-      if (visit_root_if_sign_change(m, left, right, visit)) return true;
+      const Real f_right = value(m, right);
+      if (visit_root_if_sign_change(m, left, right, f_left, f_right, visit)) return true;
       left = right;
+      f_left = f_right;
     }
     return false;
   }
@@ -108,7 +111,12 @@ class PolynomialRoots {
   // bracket when `towards_hi`. In a batch lane, refined together with the
   // other lanes' roots of the same round, to the same bits.
   [[nodiscard]] Real root(int m, const Real& lo, const Real& hi, bool towards_hi) const {
-    const Real f_lo = value(m, lo), f_hi = value(m, hi);
+    return root(m, lo, hi, value(m, lo), value(m, hi), towards_hi);
+  }
+
+  // The same, given f_lo = value(m, lo) and f_hi = value(m, hi).
+  [[nodiscard]] Real root(int m, const Real& lo, const Real& hi, const Real& f_lo, const Real& f_hi,
+                          bool towards_hi) const {
     if (f_hi == 0) return hi;
     if (f_lo == 0) return lo;
     differentiate(m + 2);
@@ -130,12 +138,13 @@ class PolynomialRoots {
   }
 
  private:
-  // visit(the root of P⁽ᵐ⁾ in [lo, hi]) where its end values differ in
-  // sign; false (not stopped) where they do not
+  // visit(the root of P⁽ᵐ⁾ in [lo, hi]) where its end values f_lo, f_hi
+  // differ in sign; false (not stopped) where they do not
   template <class Visit>
-  bool visit_root_if_sign_change(int m, const Real& lo, const Real& hi, Visit& visit) const {
-    const Real f_lo = value(m, lo), f_hi = value(m, hi);
-    if ((f_lo < 0 && f_hi > 0) || (f_lo > 0 && f_hi < 0)) return visit(root(m, lo, hi, false));
+  bool visit_root_if_sign_change(int m, const Real& lo, const Real& hi, const Real& f_lo,
+                                 const Real& f_hi, Visit& visit) const {
+    if ((f_lo < 0 && f_hi > 0) || (f_lo > 0 && f_hi < 0))
+      return visit(root(m, lo, hi, f_lo, f_hi, false));
     return false;
   }
 
