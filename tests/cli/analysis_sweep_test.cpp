@@ -608,15 +608,12 @@ TEST(Periodic, DetectsThePeriodAndReportsFloquetMultipliers) {
   EXPECT_NEAR(product, 0.8 * 0.8 * std::exp(-2.0 * 0.05 * std::numbers::pi), 1e-10);
 }
 
-// At ω = 6.3 no period shows in 64 stroboscopic points and Newton's method
-// from period 1 stalls: the summary says why, prints no multipliers of the
-// iterate that is not an orbit, and says how the period was chosen.
-// At ω = 6.3 rad/s the attractor is chaotic, so no period is detected and
-// period 1 is tried from the transient's end; one Newton iteration allowed
-// cannot reach the tolerance from there (a start within about 1e-6 of the
-// unstable period-1 orbit could: the chaotic transient's end is at about
-// 0.1), so the search ends unconverged whichever orbit the start is
-// nearest.
+// At ω = 6.3 rad/s the attractor is chaotic: no period shows in 64
+// stroboscopic points, period 1 is tried from the transient's end, and one
+// Newton iteration allowed leaves the search unconverged (a residual of
+// 1.4e-4 when this was written, against the default tolerance of 1e-11).
+// The summary says why, prints no multipliers of the iterate that is not an
+// orbit, and says how the period was chosen.
 TEST(Periodic, AnUnconvergedSearchSaysWhyAndPrintsNoMultipliers) {
   const ScratchFolder scratch;
   const auto out = scratch / "stalled";
