@@ -29,7 +29,8 @@ struct PeriodicResult {
   double t_section = 0.0;         // the section time the point belongs to
   double orbit_period = 0.0;      // nT
   // on the system's tangent space: N × N, row-major (N = 2: (q, q̇); a model
-  // file: its N states), and its N eigenvalues, largest modulus first
+  // file: its N states), and its N eigenvalues, largest modulus first (none
+  // where Newton's method did not converge: the state is then no orbit)
   std::vector<std::vector<double>> monodromy;
   std::vector<std::complex<double>> multipliers;
   bool converged = false;

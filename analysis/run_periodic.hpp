@@ -55,7 +55,10 @@ PeriodicResult run_periodic(const System& system, const typename System::State& 
     result.state_names = state_names_of(system);
     result.mode = static_cast<int>(orbit.mode);
     for (const auto& row : orbit.monodromy) result.monodromy.emplace_back(row.begin(), row.end());
-    result.multipliers.assign(orbit.multipliers.begin(), orbit.multipliers.end());
+    // an iterate that is not an orbit has no multipliers: none are written
+    // (its monodromy, ∂Pⁿ/∂x at the state written, is kept for diagnosis)
+    if (orbit.converged)
+      result.multipliers.assign(orbit.multipliers.begin(), orbit.multipliers.end());
     result.converged = orbit.converged;
     result.iterations = orbit.iterations;
     result.residual = orbit.residual;

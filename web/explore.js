@@ -402,7 +402,9 @@ async function showOrbit(point) {
       (periodic.converged ? `converged in ${periodic.iterations} Newton iterations, residual ${periodic.residual.toExponential(2)}`
                           : `not converged: ${periodic.failure}`),
     `orbit point on the section: ${periodic.state_names.map((n, i) => `${n} = ${periodic.state[i]}`).join(", ")}`,
-    `Floquet multipliers: ${periodic.floquet_multipliers.map((z) => `${complexText(z)} (|μ| = ${z.abs.toPrecision(6)})`).join(", ")}`,
+    periodic.converged
+      ? `Floquet multipliers: ${periodic.floquet_multipliers.map((z) => `${complexText(z)} (|μ| = ${z.abs.toPrecision(6)})`).join(", ")}`
+      : "Floquet multipliers: none (the iterate is not an orbit)",
     `largest Lyapunov exponent: ${result.lyapunov_text} per time unit ${result.lyapunov_note ? "(" + result.lyapunov_note + ")" : ""}`,
   ];
   document.getElementById("orbit-text").textContent = lines.join("\n");

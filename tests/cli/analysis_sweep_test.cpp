@@ -613,7 +613,7 @@ TEST(Periodic, DetectsThePeriodAndReportsFloquetMultipliers) {
 // Newton iteration allowed leaves the search unconverged (a residual of
 // 1.4e-4 when this was written, against the default tolerance of 1e-11).
 // The summary says why, prints no multipliers of the iterate that is not an
-// orbit, and says how the period was chosen.
+// orbit (nor does periodic.json hold any), and says how the period was chosen.
 TEST(Periodic, AnUnconvergedSearchSaysWhyAndPrintsNoMultipliers) {
   const ScratchFolder scratch;
   const auto out = scratch / "stalled";
@@ -624,6 +624,9 @@ TEST(Periodic, AnUnconvergedSearchSaysWhyAndPrintsNoMultipliers) {
   EXPECT_EQ(run.out.find("multipliers"), std::string::npos) << run.out;
   const auto result = nlohmann::json::parse(slurp(out / "periodic.json"));
   ASSERT_FALSE(result["converged"].get<bool>());
+  // nor does the file hold multipliers: the iterate's monodromy, 2 × 2, stays
+  EXPECT_TRUE(result["floquet_multipliers"].empty()) << result["floquet_multipliers"];
+  EXPECT_EQ(result["monodromy"].size(), 2u);
   const std::string failure = result["failure"];
   ASSERT_FALSE(failure.empty());
   EXPECT_NE(run.out.find(failure), std::string::npos) << run.out;

@@ -234,6 +234,8 @@ def test_unconverged_periodic_warns_why_as_the_cli_says():
                       match="the period was not detected in 64 stroboscopic points") as caught:
         orbit = impactlab.periodic("jin2003", omega=6.3, max_iterations=1)
     assert not orbit.converged
+    assert orbit.multipliers.size == 0
+    assert orbit.monodromy.shape == (2, 2)
     assert "max_iterations reached" in orbit.meta["failure"]
     assert orbit.meta["failure"] in str(caught[0].message)
 
