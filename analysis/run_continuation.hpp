@@ -137,7 +137,7 @@ ContinuationJobResult run_continuation(SystemAt system_at, typename System::Mode
     // forced to stick, where that is not −1: ContinuationProblem::stick_forced_at)
     auto full_map_at = [&](const Scene& base, int period, const FlowSetup* flow = nullptr,
                            int forced_witness = -1) {
-      auto make_system = [base, parameter = job.parameter, system_at, forced_witness](double p) {
+      auto make_system = [=, parameter = job.parameter](double p) {
         Scene at = base;
         at.values[parameter] = p;
         System system = system_at(at);

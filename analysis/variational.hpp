@@ -174,7 +174,7 @@ class Variational {
   // Jacobian is the difference of two flows: column i is
   // flow(x0 + e_i) − flow(x0), exact whatever the size of e_i.
   void exact_flow(Mode mode, const State& v0, double t0, double t, State& v) const
-    requires HasExactFlow<Base> && Base::affine_flow
+    requires HasExactFlow<Base> && requires { requires Base::affine_flow; }
   {
     const BaseState x0 = base_state(v0);
     BaseState x;

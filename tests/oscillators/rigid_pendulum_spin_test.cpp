@@ -37,7 +37,6 @@
 #include <complex>
 #include <numbers>
 #include <random>
-#include <ranges>
 #include <string>
 #include <vector>
 
@@ -636,8 +635,8 @@ TEST(RigidPendulumSpin, PlainAndTangentRunsLocateImpactsToTheTolerance) {
                         loop_options(setup), tangent_log);
       });
   double largest_phi = 0.0;
-  for (double entry : Tangent::fundamental_matrix(tangent_run.state) | std::views::join)
-    largest_phi = std::max(largest_phi, std::fabs(entry));
+  for (const auto& row : Tangent::fundamental_matrix(tangent_run.state))
+    for (double entry : row) largest_phi = std::max(largest_phi, std::fabs(entry));
   EXPECT_GT(largest_phi, 1e3);
   StepperSettings quad_settings;
   quad_settings.rtol = quad_settings.atol = 1e-20;
