@@ -3,10 +3,10 @@
 
 Compiles each translation unit of the library, the program and the Python
 module alone, with the build's own flags and without a compiler cache, and
-the fixed yardstick (compile_yardstick.cpp beside this file) before every
-eighth unit and at the end; writes each unit's CPU time (user + system) and
-its multiple of the yardstick's median, largest first, and prints the
-total. Tests, benchmarks and examples are not counted.
+the fixed yardstick (compile_yardstick.cpp beside this file, with the
+build's compiler) before every eighth unit and at the end; writes each
+unit's CPU time (user + system) and its multiple of the yardstick's
+median, largest first, and prints the total. Tests, benchmarks and examples are not counted.
 
 usage: benchmarks/compile_units.py BUILD_DIR OUT.tsv
 """
@@ -40,7 +40,9 @@ def main():
              if not any(part in c["file"] for part in ("/tests/", "/benchmarks/", "/examples/"))]
     scratch = tempfile.mkdtemp()
     target = os.path.join(scratch, "unit.o")
-    yardstick = ["/usr/bin/c++", *YARDSTICK_FLAGS.split(), "-c", str(YARDSTICK), "-o", target]
+    # the yardstick with the build's own compiler (CMAKE_CXX_COMPILER)
+    compiler = shlex.split(units[0]["command"])[0]
+    yardstick = [compiler, *YARDSTICK_FLAGS.split(), "-c", str(YARDSTICK), "-o", target]
     yards, rows = [], []
     for index, unit in enumerate(units):
         if index % 8 == 0:
