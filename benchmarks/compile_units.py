@@ -6,7 +6,8 @@ module alone, with the build's own flags and without a compiler cache, and
 the fixed yardstick (compile_yardstick.cpp beside this file, with the
 build's compiler) before every eighth unit and at the end; writes each
 unit's CPU time (user + system) and its multiple of the yardstick's
-median, largest first, and prints the total. Tests, benchmarks and examples are not counted.
+median, largest first, and prints the total. Tests, benchmarks and
+examples are not counted.
 
 usage: benchmarks/compile_units.py BUILD_DIR OUT.tsv
 """
